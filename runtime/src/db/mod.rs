@@ -1,0 +1,12 @@
+//! The function-block database: templates (block types), blocks and aliases.
+//!
+//! A database is loaded from the JSON contract described in `docs/database.md`.
+//! Every database starts from the built-in template library (`builtin.json`),
+//! and a file may add templates or override built-in ones by name. Names are
+//! case-insensitive everywhere, as in LIN.
+
+mod json;
+mod schema;
+
+pub use json::DbError;
+pub use schema::{Alias, Block, Database, FieldDef, FieldType, InitValue, Template};

@@ -1,0 +1,186 @@
+//! In-memory shape of a database.
+
+use std::collections::HashMap;
+
+/// The type of one field of a block template.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FieldType {
+    Real,
+    Int,
+    Bool,
+    /// A bitfield of 8 or 16 bits; `names` are optional aliases of `Bit0…`.
+    Bits { width: u8, names: Vec<String> },
+    /// Named values, assigned by case-insensitive string.
+    Enum(Vec<String>),
+    String,
+    Date,
+    Time,
+    Bseq,
+    Wstr,
+    /// The block's alarms: each readable as its In_Alarm state, each with a
+    /// `.Suppress` timer, plus a block-wide `.Alarms.Suppress`.
+    Alarms(Vec<String>),
+}
+
+impl FieldType {
+    /// The keyword used for this type in database files and diagnostics.
+    pub fn keyword(&self) -> &'static str {
+        match self {
+            FieldType::Real => "REAL",
+            FieldType::Int => "INT",
+            FieldType::Bool => "BOOL",
+            FieldType::Bits { width: 8, .. } => "BITS8",
+            FieldType::Bits { .. } => "BITS16",
+            FieldType::Enum(_) => "ENUM",
+            FieldType::String => "STRING",
+            FieldType::Date => "DATE",
+            FieldType::Time => "TIME",
+            FieldType::Bseq => "BSEQ",
+            FieldType::Wstr => "WSTR",
+            FieldType::Alarms(_) => "ALARMS",
+        }
+    }
+
+    /// Two fields belong to one offset run when their types are the same
+    /// kind (enum value lists and bit names do not matter).
+    pub fn same_kind(&self, other: &FieldType) -> bool {
+        match (self, other) {
+            (FieldType::Bits { width: a, .. }, FieldType::Bits { width: b, .. }) => a == b,
+            _ => std::mem::discriminant(self) == std::mem::discriminant(other),
+        }
+    }
+
+    /// Index of a bit sub-field (`Bit5` or a declared bit name).
+    pub fn bit_index(&self, sub: &str) -> Option<u8> {
+        let FieldType::Bits { width, names } = self else { return None };
+        if let Some(i) = names.iter().position(|n| n.eq_ignore_ascii_case(sub)) {
+            return u8::try_from(i).ok();
+        }
+        let digits = sub.get(..3).filter(|p| p.eq_ignore_ascii_case("bit")).and(sub.get(3..))?;
+        if digits.is_empty() || digits.len() > 2 || !digits.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        let n: u8 = digits.parse().ok()?;
+        (n < *width).then_some(n)
+    }
+}
+
+/// One field of a template.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FieldDef {
+    pub name: String,
+    pub ty: FieldType,
+    /// Computed by the block itself; actions may read but not write it.
+    pub readonly: bool,
+}
+
+/// A block type: an ordered list of fields. Field order is the order that
+/// offsets (`A0{3}`) walk.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Template {
+    pub name: String,
+    pub doc: String,
+    pub fields: Vec<FieldDef>,
+    index: HashMap<String, usize>,
+}
+
+impl Template {
+    pub fn new(name: String, doc: String, fields: Vec<FieldDef>) -> Self {
+        let index = fields.iter().enumerate().map(|(i, f)| (f.name.to_ascii_uppercase(), i)).collect();
+        Template { name, doc, fields, index }
+    }
+
+    /// Finds a field by case-insensitive name.
+    pub fn field(&self, name: &str) -> Option<usize> {
+        self.index.get(&name.to_ascii_uppercase()).copied()
+    }
+}
+
+/// An initial value from the database file, already checked against its field.
+#[derive(Clone, Debug, PartialEq)]
+pub enum InitValue {
+    Num(f64),
+    Bool(bool),
+    Text(String),
+}
+
+/// A block instance.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Block {
+    pub name: String,
+    pub template: usize,
+    pub values: Vec<(usize, InitValue)>,
+}
+
+/// A tag-name alias for a database reference such as `REC1.A0`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Alias {
+    pub name: String,
+    /// The path the alias stands for, split at dots.
+    pub target: Vec<String>,
+}
+
+/// Templates, blocks and aliases, with case-insensitive lookup.
+#[derive(Clone, Debug, Default)]
+pub struct Database {
+    pub templates: Vec<Template>,
+    pub blocks: Vec<Block>,
+    pub aliases: Vec<Alias>,
+    template_index: HashMap<String, usize>,
+    block_index: HashMap<String, usize>,
+    alias_index: HashMap<String, usize>,
+}
+
+impl Database {
+    /// Adds a template, replacing one of the same name.
+    pub fn put_template(&mut self, t: Template) -> usize {
+        let key = t.name.to_ascii_uppercase();
+        if let Some(&i) = self.template_index.get(&key) {
+            self.templates[i] = t;
+            i
+        } else {
+            self.templates.push(t);
+            self.template_index.insert(key, self.templates.len() - 1);
+            self.templates.len() - 1
+        }
+    }
+
+    /// Adds a block; returns false if the name is taken.
+    pub fn add_block(&mut self, b: Block) -> bool {
+        let key = b.name.to_ascii_uppercase();
+        if self.block_index.contains_key(&key) {
+            return false;
+        }
+        self.blocks.push(b);
+        self.block_index.insert(key, self.blocks.len() - 1);
+        true
+    }
+
+    /// Adds an alias; returns false if the name is taken.
+    pub fn add_alias(&mut self, a: Alias) -> bool {
+        let key = a.name.to_ascii_uppercase();
+        if self.alias_index.contains_key(&key) {
+            return false;
+        }
+        self.aliases.push(a);
+        self.alias_index.insert(key, self.aliases.len() - 1);
+        true
+    }
+
+    pub fn template(&self, name: &str) -> Option<usize> {
+        self.template_index.get(&name.to_ascii_uppercase()).copied()
+    }
+
+    pub fn block(&self, name: &str) -> Option<usize> {
+        self.block_index.get(&name.to_ascii_uppercase()).copied()
+    }
+
+    pub fn alias(&self, name: &str) -> Option<&Alias> {
+        self.alias_index.get(&name.to_ascii_uppercase()).map(|&i| &self.aliases[i])
+    }
+
+    /// The template of a block.
+    pub fn block_template(&self, block: usize) -> &Template {
+        &self.templates[self.blocks[block].template]
+    }
+}
