@@ -1,0 +1,105 @@
+//! `linc check`: lex, parse and check files, printing diagnostics.
+
+use linc_compiler::check::Context;
+use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::{pretty, Diagnostic};
+use linc_runtime::Database;
+use std::path::{Path, PathBuf};
+
+pub struct Options {
+    pub files: Vec<PathBuf>,
+    pub db: Option<PathBuf>,
+    pub format: Format,
+    pub tree: bool,
+    pub transition: bool,
+    pub sequence: bool,
+}
+
+/// Prints one diagnostic that has no source location (I/O problems).
+pub fn io_error(path: &Path, e: &std::io::Error, format: Format) {
+    let msg = format!("can't read `{}`: {e}", path.display());
+    match format {
+        Format::Json => println!("{}", serde_json::json!({ "file": path.display().to_string(), "severity": "error", "code": "E0900", "message": msg })),
+        _ => eprintln!("error[E0900]: {msg}"),
+    }
+}
+
+/// Loads `--db`, printing its diagnostics. `Err` carries the exit status.
+pub fn load_db(path: Option<&Path>, files: &mut SourceFiles, format: Format) -> Result<Option<Database>, u8> {
+    let Some(path) = path else { return Ok(None) };
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        io_error(path, &e, format);
+        2u8
+    })?;
+    let id = files.add(path.display().to_string(), text);
+    let source = files.get(id).map(|f| f.source().clone()).unwrap_or_default();
+    Database::from_json(&source).map(Some).map_err(|e| {
+        let span = e.span.map(|(s, e)| linc_compiler::Span::new(s, e)).unwrap_or_default();
+        let d = Diagnostic::error(e.code, e.message, span).label("here");
+        print!("{}", render::render(files, id, &d, format));
+        2u8
+    })
+}
+
+pub fn run(o: &Options) -> u8 {
+    let mut files = SourceFiles::new();
+    let db = match load_db(o.db.as_deref(), &mut files, o.format) {
+        Ok(db) => db,
+        Err(status) => return status,
+    };
+    let resolve_blocks = db.is_some();
+    let db = db.unwrap_or_else(Database::builtin);
+    let any_step: &[String] = &[];
+    let steps = (o.sequence || o.transition).then_some(any_step);
+    let ctx = Context { db: &db, resolve_blocks, steps };
+    let (mut errors, mut warnings, mut status) = (0usize, 0usize, 0u8);
+    for path in &o.files {
+        let text = match std::fs::read_to_string(path) {
+            Ok(t) => t,
+            Err(e) => {
+                io_error(path, &e, o.format);
+                status = 2;
+                continue;
+            }
+        };
+        let name = path.display().to_string();
+        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("action").to_string();
+        let id = files.add(name, text);
+        let src = files.get(id).map(|f| f.source().clone()).unwrap_or_default();
+        let (diagnostics, tree) = if o.transition {
+            let r = linc_compiler::check_transition(&src, ctx);
+            (r.diagnostics, r.tree.map(|e| pretty::expr(&e) + "\n"))
+        } else {
+            let r = linc_compiler::check_source(&src, &stem, ctx);
+            (r.diagnostics, r.tree.map(|t| pretty::file(&t)))
+        };
+        if o.tree {
+            if let Some(t) = tree {
+                print!("{t}");
+            }
+        }
+        for d in &diagnostics {
+            if d.is_error() {
+                errors += 1;
+            } else {
+                warnings += 1;
+            }
+            print!("{}", render::render(&files, id, d, o.format));
+        }
+    }
+    if o.format == Format::Human && (errors > 0 || warnings > 0) {
+        eprintln!("linc: {errors} error{}, {warnings} warning{}", plural(errors), plural(warnings));
+    }
+    if status == 0 && errors > 0 {
+        status = 1;
+    }
+    status
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 {
+        ""
+    } else {
+        "s"
+    }
+}

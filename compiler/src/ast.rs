@@ -1,0 +1,168 @@
+//! The syntax tree of LIN Structured Text.
+//!
+//! The tree keeps every name as written, with its span, so that later stages
+//! can point at any part of a reference. Nodes that failed to parse are kept
+//! as `Error` so the checker can go on past them.
+
+use crate::span::Span;
+
+/// A source file: one or more named actions (§10.2.1).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SourceFile {
+    pub actions: Vec<Action>,
+}
+
+/// `ACTION name [: BLOCKTYPE] ... END_ACTION`, or the whole of a file that
+/// has no headers (then `header` is `None` and the name is the file's stem).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Action {
+    pub name: Ident,
+    pub block_type: Option<Ident>,
+    pub body: Vec<Stmt>,
+    pub header: Option<Span>,
+    pub span: Span,
+}
+
+/// A name as written, with its place.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ident {
+    pub text: String,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Stmt {
+    Assign { target: Var, value: Expr, span: Span },
+    If { arms: Vec<(Expr, Vec<Stmt>)>, otherwise: Option<Vec<Stmt>>, span: Span },
+    For { var: Var, from: Expr, to: Expr, by: Option<Expr>, body: Vec<Stmt>, span: Span },
+    While { cond: Expr, body: Vec<Stmt>, span: Span },
+    Repeat { body: Vec<Stmt>, until: Expr, span: Span },
+    Exit { span: Span },
+    /// A statement that did not parse; its error is already reported.
+    Error { span: Span },
+}
+
+impl Stmt {
+    pub fn span(&self) -> Span {
+        match self {
+            Stmt::Assign { span, .. }
+            | Stmt::If { span, .. }
+            | Stmt::For { span, .. }
+            | Stmt::While { span, .. }
+            | Stmt::Repeat { span, .. }
+            | Stmt::Exit { span }
+            | Stmt::Error { span } => *span,
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum ExprKind {
+    /// An integer constant as written; `2147483648` without a sign is the
+    /// one value outside 32 bits, and [`Expr::int_value`] clips it (§12.9).
+    Int(i64),
+    Real(f64),
+    /// A time constant, in seconds.
+    Time(f64),
+    Bool(bool),
+    /// String constant text between the quotes, `$`-sequences as written.
+    Str(String),
+    Var(Var),
+    Unary(UnOp, Box<Expr>),
+    Binary(BinOp, Box<Expr>, Box<Expr>),
+    Call { name: Ident, args: Vec<Expr> },
+    Error,
+}
+
+impl Expr {
+    /// The value of an integer constant, clipped to 32 bits.
+    pub fn int_value(&self) -> Option<i32> {
+        match self.kind {
+            ExprKind::Int(v) => Some(v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32),
+            _ => None,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnOp {
+    Neg,
+    Not,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BinOp {
+    Pow,
+    Mul,
+    Div,
+    Mod,
+    Add,
+    Sub,
+    Eq,
+    Ne,
+    Lt,
+    Gt,
+    Le,
+    Ge,
+    And,
+    Xor,
+    Or,
+}
+
+impl BinOp {
+    pub fn symbol(self) -> &'static str {
+        match self {
+            BinOp::Pow => "**",
+            BinOp::Mul => "*",
+            BinOp::Div => "/",
+            BinOp::Mod => "MOD",
+            BinOp::Add => "+",
+            BinOp::Sub => "-",
+            BinOp::Eq => "=",
+            BinOp::Ne => "<>",
+            BinOp::Lt => "<",
+            BinOp::Gt => ">",
+            BinOp::Le => "<=",
+            BinOp::Ge => ">=",
+            BinOp::And => "AND",
+            BinOp::Xor => "XOR",
+            BinOp::Or => "OR",
+        }
+    }
+
+    pub fn is_comparison(self) -> bool {
+        matches!(self, BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Gt | BinOp::Le | BinOp::Ge)
+    }
+}
+
+/// A variable reference: dotted segments, each of which may carry an offset.
+///
+/// `Block.Field{e}.Bit0` is three segments with an offset on `Field`;
+/// `[DG_CONN3.W Field2.Bit6]` is bracketed and its segments may hold any
+/// characters but `.`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Var {
+    pub segs: Vec<Seg>,
+    pub bracketed: bool,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Seg {
+    pub name: Ident,
+    pub offset: Option<Box<Expr>>,
+}
+
+impl Var {
+    /// The reference as written, without offsets: `PIC_004.PV`.
+    pub fn path(&self) -> String {
+        let parts: Vec<&str> = self.segs.iter().map(|s| s.name.text.as_str()).collect();
+        parts.join(".")
+    }
+}

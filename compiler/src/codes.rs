@@ -1,0 +1,76 @@
+//! The registry of diagnostic codes.
+//!
+//! Every code any stage emits is listed here with a one-line title and an
+//! explanation page (`docs/errors/CODE.md`: what it means, a wrong and a
+//! right example), which `linc explain CODE` prints.
+
+/// One registered code.
+#[derive(Clone, Copy, Debug)]
+pub struct Code {
+    pub code: &'static str,
+    pub title: &'static str,
+    pub explanation: &'static str,
+}
+
+macro_rules! codes {
+    ($($code:literal => $title:literal,)*) => {
+        /// Every code, in order.
+        pub static CODES: &[Code] = &[
+            $(Code { code: $code, title: $title, explanation: include_str!(concat!("../../docs/errors/", $code, ".md")) },)*
+        ];
+    };
+}
+
+codes! {
+    "E0001" => "unexpected character",
+    "E0002" => "string constant is not closed",
+    "E0003" => "comment is not closed",
+    "E0004" => "space inside a name, operator or constant",
+    "E0005" => "identifier longer than 8 characters",
+    "E0006" => "invalid identifier",
+    "E0007" => "word operator not separated from its operand",
+    "E0008" => "invalid based integer constant",
+    "E0009" => "invalid time constant",
+    "E0010" => "unexpected token",
+    "E0011" => "unexpected end of file",
+    "E0012" => "a dot that does not join a name",
+    "E0013" => "bracketed name is not closed",
+    "E0014" => "invalid action name",
+    "E0015" => "more than one offset on one name part",
+    "E0016" => "statement outside an action",
+    "W0001" => "last statement without a semicolon",
+    "E0100" => "unknown name",
+    "E0101" => "unknown field",
+    "E0102" => "unknown sub-field",
+    "E0103" => "value of the wrong type stored in a field",
+    "E0104" => "unknown enumeration value",
+    "E0105" => "MOD on non-integers",
+    "E0106" => "FOR step is not a constant",
+    "E0107" => "EXIT outside a loop",
+    "E0108" => "assignment to something that cannot be written",
+    "E0109" => "invalid offset base or offset out of range",
+    "E0110" => "unknown function",
+    "E0111" => "wrong number of arguments",
+    "E0112" => "argument of the wrong type",
+    "E0113" => "step variable outside a sequence",
+    "E0114" => "operator applied to operands of the wrong type",
+    "E0115" => "name that is not a value",
+    "E0116" => "unknown block type in an action header",
+    "E0117" => "action defined twice",
+    "E0118" => "offset is not a number",
+    "E0119" => "condition is not BOOL or INT",
+    "E0120" => "unknown step",
+    "E0800" => "database file is not valid JSON",
+    "E0801" => "database file has the wrong shape",
+    "E0802" => "unknown field type in a template",
+    "E0803" => "block of an unknown type",
+    "E0804" => "invalid initial value",
+    "E0805" => "invalid alias target",
+    "E0806" => "name declared twice",
+    "E0900" => "file cannot be read or written",
+}
+
+/// Looks a code up, ignoring case (`e0001` works too).
+pub fn lookup(code: &str) -> Option<&'static Code> {
+    CODES.iter().find(|c| c.code.eq_ignore_ascii_case(code.trim()))
+}

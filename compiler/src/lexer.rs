@@ -1,0 +1,465 @@
+//! Turns source text into the parser's tokens, enforcing the space rules.
+//!
+//! logos recognises raw tokens ([`Raw`]); this pass "cooks" them: it decodes
+//! numbers and time constants, reports illegal spaces inside names, operators
+//! and constants (§12.2.2) and then repairs them so that parsing goes on with
+//! one error instead of many, and turns `name[expr]` directly after a name
+//! into an offset (the guide's FOR example writes `f[PIC_004.PV]`).
+
+use crate::errors::LexError;
+use crate::span::Span;
+use crate::token::Raw;
+use logos::Logos;
+
+/// A token as the grammar sees it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Tok<'s> {
+    If,
+    Then,
+    Elsif,
+    Else,
+    EndIf,
+    For,
+    To,
+    By,
+    Do,
+    EndFor,
+    While,
+    EndWhile,
+    Repeat,
+    Until,
+    EndRepeat,
+    Exit,
+    Action,
+    EndAction,
+    And,
+    Or,
+    Xor,
+    Not,
+    Mod,
+    True,
+    False,
+    Assign,
+    Colon,
+    Semi,
+    Comma,
+    LParen,
+    RParen,
+    LBrace,
+    RBrace,
+    Plus,
+    Minus,
+    Power,
+    Star,
+    Slash,
+    Eq,
+    Ne,
+    Lt,
+    Gt,
+    Le,
+    Ge,
+    /// Dotted name text as written (it may contain illegal spaces already
+    /// reported, which the parser trims).
+    Name(&'s str),
+    /// The segment after `}.` or `].`, without the dot.
+    DotName(&'s str),
+    /// The text between `[` and `]`.
+    Bracketed(&'s str),
+    /// Unclipped magnitude; the parser clips to 32 bits after applying a sign.
+    Int(i64),
+    Real(f64),
+    /// Seconds.
+    Time(f64),
+    /// The text between the quotes, `$`-sequences as written.
+    Str(&'s str),
+    /// Injected first token selecting what the parser reads.
+    StartFile,
+    StartExpr,
+}
+
+impl Tok<'_> {
+    /// How the token reads in a diagnostic.
+    pub fn describe(&self) -> String {
+        match self {
+            Tok::Name(n) => format!("name `{}`", n.trim()),
+            Tok::DotName(n) => format!("`.{n}`"),
+            Tok::Bracketed(n) => format!("name `[{n}]`"),
+            Tok::Int(i) => format!("number `{i}`"),
+            Tok::Real(r) => format!("number `{r}`"),
+            Tok::Time(_) => "time constant".to_string(),
+            Tok::Str(_) => "string constant".to_string(),
+            Tok::StartFile | Tok::StartExpr => "start of input".to_string(),
+            other => format!("`{}`", keyword_text(other)),
+        }
+    }
+
+    /// True for tokens after which an operator is expected.
+    fn ends_operand(&self) -> bool {
+        matches!(
+            self,
+            Tok::Name(_)
+                | Tok::DotName(_)
+                | Tok::Bracketed(_)
+                | Tok::Int(_)
+                | Tok::Real(_)
+                | Tok::Time(_)
+                | Tok::Str(_)
+                | Tok::RParen
+                | Tok::RBrace
+                | Tok::True
+                | Tok::False
+        )
+    }
+}
+
+/// The spelling of a keyword or punctuation token.
+pub fn keyword_text(t: &Tok) -> &'static str {
+    match t {
+        Tok::If => "IF",
+        Tok::Then => "THEN",
+        Tok::Elsif => "ELSIF",
+        Tok::Else => "ELSE",
+        Tok::EndIf => "END_IF",
+        Tok::For => "FOR",
+        Tok::To => "TO",
+        Tok::By => "BY",
+        Tok::Do => "DO",
+        Tok::EndFor => "END_FOR",
+        Tok::While => "WHILE",
+        Tok::EndWhile => "END_WHILE",
+        Tok::Repeat => "REPEAT",
+        Tok::Until => "UNTIL",
+        Tok::EndRepeat => "END_REPEAT",
+        Tok::Exit => "EXIT",
+        Tok::Action => "ACTION",
+        Tok::EndAction => "END_ACTION",
+        Tok::And => "AND",
+        Tok::Or => "OR",
+        Tok::Xor => "XOR",
+        Tok::Not => "NOT",
+        Tok::Mod => "MOD",
+        Tok::True => "TRUE",
+        Tok::False => "FALSE",
+        Tok::Assign => ":=",
+        Tok::Colon => ":",
+        Tok::Semi => ";",
+        Tok::Comma => ",",
+        Tok::LParen => "(",
+        Tok::RParen => ")",
+        Tok::LBrace => "{",
+        Tok::RBrace => "}",
+        Tok::Plus => "+",
+        Tok::Minus => "-",
+        Tok::Power => "**",
+        Tok::Star => "*",
+        Tok::Slash => "/",
+        Tok::Eq => "=",
+        Tok::Ne => "<>",
+        Tok::Lt => "<",
+        Tok::Gt => ">",
+        Tok::Le => "<=",
+        Tok::Ge => ">=",
+        _ => "",
+    }
+}
+
+/// A token with its byte range, in the triple form lalrpop consumes.
+pub type Spanned<'s> = (usize, Tok<'s>, usize);
+
+/// Lexes `src` completely, returning tokens and every lexical error.
+pub fn lex(src: &str) -> (Vec<Spanned<'_>>, Vec<LexError>) {
+    let mut out = Vec::with_capacity(src.len() / 4);
+    let mut errors = Vec::new();
+    lex_into(src, 0, src.len(), &mut out, &mut errors);
+    (out, errors)
+}
+
+fn simple(raw: Raw) -> Option<Tok<'static>> {
+    Some(match raw {
+        Raw::If => Tok::If,
+        Raw::Then => Tok::Then,
+        Raw::Elsif => Tok::Elsif,
+        Raw::Else => Tok::Else,
+        Raw::EndIf => Tok::EndIf,
+        Raw::For => Tok::For,
+        Raw::To => Tok::To,
+        Raw::By => Tok::By,
+        Raw::Do => Tok::Do,
+        Raw::EndFor => Tok::EndFor,
+        Raw::While => Tok::While,
+        Raw::EndWhile => Tok::EndWhile,
+        Raw::Repeat => Tok::Repeat,
+        Raw::Until => Tok::Until,
+        Raw::EndRepeat => Tok::EndRepeat,
+        Raw::Exit => Tok::Exit,
+        Raw::Action => Tok::Action,
+        Raw::EndAction => Tok::EndAction,
+        Raw::And => Tok::And,
+        Raw::Or => Tok::Or,
+        Raw::Xor => Tok::Xor,
+        Raw::Not => Tok::Not,
+        Raw::Mod => Tok::Mod,
+        Raw::True => Tok::True,
+        Raw::False => Tok::False,
+        Raw::Assign => Tok::Assign,
+        Raw::Colon => Tok::Colon,
+        Raw::Semi => Tok::Semi,
+        Raw::Comma => Tok::Comma,
+        Raw::LParen => Tok::LParen,
+        Raw::RParen => Tok::RParen,
+        Raw::LBrace => Tok::LBrace,
+        Raw::RBrace => Tok::RBrace,
+        Raw::Plus => Tok::Plus,
+        Raw::Minus => Tok::Minus,
+        Raw::Power => Tok::Power,
+        Raw::Star => Tok::Star,
+        Raw::Slash => Tok::Slash,
+        Raw::Eq => Tok::Eq,
+        Raw::Ne => Tok::Ne,
+        Raw::Lt => Tok::Lt,
+        Raw::Gt => Tok::Gt,
+        Raw::Le => Tok::Le,
+        Raw::Ge => Tok::Ge,
+        _ => return None,
+    })
+}
+
+/// Two-character operators that a space may have split: `: =`, `* *`, ...
+fn split_operator(first: &Tok, second: Raw) -> Option<Tok<'static>> {
+    Some(match (first, second) {
+        (Tok::Colon, Raw::Eq) => Tok::Assign,
+        (Tok::Star, Raw::Star) => Tok::Power,
+        (Tok::Lt, Raw::Eq) => Tok::Le,
+        (Tok::Lt, Raw::Gt) => Tok::Ne,
+        (Tok::Gt, Raw::Eq) => Tok::Ge,
+        _ => return None,
+    })
+}
+
+fn lex_into<'s>(src: &'s str, from: usize, to: usize, out: &mut Vec<Spanned<'s>>, errors: &mut Vec<LexError>) {
+    let mut raw = Raw::lexer(&src[..to]);
+    raw.bump(from);
+    let mut pending: Option<(Raw, std::ops::Range<usize>)> = None;
+    loop {
+        let (tok, range) = match pending.take() {
+            Some(p) => p,
+            None => match raw.next() {
+                None => break,
+                Some(Ok(t)) => (t, raw.span()),
+                Some(Err(())) => {
+                    let span = raw.span();
+                    let ch = src[span.start..].chars().next().unwrap_or('?');
+                    errors.push(LexError::UnexpectedChar { span: Span::new(span.start, span.end), ch });
+                    continue;
+                }
+            },
+        };
+        let (s, e) = (range.start, range.end);
+        let text = &src[s..e];
+        let prev_adjacent = out.last().map(|p| p.2 == s).unwrap_or(false);
+        if let Some(t) = simple(tok) {
+            // A two-character operator split by a space.
+            if let Some(prev) = out.last_mut() {
+                if prev.2 < s && src[prev.2..s].trim().is_empty() {
+                    if let Some(joined) = split_operator(&prev.1, tok) {
+                        errors.push(LexError::IllegalSpace {
+                            span: Span::new(prev.2, s),
+                            what: "an operator",
+                            fixed: keyword_text(&joined),
+                        });
+                        prev.1 = joined;
+                        prev.2 = e;
+                        continue;
+                    }
+                }
+            }
+            out.push((s, t, e));
+            continue;
+        }
+        match tok {
+            Raw::Name | Raw::BadName => out.push((s, Tok::Name(text), e)),
+            Raw::Int => {
+                let v = text.bytes().fold(0i64, |a, b| (a * 10 + i64::from(b - b'0')).min(1 << 40));
+                out.push((s, Tok::Int(v), e));
+            }
+            Raw::Based => out.push((s, Tok::Int(based(text)), e)),
+            Raw::BadBased => {
+                errors.push(LexError::BadNumber { span: Span::new(s, e), text: text.to_string() });
+                out.push((s, Tok::Int(0), e));
+            }
+            Raw::Real => out.push((s, Tok::Real(text.parse().unwrap_or(0.0)), e)),
+            Raw::Time => out.push((s, Tok::Time(time_seconds(&text[2..])), e)),
+            Raw::BadTime => {
+                errors.push(LexError::BadTime { span: Span::new(s, e), text: text.to_string() });
+                out.push((s, Tok::Time(0.0), e));
+            }
+            Raw::Str => out.push((s, Tok::Str(&text[1..text.len() - 1]), e)),
+            Raw::UnclosedStr => {
+                errors.push(LexError::UnclosedString { span: Span::new(s, e) });
+                out.push((s, Tok::Str(&text[1..]), e));
+            }
+            Raw::UnclosedComment => {
+                errors.push(LexError::UnclosedComment { span: Span::new(s, e) });
+                break;
+            }
+            Raw::Bracketed if prev_adjacent && ends_name(out) => {
+                // `f[e]` right after a name: an offset written with brackets.
+                out.push((s, Tok::LBrace, s + 1));
+                lex_into(src, s + 1, e - 1, out, errors);
+                out.push((e - 1, Tok::RBrace, e));
+            }
+            Raw::Bracketed => out.push((s, Tok::Bracketed(&text[1..text.len() - 1]), e)),
+            Raw::UnclosedBracket => {
+                errors.push(LexError::UnclosedBracket { span: Span::new(s, e) });
+                out.push((s, Tok::Bracketed(&text[1..]), e));
+            }
+            Raw::DotName => match out.last().map(|p| (p.0, p.1.clone(), p.2)) {
+                Some((_, Tok::RBrace | Tok::Bracketed(_), pe)) => {
+                    if pe != s {
+                        errors.push(LexError::IllegalSpace { span: Span::new(pe, s), what: "a database name", fixed: "" });
+                    }
+                    out.push((s, Tok::DotName(&text[1..]), e));
+                }
+                Some((ps, Tok::Name(_), pe)) => {
+                    errors.push(LexError::IllegalSpace { span: Span::new(pe, s), what: "a database name", fixed: "" });
+                    out.pop();
+                    out.push((ps, Tok::Name(&src[ps..e]), e));
+                }
+                _ => errors.push(LexError::StrayDot { span: Span::new(s, e) }),
+            },
+            Raw::Dot => {
+                let next = raw.next();
+                let next_span = raw.span();
+                let next_tok = match next {
+                    Some(Ok(t)) => Some(t),
+                    _ => None,
+                };
+                let joined = match (out.last(), next_tok) {
+                    (Some((ps, Tok::Name(_), pe)), Some(Raw::Name | Raw::Int | Raw::BadName)) if *pe == s => {
+                        Some((*ps, Tok::Name(&src[*ps..next_span.end])))
+                    }
+                    (Some((ps, Tok::Int(_), pe)), Some(Raw::Int)) if *pe == s => {
+                        let digits: String = src[*ps..next_span.end].chars().filter(|c| !c.is_whitespace()).collect();
+                        Some((*ps, Tok::Real(digits.parse().unwrap_or(0.0))))
+                    }
+                    _ => None,
+                };
+                match joined {
+                    Some((start, tok)) => {
+                        let what = if matches!(tok, Tok::Real(_)) { "a constant" } else { "a database name" };
+                        errors.push(LexError::IllegalSpace { span: Span::new(e, next_span.start), what, fixed: "" });
+                        out.pop();
+                        out.push((start, tok, next_span.end));
+                    }
+                    None => {
+                        errors.push(LexError::StrayDot { span: Span::new(s, e) });
+                        if let Some(t) = next_tok {
+                            pending = Some((t, next_span));
+                        } else if let Some(Err(())) = next {
+                            pending = None;
+                            let ch = src[next_span.start..].chars().next().unwrap_or('?');
+                            errors.push(LexError::UnexpectedChar { span: Span::new(next_span.start, next_span.end), ch });
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Whether the last token can carry an offset (`name`, `}` or `[name]`).
+fn ends_name(out: &[Spanned]) -> bool {
+    matches!(out.last(), Some((_, Tok::Name(_) | Tok::DotName(_) | Tok::RBrace | Tok::Bracketed(_), _)))
+}
+
+/// Value of `16#FF`, `8#17` or `2#1010`, saturating well above 32 bits.
+fn based(text: &str) -> i64 {
+    let (radix, digits) = match text.split_once('#') {
+        Some((r, d)) => (r.parse::<u32>().unwrap_or(10), d),
+        None => (10, text),
+    };
+    digits
+        .chars()
+        .filter(|c| *c != '_')
+        .filter_map(|c| c.to_digit(radix))
+        .fold(0i64, |a, d| (a * i64::from(radix) + i64::from(d)).min(1 << 40))
+}
+
+/// Seconds in the body of a time constant such as `1d12.2h`.
+pub fn time_seconds(body: &str) -> f64 {
+    let mut total = 0.0;
+    let mut number = String::new();
+    for c in body.chars() {
+        let unit = match c.to_ascii_lowercase() {
+            'd' => 86_400.0,
+            'h' => 3_600.0,
+            'm' => 60.0,
+            's' => 1.0,
+            _ => {
+                number.push(c);
+                continue;
+            }
+        };
+        total += number.parse::<f64>().unwrap_or(0.0) * unit;
+        number.clear();
+    }
+    total
+}
+
+/// Checks that `tokens` sees no word operator glued to an operand.
+///
+/// `A ANDB` lexes as the two names `A` and `ANDB`; the parser then fails at
+/// `ANDB`. This helper recognises that case so the error can say why.
+pub fn glued_word_operator(prev: Option<&Tok>, tok: &Tok) -> Option<&'static str> {
+    let Tok::Name(text) = tok else { return None };
+    if !prev.map(Tok::ends_operand).unwrap_or(false) {
+        return None;
+    }
+    let upper = text.to_ascii_uppercase();
+    ["AND", "XOR", "OR", "MOD", "NOT"].into_iter().find(|op| upper.starts_with(op) && upper.len() > op.len())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn toks(src: &str) -> Vec<Tok<'_>> {
+        lex(src).0.into_iter().map(|t| t.1).collect()
+    }
+
+    #[test]
+    fn numbers_and_times() {
+        assert_eq!(toks("16#FF 16#00ff 2#1100 45 3.6"), [Tok::Int(255), Tok::Int(255), Tok::Int(12), Tok::Int(45), Tok::Real(3.6)]);
+        assert_eq!(toks("T#3s t#4m13.0S T#5.6h T#1d12.2h"), [Tok::Time(3.0), Tok::Time(253.0), Tok::Time(20160.0), Tok::Time(130320.0)]);
+    }
+
+    #[test]
+    fn illegal_spaces_are_reported_and_repaired() {
+        let (t, e) = lex("HEAT_PID. SL:=REC1. A3;");
+        assert_eq!(e.len(), 2);
+        assert_eq!(t.iter().map(|t| t.1.clone()).collect::<Vec<_>>()[1], Tok::Assign);
+        let (t, e) = lex("a : = 3. 5");
+        assert_eq!(e.len(), 2);
+        assert_eq!(t[1].1, Tok::Assign);
+        assert_eq!(t[2].1, Tok::Real(3.5));
+    }
+
+    #[test]
+    fn bracket_after_name_is_an_offset() {
+        assert_eq!(toks("f[PIC_004.PV]"), [Tok::Name("f"), Tok::LBrace, Tok::Name("PIC_004.PV"), Tok::RBrace]);
+        assert_eq!(toks("[6366.MN]"), [Tok::Bracketed("6366.MN")]);
+    }
+
+    #[test]
+    fn comments_are_spaces() {
+        assert_eq!(toks("(*ADJUST*) a(*x*):=1;(* y *)"), [Tok::Name("a"), Tok::Assign, Tok::Int(1), Tok::Semi]);
+        assert_eq!(lex("a (* never closed").1.len(), 1);
+    }
+
+    #[test]
+    fn strings_keep_dollar_sequences() {
+        assert_eq!(toks(r#"'a$'b' "a$62c""#), [Tok::Str("a$'b"), Tok::Str("a$62c")]);
+        assert_eq!(lex("'open").1.len(), 1);
+    }
+}
