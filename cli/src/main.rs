@@ -10,7 +10,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "linc", version, about = "A toolchain for LIN Structured Text: check actions against a function-block database")]
+#[command(
+    name = "linc",
+    version,
+    about = "A toolchain for LIN Structured Text: check actions against a function-block database"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -59,13 +63,27 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let status = match cli.command {
-        Command::Check { files, db, message_format, tree, transition, sequence } => {
+        Command::Check {
+            files,
+            db,
+            message_format,
+            tree,
+            transition,
+            sequence,
+        } => {
             let format = match message_format {
                 MessageFormat::Human => linc_compiler::render::Format::Human,
                 MessageFormat::Short => linc_compiler::render::Format::Short,
                 MessageFormat::Json => linc_compiler::render::Format::Json,
             };
-            check_cmd::run(&check_cmd::Options { files, db, format, tree, transition, sequence })
+            check_cmd::run(&check_cmd::Options {
+                files,
+                db,
+                format,
+                tree,
+                transition,
+                sequence,
+            })
         }
         Command::Explain { code, list } => explain_cmd::run(code.as_deref(), list),
     };

@@ -32,14 +32,41 @@ pub struct Ident {
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Stmt {
-    Assign { target: Var, value: Expr, span: Span },
-    If { arms: Vec<(Expr, Vec<Stmt>)>, otherwise: Option<Vec<Stmt>>, span: Span },
-    For { var: Var, from: Expr, to: Expr, by: Option<Expr>, body: Vec<Stmt>, span: Span },
-    While { cond: Expr, body: Vec<Stmt>, span: Span },
-    Repeat { body: Vec<Stmt>, until: Expr, span: Span },
-    Exit { span: Span },
+    Assign {
+        target: Var,
+        value: Expr,
+        span: Span,
+    },
+    If {
+        arms: Vec<(Expr, Vec<Stmt>)>,
+        otherwise: Option<Vec<Stmt>>,
+        span: Span,
+    },
+    For {
+        var: Var,
+        from: Expr,
+        to: Expr,
+        by: Option<Expr>,
+        body: Vec<Stmt>,
+        span: Span,
+    },
+    While {
+        cond: Expr,
+        body: Vec<Stmt>,
+        span: Span,
+    },
+    Repeat {
+        body: Vec<Stmt>,
+        until: Expr,
+        span: Span,
+    },
+    Exit {
+        span: Span,
+    },
     /// A statement that did not parse; its error is already reported.
-    Error { span: Span },
+    Error {
+        span: Span,
+    },
 }
 
 impl Stmt {
@@ -76,7 +103,10 @@ pub enum ExprKind {
     Var(Var),
     Unary(UnOp, Box<Expr>),
     Binary(BinOp, Box<Expr>, Box<Expr>),
-    Call { name: Ident, args: Vec<Expr> },
+    Call {
+        name: Ident,
+        args: Vec<Expr>,
+    },
     Error,
 }
 
@@ -137,7 +167,10 @@ impl BinOp {
     }
 
     pub fn is_comparison(self) -> bool {
-        matches!(self, BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Gt | BinOp::Le | BinOp::Ge)
+        matches!(
+            self,
+            BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Gt | BinOp::Le | BinOp::Ge
+        )
     }
 }
 
@@ -151,6 +184,9 @@ pub struct Var {
     pub segs: Vec<Seg>,
     pub bracketed: bool,
     pub span: Span,
+    /// A name part broke the identifier rules; that is already reported, so
+    /// later stages stay quiet about this reference.
+    pub malformed: bool,
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -72,5 +72,7 @@ codes! {
 
 /// Looks a code up, ignoring case (`e0001` works too).
 pub fn lookup(code: &str) -> Option<&'static Code> {
-    CODES.iter().find(|c| c.code.eq_ignore_ascii_case(code.trim()))
+    CODES
+        .iter()
+        .find(|c| c.code.eq_ignore_ascii_case(code.trim()))
 }

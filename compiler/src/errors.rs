@@ -7,15 +7,36 @@ use crate::span::Span;
 /// one error.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LexError {
-    UnexpectedChar { span: Span, ch: char },
-    UnclosedString { span: Span },
-    UnclosedComment { span: Span },
+    UnexpectedChar {
+        span: Span,
+        ch: char,
+    },
+    UnclosedString {
+        span: Span,
+    },
+    UnclosedComment {
+        span: Span,
+    },
     /// A space inside a name, operator or constant (§12.2.2).
-    IllegalSpace { span: Span, what: &'static str, fixed: &'static str },
-    BadNumber { span: Span, text: String },
-    BadTime { span: Span, text: String },
-    StrayDot { span: Span },
-    UnclosedBracket { span: Span },
+    IllegalSpace {
+        span: Span,
+        what: &'static str,
+        fixed: &'static str,
+    },
+    BadNumber {
+        span: Span,
+        text: String,
+    },
+    BadTime {
+        span: Span,
+        text: String,
+    },
+    StrayDot {
+        span: Span,
+    },
+    UnclosedBracket {
+        span: Span,
+    },
 }
 
 impl LexError {
@@ -69,16 +90,43 @@ impl LexError {
 /// Errors found while parsing.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SyntaxError {
-    Unexpected { span: Span, found: String, expected: Vec<String> },
-    UnexpectedEof { span: Span, expected: Vec<String> },
-    NameTooLong { span: Span, name: String },
-    InvalidName { span: Span, name: String, why: &'static str },
-    GluedWordOperator { span: Span, op: &'static str, name: String },
-    BadActionName { span: Span, name: String },
-    DoubleOffset { span: Span },
-    StatementOutsideAction { span: Span },
+    Unexpected {
+        span: Span,
+        found: String,
+        expected: Vec<String>,
+    },
+    UnexpectedEof {
+        span: Span,
+        expected: Vec<String>,
+    },
+    NameTooLong {
+        span: Span,
+        name: String,
+    },
+    InvalidName {
+        span: Span,
+        name: String,
+        why: &'static str,
+    },
+    GluedWordOperator {
+        span: Span,
+        op: &'static str,
+        name: String,
+    },
+    BadActionName {
+        span: Span,
+        name: String,
+    },
+    DoubleOffset {
+        span: Span,
+    },
+    StatementOutsideAction {
+        span: Span,
+    },
     /// The last statement of an action has no `;` (accepted, with a warning).
-    MissingFinalSemicolon { span: Span },
+    MissingFinalSemicolon {
+        span: Span,
+    },
 }
 
 impl SyntaxError {
@@ -138,7 +186,11 @@ fn expected_text(expected: &[String]) -> String {
     match expected.len() {
         0 => "not expected here".to_string(),
         1 => format!("expected {}", expected[0]),
-        n if n <= 6 => format!("expected {} or {}", expected[..n - 1].join(", "), expected[n - 1]),
+        n if n <= 6 => format!(
+            "expected {} or {}",
+            expected[..n - 1].join(", "),
+            expected[n - 1]
+        ),
         _ => format!("expected one of {}, ...", expected[..5].join(", ")),
     }
 }

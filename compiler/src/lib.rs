@@ -38,7 +38,11 @@ impl<T> Report<T> {
 }
 
 fn collect(errors: parser::ParseErrors, checked: Vec<check::CheckError>) -> Vec<Diagnostic> {
-    let mut out: Vec<Diagnostic> = errors.lex.iter().map(errors::LexError::to_diagnostic).collect();
+    let mut out: Vec<Diagnostic> = errors
+        .lex
+        .iter()
+        .map(errors::LexError::to_diagnostic)
+        .collect();
     out.extend(errors.syntax.iter().map(errors::SyntaxError::to_diagnostic));
     out.extend(checked.iter().map(check::CheckError::to_diagnostic));
     out.sort_by_key(|d| (d.span.start, d.span.end));
@@ -49,13 +53,25 @@ fn collect(errors: parser::ParseErrors, checked: Vec<check::CheckError>) -> Vec<
 /// action when it has no `ACTION` header.
 pub fn check_source(src: &str, stem: &str, ctx: Context) -> Report<ast::SourceFile> {
     let (tree, errors) = parser::parse_file(src, stem);
-    let checked = tree.as_ref().map(|t| check::check_file(t, ctx)).unwrap_or_default();
-    Report { tree, diagnostics: collect(errors, checked) }
+    let checked = tree
+        .as_ref()
+        .map(|t| check::check_file(t, ctx))
+        .unwrap_or_default();
+    Report {
+        tree,
+        diagnostics: collect(errors, checked),
+    }
 }
 
 /// Lexes, parses and checks a transition expression (§12.11).
 pub fn check_transition(src: &str, ctx: Context) -> Report<ast::Expr> {
     let (tree, errors) = parser::parse_expr(src);
-    let checked = tree.as_ref().map(|t| check::check_transition(t, ctx)).unwrap_or_default();
-    Report { tree, diagnostics: collect(errors, checked) }
+    let checked = tree
+        .as_ref()
+        .map(|t| check::check_transition(t, ctx))
+        .unwrap_or_default();
+    Report {
+        tree,
+        diagnostics: collect(errors, checked),
+    }
 }

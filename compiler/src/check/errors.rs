@@ -5,28 +5,110 @@ use crate::span::Span;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum CheckError {
-    UnknownName { span: Span, name: String },
-    UnknownField { span: Span, field: String, owner: String, template: String, known: Vec<String> },
-    UnknownSubField { span: Span, sub: String, field: String, field_type: &'static str },
+    UnknownName {
+        span: Span,
+        name: String,
+    },
+    UnknownField {
+        span: Span,
+        field: String,
+        owner: String,
+        template: String,
+        known: Vec<String>,
+    },
+    UnknownSubField {
+        span: Span,
+        sub: String,
+        field: String,
+        field_type: &'static str,
+    },
     /// A value of the wrong kind stored into a field (`expected`/`found` are type names).
-    AssignType { span: Span, target: Span, expected: String, found: String },
-    BadEnumValue { span: Span, value: String, field: String, values: Vec<String> },
-    ModNotInteger { span: Span, found: String },
-    ForByNotLiteral { span: Span },
-    ExitOutsideLoop { span: Span },
-    NotWritable { span: Span, what: String, why: &'static str },
-    BadOffsetBase { span: Span, base: String, why: String },
-    UnknownFunction { span: Span, name: String, suggestion: Option<String> },
-    WrongArity { span: Span, name: String, found: usize, signature: String },
-    WrongArgType { span: Span, index: usize, found: String, expected: String, signature: String },
-    StepOutsideSequence { span: Span, name: String },
-    OperandTypes { span: Span, op: String, left: String, right: Option<String>, help: &'static str },
-    NotAValue { span: Span, what: String },
-    UnknownBlockType { span: Span, name: String },
-    DuplicateAction { span: Span, first: Span, name: String },
-    OffsetNotNumber { span: Span, found: String },
-    ConditionType { span: Span, found: String },
-    UnknownStep { span: Span, name: String },
+    AssignType {
+        span: Span,
+        target: Span,
+        expected: String,
+        found: String,
+    },
+    BadEnumValue {
+        span: Span,
+        value: String,
+        field: String,
+        values: Vec<String>,
+    },
+    ModNotInteger {
+        span: Span,
+        found: String,
+    },
+    ForByNotLiteral {
+        span: Span,
+    },
+    ExitOutsideLoop {
+        span: Span,
+    },
+    NotWritable {
+        span: Span,
+        what: String,
+        why: &'static str,
+    },
+    BadOffsetBase {
+        span: Span,
+        base: String,
+        why: String,
+    },
+    UnknownFunction {
+        span: Span,
+        name: String,
+        suggestion: Option<String>,
+    },
+    WrongArity {
+        span: Span,
+        name: String,
+        found: usize,
+        signature: String,
+    },
+    WrongArgType {
+        span: Span,
+        index: usize,
+        found: String,
+        expected: String,
+        signature: String,
+    },
+    StepOutsideSequence {
+        span: Span,
+        name: String,
+    },
+    OperandTypes {
+        span: Span,
+        op: String,
+        left: String,
+        right: Option<String>,
+        help: &'static str,
+    },
+    NotAValue {
+        span: Span,
+        what: String,
+    },
+    UnknownBlockType {
+        span: Span,
+        name: String,
+    },
+    DuplicateAction {
+        span: Span,
+        first: Span,
+        name: String,
+    },
+    OffsetNotNumber {
+        span: Span,
+        found: String,
+    },
+    ConditionType {
+        span: Span,
+        found: String,
+    },
+    UnknownStep {
+        span: Span,
+        name: String,
+    },
 }
 
 impl CheckError {

@@ -31,7 +31,13 @@ impl Checker<'_> {
                             UnOp::Neg => ("-", "only numbers can be negated"),
                             UnOp::Not => ("NOT", "NOT applies to BOOL or INT values"),
                         };
-                        self.errors.push(CheckError::OperandTypes { span: e.span, op: op.into(), left: t.name().into(), right: None, help });
+                        self.errors.push(CheckError::OperandTypes {
+                            span: e.span,
+                            op: op.into(),
+                            left: t.name().into(),
+                            right: None,
+                            help,
+                        });
                         Ty::Any
                     }
                 }
@@ -45,7 +51,11 @@ impl Checker<'_> {
         let ta = self.expr(a);
         let tb = self.expr(b);
         if ta == Ty::Any && tb == Ty::Any {
-            return if op.is_comparison() { Ty::Bool } else { Ty::Any };
+            return if op.is_comparison() {
+                Ty::Bool
+            } else {
+                Ty::Any
+            };
         }
         let mismatch = |help: &'static str| CheckError::OperandTypes {
             span: whole.span,
@@ -76,7 +86,10 @@ impl Checker<'_> {
             BinOp::Mod => {
                 for (t, e) in [(ta, a), (tb, b)] {
                     if !t.is_integral() {
-                        self.errors.push(CheckError::ModNotInteger { span: e.span, found: t.name().into() });
+                        self.errors.push(CheckError::ModNotInteger {
+                            span: e.span,
+                            found: t.name().into(),
+                        });
                         return Ty::Any;
                     }
                 }
@@ -84,7 +97,9 @@ impl Checker<'_> {
             }
             BinOp::And | BinOp::Or | BinOp::Xor => {
                 if !(ta.is_integral() && tb.is_integral()) {
-                    self.errors.push(mismatch("AND, OR and XOR take BOOL values, or INT values bit by bit (16 bits)"));
+                    self.errors.push(mismatch(
+                        "AND, OR and XOR take BOOL values, or INT values bit by bit (16 bits)",
+                    ));
                     return Ty::Any;
                 }
                 if ta == Ty::Bool && tb == Ty::Bool {
@@ -96,9 +111,12 @@ impl Checker<'_> {
                 }
             }
             _ => {
-                let ok = (ta.is_numeric() && tb.is_numeric()) || (ta.is_stringy() && tb.is_stringy());
+                let ok =
+                    (ta.is_numeric() && tb.is_numeric()) || (ta.is_stringy() && tb.is_stringy());
                 if !ok {
-                    self.errors.push(mismatch("compare numbers with numbers and strings with strings"));
+                    self.errors.push(mismatch(
+                        "compare numbers with numbers and strings with strings",
+                    ));
                 } else {
                     self.enum_comparison(a, b);
                     self.enum_comparison(b, a);
@@ -110,7 +128,9 @@ impl Checker<'_> {
 
     /// `PIC_004.Mode = "CASCADE"`: the constant must be one of the values.
     fn enum_comparison(&mut self, field: &Expr, constant: &Expr) {
-        let (ExprKind::Var(v), ExprKind::Str(s)) = (&field.kind, &constant.kind) else { return };
+        let (ExprKind::Var(v), ExprKind::Str(s)) = (&field.kind, &constant.kind) else {
+            return;
+        };
         let before = self.errors.len();
         let r = self.resolve(v);
         // The variable was already resolved once; drop repeated errors.
@@ -124,7 +144,11 @@ impl Checker<'_> {
         let types: Vec<Ty> = args.iter().map(|a| self.expr(a)).collect();
         let Some(sig) = lookup(name) else {
             let suggestion = suggest(name);
-            self.errors.push(CheckError::UnknownFunction { span: name_span, name: name.to_string(), suggestion });
+            self.errors.push(CheckError::UnknownFunction {
+                span: name_span,
+                name: name.to_string(),
+                suggestion,
+            });
             return Ty::Any;
         };
         if !sig.arity_ok(args.len()) {

@@ -36,10 +36,22 @@ pub(crate) struct Checker<'a> {
 
 /// Checks every action of a file.
 pub fn check_file(file: &SourceFile, ctx: Context) -> Vec<CheckError> {
-    let mut c = Checker { ctx, errors: Vec::new(), loop_depth: 0, self_template: None };
+    let mut c = Checker {
+        ctx,
+        errors: Vec::new(),
+        loop_depth: 0,
+        self_template: None,
+    };
     for (i, a) in file.actions.iter().enumerate() {
-        if let Some(first) = file.actions[..i].iter().find(|b| b.name.text.eq_ignore_ascii_case(&a.name.text)) {
-            c.errors.push(CheckError::DuplicateAction { span: a.name.span, first: first.name.span, name: a.name.text.clone() });
+        if let Some(first) = file.actions[..i]
+            .iter()
+            .find(|b| b.name.text.eq_ignore_ascii_case(&a.name.text))
+        {
+            c.errors.push(CheckError::DuplicateAction {
+                span: a.name.span,
+                first: first.name.span,
+                name: a.name.text.clone(),
+            });
         }
         c.action(a);
     }
@@ -48,7 +60,12 @@ pub fn check_file(file: &SourceFile, ctx: Context) -> Vec<CheckError> {
 
 /// Checks a transition: an expression that must be a truth value (§12.11).
 pub fn check_transition(e: &Expr, ctx: Context) -> Vec<CheckError> {
-    let mut c = Checker { ctx, errors: Vec::new(), loop_depth: 0, self_template: None };
+    let mut c = Checker {
+        ctx,
+        errors: Vec::new(),
+        loop_depth: 0,
+        self_template: None,
+    };
     c.condition(e);
     c.errors
 }
@@ -59,7 +76,10 @@ impl Checker<'_> {
         if let Some(t) = &a.block_type {
             match self.ctx.db.template(&t.text) {
                 Some(i) => self.self_template = Some(i),
-                None => self.errors.push(CheckError::UnknownBlockType { span: t.span, name: t.text.clone() }),
+                None => self.errors.push(CheckError::UnknownBlockType {
+                    span: t.span,
+                    name: t.text.clone(),
+                }),
             }
         }
         self.stmts(&a.body);
@@ -75,14 +95,22 @@ impl Checker<'_> {
         match s {
             Stmt::Assign { target, value, .. } => {
                 let vt = self.expr(value);
-                let Some(r) = self.resolve(target) else { return };
+                let Some(r) = self.resolve(target) else {
+                    return;
+                };
                 if !r.writable {
-                    self.errors.push(CheckError::NotWritable { span: target.span, what: target.path(), why: r.why_readonly });
+                    self.errors.push(CheckError::NotWritable {
+                        span: target.span,
+                        what: target.path(),
+                        why: r.why_readonly,
+                    });
                     return;
                 }
                 self.store(&r, value, vt, target);
             }
-            Stmt::If { arms, otherwise, .. } => {
+            Stmt::If {
+                arms, otherwise, ..
+            } => {
                 for (cond, body) in arms {
                     self.condition(cond);
                     self.stmts(body);
@@ -91,10 +119,21 @@ impl Checker<'_> {
                     self.stmts(body);
                 }
             }
-            Stmt::For { var, from, to, by, body, .. } => {
+            Stmt::For {
+                var,
+                from,
+                to,
+                by,
+                body,
+                ..
+            } => {
                 if let Some(r) = self.resolve(var) {
                     if !r.writable {
-                        self.errors.push(CheckError::NotWritable { span: var.span, what: var.path(), why: r.why_readonly });
+                        self.errors.push(CheckError::NotWritable {
+                            span: var.span,
+                            what: var.path(),
+                            why: r.why_readonly,
+                        });
                     } else if !matches!(r.ty, Ty::Int | Ty::Real | Ty::Any) {
                         self.errors.push(CheckError::OperandTypes {
                             span: var.span,
@@ -119,7 +158,8 @@ impl Checker<'_> {
                 }
                 if let Some(b) = by {
                     if !matches!(b.kind, ExprKind::Int(_) | ExprKind::Real(_)) {
-                        self.errors.push(CheckError::ForByNotLiteral { span: b.span });
+                        self.errors
+                            .push(CheckError::ForByNotLiteral { span: b.span });
                     }
                 }
                 self.in_loop(body);
@@ -134,7 +174,8 @@ impl Checker<'_> {
             }
             Stmt::Exit { span } => {
                 if self.loop_depth == 0 {
-                    self.errors.push(CheckError::ExitOutsideLoop { span: *span });
+                    self.errors
+                        .push(CheckError::ExitOutsideLoop { span: *span });
                 }
             }
             Stmt::Error { .. } => {}
@@ -150,7 +191,10 @@ impl Checker<'_> {
     fn condition(&mut self, e: &Expr) {
         let t = self.expr(e);
         if !matches!(t, Ty::Bool | Ty::Int | Ty::Any) {
-            self.errors.push(CheckError::ConditionType { span: e.span, found: t.name().into() });
+            self.errors.push(CheckError::ConditionType {
+                span: e.span,
+                found: t.name().into(),
+            });
         }
     }
 
@@ -162,8 +206,17 @@ impl Checker<'_> {
             Ty::Text | Ty::Bytes | Ty::WStr => vt.is_stringy(),
         };
         if !fits {
-            let expected = if r.enum_values.is_some() { "ENUM".to_string() } else { r.ty.name().to_string() };
-            self.errors.push(CheckError::AssignType { span: value.span, target: target.span, expected, found: vt.name().into() });
+            let expected = if r.enum_values.is_some() {
+                "ENUM".to_string()
+            } else {
+                r.ty.name().to_string()
+            };
+            self.errors.push(CheckError::AssignType {
+                span: value.span,
+                target: target.span,
+                expected,
+                found: vt.name().into(),
+            });
             return;
         }
         if let (Some(values), ExprKind::Str(s)) = (&r.enum_values, &value.kind) {
@@ -173,7 +226,12 @@ impl Checker<'_> {
 
     fn enum_literal(&mut self, values: &[String], s: &str, span: crate::Span, field: String) {
         if !values.iter().any(|v| v.eq_ignore_ascii_case(s)) {
-            self.errors.push(CheckError::BadEnumValue { span, value: s.to_string(), field, values: values.to_vec() });
+            self.errors.push(CheckError::BadEnumValue {
+                span,
+                value: s.to_string(),
+                field,
+                values: values.to_vec(),
+            });
         }
     }
 }

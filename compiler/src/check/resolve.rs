@@ -24,7 +24,12 @@ pub struct Resolved {
 
 impl Resolved {
     fn any() -> Resolved {
-        Resolved { ty: Ty::Any, writable: true, why_readonly: "", enum_values: None }
+        Resolved {
+            ty: Ty::Any,
+            writable: true,
+            why_readonly: "",
+            enum_values: None,
+        }
     }
 }
 
@@ -44,9 +49,15 @@ impl Checker<'_> {
             if let Some(o) = &seg.offset {
                 let t = self.expr(o);
                 if !t.is_numeric() {
-                    self.errors.push(CheckError::OffsetNotNumber { span: o.span, found: t.name().into() });
+                    self.errors.push(CheckError::OffsetNotNumber {
+                        span: o.span,
+                        found: t.name().into(),
+                    });
                 }
             }
+        }
+        if v.malformed {
+            return None;
         }
         let db = self.ctx.db;
         let first = &v.segs[0];
@@ -54,13 +65,29 @@ impl Checker<'_> {
         if let Some(alias) = db.alias(&first.name.text) {
             let n = alias.target.len();
             for (i, t) in alias.target.iter().enumerate() {
-                let offset = if i + 1 == n { first.offset.as_deref() } else { None };
-                parts.push(Part { name: t, span: first.name.span, offset });
+                let offset = if i + 1 == n {
+                    first.offset.as_deref()
+                } else {
+                    None
+                };
+                parts.push(Part {
+                    name: t,
+                    span: first.name.span,
+                    offset,
+                });
             }
         } else {
-            parts.push(Part { name: &first.name.text, span: first.name.span, offset: first.offset.as_deref() });
+            parts.push(Part {
+                name: &first.name.text,
+                span: first.name.span,
+                offset: first.offset.as_deref(),
+            });
         }
-        parts.extend(v.segs[1..].iter().map(|s| Part { name: &s.name.text, span: s.name.span, offset: s.offset.as_deref() }));
+        parts.extend(v.segs[1..].iter().map(|s| Part {
+            name: &s.name.text,
+            span: s.name.span,
+            offset: s.offset.as_deref(),
+        }));
 
         if let Some(b) = db.block(parts[0].name) {
             if parts[0].offset.is_some() {
@@ -72,7 +99,10 @@ impl Checker<'_> {
                 return None;
             }
             let Some(field) = parts.get(1) else {
-                self.errors.push(CheckError::NotAValue { span: v.span, what: v.path() });
+                self.errors.push(CheckError::NotAValue {
+                    span: v.span,
+                    what: v.path(),
+                });
                 return None;
             };
             let _ = field;
@@ -84,34 +114,70 @@ impl Checker<'_> {
                 return self.field_path(tpl, "this action's block", &parts, v);
             }
         }
-        if parts.len() == 2 && (parts[1].name.eq_ignore_ascii_case("X") || parts[1].name.eq_ignore_ascii_case("T")) {
+        let step_like = parts.len() == 2
+            && (parts[1].name.eq_ignore_ascii_case("X") || parts[1].name.eq_ignore_ascii_case("T"));
+        if step_like && self.ctx.steps.is_some() {
             return self.step_variable(&parts, v);
         }
-        if !self.ctx.resolve_blocks {
+        // Without a database any block may exist at run time; a lone name in
+        // an action bound to a block type can only be one of its fields.
+        let lone_field = self.self_template.is_some() && parts.len() == 1;
+        if !self.ctx.resolve_blocks && !lone_field {
             return Some(Resolved::any());
         }
-        self.errors.push(CheckError::UnknownName { span: parts[0].span, name: parts[0].name.to_string() });
+        if step_like {
+            return self.step_variable(&parts, v);
+        }
+        self.errors.push(CheckError::UnknownName {
+            span: parts[0].span,
+            name: parts[0].name.to_string(),
+        });
         None
     }
 
     fn step_variable(&mut self, parts: &[Part], v: &Var) -> Option<Resolved> {
         let Some(steps) = self.ctx.steps else {
-            self.errors.push(CheckError::StepOutsideSequence { span: v.span, name: v.path() });
+            self.errors.push(CheckError::StepOutsideSequence {
+                span: v.span,
+                name: v.path(),
+            });
             return None;
         };
         if !steps.is_empty() && !steps.iter().any(|s| s.eq_ignore_ascii_case(parts[0].name)) {
-            self.errors.push(CheckError::UnknownStep { span: parts[0].span, name: parts[0].name.to_string() });
+            self.errors.push(CheckError::UnknownStep {
+                span: parts[0].span,
+                name: parts[0].name.to_string(),
+            });
             return None;
         }
-        let ty = if parts[1].name.eq_ignore_ascii_case("X") { Ty::Bool } else { Ty::Real };
-        Some(Resolved { ty, writable: false, why_readonly: "step variables are maintained by the sequence", enum_values: None })
+        let ty = if parts[1].name.eq_ignore_ascii_case("X") {
+            Ty::Bool
+        } else {
+            Ty::Real
+        };
+        Some(Resolved {
+            ty,
+            writable: false,
+            why_readonly: "step variables are maintained by the sequence",
+            enum_values: None,
+        })
     }
 
     /// Resolves `field[.sub[.sub]]` within a template.
-    fn field_path(&mut self, tpl: &Template, owner: &str, parts: &[Part], v: &Var) -> Option<Resolved> {
+    fn field_path(
+        &mut self,
+        tpl: &Template,
+        owner: &str,
+        parts: &[Part],
+        v: &Var,
+    ) -> Option<Resolved> {
         let fpart = &parts[0];
         let Some(fi) = tpl.field(fpart.name) else {
-            let known = if tpl.fields.len() <= 16 { tpl.fields.iter().map(|f| f.name.clone()).collect() } else { Vec::new() };
+            let known = if tpl.fields.len() <= 16 {
+                tpl.fields.iter().map(|f| f.name.clone()).collect()
+            } else {
+                Vec::new()
+            };
             self.errors.push(CheckError::UnknownField {
                 span: fpart.span,
                 field: fpart.name.to_string(),
@@ -127,7 +193,11 @@ impl Checker<'_> {
         }
         let readonly = |r: Resolved| {
             if field.readonly {
-                Resolved { writable: false, why_readonly: "this field is computed by its block (read-only)", ..r }
+                Resolved {
+                    writable: false,
+                    why_readonly: "this field is computed by its block (read-only)",
+                    ..r
+                }
             } else {
                 r
             }
@@ -135,7 +205,10 @@ impl Checker<'_> {
         let rest = &parts[1..];
         match (&field.ty, rest) {
             (FieldType::Alarms(_), []) => {
-                self.errors.push(CheckError::NotAValue { span: v.span, what: v.path() });
+                self.errors.push(CheckError::NotAValue {
+                    span: v.span,
+                    what: v.path(),
+                });
                 None
             }
             (ty, []) => Some(readonly(value_of(ty))),
@@ -147,21 +220,40 @@ impl Checker<'_> {
                     let span = bit.span.to(o.span);
                     if b + 1 >= *width {
                         let why = format!("Bit{b} is the last bit of a {}-bit field", width);
-                        self.errors.push(CheckError::BadOffsetBase { span, base: bit.name.to_string(), why });
+                        self.errors.push(CheckError::BadOffsetBase {
+                            span,
+                            base: bit.name.to_string(),
+                            why,
+                        });
                         return None;
                     }
                     if let Some(n) = o.int_value() {
                         if n < 0 || i64::from(b) + i64::from(n) >= i64::from(*width) {
-                            let why = format!("Bit{b}{{{n}}} is beyond the last bit, Bit{}", width - 1);
-                            self.errors.push(CheckError::BadOffsetBase { span, base: bit.name.to_string(), why });
+                            let why =
+                                format!("Bit{b}{{{n}}} is beyond the last bit, Bit{}", width - 1);
+                            self.errors.push(CheckError::BadOffsetBase {
+                                span,
+                                base: bit.name.to_string(),
+                                why,
+                            });
                             return None;
                         }
                     }
                 }
-                Some(readonly(Resolved { ty: Ty::Bool, writable: true, why_readonly: "", enum_values: None }))
+                Some(readonly(Resolved {
+                    ty: Ty::Bool,
+                    writable: true,
+                    why_readonly: "",
+                    enum_values: None,
+                }))
             }
             (FieldType::Alarms(names), [sub, more @ ..]) => {
-                let suppress = Resolved { ty: Ty::Int, writable: true, why_readonly: "", enum_values: None };
+                let suppress = Resolved {
+                    ty: Ty::Int,
+                    writable: true,
+                    why_readonly: "",
+                    enum_values: None,
+                };
                 if sub.name.eq_ignore_ascii_case("Suppress") && more.is_empty() {
                     return Some(suppress);
                 }
@@ -172,7 +264,8 @@ impl Checker<'_> {
                     [] => Some(Resolved {
                         ty: Ty::Bool,
                         writable: false,
-                        why_readonly: "an alarm's state is set by its block; write its .Suppress instead",
+                        why_readonly:
+                            "an alarm's state is set by its block; write its .Suppress instead",
                         enum_values: None,
                     }),
                     [s] if s.name.eq_ignore_ascii_case("Suppress") => Some(suppress),
@@ -187,7 +280,11 @@ impl Checker<'_> {
     }
 
     fn no_sub(&mut self, part: &Part, field: &str, ty: &FieldType) -> Option<Resolved> {
-        let field_type = if field.eq_ignore_ascii_case("") { "" } else { ty.keyword() };
+        let field_type = if field.eq_ignore_ascii_case("") {
+            ""
+        } else {
+            ty.keyword()
+        };
         self.errors.push(CheckError::UnknownSubField {
             span: part.span,
             sub: part.name.to_string(),
@@ -199,17 +296,32 @@ impl Checker<'_> {
 
     /// §12.12: the base must start a run of same-typed fields, and a
     /// constant offset must stay inside it.
-    fn check_field_offset(&mut self, tpl: &Template, fi: usize, o: &Expr, part: &Part) -> Option<()> {
+    fn check_field_offset(
+        &mut self,
+        tpl: &Template,
+        fi: usize,
+        o: &Expr,
+        part: &Part,
+    ) -> Option<()> {
         let kind = &tpl.fields[fi].ty;
-        let run = tpl.fields[fi..].iter().take_while(|f| f.ty.same_kind(kind)).count();
+        let run = tpl.fields[fi..]
+            .iter()
+            .take_while(|f| f.ty.same_kind(kind))
+            .count();
         let span = part.span.to(o.span);
         let base = part.name.to_string();
         if run < 2 {
             let why = match tpl.fields.get(fi + 1) {
-                Some(next) => format!("the next field, {}, is {} but this is {}", next.name, next.ty.keyword(), kind.keyword()),
+                Some(next) => format!(
+                    "the next field, {}, is {} but this is {}",
+                    next.name,
+                    next.ty.keyword(),
+                    kind.keyword()
+                ),
                 None => "it is the last field of its block".to_string(),
             };
-            self.errors.push(CheckError::BadOffsetBase { span, base, why });
+            self.errors
+                .push(CheckError::BadOffsetBase { span, base, why });
             return None;
         }
         if let Some(n) = o.int_value() {
@@ -221,7 +333,8 @@ impl Checker<'_> {
                     tpl.fields[fi].name,
                     tpl.fields[fi + run - 1].name
                 );
-                self.errors.push(CheckError::BadOffsetBase { span, base, why });
+                self.errors
+                    .push(CheckError::BadOffsetBase { span, base, why });
                 return None;
             }
         }
@@ -241,5 +354,10 @@ fn value_of(ty: &FieldType) -> Resolved {
         FieldType::Wstr => (Ty::WStr, None),
         FieldType::Alarms(_) => (Ty::Any, None),
     };
-    Resolved { ty, writable: true, why_readonly: "", enum_values }
+    Resolved {
+        ty,
+        writable: true,
+        why_readonly: "",
+        enum_values,
+    }
 }

@@ -32,7 +32,11 @@ impl Database {
         let mut db = Database::default();
         // The built-in library is tested to load; an empty library is the
         // only possible fallback and keeps this path free of panics.
-        let _ = Loader { text: BUILTIN, db: &mut db }.load();
+        let _ = Loader {
+            text: BUILTIN,
+            db: &mut db,
+        }
+        .load();
         db
     }
 
@@ -53,12 +57,20 @@ impl Loader<'_> {
     fn load(&mut self) -> Result<(), DbError> {
         let root: Value = serde_json::from_str(self.text).map_err(|e| {
             let at = offset_of(self.text, e.line(), e.column());
-            DbError { code: "E0800", message: format!("the database is not valid JSON: {e}"), span: Some((at, at)) }
+            DbError {
+                code: "E0800",
+                message: format!("the database is not valid JSON: {e}"),
+                span: Some((at, at)),
+            }
         })?;
         let root = self.object(&root, "the database")?;
         for key in root.keys() {
             if !matches!(key.as_str(), "templates" | "blocks" | "aliases") {
-                return Err(self.err("E0801", format!("unknown top-level key `{key}` (expected templates, blocks, aliases)"), key));
+                return Err(self.err(
+                    "E0801",
+                    format!("unknown top-level key `{key}` (expected templates, blocks, aliases)"),
+                    key,
+                ));
             }
         }
         if let Some(t) = root.get("templates") {
@@ -80,7 +92,11 @@ impl Loader<'_> {
     }
 
     fn err(&self, code: &'static str, message: String, near: &str) -> DbError {
-        DbError { code, message, span: locate(self.text, near) }
+        DbError {
+            code,
+            message,
+            span: locate(self.text, near),
+        }
     }
 
     fn object<'v>(&self, v: &'v Value, what: &str) -> Result<&'v Map<String, Value>, DbError> {
@@ -92,28 +108,57 @@ impl Loader<'_> {
     }
 
     fn template(&mut self, name: &str, spec: &Value) -> Result<(), DbError> {
-        let spec = spec
-            .as_object()
-            .ok_or_else(|| self.err("E0801", format!("template `{name}` must be an object with `fields`"), name))?;
-        let doc = spec.get("doc").and_then(Value::as_str).unwrap_or_default().to_string();
+        let spec = spec.as_object().ok_or_else(|| {
+            self.err(
+                "E0801",
+                format!("template `{name}` must be an object with `fields`"),
+                name,
+            )
+        })?;
+        let doc = spec
+            .get("doc")
+            .and_then(Value::as_str)
+            .unwrap_or_default()
+            .to_string();
         let mut fields = Vec::new();
         if let Some(fs) = spec.get("fields") {
-            let fs = fs
-                .as_object()
-                .ok_or_else(|| self.err("E0801", format!("`fields` of template `{name}` must be an object"), name))?;
+            let fs = fs.as_object().ok_or_else(|| {
+                self.err(
+                    "E0801",
+                    format!("`fields` of template `{name}` must be an object"),
+                    name,
+                )
+            })?;
             for (fname, fspec) in fs {
-                if fields.iter().any(|f: &FieldDef| f.name.eq_ignore_ascii_case(fname)) {
-                    return Err(self.err("E0806", format!("template `{name}` declares field `{fname}` twice"), fname));
+                if fields
+                    .iter()
+                    .any(|f: &FieldDef| f.name.eq_ignore_ascii_case(fname))
+                {
+                    return Err(self.err(
+                        "E0806",
+                        format!("template `{name}` declares field `{fname}` twice"),
+                        fname,
+                    ));
                 }
                 let (ty, readonly) = self.field_spec(name, fname, fspec)?;
-                fields.push(FieldDef { name: fname.clone(), ty, readonly });
+                fields.push(FieldDef {
+                    name: fname.clone(),
+                    ty,
+                    readonly,
+                });
             }
         }
-        self.db.put_template(Template::new(name.to_string(), doc, fields));
+        self.db
+            .put_template(Template::new(name.to_string(), doc, fields));
         Ok(())
     }
 
-    fn field_spec(&self, tname: &str, fname: &str, spec: &Value) -> Result<(FieldType, bool), DbError> {
+    fn field_spec(
+        &self,
+        tname: &str,
+        fname: &str,
+        spec: &Value,
+    ) -> Result<(FieldType, bool), DbError> {
         let bad = || {
             self.err(
                 "E0802",
@@ -127,8 +172,14 @@ impl Loader<'_> {
                     "REAL" => FieldType::Real,
                     "INT" => FieldType::Int,
                     "BOOL" => FieldType::Bool,
-                    "BITS8" => FieldType::Bits { width: 8, names: vec![] },
-                    "BITS16" => FieldType::Bits { width: 16, names: vec![] },
+                    "BITS8" => FieldType::Bits {
+                        width: 8,
+                        names: vec![],
+                    },
+                    "BITS16" => FieldType::Bits {
+                        width: 16,
+                        names: vec![],
+                    },
                     "STRING" => FieldType::String,
                     "DATE" => FieldType::Date,
                     "TIME" => FieldType::Time,
@@ -165,35 +216,62 @@ impl Loader<'_> {
     }
 
     fn block(&mut self, name: &str, spec: &Value) -> Result<(), DbError> {
-        let spec = spec
-            .as_object()
-            .ok_or_else(|| self.err("E0801", format!("block `{name}` must be an object with `type`"), name))?;
+        let spec = spec.as_object().ok_or_else(|| {
+            self.err(
+                "E0801",
+                format!("block `{name}` must be an object with `type`"),
+                name,
+            )
+        })?;
         let tname = spec
             .get("type")
             .and_then(Value::as_str)
             .ok_or_else(|| self.err("E0801", format!("block `{name}` has no `type`"), name))?;
-        let template = self
-            .db
-            .template(tname)
-            .ok_or_else(|| self.err("E0803", format!("block `{name}` has unknown type `{tname}`"), tname))?;
+        let template = self.db.template(tname).ok_or_else(|| {
+            self.err(
+                "E0803",
+                format!("block `{name}` has unknown type `{tname}`"),
+                tname,
+            )
+        })?;
         let mut values = Vec::new();
         if let Some(vs) = spec.get("values") {
-            let vs = vs
-                .as_object()
-                .ok_or_else(|| self.err("E0801", format!("`values` of block `{name}` must be an object"), name))?;
+            let vs = vs.as_object().ok_or_else(|| {
+                self.err(
+                    "E0801",
+                    format!("`values` of block `{name}` must be an object"),
+                    name,
+                )
+            })?;
             for (fname, v) in vs {
                 let t = &self.db.templates[template];
                 let fi = t.field(fname).ok_or_else(|| {
-                    self.err("E0804", format!("block `{name}` of type `{}` has no field `{fname}`", t.name), fname)
+                    self.err(
+                        "E0804",
+                        format!("block `{name}` of type `{}` has no field `{fname}`", t.name),
+                        fname,
+                    )
                 })?;
                 let value = init_value(&t.fields[fi].ty, v).map_err(|why| {
-                    self.err("E0804", format!("initial value of `{name}.{fname}`: {why}"), fname)
+                    self.err(
+                        "E0804",
+                        format!("initial value of `{name}.{fname}`: {why}"),
+                        fname,
+                    )
                 })?;
                 values.push((fi, value));
             }
         }
-        if !self.db.add_block(Block { name: name.to_string(), template, values }) {
-            return Err(self.err("E0806", format!("block `{name}` is declared twice (names ignore case)"), name));
+        if !self.db.add_block(Block {
+            name: name.to_string(),
+            template,
+            values,
+        }) {
+            return Err(self.err(
+                "E0806",
+                format!("block `{name}` is declared twice (names ignore case)"),
+                name,
+            ));
         }
         Ok(())
     }
@@ -202,10 +280,23 @@ impl Loader<'_> {
         let t = target
             .as_str()
             .filter(|t| !t.is_empty() && t.split('.').all(|s| !s.is_empty()))
-            .ok_or_else(|| self.err("E0805", format!("alias `{name}` must name a reference like \"BLOCK.FIELD\""), name))?;
-        let alias = Alias { name: name.to_string(), target: t.split('.').map(str::to_string).collect() };
+            .ok_or_else(|| {
+                self.err(
+                    "E0805",
+                    format!("alias `{name}` must name a reference like \"BLOCK.FIELD\""),
+                    name,
+                )
+            })?;
+        let alias = Alias {
+            name: name.to_string(),
+            target: t.split('.').map(str::to_string).collect(),
+        };
         if !self.db.add_alias(alias) {
-            return Err(self.err("E0806", format!("alias `{name}` is declared twice (names ignore case)"), name));
+            return Err(self.err(
+                "E0806",
+                format!("alias `{name}` is declared twice (names ignore case)"),
+                name,
+            ));
         }
         Ok(())
     }
@@ -219,7 +310,9 @@ fn init_value(ty: &FieldType, v: &Value) -> Result<InitValue, String> {
             Ok(InitValue::Num(x))
         }
         (FieldType::Bool, Value::Bool(b)) => Ok(InitValue::Bool(*b)),
-        (FieldType::Bool, Value::Number(n)) => Ok(InitValue::Bool(n.as_f64().unwrap_or(0.0) != 0.0)),
+        (FieldType::Bool, Value::Number(n)) => {
+            Ok(InitValue::Bool(n.as_f64().unwrap_or(0.0) != 0.0))
+        }
         (FieldType::Enum(names), Value::String(s)) => {
             if names.iter().any(|n| n.eq_ignore_ascii_case(s)) {
                 Ok(InitValue::Text(s.clone()))
@@ -227,9 +320,14 @@ fn init_value(ty: &FieldType, v: &Value) -> Result<InitValue, String> {
                 Err(format!("`{s}` is not one of {}", names.join(", ")))
             }
         }
-        (FieldType::String | FieldType::Date | FieldType::Time | FieldType::Bseq | FieldType::Wstr, Value::String(s)) => {
-            Ok(InitValue::Text(s.clone()))
-        }
+        (
+            FieldType::String
+            | FieldType::Date
+            | FieldType::Time
+            | FieldType::Bseq
+            | FieldType::Wstr,
+            Value::String(s),
+        ) => Ok(InitValue::Text(s.clone())),
         (FieldType::Alarms(_), _) => Err("alarm fields have no initial value".into()),
         (ty, _) => Err(format!("expected a value for a {} field", ty.keyword())),
     }
@@ -237,7 +335,11 @@ fn init_value(ty: &FieldType, v: &Value) -> Result<InitValue, String> {
 
 /// Byte offset of a 1-based line and column.
 fn offset_of(text: &str, line: usize, column: usize) -> usize {
-    let start: usize = text.split_inclusive('\n').take(line.saturating_sub(1)).map(str::len).sum();
+    let start: usize = text
+        .split_inclusive('\n')
+        .take(line.saturating_sub(1))
+        .map(str::len)
+        .sum();
     (start + column.saturating_sub(1)).min(text.len())
 }
 
@@ -254,9 +356,15 @@ mod tests {
     #[test]
     fn builtin_library_loads() {
         let mut db = Database::default();
-        let r = Loader { text: BUILTIN, db: &mut db }.load();
+        let r = Loader {
+            text: BUILTIN,
+            db: &mut db,
+        }
+        .load();
         assert_eq!(r, Ok(()));
-        for t in ["ACTION", "DIGACT", "SFC_CON", "RAW_COM", "PID", "AN_CONN", "DG_CONN"] {
+        for t in [
+            "ACTION", "DIGACT", "SFC_CON", "RAW_COM", "PID", "AN_CONN", "DG_CONN",
+        ] {
             assert!(db.template(t).is_some(), "{t}");
         }
     }
@@ -270,13 +378,20 @@ mod tests {
         let db = Database::from_json(text).expect("loads");
         let b = db.block("rec1").expect("block");
         let t = db.block_template(b);
-        assert_eq!(t.fields.iter().map(|f| f.name.as_str()).collect::<Vec<_>>(), ["A0", "N0", "Flags", "Mode", "Alarms"]);
-        assert_eq!(db.alias("AVG").map(|a| a.target.clone()), Some(vec!["REC1".to_string(), "A0".to_string()]));
+        assert_eq!(
+            t.fields.iter().map(|f| f.name.as_str()).collect::<Vec<_>>(),
+            ["A0", "N0", "Flags", "Mode", "Alarms"]
+        );
+        assert_eq!(
+            db.alias("AVG").map(|a| a.target.clone()),
+            Some(vec!["REC1".to_string(), "A0".to_string()])
+        );
     }
 
     #[test]
     fn errors_are_coded_and_located() {
-        let e = Database::from_json("{ \"blocks\": { \"B\": { \"type\": \"NOPE\" } } }").expect_err("fails");
+        let e = Database::from_json("{ \"blocks\": { \"B\": { \"type\": \"NOPE\" } } }")
+            .expect_err("fails");
         assert_eq!(e.code, "E0803");
         assert_eq!(e.span, Some((29, 35)));
         let e = Database::from_json("{ \"blocks\": ").expect_err("fails");
@@ -288,7 +403,10 @@ mod tests {
 
     #[test]
     fn bit_names() {
-        let t = FieldType::Bits { width: 8, names: vec!["Run".into()] };
+        let t = FieldType::Bits {
+            width: 8,
+            names: vec!["Run".into()],
+        };
         assert_eq!(t.bit_index("BIT7"), Some(7));
         assert_eq!(t.bit_index("Bit8"), None);
         assert_eq!(t.bit_index("run"), Some(0));

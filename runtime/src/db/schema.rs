@@ -9,7 +9,10 @@ pub enum FieldType {
     Int,
     Bool,
     /// A bitfield of 8 or 16 bits; `names` are optional aliases of `Bit0…`.
-    Bits { width: u8, names: Vec<String> },
+    Bits {
+        width: u8,
+        names: Vec<String>,
+    },
     /// Named values, assigned by case-insensitive string.
     Enum(Vec<String>),
     String,
@@ -52,11 +55,16 @@ impl FieldType {
 
     /// Index of a bit sub-field (`Bit5` or a declared bit name).
     pub fn bit_index(&self, sub: &str) -> Option<u8> {
-        let FieldType::Bits { width, names } = self else { return None };
+        let FieldType::Bits { width, names } = self else {
+            return None;
+        };
         if let Some(i) = names.iter().position(|n| n.eq_ignore_ascii_case(sub)) {
             return u8::try_from(i).ok();
         }
-        let digits = sub.get(..3).filter(|p| p.eq_ignore_ascii_case("bit")).and(sub.get(3..))?;
+        let digits = sub
+            .get(..3)
+            .filter(|p| p.eq_ignore_ascii_case("bit"))
+            .and(sub.get(3..))?;
         if digits.is_empty() || digits.len() > 2 || !digits.bytes().all(|b| b.is_ascii_digit()) {
             return None;
         }
@@ -86,8 +94,17 @@ pub struct Template {
 
 impl Template {
     pub fn new(name: String, doc: String, fields: Vec<FieldDef>) -> Self {
-        let index = fields.iter().enumerate().map(|(i, f)| (f.name.to_ascii_uppercase(), i)).collect();
-        Template { name, doc, fields, index }
+        let index = fields
+            .iter()
+            .enumerate()
+            .map(|(i, f)| (f.name.to_ascii_uppercase(), i))
+            .collect();
+        Template {
+            name,
+            doc,
+            fields,
+            index,
+        }
     }
 
     /// Finds a field by case-insensitive name.
@@ -176,7 +193,9 @@ impl Database {
     }
 
     pub fn alias(&self, name: &str) -> Option<&Alias> {
-        self.alias_index.get(&name.to_ascii_uppercase()).map(|&i| &self.aliases[i])
+        self.alias_index
+            .get(&name.to_ascii_uppercase())
+            .map(|&i| &self.aliases[i])
     }
 
     /// The template of a block.
