@@ -1,1 +1,58 @@
-fn main() {}
+//! Front-end throughput on a generated action file of about 5 MB.
+//!
+//! Measures lexing alone, lex + parse, and the whole of `linc check`'s work
+//! (lex, parse, resolve against the guide database, type check), beside a
+//! native-Rust baseline that only walks the bytes (counting lines), so the
+//! figures say how far the front end is from memory speed.
+//!
+//! The generated input is also written to `target/check-bench.st` so that the
+//! CLI can be timed on the same text.
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use linc_compiler::check::Context;
+use linc_runtime::Database;
+use std::hint::black_box;
+
+const TARGET_BYTES: usize = 5 * 1024 * 1024;
+
+/// Realistic statements over the guide database, varied by a counter.
+fn generate() -> String {
+    let mut out = String::with_capacity(TARGET_BYTES + 4096);
+    let mut i = 0u32;
+    while out.len() < TARGET_BYTES {
+        let n = i % 7;
+        out.push_str(&format!(
+            "(* block {i} *)\nIF PIC_004.PV < {i}.5 AND Dig_A.Out.Bit{n} THEN\n    TIC_100.SL := REC1.A{n} * 1.5 + (Block_5.PV - {i}) / Const.A7;\n    Dig_B.Out.Bit{n} := NOT Dig_A.Out.Bit{n} OR (PIC_005.PV > 30);\nELSIF Recipe.N{n} MOD 3 = 0 THEN\n    Raw1.I2 := CRC(Raw1.Tx_Value, 1, 16#8005, 16#FFFF);\nELSE\n    PIC_004.Mode := \"AUTO\";\nEND_IF;\nFOR Counters.N0 := 0 TO 6 DO\n    Block_5.Val1{{Counters.N0}} := Block_5.Val1{{Counters.N0 + 1}} + T#1m30s;\nEND_FOR;\n"
+        ));
+        i += 1;
+    }
+    out
+}
+
+fn bench(c: &mut Criterion) {
+    let src = generate();
+    let _ = std::fs::create_dir_all("../target");
+    let _ = std::fs::write("../target/check-bench.st", &src);
+    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide database");
+    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let clean = linc_compiler::check_source(&src, "bench", ctx);
+    assert!(clean.diagnostics.is_empty(), "generated input must check clean: {:?}", clean.diagnostics.first());
+
+    let mut g = c.benchmark_group("check");
+    g.throughput(Throughput::Bytes(src.len() as u64));
+    g.sample_size(10);
+    g.bench_function("baseline: count lines (native)", |b| {
+        b.iter(|| black_box(&src).bytes().filter(|&b| b == b'\n').count())
+    });
+    g.bench_function("lex", |b| b.iter(|| linc_compiler::lexer::lex(black_box(&src)).0.len()));
+    g.bench_function("lex + parse", |b| {
+        b.iter(|| linc_compiler::parser::parse_file(black_box(&src), "bench").0.map(|f| f.actions.len()))
+    });
+    g.bench_function("check (lex + parse + resolve + types)", |b| {
+        b.iter(|| linc_compiler::check_source(black_box(&src), "bench", ctx).diagnostics.len())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

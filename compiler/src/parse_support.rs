@@ -145,18 +145,14 @@ fn split(syntax: &mut Vec<SyntaxError>, text: &str, at: usize, bracketed: bool) 
 pub fn var(
     syntax: &mut Vec<SyntaxError>,
     text: &str,
-    l: usize,
+    (l, r): (usize, usize),
     bracketed: bool,
     suffixes: Vec<Suffix>,
 ) -> Var {
     let first = if bracketed { l + 1 } else { l };
     let before = syntax.len();
     let mut segs = split(syntax, text, first, bracketed);
-    let mut end = if bracketed {
-        first + text.len() + 1
-    } else {
-        first + text.len()
-    };
+    let mut end = r;
     for s in suffixes {
         match s {
             Suffix::Offset(e, span) => {

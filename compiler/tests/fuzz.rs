@@ -1,0 +1,132 @@
+//! Robustness: random and mutated inputs through lexer, parser, checker and
+//! every renderer must never panic.
+//!
+//! Deterministic (a fixed-seed xorshift generator), so a failure reproduces.
+//! `cargo test` runs a reduced number of inputs; set `LINC_FUZZ_CASES` for a
+//! long run (the figure in the README used 200,000).
+
+use linc_compiler::check::Context;
+use linc_compiler::render::{render, Format, SourceFiles};
+use linc_runtime::Database;
+
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
+
+const CORPUS: &[&str] = &[
+    include_str!("../../examples/guide/control.stx"),
+    include_str!("../../examples/guide/shift.st"),
+    include_str!("../../examples/guide/broken.st"),
+    "IF PIC_004.PV < 10 THEN Dig_B.Out.Bit0 := 1; ELSIF a THEN b := 2; ELSE Dig_B.Out.Bit1 := 1; END_IF;",
+    "FOR PIC_004.PV := 0 TO 10 BY 2 DO avg := avg+f[PIC_004.PV]; EXIT; END_FOR;",
+    "REPEAT PIC_004.PV:= PIC_004.PV+1; UNTIL PIC_004.PV >= 10; END_REPEAT;",
+    "[Word 1]{N/2}.Bit4{N} := [DG_CONN3.W Field2.Bit6] AND NOT (A)MOD(B) ** -2;",
+    "x := T#1d12.2h + 16#FF + 2#1010 - 3.5E2 + 'a$'b$62' + \"q\" + CRC('123456789',1,16#8005,16#FFFF);",
+    "ANIN_005.Alarms.HiLevel.Suppress := 3600; STEP3.T >= T#4m;",
+];
+
+const VOCAB: &[&str] = &[
+    "IF ", "THEN ", "ELSIF ", "ELSE ", "END_IF", "FOR ", " TO ", " BY ", " DO ", "END_FOR", "WHILE ", "END_WHILE",
+    "REPEAT ", "UNTIL ", "END_REPEAT", "EXIT", "ACTION ", "END_ACTION", " AND ", " OR ", " XOR ", "NOT ", " MOD ",
+    ":=", ":", ";", ",", "(", ")", "{", "}", "[", "]", "+", "-", "**", "*", "/", "=", "<>", "<", ">", "<=", ">=",
+    ".", ".Bit3", "PIC_004.PV", "Dig_A.Out", "avg", "f", "REC1", "Alarms", ".Suppress", "Pulserate", "1A", "6366.MN",
+    "45", "16#", "16#FG", "2#1", "3.", "3.6", "T#", "T#3s", "T#5x", "'", "\"", "'abc'", "$", "(*", "*)", "(* c *)",
+    " ", "\n", "\t", "é", "\u{201C}", "\u{0}", "SCAN(", "FIND(", "MID(", "AVG(", "TRUE", "FALSE", "STEP1.X",
+];
+
+fn mutate(rng: &mut Rng, input: &str) -> String {
+    let mut bytes = input.as_bytes().to_vec();
+    for _ in 0..=rng.below(4) {
+        let len = bytes.len();
+        match rng.below(6) {
+            0 if len > 0 => {
+                let at = rng.below(len);
+                bytes[at] = rng.next() as u8;
+            }
+            1 if len > 0 => {
+                let at = rng.below(len);
+                let n = rng.below(8).min(len - at);
+                bytes.drain(at..at + n);
+            }
+            2 => {
+                let at = rng.below(len + 1);
+                let w = VOCAB[rng.below(VOCAB.len())].as_bytes();
+                bytes.splice(at..at, w.iter().copied());
+            }
+            3 if len > 0 => {
+                let a = rng.below(len);
+                let b = (a + rng.below(32)).min(len);
+                let chunk = bytes[a..b].to_vec();
+                let at = rng.below(len + 1);
+                bytes.splice(at..at, chunk);
+            }
+            4 => bytes.truncate(rng.below(len + 1)),
+            _ => {
+                let other = CORPUS[rng.below(CORPUS.len())].as_bytes();
+                let at = rng.below(other.len() + 1);
+                bytes.extend_from_slice(&other[at..]);
+            }
+        }
+    }
+    String::from_utf8_lossy(&bytes).into_owned()
+}
+
+fn random_tokens(rng: &mut Rng) -> String {
+    (0..rng.below(40)).map(|_| VOCAB[rng.below(VOCAB.len())]).collect()
+}
+
+fn exercise(db: &Database, src: &str) {
+    let steps: &[String] = &[];
+    for ctx in [
+        Context { db, resolve_blocks: true, steps: None },
+        Context { db, resolve_blocks: false, steps: Some(steps) },
+    ] {
+        let report = linc_compiler::check_source(src, "fuzz", ctx);
+        let expr = linc_compiler::check_transition(src, ctx);
+        let mut files = SourceFiles::new();
+        let id = files.add("fuzz.st".into(), src.to_string());
+        for d in report.diagnostics.iter().chain(&expr.diagnostics) {
+            assert!(d.span.start <= d.span.end && d.span.end <= src.len(), "span out of range: {d:?} in {src:?}");
+            for f in [Format::Human, Format::Short, Format::Json] {
+                let _ = render(&files, id, d, f);
+            }
+        }
+        if let Some(t) = report.tree {
+            let _ = linc_compiler::pretty::file(&t);
+        }
+    }
+}
+
+#[test]
+fn random_and_mutated_inputs_never_panic() {
+    let cases: usize = std::env::var("LINC_FUZZ_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(3_000);
+    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    for i in 0..cases {
+        let src = if i % 4 == 0 {
+            random_tokens(&mut rng)
+        } else {
+            let seed = CORPUS[rng.below(CORPUS.len())];
+            mutate(&mut rng, seed)
+        };
+        exercise(&db, &src);
+    }
+}
+
+#[test]
+fn corpus_checks_without_panicking() {
+    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
+    for src in CORPUS {
+        exercise(&db, src);
+    }
+}
