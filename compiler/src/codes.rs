@@ -76,3 +76,29 @@ pub fn lookup(code: &str) -> Option<&'static Code> {
         .iter()
         .find(|c| c.code.eq_ignore_ascii_case(code.trim()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every code written in the source is registered, and every page has
+    /// its title line, a wrong and a right example.
+    #[test]
+    fn every_emitted_code_has_a_page() {
+        let sources = [
+            include_str!("errors.rs"),
+            include_str!("check/errors.rs"),
+            include_str!("../../runtime/src/db/json.rs"),
+        ];
+        for src in sources {
+            for (i, _) in src.match_indices("\"E0").chain(src.match_indices("\"W0")) {
+                let code = &src[i + 1..i + 6];
+                assert!(lookup(code).is_some(), "{code} is emitted but not registered");
+            }
+        }
+        for c in CODES {
+            assert!(c.explanation.starts_with(&format!("# {}: {}", c.code, c.title)), "{} title line", c.code);
+            assert!(c.explanation.contains("## Wrong") && c.explanation.contains("## Right"), "{} examples", c.code);
+        }
+    }
+}

@@ -117,13 +117,35 @@ fn check_ident(syntax: &mut Vec<SyntaxError>, text: &str, span: Span) {
     }
 }
 
+/// Removes spaces and comments around a name part: a reported illegal
+/// space such as `TIC_100 (*c*) .SL` leaves them inside the joined token.
+fn strip_spaces(mut part: &str) -> &str {
+    loop {
+        let before = part.len();
+        part = part.trim();
+        if part.starts_with("(*") {
+            if let Some(end) = part.find("*)") {
+                part = &part[end + 2..];
+            }
+        }
+        if part.ends_with("*)") {
+            if let Some(start) = part.rfind("(*") {
+                part = &part[..start];
+            }
+        }
+        if part.len() == before {
+            return part;
+        }
+    }
+}
+
 /// Splits `text` (starting at byte `at`) at dots into identifiers with spans.
 fn split(syntax: &mut Vec<SyntaxError>, text: &str, at: usize, bracketed: bool) -> Vec<Seg> {
     let mut segs = Vec::new();
     let mut start = at;
     for part in text.split('.') {
-        let lead = part.len() - part.trim_start().len();
-        let name = if bracketed { part } else { part.trim() };
+        let name = if bracketed { part } else { strip_spaces(part) };
+        let lead = if bracketed { 0 } else { name.as_ptr() as usize - part.as_ptr() as usize };
         let s = if bracketed { start } else { start + lead };
         let span = Span::new(s, s + name.len());
         if !bracketed {

@@ -187,10 +187,16 @@ impl Checker<'_> {
             });
             return None;
         };
-        let field = &tpl.fields[fi];
         if let Some(o) = fpart.offset {
             self.check_field_offset(tpl, fi, o, fpart)?;
         }
+        // A constant offset names its field exactly: `PV{1}` is as writable as
+        // the field it lands on. Variable offsets are checked at run time.
+        let fi = match fpart.offset.and_then(|o| o.int_value()) {
+            Some(n) => fi + n as usize,
+            None => fi,
+        };
+        let field = &tpl.fields[fi];
         let readonly = |r: Resolved| {
             if field.readonly {
                 Resolved {
