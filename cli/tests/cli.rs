@@ -18,14 +18,27 @@ const DB: &str = "examples/guide/plant.db.json";
 
 #[test]
 fn clean_files_exit_zero_and_print_nothing() {
-    let o = linc(&["check", "examples/guide/control.stx", "examples/guide/shift.st", "--db", DB]);
+    let o = linc(&[
+        "check",
+        "examples/guide/control.stx",
+        "examples/guide/shift.st",
+        "--db",
+        DB,
+    ]);
     assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
     assert_eq!(stdout(&o), "");
 }
 
 #[test]
 fn errors_exit_one_with_short_locations() {
-    let o = linc(&["check", "examples/guide/broken.st", "--db", DB, "--message-format", "short"]);
+    let o = linc(&[
+        "check",
+        "examples/guide/broken.st",
+        "--db",
+        DB,
+        "--message-format",
+        "short",
+    ]);
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stdout(&o),
@@ -45,17 +58,29 @@ fn human_format_renders_snippets_and_help() {
 
 #[test]
 fn json_format_is_one_object_per_line() {
-    let o = linc(&["check", "examples/guide/broken.st", "--db", DB, "--message-format", "json"]);
+    let o = linc(&[
+        "check",
+        "examples/guide/broken.st",
+        "--db",
+        DB,
+        "--message-format",
+        "json",
+    ]);
     assert_eq!(o.status.code(), Some(1));
-    let lines: Vec<serde_json::Value> =
-        stdout(&o).lines().map(|l| serde_json::from_str(l).expect("each line is JSON")).collect();
+    let lines: Vec<serde_json::Value> = stdout(&o)
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("each line is JSON"))
+        .collect();
     assert_eq!(lines.len(), 3);
     assert_eq!(lines[1]["code"], "E0104");
     assert_eq!(lines[1]["line"], 3);
     assert_eq!(lines[1]["column"], 17);
     assert_eq!(lines[1]["file"], "examples/guide/broken.st");
     assert_eq!(lines[1]["severity"], "error");
-    assert!(lines[1]["help"][0].as_str().unwrap_or_default().contains("MANUAL"));
+    assert!(lines[1]["help"][0]
+        .as_str()
+        .unwrap_or_default()
+        .contains("MANUAL"));
 }
 
 #[test]
@@ -77,16 +102,32 @@ fn broken_database_is_reported_with_its_location() {
     std::fs::create_dir_all(&dir).expect("temp dir");
     let db = dir.join("bad.json");
     std::fs::write(&db, "{ \"blocks\": { \"B1\": { \"type\": \"NOPE\" } } }").expect("write");
-    let o = linc(&["check", "examples/guide/shift.st", "--db", db.to_str().unwrap_or_default(), "--message-format", "short"]);
+    let o = linc(&[
+        "check",
+        "examples/guide/shift.st",
+        "--db",
+        db.to_str().unwrap_or_default(),
+        "--message-format",
+        "short",
+    ]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stdout(&o).contains("bad.json:1:31: error[E0803]: block `B1` has unknown type `NOPE`"), "{}", stdout(&o));
+    assert!(
+        stdout(&o).contains("bad.json:1:31: error[E0803]: block `B1` has unknown type `NOPE`"),
+        "{}",
+        stdout(&o)
+    );
     let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]
 fn usage_errors_exit_two() {
     assert_eq!(linc(&["check"]).status.code(), Some(2));
-    assert_eq!(linc(&["check", "x.st", "--message-format", "xml"]).status.code(), Some(2));
+    assert_eq!(
+        linc(&["check", "x.st", "--message-format", "xml"])
+            .status
+            .code(),
+        Some(2)
+    );
     assert_eq!(linc(&["frobnicate"]).status.code(), Some(2));
 }
 
@@ -96,9 +137,18 @@ fn tree_prints_the_grouping() {
     std::fs::create_dir_all(&dir).expect("temp dir");
     let f = dir.join("prec.st");
     std::fs::write(&f, "Recipe.N0 := 10 - 2 - 3;\n").expect("write");
-    let o = linc(&["check", f.to_str().unwrap_or_default(), "--db", DB, "--tree"]);
+    let o = linc(&[
+        "check",
+        f.to_str().unwrap_or_default(),
+        "--db",
+        DB,
+        "--tree",
+    ]);
     assert_eq!(o.status.code(), Some(0));
-    assert_eq!(stdout(&o), "(action prec\n  (:= Recipe.N0 (- (- 10 2) 3))\n)\n");
+    assert_eq!(
+        stdout(&o),
+        "(action prec\n  (:= Recipe.N0 (- (- 10 2) 3))\n)\n"
+    );
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -107,9 +157,18 @@ fn transitions_are_checked_in_sequence_context() {
     let dir = std::env::temp_dir().join(format!("linc-tr-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let f = dir.join("t1.stt");
-    std::fs::write(&f, "Dig_B.Out.Bit5 AND (Rec.A0<4 OR Rec.A0>5) OR step6.T>=T#4s").expect("write");
+    std::fs::write(
+        &f,
+        "Dig_B.Out.Bit5 AND (Rec.A0<4 OR Rec.A0>5) OR step6.T>=T#4s",
+    )
+    .expect("write");
     let path = f.to_str().unwrap_or_default();
-    assert_eq!(linc(&["check", path, "--db", DB, "--transition"]).status.code(), Some(0));
+    assert_eq!(
+        linc(&["check", path, "--db", DB, "--transition"])
+            .status
+            .code(),
+        Some(0)
+    );
     assert_eq!(linc(&["check", path, "--db", DB]).status.code(), Some(1));
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -93,12 +93,24 @@ mod tests {
         for src in sources {
             for (i, _) in src.match_indices("\"E0").chain(src.match_indices("\"W0")) {
                 let code = &src[i + 1..i + 6];
-                assert!(lookup(code).is_some(), "{code} is emitted but not registered");
+                assert!(
+                    lookup(code).is_some(),
+                    "{code} is emitted but not registered"
+                );
             }
         }
         for c in CODES {
-            assert!(c.explanation.starts_with(&format!("# {}: {}", c.code, c.title)), "{} title line", c.code);
-            assert!(c.explanation.contains("## Wrong") && c.explanation.contains("## Right"), "{} examples", c.code);
+            assert!(
+                c.explanation
+                    .starts_with(&format!("# {}: {}", c.code, c.title)),
+                "{} title line",
+                c.code
+            );
+            assert!(
+                c.explanation.contains("## Wrong") && c.explanation.contains("## Right"),
+                "{} examples",
+                c.code
+            );
         }
     }
 }

@@ -145,7 +145,11 @@ fn split(syntax: &mut Vec<SyntaxError>, text: &str, at: usize, bracketed: bool) 
     let mut start = at;
     for part in text.split('.') {
         let name = if bracketed { part } else { strip_spaces(part) };
-        let lead = if bracketed { 0 } else { name.as_ptr() as usize - part.as_ptr() as usize };
+        let lead = if bracketed {
+            0
+        } else {
+            name.as_ptr() as usize - part.as_ptr() as usize
+        };
         let s = if bracketed { start } else { start + lead };
         let span = Span::new(s, s + name.len());
         if !bracketed {

@@ -36,12 +36,91 @@ const CORPUS: &[&str] = &[
 ];
 
 const VOCAB: &[&str] = &[
-    "IF ", "THEN ", "ELSIF ", "ELSE ", "END_IF", "FOR ", " TO ", " BY ", " DO ", "END_FOR", "WHILE ", "END_WHILE",
-    "REPEAT ", "UNTIL ", "END_REPEAT", "EXIT", "ACTION ", "END_ACTION", " AND ", " OR ", " XOR ", "NOT ", " MOD ",
-    ":=", ":", ";", ",", "(", ")", "{", "}", "[", "]", "+", "-", "**", "*", "/", "=", "<>", "<", ">", "<=", ">=",
-    ".", ".Bit3", "PIC_004.PV", "Dig_A.Out", "avg", "f", "REC1", "Alarms", ".Suppress", "Pulserate", "1A", "6366.MN",
-    "45", "16#", "16#FG", "2#1", "3.", "3.6", "T#", "T#3s", "T#5x", "'", "\"", "'abc'", "$", "(*", "*)", "(* c *)",
-    " ", "\n", "\t", "é", "\u{201C}", "\u{0}", "SCAN(", "FIND(", "MID(", "AVG(", "TRUE", "FALSE", "STEP1.X",
+    "IF ",
+    "THEN ",
+    "ELSIF ",
+    "ELSE ",
+    "END_IF",
+    "FOR ",
+    " TO ",
+    " BY ",
+    " DO ",
+    "END_FOR",
+    "WHILE ",
+    "END_WHILE",
+    "REPEAT ",
+    "UNTIL ",
+    "END_REPEAT",
+    "EXIT",
+    "ACTION ",
+    "END_ACTION",
+    " AND ",
+    " OR ",
+    " XOR ",
+    "NOT ",
+    " MOD ",
+    ":=",
+    ":",
+    ";",
+    ",",
+    "(",
+    ")",
+    "{",
+    "}",
+    "[",
+    "]",
+    "+",
+    "-",
+    "**",
+    "*",
+    "/",
+    "=",
+    "<>",
+    "<",
+    ">",
+    "<=",
+    ">=",
+    ".",
+    ".Bit3",
+    "PIC_004.PV",
+    "Dig_A.Out",
+    "avg",
+    "f",
+    "REC1",
+    "Alarms",
+    ".Suppress",
+    "Pulserate",
+    "1A",
+    "6366.MN",
+    "45",
+    "16#",
+    "16#FG",
+    "2#1",
+    "3.",
+    "3.6",
+    "T#",
+    "T#3s",
+    "T#5x",
+    "'",
+    "\"",
+    "'abc'",
+    "$",
+    "(*",
+    "*)",
+    "(* c *)",
+    " ",
+    "\n",
+    "\t",
+    "é",
+    "\u{201C}",
+    "\u{0}",
+    "SCAN(",
+    "FIND(",
+    "MID(",
+    "AVG(",
+    "TRUE",
+    "FALSE",
+    "STEP1.X",
 ];
 
 fn mutate(rng: &mut Rng, input: &str) -> String {
@@ -82,21 +161,34 @@ fn mutate(rng: &mut Rng, input: &str) -> String {
 }
 
 fn random_tokens(rng: &mut Rng) -> String {
-    (0..rng.below(40)).map(|_| VOCAB[rng.below(VOCAB.len())]).collect()
+    (0..rng.below(40))
+        .map(|_| VOCAB[rng.below(VOCAB.len())])
+        .collect()
 }
 
 fn exercise(db: &Database, src: &str) {
     let steps: &[String] = &[];
     for ctx in [
-        Context { db, resolve_blocks: true, steps: None },
-        Context { db, resolve_blocks: false, steps: Some(steps) },
+        Context {
+            db,
+            resolve_blocks: true,
+            steps: None,
+        },
+        Context {
+            db,
+            resolve_blocks: false,
+            steps: Some(steps),
+        },
     ] {
         let report = linc_compiler::check_source(src, "fuzz", ctx);
         let expr = linc_compiler::check_transition(src, ctx);
         let mut files = SourceFiles::new();
         let id = files.add("fuzz.st".into(), src.to_string());
         for d in report.diagnostics.iter().chain(&expr.diagnostics) {
-            assert!(d.span.start <= d.span.end && d.span.end <= src.len(), "span out of range: {d:?} in {src:?}");
+            assert!(
+                d.span.start <= d.span.end && d.span.end <= src.len(),
+                "span out of range: {d:?} in {src:?}"
+            );
             for f in [Format::Human, Format::Short, Format::Json] {
                 let _ = render(&files, id, d, f);
             }
@@ -109,8 +201,12 @@ fn exercise(db: &Database, src: &str) {
 
 #[test]
 fn random_and_mutated_inputs_never_panic() {
-    let cases: usize = std::env::var("LINC_FUZZ_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(3_000);
-    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
+    let cases: usize = std::env::var("LINC_FUZZ_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(3_000);
+    let db =
+        Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
     for i in 0..cases {
         let src = if i % 4 == 0 {
@@ -125,7 +221,8 @@ fn random_and_mutated_inputs_never_panic() {
 
 #[test]
 fn corpus_checks_without_panicking() {
-    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
+    let db =
+        Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
     for src in CORPUS {
         exercise(&db, src);
     }

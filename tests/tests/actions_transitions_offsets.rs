@@ -154,4 +154,10 @@ invalid!(
     "Block_5.Val1{1}{2} := 1;\n",
     ["E0015"]
 );
-invalid!(s12_12_constant_offset_onto_read_only_field, "§12.12", Action, "TIC_100.PV{1} := 1;\n", ["E0108"]);
+invalid!(
+    s12_12_constant_offset_onto_read_only_field,
+    "§12.12",
+    Action,
+    "TIC_100.PV{1} := 1;\n",
+    ["E0108"]
+);

@@ -84,4 +84,9 @@ valid!(
     Action,
     "Recipe.A0 := sqrt(Recipe.A1) + Abs(-2);\n"
 );
-valid!(s12_6_real_argument_for_integer_parameter, "§12.6", Action, "Buffer1 := LEFT(Buffer1, Recipe.A0);\n");
+valid!(
+    s12_6_real_argument_for_integer_parameter,
+    "§12.6",
+    Action,
+    "Buffer1 := LEFT(Buffer1, Recipe.A0);\n"
+);

@@ -107,4 +107,10 @@ invalid!(
     "TIC_100.SL := SCAN(\u{201C}X\u{201D}, Raw1.Rx_Value);\n",
     ["E0001"]
 );
-invalid!(s12_2_2_comment_inside_a_name, "§12.2.2", Action, "TIC_100(*c*).SL := 1;\n", ["E0004"]);
+invalid!(
+    s12_2_2_comment_inside_a_name,
+    "§12.2.2",
+    Action,
+    "TIC_100(*c*).SL := 1;\n",
+    ["E0004"]
+);
