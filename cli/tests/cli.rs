@@ -16,6 +16,15 @@ fn stdout(o: &Output) -> String {
 
 const DB: &str = "examples/guide/plant.db.json";
 
+/// Writes `text` to a fresh temporary file named `name` and returns its path.
+fn temp_file(name: &str, text: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("linc-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("write temp file");
+    path.to_string_lossy().into_owned()
+}
+
 #[test]
 fn clean_files_exit_zero_and_print_nothing() {
     let o = linc(&[
@@ -98,15 +107,15 @@ fn missing_file_is_an_io_error() {
 
 #[test]
 fn broken_database_is_reported_with_its_location() {
-    let dir = std::env::temp_dir().join(format!("linc-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let db = dir.join("bad.json");
-    std::fs::write(&db, "{ \"blocks\": { \"B1\": { \"type\": \"NOPE\" } } }").expect("write");
+    let db = temp_file(
+        "bad.json",
+        "{ \"blocks\": { \"B1\": { \"type\": \"NOPE\" } } }",
+    );
     let o = linc(&[
         "check",
         "examples/guide/shift.st",
         "--db",
-        db.to_str().unwrap_or_default(),
+        &db,
         "--message-format",
         "short",
     ]);
@@ -116,7 +125,6 @@ fn broken_database_is_reported_with_its_location() {
         "{}",
         stdout(&o)
     );
-    let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]
@@ -133,36 +141,21 @@ fn usage_errors_exit_two() {
 
 #[test]
 fn tree_prints_the_grouping() {
-    let dir = std::env::temp_dir().join(format!("linc-tree-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let f = dir.join("prec.st");
-    std::fs::write(&f, "Recipe.N0 := 10 - 2 - 3;\n").expect("write");
-    let o = linc(&[
-        "check",
-        f.to_str().unwrap_or_default(),
-        "--db",
-        DB,
-        "--tree",
-    ]);
+    let f = temp_file("prec.st", "Recipe.N0 := 10 - 2 - 3;\n");
+    let o = linc(&["check", &f, "--db", DB, "--tree"]);
     assert_eq!(o.status.code(), Some(0));
     assert_eq!(
         stdout(&o),
         "(action prec\n  (:= Recipe.N0 (- (- 10 2) 3))\n)\n"
     );
-    let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]
 fn transitions_are_checked_in_sequence_context() {
-    let dir = std::env::temp_dir().join(format!("linc-tr-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let f = dir.join("t1.stt");
-    std::fs::write(
-        &f,
+    let path = &temp_file(
+        "t1.stt",
         "Dig_B.Out.Bit5 AND (Rec.A0<4 OR Rec.A0>5) OR step6.T>=T#4s",
-    )
-    .expect("write");
-    let path = f.to_str().unwrap_or_default();
+    );
     assert_eq!(
         linc(&["check", path, "--db", DB, "--transition"])
             .status
@@ -170,7 +163,6 @@ fn transitions_are_checked_in_sequence_context() {
         Some(0)
     );
     assert_eq!(linc(&["check", path, "--db", DB]).status.code(), Some(1));
-    let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]
