@@ -2,8 +2,14 @@
 //!
 //! Exit status: 0 clean, 1 errors found in the input, 2 usage or I/O problem.
 
+mod build;
 mod check_cmd;
+mod compile_cmd;
+mod disasm_cmd;
+mod eval_cmd;
 mod explain_cmd;
+mod files;
+mod run_cmd;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -50,6 +56,70 @@ enum Command {
         #[arg(long)]
         sequence: bool,
     },
+    /// Compile action files into one .sto object file.
+    Compile {
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// The object file to write.
+        #[arg(short, long)]
+        out: PathBuf,
+        /// Database giving the types of the blocks the actions use.
+        #[arg(long)]
+        db: Option<PathBuf>,
+        #[arg(long, value_enum, default_value = "human")]
+        message_format: MessageFormat,
+    },
+    /// Run an action (source or .sto) against a database, once per cycle.
+    Run {
+        /// An action file (.st/.stx, compiled first) or an object file (.sto).
+        file: PathBuf,
+        #[arg(long)]
+        db: PathBuf,
+        /// The action to run (default: the first in the file).
+        #[arg(long)]
+        action: Option<String>,
+        /// The block running an `ACTION name : TYPE` action (default: the only block of that type).
+        #[arg(long)]
+        block: Option<String>,
+        #[arg(long, default_value_t = 1)]
+        cycles: u32,
+        /// Seconds of simulated time per cycle (suppression timers, clock).
+        #[arg(long, default_value_t = 1.0)]
+        period: f64,
+        /// Set a field before the run: BLOCK.FIELD=VALUE (repeatable).
+        #[arg(long)]
+        set: Vec<String>,
+        /// Print BLOCK.FIELD = VALUE after the run (repeatable).
+        #[arg(long)]
+        show: Vec<String>,
+        /// Print every field write as it happens.
+        #[arg(long)]
+        trace: bool,
+        /// Write the database, with its values after the run, here (atomically).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
+        #[arg(long)]
+        now: Option<String>,
+        /// Seed of RANDOM, for repeatable runs.
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Instruction budget of one run before the watchdog stops it.
+        #[arg(long, default_value_t = linc_runtime::vm::DEFAULT_WATCHDOG)]
+        watchdog: u64,
+    },
+    /// Evaluate one ST expression and print its value.
+    Eval {
+        expr: String,
+        #[arg(long)]
+        db: Option<PathBuf>,
+        #[arg(long)]
+        now: Option<String>,
+        #[arg(long)]
+        seed: Option<u64>,
+    },
+    /// Print a readable listing of an object file.
+    Disasm { file: PathBuf },
     /// Explain a diagnostic code, e.g. `linc explain E0104`.
     Explain {
         /// The code; omit it (or use --list) to list all codes.
@@ -60,9 +130,39 @@ enum Command {
     },
 }
 
+fn format(m: MessageFormat) -> linc_compiler::render::Format {
+    match m {
+        MessageFormat::Human => linc_compiler::render::Format::Human,
+        MessageFormat::Short => linc_compiler::render::Format::Short,
+        MessageFormat::Json => linc_compiler::render::Format::Json,
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let status = match cli.command {
+        Command::Compile { files, out, db, message_format } => {
+            compile_cmd::run(&files, &out, db.as_deref(), format(message_format))
+        }
+        Command::Run { file, db, action, block, cycles, period, set, show, trace, out, now, seed, watchdog } => {
+            run_cmd::run(&run_cmd::Options {
+                file,
+                db,
+                action,
+                block,
+                cycles,
+                period,
+                set,
+                show,
+                trace,
+                out,
+                now,
+                seed,
+                watchdog,
+            })
+        }
+        Command::Eval { expr, db, now, seed } => eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed),
+        Command::Disasm { file } => disasm_cmd::run(&file),
         Command::Check {
             files,
             db,
@@ -71,15 +171,10 @@ fn main() -> ExitCode {
             transition,
             sequence,
         } => {
-            let format = match message_format {
-                MessageFormat::Human => linc_compiler::render::Format::Human,
-                MessageFormat::Short => linc_compiler::render::Format::Short,
-                MessageFormat::Json => linc_compiler::render::Format::Json,
-            };
             check_cmd::run(&check_cmd::Options {
                 files,
                 db,
-                format,
+                format: format(message_format),
                 tree,
                 transition,
                 sequence,

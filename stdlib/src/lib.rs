@@ -6,11 +6,12 @@
 //! ([`Value`]) and the implementations the runtime calls ([`call`]).
 
 pub mod call;
+pub mod functions;
 pub mod signatures;
 pub mod types;
 pub mod value;
 
-pub use call::{Env, FnError};
+pub use call::{call, power, Env, FnError};
 pub use signatures::{lookup, Param, Returns, Signature, SIGNATURES};
 pub use types::Ty;
 pub use value::Value;

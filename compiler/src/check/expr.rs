@@ -3,29 +3,32 @@
 use super::errors::CheckError;
 use super::Checker;
 use crate::ast::{BinOp, Expr, ExprKind, UnOp};
+use crate::hir;
 use linc_stdlib::{lookup, Param, Ty, SIGNATURES};
 
 impl Checker<'_> {
-    /// The type of an expression; errors are reported and give `Any`.
-    pub(super) fn expr(&mut self, e: &Expr) -> Ty {
-        match &e.kind {
-            ExprKind::Int(_) => Ty::Int,
-            ExprKind::Real(_) | ExprKind::Time(_) => Ty::Real,
-            ExprKind::Bool(_) => Ty::Bool,
-            ExprKind::Str(_) => Ty::Text,
-            ExprKind::Error => Ty::Any,
-            ExprKind::Var(v) => self.resolve(v).map(|r| r.ty).unwrap_or(Ty::Any),
+    /// Types an expression; errors are reported and give `Any`.
+    pub(super) fn expr(&mut self, e: &Expr) -> hir::Expr {
+        let (ty, kind) = match &e.kind {
+            ExprKind::Int(_) => (Ty::Int, hir::ExprKind::Int(e.int_value().unwrap_or_default())),
+            ExprKind::Real(x) => (Ty::Real, hir::ExprKind::Real(*x as f32)),
+            ExprKind::Time(x) => (Ty::Real, hir::ExprKind::Real(*x as f32)),
+            ExprKind::Bool(b) => (Ty::Bool, hir::ExprKind::Bool(*b)),
+            ExprKind::Str(s) => (Ty::Text, hir::ExprKind::Str(s.as_bytes().to_vec())),
+            ExprKind::Error => (Ty::Any, hir::ExprKind::Error),
+            ExprKind::Var(v) => match self.resolve(v) {
+                Some(r) => (r.ty(), hir::ExprKind::Load(Box::new(r.place))),
+                None => (Ty::Any, hir::ExprKind::Error),
+            },
             ExprKind::Unary(op, a) => {
-                let t = self.expr(a);
+                let a = self.expr(a);
+                let t = a.ty;
                 match op {
                     UnOp::Neg if t.is_numeric() => {
-                        if t == Ty::Bool {
-                            Ty::Int
-                        } else {
-                            t
-                        }
+                        let ty = if t == Ty::Bool { Ty::Int } else { t };
+                        (ty, hir::ExprKind::Neg(Box::new(a)))
                     }
-                    UnOp::Not if t.is_integral() => Ty::Bool,
+                    UnOp::Not if t.is_integral() => (Ty::Bool, hir::ExprKind::Not(Box::new(a))),
                     _ => {
                         let (op, help) = match op {
                             UnOp::Neg => ("-", "only numbers can be negated"),
@@ -38,24 +41,24 @@ impl Checker<'_> {
                             right: None,
                             help,
                         });
-                        Ty::Any
+                        (Ty::Any, hir::ExprKind::Error)
                     }
                 }
             }
             ExprKind::Binary(op, a, b) => self.binary(*op, a, b, e),
             ExprKind::Call { name, args } => self.call(&name.text, name.span, args, e),
-        }
+        };
+        hir::Expr { ty, kind, span: e.span }
     }
 
-    fn binary(&mut self, op: BinOp, a: &Expr, b: &Expr, whole: &Expr) -> Ty {
-        let ta = self.expr(a);
-        let tb = self.expr(b);
+    fn binary(&mut self, op: BinOp, a: &Expr, b: &Expr, whole: &Expr) -> (Ty, hir::ExprKind) {
+        let ha = self.expr(a);
+        let hb = self.expr(b);
+        let (ta, tb) = (ha.ty, hb.ty);
+        let node = |ha, hb| hir::ExprKind::Binary(op, Box::new(ha), Box::new(hb));
         if ta == Ty::Any && tb == Ty::Any {
-            return if op.is_comparison() {
-                Ty::Bool
-            } else {
-                Ty::Any
-            };
+            let ty = if op.is_comparison() { Ty::Bool } else { Ty::Any };
+            return (ty, node(ha, hb));
         }
         let mismatch = |help: &'static str| CheckError::OperandTypes {
             span: whole.span,
@@ -64,7 +67,7 @@ impl Checker<'_> {
             right: Some(tb.name().into()),
             help,
         };
-        match op {
+        let ty = match op {
             BinOp::Add | BinOp::Sub | BinOp::Mul | BinOp::Div | BinOp::Pow => {
                 if !(ta.is_numeric() && tb.is_numeric()) {
                     let help = if op == BinOp::Add && ta.is_stringy() && tb.is_stringy() {
@@ -73,7 +76,7 @@ impl Checker<'_> {
                         "arithmetic needs numbers; use SCAN to read a number from a string"
                     };
                     self.errors.push(mismatch(help));
-                    return Ty::Any;
+                    return (Ty::Any, hir::ExprKind::Error);
                 }
                 if op == BinOp::Pow || ta == Ty::Real || tb == Ty::Real {
                     Ty::Real
@@ -86,21 +89,16 @@ impl Checker<'_> {
             BinOp::Mod => {
                 for (t, e) in [(ta, a), (tb, b)] {
                     if !t.is_integral() {
-                        self.errors.push(CheckError::ModNotInteger {
-                            span: e.span,
-                            found: t.name().into(),
-                        });
-                        return Ty::Any;
+                        self.errors.push(CheckError::ModNotInteger { span: e.span, found: t.name().into() });
+                        return (Ty::Any, hir::ExprKind::Error);
                     }
                 }
                 Ty::Int
             }
             BinOp::And | BinOp::Or | BinOp::Xor => {
                 if !(ta.is_integral() && tb.is_integral()) {
-                    self.errors.push(mismatch(
-                        "AND, OR and XOR take BOOL values, or INT values bit by bit (16 bits)",
-                    ));
-                    return Ty::Any;
+                    self.errors.push(mismatch("AND, OR and XOR take BOOL values, or INT values bit by bit (16 bits)"));
+                    return (Ty::Any, hir::ExprKind::Error);
                 }
                 if ta == Ty::Bool && tb == Ty::Bool {
                     Ty::Bool
@@ -111,46 +109,38 @@ impl Checker<'_> {
                 }
             }
             _ => {
-                let ok =
-                    (ta.is_numeric() && tb.is_numeric()) || (ta.is_stringy() && tb.is_stringy());
+                let ok = (ta.is_numeric() && tb.is_numeric()) || (ta.is_stringy() && tb.is_stringy());
                 if !ok {
-                    self.errors.push(mismatch(
-                        "compare numbers with numbers and strings with strings",
-                    ));
-                } else {
-                    self.enum_comparison(a, b);
-                    self.enum_comparison(b, a);
+                    self.errors.push(mismatch("compare numbers with numbers and strings with strings"));
+                    return (Ty::Bool, hir::ExprKind::Error);
                 }
+                self.enum_comparison(&ha, &hb);
+                self.enum_comparison(&hb, &ha);
                 Ty::Bool
+            }
+        };
+        (ty, node(ha, hb))
+    }
+
+    /// `PIC_004.Mode = "CASCADE"`: the constant must be one of the values.
+    fn enum_comparison(&mut self, field: &hir::Expr, constant: &hir::Expr) {
+        if let (hir::ExprKind::Load(p), hir::ExprKind::Str(s)) = (&field.kind, &constant.kind) {
+            if let Some(values) = &p.enum_values {
+                self.enum_literal(values, s, constant.span, p.path.clone());
             }
         }
     }
 
-    /// `PIC_004.Mode = "CASCADE"`: the constant must be one of the values.
-    fn enum_comparison(&mut self, field: &Expr, constant: &Expr) {
-        let (ExprKind::Var(v), ExprKind::Str(s)) = (&field.kind, &constant.kind) else {
-            return;
-        };
-        let before = self.errors.len();
-        let r = self.resolve(v);
-        // The variable was already resolved once; drop repeated errors.
-        self.errors.truncate(before);
-        if let Some(values) = r.and_then(|r| r.enum_values) {
-            self.enum_literal(&values, s, constant.span, v.path());
-        }
-    }
-
-    fn call(&mut self, name: &str, name_span: crate::Span, args: &[Expr], whole: &Expr) -> Ty {
-        let types: Vec<Ty> = args.iter().map(|a| self.expr(a)).collect();
-        let Some(sig) = lookup(name) else {
+    fn call(&mut self, name: &str, name_span: crate::Span, args: &[Expr], whole: &Expr) -> (Ty, hir::ExprKind) {
+        let hargs: Vec<hir::Expr> = args.iter().map(|a| self.expr(a)).collect();
+        let types: Vec<Ty> = hargs.iter().map(|a| a.ty).collect();
+        let Some(index) = SIGNATURES.iter().position(|s| s.name.eq_ignore_ascii_case(name)) else {
             let suggestion = suggest(name);
-            self.errors.push(CheckError::UnknownFunction {
-                span: name_span,
-                name: name.to_string(),
-                suggestion,
-            });
-            return Ty::Any;
+            self.errors.push(CheckError::UnknownFunction { span: name_span, name: name.to_string(), suggestion });
+            return (Ty::Any, hir::ExprKind::Error);
         };
+        let sig = &SIGNATURES[index];
+        debug_assert!(lookup(name).is_some());
         if !sig.arity_ok(args.len()) {
             self.errors.push(CheckError::WrongArity {
                 span: whole.span,
@@ -158,11 +148,13 @@ impl Checker<'_> {
                 found: args.len(),
                 signature: sig.to_string(),
             });
-            return sig.result(&types, None);
+            return (sig.result(&types, None), hir::ExprKind::Error);
         }
+        let mut ok = true;
         for (i, (a, t)) in args.iter().zip(&types).enumerate() {
             if let Some(p) = sig.param(i) {
                 if !p.accepts(*t) {
+                    ok = false;
                     let expected = match p {
                         Param::Bytes => "a string",
                         Param::Int => "an integer",
@@ -183,7 +175,15 @@ impl Checker<'_> {
             Some(ExprKind::Str(s)) => Some(s.as_bytes()),
             _ => None,
         };
-        sig.result(&types, scan_format)
+        let mut ty = sig.result(&types, scan_format);
+        if ty == Ty::Any && sig.name == "SCAN" {
+            // A format only known at run time: the value is read as REAL.
+            ty = Ty::Real;
+        }
+        if !ok {
+            return (ty, hir::ExprKind::Error);
+        }
+        (ty, hir::ExprKind::Call { index, args: hargs })
     }
 }
 

@@ -7,87 +7,87 @@
 use super::errors::CheckError;
 use super::Checker;
 use crate::ast::{Expr, Var};
+use crate::hir::{self, Place, Target};
 use crate::span::Span;
+use linc_runtime::store::class_of;
 use linc_runtime::{FieldType, Template};
 use linc_stdlib::Ty;
 
-/// What a reference denotes, as far as the checker needs to know.
+/// What a reference denotes: the place, and whether it may be written.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Resolved {
-    pub ty: Ty,
+    pub place: Place,
     pub writable: bool,
     /// Why it is not writable, for the diagnostic.
     pub why_readonly: &'static str,
-    /// Allowed values of an ENUM field.
-    pub enum_values: Option<Vec<String>>,
 }
 
 impl Resolved {
-    fn any() -> Resolved {
-        Resolved {
-            ty: Ty::Any,
-            writable: true,
-            why_readonly: "",
-            enum_values: None,
-        }
+    fn new(v: &Var, ty: Ty, target: Target) -> Resolved {
+        let place = Place { ty, class: None, target, enum_values: None, path: v.path(), span: v.span };
+        Resolved { place, writable: true, why_readonly: "" }
+    }
+
+    fn read_only(mut self, why: &'static str) -> Resolved {
+        self.writable = false;
+        self.why_readonly = why;
+        self
+    }
+
+    pub fn ty(&self) -> Ty {
+        self.place.ty
     }
 }
 
-/// One name part with its span and optional offset; alias targets borrow
-/// the span of the alias.
+/// One name part with its span and optional offset (as written and as
+/// checked); alias targets borrow the span of the alias.
 struct Part<'a> {
     name: &'a str,
     span: Span,
     offset: Option<&'a Expr>,
+    checked: Option<hir::Expr>,
 }
 
 impl Checker<'_> {
     /// Resolves a variable, reporting what is wrong with it. `None` means an
     /// error was reported and the caller should treat the value as `Any`.
     pub(super) fn resolve(&mut self, v: &Var) -> Option<Resolved> {
+        let mut checked: Vec<Option<hir::Expr>> = Vec::with_capacity(v.segs.len());
         for seg in &v.segs {
-            if let Some(o) = &seg.offset {
-                let t = self.expr(o);
-                if !t.is_numeric() {
-                    self.errors.push(CheckError::OffsetNotNumber {
-                        span: o.span,
-                        found: t.name().into(),
-                    });
+            let c = seg.offset.as_ref().map(|o| {
+                let e = self.expr(o);
+                if !e.ty.is_numeric() {
+                    self.errors.push(CheckError::OffsetNotNumber { span: o.span, found: e.ty.name().into() });
                 }
-            }
+                e
+            });
+            checked.push(c);
         }
         if v.malformed {
             return None;
         }
         let db = self.ctx.db;
+        let mut checked = checked.into_iter();
         let first = &v.segs[0];
+        let first_checked = checked.next().flatten();
         let mut parts: Vec<Part> = Vec::with_capacity(v.segs.len() + 2);
         if let Some(alias) = db.alias(&first.name.text) {
             let n = alias.target.len();
+            let mut first_checked = Some(first_checked);
             for (i, t) in alias.target.iter().enumerate() {
-                let offset = if i + 1 == n {
-                    first.offset.as_deref()
-                } else {
-                    None
-                };
-                parts.push(Part {
-                    name: t,
-                    span: first.name.span,
-                    offset,
-                });
+                let last = i + 1 == n;
+                let offset = if last { first.offset.as_deref() } else { None };
+                let checked = if last { first_checked.take().flatten() } else { None };
+                parts.push(Part { name: t, span: first.name.span, offset, checked });
             }
         } else {
-            parts.push(Part {
-                name: &first.name.text,
-                span: first.name.span,
-                offset: first.offset.as_deref(),
-            });
+            let offset = first.offset.as_deref();
+            parts.push(Part { name: &first.name.text, span: first.name.span, offset, checked: first_checked });
         }
-        parts.extend(v.segs[1..].iter().map(|s| Part {
-            name: &s.name.text,
-            span: s.name.span,
-            offset: s.offset.as_deref(),
-        }));
+        for s in &v.segs[1..] {
+            let checked = checked.next().flatten();
+            parts.push(Part { name: &s.name.text, span: s.name.span, offset: s.offset.as_deref(), checked });
+        }
 
         if let Some(b) = db.block(parts[0].name) {
             if parts[0].offset.is_some() {
@@ -98,24 +98,21 @@ impl Checker<'_> {
                 });
                 return None;
             }
-            let Some(field) = parts.get(1) else {
-                self.errors.push(CheckError::NotAValue {
-                    span: v.span,
-                    what: v.path(),
-                });
+            if parts.len() < 2 {
+                self.errors.push(CheckError::NotAValue { span: v.span, what: v.path() });
                 return None;
-            };
-            let _ = field;
-            return self.field_path(db.block_template(b), parts[0].name, &parts[1..], v);
+            }
+            let block = db.blocks[b].name.clone();
+            return self.field_path(db.block_template(b), &block, &mut parts[1..], v);
         }
         if let Some(t) = self.self_template {
             let tpl = &db.templates[t];
             if tpl.field(parts[0].name).is_some() {
-                return self.field_path(tpl, "this action's block", &parts, v);
+                return self.field_path(tpl, "", &mut parts, v);
             }
         }
-        let step_like = parts.len() == 2
-            && (parts[1].name.eq_ignore_ascii_case("X") || parts[1].name.eq_ignore_ascii_case("T"));
+        let step_like =
+            parts.len() == 2 && (parts[1].name.eq_ignore_ascii_case("X") || parts[1].name.eq_ignore_ascii_case("T"));
         if step_like && self.ctx.steps.is_some() {
             return self.step_variable(&parts, v);
         }
@@ -123,65 +120,41 @@ impl Checker<'_> {
         // an action bound to a block type can only be one of its fields.
         let lone_field = self.self_template.is_some() && parts.len() == 1;
         if !self.ctx.resolve_blocks && !lone_field {
-            return Some(Resolved::any());
+            return Some(Resolved::new(v, Ty::Any, Target::Unknown));
         }
         if step_like {
             return self.step_variable(&parts, v);
         }
-        self.errors.push(CheckError::UnknownName {
-            span: parts[0].span,
-            name: parts[0].name.to_string(),
-        });
+        self.errors.push(CheckError::UnknownName { span: parts[0].span, name: parts[0].name.to_string() });
         None
     }
 
     fn step_variable(&mut self, parts: &[Part], v: &Var) -> Option<Resolved> {
         let Some(steps) = self.ctx.steps else {
-            self.errors.push(CheckError::StepOutsideSequence {
-                span: v.span,
-                name: v.path(),
-            });
+            self.errors.push(CheckError::StepOutsideSequence { span: v.span, name: v.path() });
             return None;
         };
         if !steps.is_empty() && !steps.iter().any(|s| s.eq_ignore_ascii_case(parts[0].name)) {
-            self.errors.push(CheckError::UnknownStep {
-                span: parts[0].span,
-                name: parts[0].name.to_string(),
-            });
+            self.errors.push(CheckError::UnknownStep { span: parts[0].span, name: parts[0].name.to_string() });
             return None;
         }
-        let ty = if parts[1].name.eq_ignore_ascii_case("X") {
-            Ty::Bool
-        } else {
-            Ty::Real
-        };
-        Some(Resolved {
-            ty,
-            writable: false,
-            why_readonly: "step variables are maintained by the sequence",
-            enum_values: None,
-        })
+        let x = parts[1].name.eq_ignore_ascii_case("X");
+        let ty = if x { Ty::Bool } else { Ty::Real };
+        let target = Target::Step { step: parts[0].name.to_string(), x };
+        Some(Resolved::new(v, ty, target).read_only("step variables are maintained by the sequence"))
     }
 
-    /// Resolves `field[.sub[.sub]]` within a template.
-    fn field_path(
-        &mut self,
-        tpl: &Template,
-        owner: &str,
-        parts: &[Part],
-        v: &Var,
-    ) -> Option<Resolved> {
+    /// Resolves `field[.sub[.sub]]` within a template. `block` is the block's
+    /// name, or empty for the block that runs the action.
+    fn field_path(&mut self, tpl: &Template, block: &str, parts: &mut [Part], v: &Var) -> Option<Resolved> {
         let fpart = &parts[0];
         let Some(fi) = tpl.field(fpart.name) else {
-            let known = if tpl.fields.len() <= 16 {
-                tpl.fields.iter().map(|f| f.name.clone()).collect()
-            } else {
-                Vec::new()
-            };
+            let known = if tpl.fields.len() <= 16 { tpl.fields.iter().map(|f| f.name.clone()).collect() } else { Vec::new() };
+            let owner = if block.is_empty() { "this action's block".to_string() } else { block.to_string() };
             self.errors.push(CheckError::UnknownField {
                 span: fpart.span,
                 field: fpart.name.to_string(),
-                owner: owner.to_string(),
+                owner,
                 template: tpl.name.clone(),
                 known,
             });
@@ -190,97 +163,93 @@ impl Checker<'_> {
         if let Some(o) = fpart.offset {
             self.check_field_offset(tpl, fi, o, fpart)?;
         }
+        let base_name = tpl.fields[fi].name.clone();
         // A constant offset names its field exactly: `PV{1}` is as writable as
         // the field it lands on. Variable offsets are checked at run time.
-        let fi = match fpart.offset.and_then(|o| o.int_value()) {
+        let landed = match fpart.offset.and_then(|o| o.int_value()) {
             Some(n) => fi + n as usize,
             None => fi,
         };
-        let field = &tpl.fields[fi];
+        let field = &tpl.fields[landed];
+        let offset = parts[0].checked.take().map(Box::new);
         let readonly = |r: Resolved| {
             if field.readonly {
-                Resolved {
-                    writable: false,
-                    why_readonly: "this field is computed by its block (read-only)",
-                    ..r
-                }
+                r.read_only("this field is computed by its block (read-only)")
             } else {
                 r
             }
         };
-        let rest = &parts[1..];
+        let class = class_of(&field.ty);
+        let (b, f) = (block.to_string(), base_name);
+        let rest = &mut parts[1..];
         match (&field.ty, rest) {
             (FieldType::Alarms(_), []) => {
-                self.errors.push(CheckError::NotAValue {
-                    span: v.span,
-                    what: v.path(),
-                });
+                self.errors.push(CheckError::NotAValue { span: v.span, what: v.path() });
                 None
             }
-            (ty, []) => Some(readonly(value_of(ty))),
+            (ty, []) => {
+                let (t, enum_values) = value_type(ty);
+                let mut r = Resolved::new(v, t, Target::Field { block: b, field: f, offset });
+                r.place.class = Some(class);
+                r.place.enum_values = enum_values;
+                Some(readonly(r))
+            }
             (FieldType::Bits { width, .. }, [bit]) => {
-                let Some(b) = field.ty.bit_index(bit.name) else {
-                    return self.no_sub(bit, field.name.as_str(), &field.ty);
+                let Some(n) = field.ty.bit_index(bit.name) else {
+                    return self.no_sub(bit, &field.name, &field.ty);
                 };
                 if let Some(o) = bit.offset {
                     let span = bit.span.to(o.span);
-                    if b + 1 >= *width {
-                        let why = format!("Bit{b} is the last bit of a {}-bit field", width);
-                        self.errors.push(CheckError::BadOffsetBase {
-                            span,
-                            base: bit.name.to_string(),
-                            why,
-                        });
+                    if n + 1 >= *width {
+                        let why = format!("Bit{n} is the last bit of a {}-bit field", width);
+                        self.errors.push(CheckError::BadOffsetBase { span, base: bit.name.to_string(), why });
                         return None;
                     }
-                    if let Some(n) = o.int_value() {
-                        if n < 0 || i64::from(b) + i64::from(n) >= i64::from(*width) {
-                            let why =
-                                format!("Bit{b}{{{n}}} is beyond the last bit, Bit{}", width - 1);
-                            self.errors.push(CheckError::BadOffsetBase {
-                                span,
-                                base: bit.name.to_string(),
-                                why,
-                            });
+                    if let Some(k) = o.int_value() {
+                        if k < 0 || i64::from(n) + i64::from(k) >= i64::from(*width) {
+                            let why = format!("Bit{n}{{{k}}} is beyond the last bit, Bit{}", width - 1);
+                            self.errors.push(CheckError::BadOffsetBase { span, base: bit.name.to_string(), why });
                             return None;
                         }
                     }
                 }
-                Some(readonly(Resolved {
-                    ty: Ty::Bool,
-                    writable: true,
-                    why_readonly: "",
-                    enum_values: None,
-                }))
+                let bit_offset = bit.checked.take().map(Box::new);
+                let target = Target::Bit { block: b, field: f, offset, bit: n, bit_offset };
+                let mut r = Resolved::new(v, Ty::Bool, target);
+                r.place.class = Some(class);
+                Some(readonly(r))
             }
             (FieldType::Alarms(names), [sub, more @ ..]) => {
-                let suppress = Resolved {
-                    ty: Ty::Int,
-                    writable: true,
-                    why_readonly: "",
-                    enum_values: None,
+                let suppress = |alarm: Option<String>| {
+                    let mut r = Resolved::new(v, Ty::Int, Target::Suppress { block: b.clone(), field: f.clone(), alarm });
+                    r.place.class = Some(class);
+                    r
                 };
                 if sub.name.eq_ignore_ascii_case("Suppress") && more.is_empty() {
-                    return Some(suppress);
+                    return Some(suppress(None));
                 }
-                let Some(_) = names.iter().position(|n| n.eq_ignore_ascii_case(sub.name)) else {
-                    return self.no_sub(sub, field.name.as_str(), &field.ty);
+                let Some(ai) = names.iter().position(|n| n.eq_ignore_ascii_case(sub.name)) else {
+                    return self.no_sub(sub, &field.name, &field.ty);
                 };
+                let alarm = names[ai].clone();
                 match more {
-                    [] => Some(Resolved {
-                        ty: Ty::Bool,
-                        writable: false,
-                        why_readonly:
-                            "an alarm's state is set by its block; write its .Suppress instead",
-                        enum_values: None,
-                    }),
-                    [s] if s.name.eq_ignore_ascii_case("Suppress") => Some(suppress),
-                    [s, ..] => self.no_sub(s, sub.name, &FieldType::Bool),
+                    [] => {
+                        let mut r = Resolved::new(v, Ty::Bool, Target::Alarm { block: b.clone(), field: f.clone(), alarm });
+                        r.place.class = Some(class);
+                        Some(r.read_only("an alarm's state is set by its block; write its .Suppress instead"))
+                    }
+                    [s] if s.name.eq_ignore_ascii_case("Suppress") => Some(suppress(Some(alarm))),
+                    [s, ..] => {
+                        let s = Part { name: s.name, span: s.span, offset: None, checked: None };
+                        self.no_sub(&s, &alarm, &FieldType::Bool)
+                    }
                 }
             }
             (_, [sub, ..]) => {
+                let sub = Part { name: sub.name, span: sub.span, offset: None, checked: None };
                 let owner_ty = field.ty.clone();
-                self.no_sub(sub, field.name.as_str(), &owner_ty)
+                let name = field.name.clone();
+                self.no_sub(&sub, &name, &owner_ty)
             }
         }
     }
@@ -348,9 +317,9 @@ impl Checker<'_> {
     }
 }
 
-/// The value type of a whole field.
-fn value_of(ty: &FieldType) -> Resolved {
-    let (ty, enum_values) = match ty {
+/// The value type of a whole field, and an ENUM field's values.
+fn value_type(ty: &FieldType) -> (Ty, Option<Vec<String>>) {
+    match ty {
         FieldType::Real => (Ty::Real, None),
         FieldType::Int | FieldType::Bits { .. } => (Ty::Int, None),
         FieldType::Bool => (Ty::Bool, None),
@@ -359,11 +328,5 @@ fn value_of(ty: &FieldType) -> Resolved {
         FieldType::Bseq => (Ty::Bytes, None),
         FieldType::Wstr => (Ty::WStr, None),
         FieldType::Alarms(_) => (Ty::Any, None),
-    };
-    Resolved {
-        ty,
-        writable: true,
-        why_readonly: "",
-        enum_values,
     }
 }

@@ -328,7 +328,18 @@ fn init_value(ty: &FieldType, v: &Value) -> Result<InitValue, String> {
             | FieldType::Wstr,
             Value::String(s),
         ) => Ok(InitValue::Text(s.clone())),
-        (FieldType::Alarms(_), _) => Err("alarm fields have no initial value".into()),
+        (FieldType::Alarms(names), Value::Object(m)) => {
+            let mut active = Vec::new();
+            for (k, v) in m {
+                if !names.iter().any(|n| n.eq_ignore_ascii_case(k)) {
+                    return Err(format!("`{k}` is not one of the alarms {}", names.join(", ")));
+                }
+                if v.as_bool().ok_or("alarm states are true or false")? {
+                    active.push(k.clone());
+                }
+            }
+            Ok(InitValue::Active(active))
+        }
         (ty, _) => Err(format!("expected a value for a {} field", ty.keyword())),
     }
 }

@@ -119,6 +119,8 @@ pub enum InitValue {
     Num(f64),
     Bool(bool),
     Text(String),
+    /// Names of the alarms that are active (In_Alarm) at the start.
+    Active(Vec<String>),
 }
 
 /// A block instance.

@@ -1,0 +1,67 @@
+//! `linc eval EXPR`: evaluate one expression and print its value.
+
+use crate::check_cmd::load_db;
+use linc_compiler::check::Context;
+use linc_compiler::lower::{self, Lines};
+use linc_compiler::render::{self, Format, SourceFiles};
+use linc_runtime::store::Store;
+use linc_runtime::vm::{Clock, Vm, DEFAULT_WATCHDOG};
+use linc_runtime::{text, Database};
+use std::path::Path;
+
+pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) -> u8 {
+    let mut files = SourceFiles::new();
+    let db = match load_db(db, &mut files, Format::Human) {
+        Ok(db) => db,
+        Err(status) => return status,
+    };
+    let resolve_blocks = db.is_some();
+    let db = db.unwrap_or_else(Database::builtin);
+    let id = files.add("<expr>".to_string(), expr.to_string());
+    let report = linc_compiler::check_expression(expr, Context { db: &db, resolve_blocks, steps: None });
+    for d in &report.diagnostics {
+        eprint!("{}", render::render(&files, id, d, Format::Human));
+    }
+    let Some(program) = report.program else { return 2 };
+    let obj = match lower::lower_eval(&program, &Lines::new(expr)) {
+        Ok(o) => o,
+        Err(errors) => {
+            for e in errors {
+                eprint!("{}", render::render(&files, id, &e.to_diagnostic(), Format::Human));
+            }
+            return 2;
+        }
+    };
+    let now = match now {
+        Some(t) => match text::parse_timestamp(t) {
+            Some(s) => s,
+            None => {
+                eprintln!("error: --now `{t}` is not YYYY-MM-DDTHH:MM:SS");
+                return 2;
+            }
+        },
+        None => std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs() as i64).unwrap_or(0),
+    };
+    let mut store = Store::new(db);
+    store.now = now as f64;
+    let result = linc_runtime::load(&obj.to_bytes()).and_then(|obj| {
+        let loaded = linc_runtime::prepare(&obj, 0, &store, None)?;
+        let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(seed.unwrap_or(now as u64), 0));
+        Ok(vm.run(&loaded, &mut store, 0, None).map(|_| vm.result.take()))
+    });
+    match result {
+        Ok(Ok(Some(v))) => {
+            println!("{}", text::format_value(&v));
+            0
+        }
+        Ok(Ok(None)) => 2,
+        Ok(Err(e)) => {
+            eprintln!("{e}");
+            1
+        }
+        Err(e) => {
+            eprintln!("error[{}]: {e}", e.code());
+            2
+        }
+    }
+}

@@ -1,0 +1,255 @@
+//! `linc run`: run an action against a database for some cycles.
+
+use crate::build::{compile, Failed};
+use crate::check_cmd::load_db;
+use linc_compiler::render::{Format, SourceFiles};
+use linc_runtime::store::{Cell, Store};
+use linc_runtime::vm::{Clock, Outcome, Vm};
+use linc_runtime::{text, Database, ObjectFile};
+use linc_stdlib::value::decode_dollar;
+use std::path::PathBuf;
+
+pub struct Options {
+    pub file: PathBuf,
+    pub db: PathBuf,
+    pub action: Option<String>,
+    pub block: Option<String>,
+    pub cycles: u32,
+    pub period: f64,
+    pub set: Vec<String>,
+    pub show: Vec<String>,
+    pub trace: bool,
+    pub out: Option<PathBuf>,
+    pub now: Option<String>,
+    pub seed: Option<u64>,
+    pub watchdog: u64,
+}
+
+/// A usage problem: printed, exit status 2.
+fn usage(msg: impl std::fmt::Display) -> u8 {
+    eprintln!("error: {msg}");
+    2
+}
+
+/// Where `--set` and `--show` point: a cell and maybe a bit.
+#[derive(Clone, Copy)]
+pub struct Addr {
+    cell: u32,
+    bit: Option<u8>,
+}
+
+/// Resolves `BLOCK.FIELD[.BitN]` (or an alias) against the store.
+pub fn address(store: &Store, path: &str) -> Result<Addr, String> {
+    let mut parts: Vec<String> = path.split('.').map(str::to_string).collect();
+    if let Some(a) = parts.first().and_then(|p| store.db.alias(p)) {
+        let mut expanded = a.target.clone();
+        expanded.extend(parts.drain(1..));
+        parts = expanded;
+    }
+    let (Some(b), Some(f)) = (parts.first(), parts.get(1)) else {
+        return Err(format!("`{path}` is not BLOCK.FIELD"));
+    };
+    let block = store.db.block(b).ok_or_else(|| format!("the database has no block `{b}`"))?;
+    let cell = store.cell_of(block, f).ok_or_else(|| format!("`{b}` has no field `{f}`"))?;
+    let t = store.db.block_template(block);
+    let bit = match parts.get(2) {
+        None => None,
+        Some(sub) => {
+            let field = t.field(f).map(|i| &t.fields[i].ty);
+            let n = field.and_then(|ty| ty.bit_index(sub)).ok_or_else(|| format!("`{b}.{f}` has no bit `{sub}`"))?;
+            Some(n)
+        }
+    };
+    if parts.len() > 3 {
+        return Err(format!("`{path}` has too many parts"));
+    }
+    Ok(Addr { cell, bit })
+}
+
+fn show(store: &Store, a: Addr) -> String {
+    match (a.bit, store.cells.get(a.cell as usize)) {
+        (Some(b), Some(Cell::Bits { v, .. })) => if (v >> b) & 1 == 1 { "TRUE" } else { "FALSE" }.to_string(),
+        _ => store.show(a.cell),
+    }
+}
+
+fn unquote(s: &str) -> &str {
+    let b = s.as_bytes();
+    if b.len() >= 2 && (b[0] == b'\'' || b[0] == b'"') && b[b.len() - 1] == b[0] {
+        &s[1..s.len() - 1]
+    } else {
+        s
+    }
+}
+
+/// Applies `BLOCK.FIELD=VALUE`.
+pub fn set(store: &mut Store, assignment: &str) -> Result<(), String> {
+    let (path, value) = assignment.split_once('=').ok_or_else(|| format!("`{assignment}` is not BLOCK.FIELD=VALUE"))?;
+    let a = address(store, path.trim())?;
+    let value = value.trim();
+    let truth = |v: &str| match v.to_ascii_uppercase().as_str() {
+        "TRUE" | "1" => Ok(true),
+        "FALSE" | "0" => Ok(false),
+        _ => Err(format!("`{v}` is not TRUE or FALSE")),
+    };
+    let int = |v: &str| v.parse::<i64>().map(|i| i.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32).map_err(|_| format!("`{v}` is not an integer"));
+    let names = store.enum_names(a.cell).to_vec();
+    let cell = store.cells.get_mut(a.cell as usize).ok_or("no such cell")?;
+    match (cell, a.bit) {
+        (Cell::Bits { v, .. }, Some(b)) => {
+            if truth(value)? {
+                *v |= 1 << b;
+            } else {
+                *v &= !(1 << b);
+            }
+        }
+        (Cell::Real(r), _) => {
+            let x: f32 = value.parse().map_err(|_| format!("`{value}` is not a number"))?;
+            if !x.is_finite() {
+                return Err(format!("`{value}` is not a finite number"));
+            }
+            *r = x;
+        }
+        (Cell::Int(i), _) => *i = int(value)?,
+        (Cell::Bool(b), _) => *b = truth(value)?,
+        (Cell::Bits { v, width }, None) => {
+            let x = int(value)?;
+            *v = if *width == 8 { (x as u16) & 0xFF } else { x as u16 };
+        }
+        (Cell::Enum { idx }, _) => {
+            let text = unquote(value);
+            let i = names
+                .iter()
+                .position(|n| n.eq_ignore_ascii_case(text))
+                .ok_or_else(|| format!("`{text}` is not one of {}", names.join(", ")))?;
+            *idx = i as u16;
+        }
+        (Cell::Text(t), _) => *t = unquote(value).as_bytes().to_vec(),
+        (Cell::Bseq(t) | Cell::Wstr(t), _) => *t = decode_dollar(unquote(value).as_bytes()),
+        (Cell::Alarms(_), _) => return Err("alarm states can't be set with --set".into()),
+    }
+    Ok(())
+}
+
+/// Loads the object: a `.sto` file as is, anything else compiled.
+fn object(o: &Options, db: &Database) -> Result<ObjectFile, u8> {
+    let is_object = o.file.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"));
+    if !is_object {
+        return compile(std::slice::from_ref(&o.file), Some(db), Format::Human, 2).map_err(|Failed(s)| s);
+    }
+    let bytes = std::fs::read(&o.file).map_err(|e| usage(format_args!("[E0900] can't read `{}`: {e}", o.file.display())))?;
+    linc_runtime::load(&bytes).map_err(|e| usage(format_args!("[{}] {}: {e}", e.code(), o.file.display())))
+}
+
+pub fn run(o: &Options) -> u8 {
+    let mut dbfiles = SourceFiles::new();
+    let db = match load_db(Some(&o.db), &mut dbfiles, Format::Human) {
+        Ok(Some(db)) => db,
+        Ok(None) => return 2,
+        Err(status) => return status,
+    };
+    let db_text = dbfiles.get(0).map(|f| f.source().clone()).unwrap_or_default();
+    let obj = match object(o, &db) {
+        Ok(obj) => obj,
+        Err(status) => return status,
+    };
+    let index = match &o.action {
+        Some(name) => match obj.actions.iter().position(|a| a.name.eq_ignore_ascii_case(name)) {
+            Some(i) => i,
+            None => {
+                let names: Vec<&str> = obj.actions.iter().map(|a| a.name.as_str()).collect();
+                return usage(format_args!("no action `{name}` (the file has {})", names.join(", ")));
+            }
+        },
+        None if obj.actions.is_empty() => return usage("the file has no actions"),
+        None => 0,
+    };
+    let action = &obj.actions[index];
+    let mut store = Store::new(db);
+    let own = match own_block(&store, o.block.as_deref(), &action.block_type) {
+        Ok(b) => b,
+        Err(msg) => return usage(msg),
+    };
+    for s in &o.set {
+        if let Err(msg) = set(&mut store, s) {
+            return usage(format_args!("--set {s}: {msg}"));
+        }
+    }
+    let shows: Vec<(String, Addr)> = match o.show.iter().map(|p| address(&store, p).map(|a| (p.clone(), a))).collect() {
+        Ok(v) => v,
+        Err(msg) => return usage(format_args!("--show: {msg}")),
+    };
+    let now = match &o.now {
+        Some(t) => match text::parse_timestamp(t) {
+            Some(s) => s,
+            None => return usage(format_args!("--now `{t}` is not YYYY-MM-DDTHH:MM:SS")),
+        },
+        None => std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs() as i64).unwrap_or(0),
+    };
+    store.now = now as f64;
+    let loaded = match linc_runtime::prepare(&obj, index, &store, own) {
+        Ok(l) => l,
+        Err(e) => return usage(format_args!("[{}] {e}", e.code())),
+    };
+    let seed = o.seed.unwrap_or_else(|| now as u64 ^ u64::from(std::process::id()));
+    let mut vm = Vm::new(o.watchdog, Clock::new(seed, 0));
+    let mut resume = 0;
+    let mut status = 0;
+    for cycle in 1..=o.cycles {
+        let mut tracer = |s: &Store, cell: u32| println!("cycle {cycle}: {} = {}", s.describe(cell), s.show(cell));
+        let trace: linc_runtime::vm::Tracer = if o.trace { Some(&mut tracer) } else { None };
+        match vm.run(&loaded, &mut store, resume, trace) {
+            Ok(Outcome::Done) => resume = 0,
+            Ok(Outcome::Suspended { resume: at }) => resume = at,
+            Err(e) => {
+                eprintln!("{e}");
+                status = 1;
+                break;
+            }
+        }
+        store.now += o.period;
+    }
+    for (path, a) in &shows {
+        println!("{path} = {}", show(&store, *a));
+    }
+    if let Some(out) = &o.out {
+        if let Err(msg) = write_db(out, &db_text, &store) {
+            eprintln!("error[E0900]: can't write `{}`: {msg}", out.display());
+            return 2;
+        }
+    }
+    status
+}
+
+/// Picks the block that runs an `ACTION name : TYPE` action.
+fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result<Option<usize>, String> {
+    if let Some(n) = named {
+        let b = store.db.block(n).ok_or_else(|| format!("--block: the database has no block `{n}`"))?;
+        return Ok(Some(b));
+    }
+    if block_type.is_empty() {
+        return Ok(None);
+    }
+    let t = store.db.template(block_type);
+    let of_type: Vec<usize> = (0..store.db.blocks.len()).filter(|&b| Some(store.db.blocks[b].template) == t).collect();
+    match of_type.as_slice() {
+        [b] => Ok(Some(*b)),
+        [] => Err(format!("the action runs on a {block_type} block and the database has none")),
+        _ => Err(format!("the database has several {block_type} blocks; choose one with --block")),
+    }
+}
+
+/// Writes the database with the store's values, in the input's JSON shape.
+fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<(), String> {
+    let mut root: serde_json::Value = serde_json::from_str(original).map_err(|e| e.to_string())?;
+    let values = store.values_json();
+    if let Some(blocks) = root.get_mut("blocks").and_then(|b| b.as_object_mut()) {
+        for (name, block) in blocks.iter_mut() {
+            if let (Some(obj), Some(v)) = (block.as_object_mut(), values.get(name)) {
+                obj.insert("values".to_string(), v.clone());
+            }
+        }
+    }
+    let text = serde_json::to_string_pretty(&root).map_err(|e| e.to_string())? + "\n";
+    crate::files::write_atomic(out, text.as_bytes()).map_err(|e| e.to_string())
+}

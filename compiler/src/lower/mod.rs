@@ -1,0 +1,448 @@
+//! Lowering of the checked program to the runtime's instruction set.
+//!
+//! Types are fixed here: every arithmetic, comparison, load and store gets
+//! its typed opcode, conversions are explicit instructions, constant
+//! sub-expressions are folded, and database references become symbols of
+//! the object file. Statements record where they start (the line table) and
+//! loops record their extent (for watchdog errors).
+
+mod expr;
+
+use crate::diagnostic::Diagnostic;
+use crate::hir::{self, Place, Stmt, Target};
+use crate::span::Span;
+use linc_runtime::isa::Op;
+use linc_runtime::object::{ActionCode, Class, LineEntry, LoopEntry, ObjectFile, Sub, Symbol};
+use linc_stdlib::Ty;
+use std::collections::HashMap;
+
+/// Why a checked program could not be lowered.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LowerError {
+    /// A name whose type is unknown because no database was given.
+    Unresolved { span: Span, path: String },
+    StepVariable { span: Span, path: String },
+    TooMany { span: Span, what: &'static str },
+}
+
+impl LowerError {
+    pub fn to_diagnostic(&self) -> Diagnostic {
+        match self {
+            LowerError::Unresolved { span, path } => {
+                Diagnostic::error("E0130", format!("the type of `{path}` is unknown"), *span)
+                    .label("not resolved")
+                    .help("compiling needs the database that defines this block: pass --db")
+            }
+            LowerError::StepVariable { span, path } => {
+                Diagnostic::error("E0131", format!("step variable `{path}` can't be compiled into a plain action"), *span)
+                    .label("only sequences have steps")
+            }
+            LowerError::TooMany { span, what } => {
+                Diagnostic::error("E0132", format!("too many {what} in one object file"), *span).label("limit reached here")
+            }
+        }
+    }
+}
+
+/// Line and column (1-based) of byte offsets in one source.
+pub struct Lines {
+    starts: Vec<usize>,
+}
+
+impl Lines {
+    pub fn new(src: &str) -> Lines {
+        let mut starts = vec![0];
+        starts.extend(src.match_indices('\n').map(|(i, _)| i + 1));
+        Lines { starts }
+    }
+
+    pub fn at(&self, offset: usize) -> (u32, u32) {
+        let line = self.starts.partition_point(|&s| s <= offset).max(1);
+        let col = offset - self.starts[line - 1] + 1;
+        (line as u32, col as u32)
+    }
+}
+
+/// Builds an object file from checked actions.
+pub struct Lowerer<'a> {
+    lines: &'a Lines,
+    file: String,
+    symbols: Vec<Symbol>,
+    symbol_index: HashMap<(String, String, String, u8), u16>,
+    strings: Vec<Vec<u8>>,
+    string_index: HashMap<Vec<u8>, u32>,
+    errors: Vec<LowerError>,
+    // Per action:
+    ops: Vec<Op>,
+    line_table: Vec<LineEntry>,
+    loops: Vec<LoopEntry>,
+    exits: Vec<Vec<usize>>,
+    locals: u8,
+}
+
+/// One checked source file to lower: its program, name and line index.
+pub struct Unit<'a> {
+    pub program: &'a hir::Program,
+    pub file: &'a str,
+    pub lines: &'a Lines,
+}
+
+/// Lowers checked files into one object file.
+pub fn lower_units(units: &[Unit]) -> Result<ObjectFile, Vec<LowerError>> {
+    let Some(first) = units.first() else { return Ok(ObjectFile::default()) };
+    let mut l = Lowerer::new(first.lines);
+    let mut actions = Vec::new();
+    for u in units {
+        l.lines = u.lines;
+        l.file = u.file.to_string();
+        for a in &u.program.actions {
+            actions.push(l.action(a));
+        }
+    }
+    l.finish(first.file, actions)
+}
+
+/// Lowers a whole checked file.
+pub fn lower_program(p: &hir::Program, source: &str, lines: &Lines) -> Result<ObjectFile, Vec<LowerError>> {
+    lower_units(&[Unit { program: p, file: source, lines }])
+}
+
+/// Lowers one expression into an action named `eval` that returns its value.
+pub fn lower_eval(e: &hir::Expr, lines: &Lines) -> Result<ObjectFile, Vec<LowerError>> {
+    let mut l = Lowerer::new(lines);
+    l.mark(e.span);
+    l.expr(e);
+    l.emit(Op::Return { kind: expr::kind_of(e.ty) as u8 });
+    let action = l.take_action("eval", "");
+    l.finish("<eval>", vec![action])
+}
+
+impl<'a> Lowerer<'a> {
+    fn new(lines: &'a Lines) -> Lowerer<'a> {
+        Lowerer {
+            lines,
+            file: "<eval>".to_string(),
+            symbols: Vec::new(),
+            symbol_index: HashMap::new(),
+            strings: Vec::new(),
+            string_index: HashMap::new(),
+            errors: Vec::new(),
+            ops: Vec::new(),
+            line_table: Vec::new(),
+            loops: Vec::new(),
+            exits: Vec::new(),
+            locals: 0,
+        }
+    }
+
+    fn finish(self, source: &str, actions: Vec<ActionCode>) -> Result<ObjectFile, Vec<LowerError>> {
+        if !self.errors.is_empty() {
+            return Err(self.errors);
+        }
+        Ok(ObjectFile { source: source.to_string(), symbols: self.symbols, strings: self.strings, actions })
+    }
+
+    fn take_action(&mut self, name: &str, block_type: &str) -> ActionCode {
+        self.ops.push(Op::Ret {});
+        ActionCode {
+            name: name.to_string(),
+            file: self.file.clone(),
+            block_type: block_type.to_string(),
+            locals: self.locals,
+            ops: std::mem::take(&mut self.ops),
+            lines: std::mem::take(&mut self.line_table),
+            loops: std::mem::take(&mut self.loops),
+        }
+    }
+
+    fn action(&mut self, a: &hir::Action) -> ActionCode {
+        self.locals = 0;
+        self.stmts(&a.body);
+        self.take_action(&a.name, a.block_type.as_deref().unwrap_or(""))
+    }
+
+    fn here(&self) -> u32 {
+        self.ops.len() as u32
+    }
+
+    fn emit(&mut self, op: Op) -> usize {
+        self.ops.push(op);
+        self.ops.len() - 1
+    }
+
+    /// Points a jump emitted earlier at `to`.
+    fn patch(&mut self, at: usize, to: u32) {
+        match &mut self.ops[at] {
+            Op::Jump { to: t } | Op::JumpIfFalse { to: t } | Op::JumpIfTrue { to: t } => *t = to,
+            _ => {}
+        }
+    }
+
+    fn mark(&mut self, span: Span) {
+        let (line, col) = self.lines.at(span.start);
+        let op = self.here();
+        self.line_table.push(LineEntry { op, line, col });
+    }
+
+    fn string(&mut self, bytes: &[u8], span: Span) -> u32 {
+        if let Some(&k) = self.string_index.get(bytes) {
+            return k;
+        }
+        let k = self.strings.len() as u32;
+        if k == u32::MAX {
+            self.errors.push(LowerError::TooMany { span, what: "string constants" });
+        }
+        self.strings.push(bytes.to_vec());
+        self.string_index.insert(bytes.to_vec(), k);
+        k
+    }
+
+    fn symbol(&mut self, block: &str, field: &str, sub: Sub, class: Class, span: Span) -> u16 {
+        let sub_key = match &sub {
+            Sub::Field => String::new(),
+            Sub::Alarm(a) => format!("A:{}", a.to_ascii_uppercase()),
+            Sub::Suppress(a) => format!("S:{}", a.as_deref().unwrap_or("").to_ascii_uppercase()),
+        };
+        let key = (block.to_ascii_uppercase(), field.to_ascii_uppercase(), sub_key, class as u8);
+        if let Some(&i) = self.symbol_index.get(&key) {
+            return i;
+        }
+        let Ok(i) = u16::try_from(self.symbols.len()) else {
+            self.errors.push(LowerError::TooMany { span, what: "database references" });
+            return 0;
+        };
+        self.symbols.push(Symbol { block: block.to_string(), field: field.to_string(), sub, class });
+        self.symbol_index.insert(key, i);
+        i
+    }
+
+    fn stmts(&mut self, list: &[Stmt]) {
+        for s in list {
+            self.stmt(s);
+        }
+    }
+
+    fn stmt(&mut self, s: &Stmt) {
+        match s {
+            Stmt::Assign { place, value, span } => {
+                self.mark(*span);
+                self.store_value(place, value);
+            }
+            Stmt::If { arms, otherwise, span } => {
+                self.mark(*span);
+                let mut to_end = Vec::new();
+                for (cond, body) in arms {
+                    self.mark(cond.span);
+                    self.expr_as(cond, Ty::Int);
+                    let skip = self.emit(Op::JumpIfFalse { to: 0 });
+                    self.stmts(body);
+                    to_end.push(self.emit(Op::Jump { to: 0 }));
+                    let next = self.here();
+                    self.patch(skip, next);
+                }
+                self.stmts(otherwise);
+                let end = self.here();
+                for j in to_end {
+                    self.patch(j, end);
+                }
+            }
+            Stmt::While { cond, body, span } => {
+                self.mark(*span);
+                let top = self.here();
+                self.expr_as(cond, Ty::Int);
+                let out = self.emit(Op::JumpIfFalse { to: 0 });
+                self.loop_body(body, *span, top, |l, end| l.patch(out, end), |l| {
+                    l.emit(Op::Jump { to: top });
+                });
+            }
+            Stmt::Repeat { body, until, span } => {
+                self.mark(*span);
+                let top = self.here();
+                self.loop_body(body, *span, top, |_, _| {}, |l| {
+                    l.mark(until.span);
+                    l.expr_as(until, Ty::Int);
+                    l.emit(Op::JumpIfFalse { to: top });
+                });
+            }
+            Stmt::For { place, from, to, by, body, span } => self.for_loop(place, from, to, by.as_ref(), body, *span),
+            Stmt::Exit { span } => {
+                self.mark(*span);
+                let j = self.emit(Op::Jump { to: 0 });
+                if let Some(exits) = self.exits.last_mut() {
+                    exits.push(j);
+                }
+            }
+            Stmt::Error { .. } => {}
+        }
+    }
+
+    /// Emits a loop body between `top` and the end, wiring EXITs to the end.
+    fn loop_body(
+        &mut self,
+        body: &[Stmt],
+        span: Span,
+        top: u32,
+        at_end: impl FnOnce(&mut Self, u32),
+        after_body: impl FnOnce(&mut Self),
+    ) {
+        self.exits.push(Vec::new());
+        self.stmts(body);
+        after_body(self);
+        let end = self.here();
+        at_end(self, end);
+        for j in self.exits.pop().unwrap_or_default() {
+            self.patch(j, end);
+        }
+        let (line, col) = self.lines.at(span.start);
+        self.loops.push(LoopEntry { start: top, end, line, col });
+    }
+
+    fn for_loop(&mut self, place: &Place, from: &hir::Expr, to: &hir::Expr, by: Option<&hir::Expr>, body: &[Stmt], span: Span) {
+        self.mark(span);
+        let ty = if place.ty == Ty::Real { Ty::Real } else { Ty::Int };
+        self.store_value(place, from);
+        let local = self.locals;
+        self.locals = self.locals.saturating_add(1);
+        if self.locals == u8::MAX {
+            self.errors.push(LowerError::TooMany { span, what: "nested FOR loops" });
+        }
+        self.expr_as(to, ty);
+        self.emit(Op::StoreLoc { n: local });
+        let step = by.and_then(expr::constant).unwrap_or(expr::Const::I(1));
+        let top = self.here();
+        self.load(place);
+        self.emit(Op::LoadLoc { n: local });
+        let positive = step.is_positive();
+        let exit_test = match (ty, positive) {
+            (Ty::Real, true) => Op::GtR {},
+            (Ty::Real, false) => Op::LtR {},
+            (_, true) => Op::GtI {},
+            (_, false) => Op::LtI {},
+        };
+        self.emit(exit_test);
+        let out = self.emit(Op::JumpIfTrue { to: 0 });
+        self.loop_body(body, span, top, |l, end| l.patch(out, end), |l| {
+            l.load(place);
+            match ty {
+                Ty::Real => {
+                    l.emit(Op::PushR { v: step.real() });
+                    l.emit(Op::AddR {});
+                }
+                _ => {
+                    l.emit(Op::PushI { v: step.int() });
+                    l.emit(Op::AddI {});
+                }
+            }
+            l.store(place);
+            l.emit(Op::Jump { to: top });
+        });
+    }
+
+    /// Evaluates `value` converted to the place's type and stores it.
+    fn store_value(&mut self, place: &Place, value: &hir::Expr) {
+        match place.class {
+            Some(Class::Bseq | Class::Wstr) if !matches!(place.target, Target::Suppress { .. }) => {
+                self.expr(value);
+                if value.ty == Ty::Text {
+                    self.emit(Op::Decode {});
+                }
+            }
+            _ => self.expr_as(value, place.ty),
+        }
+        self.store(place);
+    }
+
+    /// Resolves the symbol of a field place and emits offset code; returns
+    /// the symbol and whether the reference register is in use.
+    fn address(&mut self, place: &Place) -> Option<(u16, bool)> {
+        let class = place.class?;
+        match &place.target {
+            Target::Field { block, field, offset } => {
+                let sym = self.symbol(block, field, Sub::Field, class, place.span);
+                if let Some(o) = offset {
+                    self.expr_as(o, Ty::Int);
+                    self.emit(Op::RefOff { sym });
+                    return Some((sym, true));
+                }
+                Some((sym, false))
+            }
+            Target::Bit { block, field, offset, bit, bit_offset } => {
+                let sym = self.symbol(block, field, Sub::Field, class, place.span);
+                if offset.is_none() && bit_offset.is_none() {
+                    return Some((sym, false));
+                }
+                // Offsets are evaluated before the reference register is
+                // set, since they may use it themselves; the bit offset goes
+                // first so that RefOff pops the field offset above it.
+                if let Some(o) = bit_offset {
+                    self.expr_as(o, Ty::Int);
+                }
+                match offset {
+                    Some(o) => {
+                        self.expr_as(o, Ty::Int);
+                        self.emit(Op::RefOff { sym });
+                    }
+                    None => {
+                        self.emit(Op::Ref { sym });
+                    }
+                }
+                self.emit(match bit_offset {
+                    Some(_) => Op::RefBitOff { bit: *bit },
+                    None => Op::RefBit { bit: *bit },
+                });
+                Some((sym, true))
+            }
+            Target::Alarm { block, field, alarm } => {
+                Some((self.symbol(block, field, Sub::Alarm(alarm.clone()), class, place.span), false))
+            }
+            Target::Suppress { block, field, alarm } => {
+                Some((self.symbol(block, field, Sub::Suppress(alarm.clone()), class, place.span), false))
+            }
+            Target::Step { .. } | Target::Unknown => None,
+        }
+    }
+
+    fn unaddressable(&mut self, place: &Place) {
+        let e = match place.target {
+            Target::Step { .. } => LowerError::StepVariable { span: place.span, path: place.path.clone() },
+            _ => LowerError::Unresolved { span: place.span, path: place.path.clone() },
+        };
+        self.errors.push(e);
+    }
+
+    /// Pushes a place's value (INT/BOOL/bits on the numeric stack as INT,
+    /// REAL as REAL, strings on the string stack).
+    fn load(&mut self, place: &Place) {
+        let Some((sym, via_ref)) = self.address(place) else { return self.unaddressable(place) };
+        let op = match (&place.target, place.class, via_ref) {
+            (Target::Alarm { .. }, ..) => Op::LoadAlarm { sym },
+            (Target::Suppress { .. }, ..) => Op::LoadSuppress { sym },
+            (Target::Bit { bit, .. }, _, false) => Op::LoadBit { sym, bit: *bit },
+            (Target::Bit { .. }, _, true) => Op::LoadRefBit { sym },
+            (_, Some(Class::Real), false) => Op::LoadR { sym },
+            (_, Some(Class::Real), true) => Op::LoadRefR { sym },
+            (_, Some(c), false) if c.is_string() => Op::LoadS { sym },
+            (_, Some(c), true) if c.is_string() => Op::LoadRefS { sym },
+            (_, _, false) => Op::LoadI { sym },
+            (_, _, true) => Op::LoadRefI { sym },
+        };
+        self.emit(op);
+    }
+
+    /// Stores the value on top of the stack into a place.
+    fn store(&mut self, place: &Place) {
+        let Some((sym, via_ref)) = self.address(place) else { return self.unaddressable(place) };
+        let op = match (&place.target, place.class, via_ref) {
+            (Target::Suppress { .. }, ..) => Op::StoreSuppress { sym },
+            (Target::Bit { bit, .. }, _, false) => Op::StoreBit { sym, bit: *bit },
+            (Target::Bit { .. }, _, true) => Op::StoreRefBit { sym },
+            (_, Some(Class::Real), false) => Op::StoreR { sym },
+            (_, Some(Class::Real), true) => Op::StoreRefR { sym },
+            (_, Some(c), false) if c.is_string() => Op::StoreS { sym },
+            (_, Some(c), true) if c.is_string() => Op::StoreRefS { sym },
+            (_, _, false) => Op::StoreI { sym },
+            (_, _, true) => Op::StoreRefI { sym },
+        };
+        self.emit(op);
+    }
+}

@@ -1,0 +1,247 @@
+//! The live database: typed field values the VM reads and writes.
+//!
+//! Every field of every block is one cell, blocks laid out one after the
+//! other in template order, so `X{n}` is "n cells further" and a run of
+//! same-typed fields is a contiguous range of cells.
+
+use crate::db::{Database, FieldType, InitValue};
+use crate::object::Class;
+use crate::text::{encode_dollar, format_value};
+use linc_stdlib::value::decode_dollar;
+use linc_stdlib::Value;
+
+/// Longest suppression, 90 days (§18.3.1).
+pub const MAX_SUPPRESS: f64 = 7_776_000.0;
+
+/// Alarm states and their suppression deadlines (POSIX seconds; 0 none,
+/// infinity indefinite).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Alarms {
+    pub names: Vec<String>,
+    pub active: Vec<bool>,
+    pub until: Vec<f64>,
+    pub all_until: f64,
+}
+
+/// One field's value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Cell {
+    Real(f32),
+    Int(i32),
+    Bool(bool),
+    Bits { v: u16, width: u8 },
+    Enum { idx: u16 },
+    /// STRING, DATE and TIME: text kept as written.
+    Text(Vec<u8>),
+    Bseq(Vec<u8>),
+    Wstr(Vec<u8>),
+    Alarms(Box<Alarms>),
+}
+
+/// The storage class of a template field.
+pub fn class_of(ty: &FieldType) -> Class {
+    match ty {
+        FieldType::Real => Class::Real,
+        FieldType::Int => Class::Int,
+        FieldType::Bool => Class::Bool,
+        FieldType::Bits { width: 8, .. } => Class::Bits8,
+        FieldType::Bits { .. } => Class::Bits16,
+        FieldType::Enum(_) => Class::Enum,
+        FieldType::String => Class::String,
+        FieldType::Date => Class::Date,
+        FieldType::Time => Class::Time,
+        FieldType::Bseq => Class::Bseq,
+        FieldType::Wstr => Class::Wstr,
+        FieldType::Alarms(_) => Class::Alarms,
+    }
+}
+
+/// The database with values, and the clock suppression timers run on.
+#[derive(Clone, Debug)]
+pub struct Store {
+    pub db: Database,
+    pub cells: Vec<Cell>,
+    /// First cell of each block.
+    pub first: Vec<u32>,
+    /// For each cell, the last cell of its run of same-typed fields.
+    pub run_end: Vec<u32>,
+    /// Current time, POSIX seconds.
+    pub now: f64,
+}
+
+impl Store {
+    /// Lays out every block with its initial values.
+    pub fn new(db: Database) -> Store {
+        let mut cells = Vec::new();
+        let mut first = Vec::new();
+        let mut run_end = Vec::new();
+        for b in &db.blocks {
+            let t = &db.templates[b.template];
+            let start = cells.len() as u32;
+            first.push(start);
+            for (fi, f) in t.fields.iter().enumerate() {
+                let init = b.values.iter().find(|(i, _)| *i == fi).map(|(_, v)| v);
+                cells.push(initial(&f.ty, init));
+            }
+            let n = t.fields.len();
+            let mut ends = vec![0u32; n];
+            for i in (0..n).rev() {
+                let same_next = i + 1 < n && t.fields[i + 1].ty.same_kind(&t.fields[i].ty);
+                ends[i] = if same_next { ends[i + 1] } else { start + i as u32 };
+            }
+            run_end.extend(ends);
+        }
+        Store { db, cells, first, run_end, now: 0.0 }
+    }
+
+    /// The cell of `block.field`, by names (ignoring case).
+    pub fn cell_of(&self, block: usize, field: &str) -> Option<u32> {
+        let t = self.db.block_template(block);
+        t.field(field).map(|f| self.first[block] + f as u32)
+    }
+
+    /// `BLOCK.Field` for a cell, for traces and messages.
+    pub fn describe(&self, cell: u32) -> String {
+        let b = self.first.partition_point(|&f| f <= cell).saturating_sub(1);
+        match self.db.blocks.get(b) {
+            Some(block) => {
+                let t = &self.db.templates[block.template];
+                let f = (cell - self.first[b]) as usize;
+                format!("{}.{}", block.name, t.fields.get(f).map(|f| f.name.as_str()).unwrap_or("?"))
+            }
+            None => format!("cell {cell}"),
+        }
+    }
+
+    /// Enumeration names of an ENUM cell's field.
+    pub fn enum_names(&self, cell: u32) -> &[String] {
+        let b = self.first.partition_point(|&f| f <= cell).saturating_sub(1);
+        let Some(block) = self.db.blocks.get(b) else { return &[] };
+        let t = &self.db.templates[block.template];
+        match t.fields.get((cell - self.first[b]) as usize).map(|f| &f.ty) {
+            Some(FieldType::Enum(names)) => names,
+            _ => &[],
+        }
+    }
+
+    /// A cell's value as ST would print it.
+    pub fn show(&self, cell: u32) -> String {
+        match self.cells.get(cell as usize) {
+            Some(Cell::Real(r)) => format_value(&Value::Real(*r)),
+            Some(Cell::Int(i)) => i.to_string(),
+            Some(Cell::Bool(b)) => format_value(&Value::Bool(*b)),
+            Some(Cell::Bits { v, width }) => bits_value(*v, *width).to_string(),
+            Some(Cell::Enum { idx }) => {
+                let name = self.enum_names(cell).get(usize::from(*idx)).cloned().unwrap_or_default();
+                format_value(&Value::Bytes(name.into_bytes()))
+            }
+            Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => format_value(&Value::Bytes(t.clone())),
+            Some(Cell::Alarms(a)) => {
+                let on: Vec<&str> =
+                    a.names.iter().zip(&a.active).filter(|(_, on)| **on).map(|(n, _)| n.as_str()).collect();
+                format!("[{}]", on.join(", "))
+            }
+            None => String::new(),
+        }
+    }
+
+    /// Remaining suppression in whole seconds (-1 indefinite).
+    pub fn suppress_remaining(&self, until: f64) -> i32 {
+        if until.is_infinite() {
+            -1
+        } else {
+            (until - self.now).max(0.0).ceil().min(MAX_SUPPRESS) as i32
+        }
+    }
+
+    /// The deadline a written suppression time gives, or `None` to ignore
+    /// the write (negative values other than -1).
+    pub fn suppress_deadline(&self, seconds: i32) -> Option<f64> {
+        match seconds {
+            -1 => Some(f64::INFINITY),
+            s if s < 0 => None,
+            0 => Some(0.0),
+            s => Some(self.now + f64::from(s).min(MAX_SUPPRESS)),
+        }
+    }
+
+    /// The block values in the database file's shape (`{"BLOCK": {"FIELD": v}}`).
+    pub fn values_json(&self) -> serde_json::Map<String, serde_json::Value> {
+        use serde_json::{json, Value as J};
+        let mut out = serde_json::Map::new();
+        for (bi, b) in self.db.blocks.iter().enumerate() {
+            let t = &self.db.templates[b.template];
+            let mut vals = serde_json::Map::new();
+            for (fi, f) in t.fields.iter().enumerate() {
+                let cell = &self.cells[self.first[bi] as usize + fi];
+                let v = match cell {
+                    Cell::Real(r) => json!(f64::from(*r)),
+                    Cell::Int(i) => json!(i),
+                    Cell::Bool(b) => json!(b),
+                    Cell::Bits { v, width } => json!(bits_value(*v, *width)),
+                    Cell::Enum { idx } => match &f.ty {
+                        FieldType::Enum(names) => json!(names.get(usize::from(*idx)).cloned().unwrap_or_default()),
+                        _ => J::Null,
+                    },
+                    Cell::Text(t) => json!(String::from_utf8_lossy(t)),
+                    Cell::Bseq(t) | Cell::Wstr(t) => json!(encode_dollar(t)),
+                    Cell::Alarms(a) => {
+                        let m: serde_json::Map<String, J> =
+                            a.names.iter().zip(&a.active).map(|(n, on)| (n.clone(), J::Bool(*on))).collect();
+                        J::Object(m)
+                    }
+                };
+                vals.insert(f.name.clone(), v);
+            }
+            out.insert(b.name.clone(), J::Object(vals));
+        }
+        out
+    }
+}
+
+/// A bitfield as ST reads it: 8-bit fields 0..255, 16-bit fields
+/// -32768..32767 (§12.7.2).
+pub fn bits_value(v: u16, width: u8) -> i32 {
+    if width == 8 {
+        i32::from(v & 0xFF)
+    } else {
+        i32::from(v as i16)
+    }
+}
+
+fn initial(ty: &FieldType, init: Option<&InitValue>) -> Cell {
+    let num = match init {
+        Some(InitValue::Num(x)) => *x,
+        Some(InitValue::Bool(b)) => f64::from(u8::from(*b)),
+        _ => 0.0,
+    };
+    let text = match init {
+        Some(InitValue::Text(t)) => t.as_bytes().to_vec(),
+        _ => Vec::new(),
+    };
+    match ty {
+        FieldType::Real => Cell::Real(num as f32),
+        FieldType::Int => Cell::Int(linc_stdlib::value::round_to_i32(num as f32)),
+        FieldType::Bool => Cell::Bool(num != 0.0),
+        FieldType::Bits { width, .. } => Cell::Bits { v: (num as i64) as u16, width: *width },
+        FieldType::Enum(names) => {
+            let idx = names.iter().position(|n| n.as_bytes().eq_ignore_ascii_case(&text)).unwrap_or(0);
+            Cell::Enum { idx: idx as u16 }
+        }
+        FieldType::String | FieldType::Date | FieldType::Time => Cell::Text(text),
+        FieldType::Bseq => Cell::Bseq(decode_dollar(&text)),
+        FieldType::Wstr => Cell::Wstr(decode_dollar(&text)),
+        FieldType::Alarms(names) => {
+            let active = names
+                .iter()
+                .map(|n| matches!(init, Some(InitValue::Active(a)) if a.iter().any(|x| x.eq_ignore_ascii_case(n))))
+                .collect();
+            Cell::Alarms(Box::new(Alarms {
+                names: names.clone(),
+                active,
+                until: vec![0.0; names.len()],
+                all_until: 0.0,
+            }))
+        }
+    }
+}

@@ -1,0 +1,580 @@
+//! The virtual machine: runs one verified, linked action against the store.
+//!
+//! A match-dispatched stack machine over decoded instructions. Numeric cells
+//! are raw 32-bit words whose type the compiler fixed; strings live on their
+//! own stack. Stacks are sized by the verifier before the run, so an action
+//! that touches no strings allocates nothing. Faults are values: the run
+//! stops at the failing statement with a located [`RuntimeError`], and what
+//! it wrote before stays written.
+
+use crate::errors::{Fault, RuntimeError};
+use crate::isa::{Kind, Op};
+use crate::object::{ActionCode, ObjectFile};
+use crate::store::{bits_value, Cell, Store};
+use crate::verify::{Limits, Target};
+use linc_stdlib::value::{decode_dollar, round_to_i32};
+use linc_stdlib::{Env, FnError, Value};
+
+/// Default instruction budget per run: far beyond any sane action, reached
+/// by a runaway loop in well under a second.
+pub const DEFAULT_WATCHDOG: u64 = 10_000_000;
+
+/// How a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    Done,
+    /// Stopped at a suspension point; the next run resumes at `resume`.
+    Suspended { resume: usize },
+}
+
+/// An action ready to run: code, its bound symbols and stack needs.
+#[derive(Clone, Debug)]
+pub struct Loaded<'a> {
+    pub obj: &'a ObjectFile,
+    pub action: &'a ActionCode,
+    pub targets: Vec<Target>,
+    pub limits: Limits,
+}
+
+/// What a run reports as it writes, for `--trace`.
+pub type Tracer<'t> = Option<&'t mut dyn FnMut(&Store, u32)>;
+
+/// The random generator and clock the library sees.
+#[derive(Clone, Debug)]
+pub struct Clock {
+    state: u64,
+    /// Seconds to add to system time for local time.
+    pub utc_offset: i64,
+    now: f64,
+}
+
+impl Clock {
+    pub fn new(seed: u64, utc_offset: i64) -> Clock {
+        Clock { state: seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1, utc_offset, now: 0.0 }
+    }
+}
+
+impl Env for Clock {
+    fn random(&mut self) -> f64 {
+        self.state ^= self.state >> 12;
+        self.state ^= self.state << 25;
+        self.state ^= self.state >> 27;
+        let x = self.state.wrapping_mul(0x2545_F491_4F6C_DD1D);
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn local_time(&self) -> i64 {
+        self.now.floor() as i64 + self.utc_offset
+    }
+    fn system_time(&self) -> i64 {
+        self.now.floor() as i64
+    }
+}
+
+/// The machine's reusable state between runs.
+#[derive(Debug)]
+pub struct Vm {
+    num: Vec<u32>,
+    strs: Vec<Vec<u8>>,
+    locals: Vec<u32>,
+    args: Vec<Value>,
+    pub watchdog: u64,
+    pub clock: Clock,
+    /// The value of the last `Return` (linc eval).
+    pub result: Option<Value>,
+}
+
+impl Vm {
+    pub fn new(watchdog: u64, clock: Clock) -> Vm {
+        Vm { num: Vec::new(), strs: Vec::new(), locals: Vec::new(), args: Vec::new(), watchdog, clock, result: None }
+    }
+
+    fn pop(&mut self) -> u32 {
+        self.num.pop().unwrap_or(0)
+    }
+
+    fn pop_i(&mut self) -> i32 {
+        self.pop() as i32
+    }
+
+    fn pop_r(&mut self) -> f32 {
+        f32::from_bits(self.pop())
+    }
+
+    fn push_i(&mut self, v: i32) {
+        self.num.push(v as u32);
+    }
+
+    fn push_r(&mut self, v: f32) {
+        self.num.push(v.to_bits());
+    }
+
+    fn pop_s(&mut self) -> Vec<u8> {
+        self.strs.pop().unwrap_or_default()
+    }
+
+    /// Runs `l` from instruction `start` (0, or where it was suspended).
+    pub fn run(&mut self, l: &Loaded, store: &mut Store, start: usize, mut trace: Tracer) -> Result<Outcome, RuntimeError> {
+        self.num.clear();
+        self.strs.clear();
+        self.num.reserve(l.limits.max_num);
+        self.strs.reserve(l.limits.max_str);
+        self.locals.clear();
+        self.locals.resize(usize::from(l.action.locals), 0);
+        self.clock.now = store.now;
+        let mut pc = start;
+        let mut budget = self.watchdog;
+        let result = self.exec(l, store, &mut pc, &mut budget, &mut trace);
+        result.map_err(|f| locate(l, pc.saturating_sub(1), f))
+    }
+
+    fn exec(
+        &mut self,
+        l: &Loaded,
+        store: &mut Store,
+        pc: &mut usize,
+        budget: &mut u64,
+        trace: &mut Tracer,
+    ) -> Result<Outcome, Fault> {
+        let ops = &l.action.ops[..];
+        let (mut ref_cell, mut ref_bit) = (0u32, 0u8);
+        loop {
+            let Some(&op) = ops.get(*pc) else { return Err(Fault::new("E0708", "ran past the end of the code")) };
+            if *budget == 0 {
+                return Err(Fault::new("R0006", format!("watchdog: more than {} instructions in one run", self.watchdog)));
+            }
+            *budget -= 1;
+            *pc += 1;
+            match op {
+                Op::PushI { v } => self.push_i(v),
+                Op::PushR { v } => self.push_r(v),
+                Op::PushS { k } => {
+                    let s = l.obj.strings.get(k as usize).cloned().unwrap_or_default();
+                    self.strs.push(s);
+                }
+                Op::LoadLoc { n } => {
+                    let v = self.locals.get(usize::from(n)).copied().unwrap_or(0);
+                    self.num.push(v);
+                }
+                Op::StoreLoc { n } => {
+                    let v = self.pop();
+                    if let Some(slot) = self.locals.get_mut(usize::from(n)) {
+                        *slot = v;
+                    }
+                }
+                Op::LoadI { sym } | Op::LoadRefI { sym } => {
+                    let c = if matches!(op, Op::LoadI { .. }) { cell(l, sym) } else { ref_cell };
+                    let v = load_int(store, c)?;
+                    self.push_i(v);
+                }
+                Op::LoadR { sym } | Op::LoadRefR { sym } => {
+                    let c = if matches!(op, Op::LoadR { .. }) { cell(l, sym) } else { ref_cell };
+                    match store.cells.get(c as usize) {
+                        Some(Cell::Real(r)) => self.push_r(*r),
+                        _ => return Err(corrupt()),
+                    }
+                }
+                Op::LoadS { sym } | Op::LoadRefS { sym } => {
+                    let c = if matches!(op, Op::LoadS { .. }) { cell(l, sym) } else { ref_cell };
+                    let s = match store.cells.get(c as usize) {
+                        Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => t.clone(),
+                        Some(Cell::Enum { idx }) => {
+                            store.enum_names(c).get(usize::from(*idx)).map(|n| n.as_bytes().to_vec()).unwrap_or_default()
+                        }
+                        _ => return Err(corrupt()),
+                    };
+                    self.strs.push(s);
+                }
+                Op::LoadBit { sym, bit } => {
+                    let v = load_bit(store, cell(l, sym), bit)?;
+                    self.push_i(v);
+                }
+                Op::LoadRefBit { .. } => {
+                    let v = load_bit(store, ref_cell, ref_bit)?;
+                    self.push_i(v);
+                }
+                Op::LoadAlarm { sym } => {
+                    let t = target(l, sym);
+                    let v = match store.cells.get(t.cell as usize) {
+                        Some(Cell::Alarms(a)) => a.active.get(usize::from(t.alarm)).copied().unwrap_or(false),
+                        _ => return Err(corrupt()),
+                    };
+                    self.push_i(i32::from(v));
+                }
+                Op::LoadSuppress { sym } => {
+                    let t = target(l, sym);
+                    let until = match store.cells.get(t.cell as usize) {
+                        Some(Cell::Alarms(a)) if t.alarm == u16::MAX => a.all_until,
+                        Some(Cell::Alarms(a)) => a.until.get(usize::from(t.alarm)).copied().unwrap_or(0.0),
+                        _ => return Err(corrupt()),
+                    };
+                    let v = store.suppress_remaining(until);
+                    self.push_i(v);
+                }
+                Op::StoreI { sym } | Op::StoreRefI { sym } => {
+                    let c = if matches!(op, Op::StoreI { .. }) { cell(l, sym) } else { ref_cell };
+                    let v = self.pop_i();
+                    store_int(store, c, v)?;
+                    note(trace, store, c);
+                }
+                Op::StoreR { sym } | Op::StoreRefR { sym } => {
+                    let c = if matches!(op, Op::StoreR { .. }) { cell(l, sym) } else { ref_cell };
+                    let v = self.pop_r();
+                    if !v.is_finite() {
+                        return Err(Fault::new("R0005", format!("the result is {v}, which can't be stored")));
+                    }
+                    match store.cells.get_mut(c as usize) {
+                        Some(Cell::Real(r)) => *r = v,
+                        _ => return Err(corrupt()),
+                    }
+                    note(trace, store, c);
+                }
+                Op::StoreS { sym } | Op::StoreRefS { sym } => {
+                    let c = if matches!(op, Op::StoreS { .. }) { cell(l, sym) } else { ref_cell };
+                    let s = self.pop_s();
+                    store_str(store, c, s)?;
+                    note(trace, store, c);
+                }
+                Op::StoreBit { sym, bit } => {
+                    let v = self.pop_i();
+                    let c = cell(l, sym);
+                    store_bit(store, c, bit, v)?;
+                    note(trace, store, c);
+                }
+                Op::StoreRefBit { .. } => {
+                    let v = self.pop_i();
+                    store_bit(store, ref_cell, ref_bit, v)?;
+                    note(trace, store, ref_cell);
+                }
+                Op::StoreSuppress { sym } => {
+                    let t = target(l, sym);
+                    let secs = self.pop_i();
+                    if let Some(deadline) = store.suppress_deadline(secs) {
+                        match store.cells.get_mut(t.cell as usize) {
+                            Some(Cell::Alarms(a)) if t.alarm == u16::MAX => a.all_until = deadline,
+                            Some(Cell::Alarms(a)) => {
+                                if let Some(u) = a.until.get_mut(usize::from(t.alarm)) {
+                                    *u = deadline;
+                                }
+                            }
+                            _ => return Err(corrupt()),
+                        }
+                        note(trace, store, t.cell);
+                    }
+                }
+                Op::Ref { sym } => {
+                    ref_cell = cell(l, sym);
+                    ref_bit = 0;
+                }
+                Op::RefOff { sym } => {
+                    let n = self.pop_i();
+                    let t = target(l, sym);
+                    let room = t.run_end.saturating_sub(t.cell);
+                    if n < 0 || n as u32 > room {
+                        return Err(Fault::new(
+                            "R0003",
+                            format!(
+                                "offset {n} from {} leaves its run of {} same-typed fields",
+                                store.describe(t.cell),
+                                room + 1
+                            ),
+                        ));
+                    }
+                    ref_cell = t.cell + n as u32;
+                    ref_bit = 0;
+                }
+                Op::RefBit { bit } => ref_bit = bit,
+                Op::RefBitOff { bit } => {
+                    let n = self.pop_i();
+                    let width = match store.cells.get(ref_cell as usize) {
+                        Some(Cell::Bits { width, .. }) => i64::from(*width),
+                        _ => return Err(corrupt()),
+                    };
+                    let b = i64::from(bit) + i64::from(n);
+                    if n < 0 || b >= width {
+                        return Err(Fault::new(
+                            "R0003",
+                            format!("bit offset {n} from Bit{bit} of {} is beyond Bit{}", store.describe(ref_cell), width - 1),
+                        ));
+                    }
+                    ref_bit = b as u8;
+                }
+                Op::IToR {} => {
+                    let v = self.pop_i();
+                    self.push_r(v as f32);
+                }
+                Op::RToI {} => {
+                    let v = self.pop_r();
+                    if !v.is_finite() {
+                        return Err(Fault::new("R0005", format!("{v} can't be converted to an integer")));
+                    }
+                    self.push_i(round_to_i32(v));
+                }
+                Op::Decode {} => {
+                    let s = self.pop_s();
+                    self.strs.push(decode_dollar(&s));
+                }
+                Op::Truth {} => {
+                    let v = self.pop_i();
+                    self.push_i(i32::from(v != 0));
+                }
+                Op::AddI {} => self.int2(i32::wrapping_add),
+                Op::SubI {} => self.int2(i32::wrapping_sub),
+                Op::MulI {} => self.int2(i32::wrapping_mul),
+                Op::DivI {} | Op::ModI {} => {
+                    let b = self.pop_i();
+                    let a = self.pop_i();
+                    if b == 0 {
+                        let what = if matches!(op, Op::DivI {}) { "division" } else { "MOD" };
+                        return Err(Fault::new(if what == "MOD" { "R0002" } else { "R0001" }, format!("{what} by zero")));
+                    }
+                    self.push_i(if matches!(op, Op::DivI {}) { a.wrapping_div(b) } else { a.wrapping_rem(b) });
+                }
+                Op::NegI {} => {
+                    let v = self.pop_i();
+                    self.push_i(v.wrapping_neg());
+                }
+                Op::AddR {} => self.real2(|a, b| a + b),
+                Op::SubR {} => self.real2(|a, b| a - b),
+                Op::MulR {} => self.real2(|a, b| a * b),
+                Op::DivR {} => {
+                    let b = self.pop_r();
+                    let a = self.pop_r();
+                    if b == 0.0 {
+                        return Err(Fault::new("R0001", "division by zero"));
+                    }
+                    self.push_r(a / b);
+                }
+                Op::PowR {} => {
+                    let b = self.pop_r();
+                    let a = self.pop_r();
+                    let r = power(a, b).ok_or_else(|| Fault::new("R0005", format!("{a} ** {b} is undefined (A must exceed zero)")))?;
+                    self.push_r(r);
+                }
+                Op::NegR {} => {
+                    let v = self.pop_r();
+                    self.push_r(-v);
+                }
+                Op::EqI {} => self.cmp_i(|a, b| a == b),
+                Op::NeI {} => self.cmp_i(|a, b| a != b),
+                Op::LtI {} => self.cmp_i(|a, b| a < b),
+                Op::GtI {} => self.cmp_i(|a, b| a > b),
+                Op::LeI {} => self.cmp_i(|a, b| a <= b),
+                Op::GeI {} => self.cmp_i(|a, b| a >= b),
+                Op::EqR {} => self.cmp_r(|a, b| a == b),
+                Op::NeR {} => self.cmp_r(|a, b| a != b),
+                Op::LtR {} => self.cmp_r(|a, b| a < b),
+                Op::GtR {} => self.cmp_r(|a, b| a > b),
+                Op::LeR {} => self.cmp_r(|a, b| a <= b),
+                Op::GeR {} => self.cmp_r(|a, b| a >= b),
+                Op::EqS {} | Op::NeS {} | Op::LtS {} | Op::GtS {} | Op::LeS {} | Op::GeS {} => {
+                    let b = self.pop_s();
+                    let a = self.pop_s();
+                    let v = match op {
+                        Op::EqS {} => a.eq_ignore_ascii_case(&b),
+                        Op::NeS {} => a != b,
+                        Op::LtS {} => a < b,
+                        Op::GtS {} => a > b,
+                        Op::LeS {} => a <= b,
+                        _ => a >= b,
+                    };
+                    self.push_i(i32::from(v));
+                }
+                Op::And {} => self.int2(|a, b| i32::from((a & b) as i16)),
+                Op::Or {} => self.int2(|a, b| i32::from((a | b) as i16)),
+                Op::Xor {} => self.int2(|a, b| i32::from((a ^ b) as i16)),
+                Op::Not {} => {
+                    let v = self.pop_i();
+                    self.push_i(i32::from(v == 0));
+                }
+                Op::Jump { to } => *pc = to as usize,
+                Op::JumpIfFalse { to } => {
+                    if self.pop() == 0 {
+                        *pc = to as usize;
+                    }
+                }
+                Op::JumpIfTrue { to } => {
+                    if self.pop() != 0 {
+                        *pc = to as usize;
+                    }
+                }
+                Op::Yield {} => return Ok(Outcome::Suspended { resume: *pc }),
+                Op::Ret {} => return Ok(Outcome::Done),
+                Op::Return { kind } => {
+                    self.result = Some(match Kind::from_bits(u32::from(kind)) {
+                        Kind::Int => Value::Int(self.pop_i()),
+                        Kind::Real => Value::Real(self.pop_r()),
+                        Kind::Bool => Value::Bool(self.pop() != 0),
+                        Kind::Bytes => Value::Bytes(self.pop_s()),
+                    });
+                    return Ok(Outcome::Done);
+                }
+                Op::Call { func, argc, ret, types } => self.call(func, argc, ret, types)?,
+            }
+        }
+    }
+
+    fn int2(&mut self, f: impl Fn(i32, i32) -> i32) {
+        let b = self.pop_i();
+        let a = self.pop_i();
+        self.push_i(f(a, b));
+    }
+
+    fn real2(&mut self, f: impl Fn(f32, f32) -> f32) {
+        let b = self.pop_r();
+        let a = self.pop_r();
+        self.push_r(f(a, b));
+    }
+
+    fn cmp_i(&mut self, f: impl Fn(i32, i32) -> bool) {
+        let b = self.pop_i();
+        let a = self.pop_i();
+        self.push_i(i32::from(f(a, b)));
+    }
+
+    fn cmp_r(&mut self, f: impl Fn(f32, f32) -> bool) {
+        let b = self.pop_r();
+        let a = self.pop_r();
+        self.push_i(i32::from(f(a, b)));
+    }
+
+    fn call(&mut self, func: u8, argc: u8, ret: u8, types: u32) -> Result<(), Fault> {
+        let n = usize::from(argc);
+        let mut args = std::mem::take(&mut self.args);
+        args.clear();
+        args.resize(n, Value::Int(0));
+        for i in (0..n).rev() {
+            args[i] = match Kind::arg(types, i) {
+                Kind::Int => Value::Int(self.pop_i()),
+                Kind::Real => Value::Real(self.pop_r()),
+                Kind::Bool => Value::Bool(self.pop() != 0),
+                Kind::Bytes => Value::Bytes(self.pop_s()),
+            };
+        }
+        let result = linc_stdlib::call::call(usize::from(func), &args, &mut self.clock);
+        self.args = args;
+        let v = result.map_err(|FnError::Domain(why)| Fault::new("R0005", why))?;
+        match Kind::from_bits(u32::from(ret)) {
+            Kind::Int => self.push_i(v.as_int()),
+            Kind::Real => self.push_r(v.as_real()),
+            Kind::Bool => self.push_i(i32::from(v.as_bool())),
+            Kind::Bytes => self.strs.push(match v {
+                Value::Bytes(b) => b,
+                _ => Vec::new(),
+            }),
+        }
+        Ok(())
+    }
+}
+
+/// `A ** B`: needs A > 0, except that 0 ** B is 0 for B > 0 (§12.6 note 1).
+pub fn power(a: f32, b: f32) -> Option<f32> {
+    let r = if a > 0.0 {
+        a.powf(b)
+    } else if a == 0.0 && b > 0.0 {
+        0.0
+    } else {
+        return None;
+    };
+    r.is_finite().then_some(r)
+}
+
+fn corrupt() -> Fault {
+    Fault::new("R0099", "the object does not match the database (field of another type)")
+}
+
+fn target(l: &Loaded, sym: u16) -> Target {
+    l.targets.get(usize::from(sym)).copied().unwrap_or(Target { cell: u32::MAX, run_end: 0, alarm: 0 })
+}
+
+fn cell(l: &Loaded, sym: u16) -> u32 {
+    target(l, sym).cell
+}
+
+fn note(trace: &mut Tracer, store: &Store, cell: u32) {
+    if let Some(t) = trace.as_mut() {
+        t(store, cell);
+    }
+}
+
+fn load_int(store: &Store, c: u32) -> Result<i32, Fault> {
+    match store.cells.get(c as usize) {
+        Some(Cell::Int(i)) => Ok(*i),
+        Some(Cell::Bool(b)) => Ok(i32::from(*b)),
+        Some(Cell::Bits { v, width }) => Ok(bits_value(*v, *width)),
+        _ => Err(corrupt()),
+    }
+}
+
+fn load_bit(store: &Store, c: u32, bit: u8) -> Result<i32, Fault> {
+    match store.cells.get(c as usize) {
+        Some(Cell::Bits { v, width }) if bit < *width => Ok(i32::from((v >> bit) & 1)),
+        _ => Err(corrupt()),
+    }
+}
+
+/// An INT into an INT, BOOL (non-zero is TRUE) or bitfield (its low 8 or 16 bits).
+fn store_int(store: &mut Store, c: u32, v: i32) -> Result<(), Fault> {
+    match store.cells.get_mut(c as usize) {
+        Some(Cell::Int(i)) => *i = v,
+        Some(Cell::Bool(b)) => *b = v != 0,
+        Some(Cell::Bits { v: bits, width }) => *bits = if *width == 8 { (v as u16) & 0xFF } else { v as u16 },
+        _ => return Err(corrupt()),
+    }
+    Ok(())
+}
+
+fn store_bit(store: &mut Store, c: u32, bit: u8, v: i32) -> Result<(), Fault> {
+    match store.cells.get_mut(c as usize) {
+        Some(Cell::Bits { v: bits, width }) if bit < *width => {
+            if v != 0 {
+                *bits |= 1 << bit;
+            } else {
+                *bits &= !(1 << bit);
+            }
+            Ok(())
+        }
+        _ => Err(corrupt()),
+    }
+}
+
+fn store_str(store: &mut Store, c: u32, s: Vec<u8>) -> Result<(), Fault> {
+    if let Some(Cell::Enum { .. }) = store.cells.get(c as usize) {
+        let names = store.enum_names(c);
+        let Some(idx) = names.iter().position(|n| n.as_bytes().eq_ignore_ascii_case(&s)) else {
+            let msg = format!(
+                "'{}' is not a value of {} ({})",
+                String::from_utf8_lossy(&s),
+                store.describe(c),
+                names.join(", ")
+            );
+            return Err(Fault::new("R0004", msg));
+        };
+        if let Some(Cell::Enum { idx: i }) = store.cells.get_mut(c as usize) {
+            *i = idx as u16;
+        }
+        return Ok(());
+    }
+    match store.cells.get_mut(c as usize) {
+        Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => *t = s,
+        _ => return Err(corrupt()),
+    }
+    Ok(())
+}
+
+/// Adds the action name and source position to a fault: the statement
+/// containing the failing instruction, or for the watchdog the innermost
+/// loop around it.
+fn locate(l: &Loaded, pc: usize, f: Fault) -> RuntimeError {
+    let a = l.action;
+    let stmt = a.lines.iter().take_while(|e| e.op as usize <= pc).last();
+    let mut at = stmt.map(|e| (e.line, e.col)).unwrap_or((0, 0));
+    let mut message = f.message;
+    if f.code == "R0006" {
+        let inner = a.loops.iter().filter(|lp| (lp.start as usize..lp.end as usize).contains(&pc)).max_by_key(|lp| lp.start);
+        if let Some(lp) = inner {
+            at = (lp.line, lp.col);
+            message = format!("{message}; stopped in the loop at line {}", lp.line);
+        }
+    }
+    RuntimeError { code: f.code, message, action: a.name.clone(), file: a.file.clone(), line: at.0, col: at.1 }
+}

@@ -1,0 +1,238 @@
+//! FORMAT(format, value) (§12.6.3).
+//!
+//! Decisions where the guide is silent:
+//!
+//! * Integer conversions (`I U x X B O C T TP D DP`) take a REAL value the
+//!   way a REAL is stored into an INT (rounded, halves away from zero). A
+//!   REAL that is NaN, infinite or outside the 32-bit range cannot be
+//!   converted: the result is the null sequence.
+//! * `U`, `x`, `X`, `B` and `O` write the 32-bit two's-complement pattern
+//!   read as unsigned: FORMAT("5U", 16#FFFF) = '65535' and
+//!   FORMAT("U", -1) = '4294967295', FORMAT("X", -1) = 'FFFFFFFF'.
+//! * `F`, `e` and `E` default to precision 0 (the guide's FORMAT("F", v) =
+//!   '333'); `.` without digits keeps the decimal point ('333.', '3.E+02').
+//!   Ties are rounded on the exact binary value, half to even, as C's printf
+//!   does. NaN and infinities give the null sequence.
+//! * `G` is for SCAN only: FORMAT with `G` gives the null sequence.
+//! * `C` needs a value 0–255, else the null sequence.
+//! * `T` needs a valid time HHMMSS (hours 0–23, minutes and seconds 0–59)
+//!   and `D` a valid date YYYYMMDD (year 0000–9999, a real day of the
+//!   month), else the null sequence. `TP` takes the seconds modulo 86,400
+//!   (Euclidean, so -1 is 23:59:59); `DP` shows the year modulo 100 and
+//!   takes negative seconds as dates before 1970.
+//! * Zero padding goes after a leading `-`; for non-numeric output (`C`,
+//!   `T`, `D`, ...) the zeros simply go on the left.
+//! * A width above 1020 is clipped to 1020; with no width, a text longer
+//!   than 1020 bytes (a huge precision) gives the null sequence.
+
+use super::datetime::{civil_from_days, valid_date, DAY};
+use super::spec::{parse, Conv, Spec};
+use super::MAX_LEN;
+use crate::value::round_to_i32;
+use crate::Value;
+
+/// FORMAT: `value` converted as `fmt` says, or the null sequence.
+pub fn format(fmt: &[u8], value: &Value) -> Vec<u8> {
+    let Some(spec) = parse(fmt) else {
+        return Vec::new();
+    };
+    match render(&spec, value) {
+        Some(text) => fit(&spec, text),
+        None => Vec::new(),
+    }
+}
+
+/// Pads `text` to the width, or fills the width with the override
+/// character when it does not fit.
+fn fit(spec: &Spec, text: Vec<u8>) -> Vec<u8> {
+    let Some(width) = spec.width.map(|w| w.min(MAX_LEN)) else {
+        return if text.len() > MAX_LEN { Vec::new() } else { text };
+    };
+    if text.len() > width {
+        return vec![spec.fill; width];
+    }
+    let pad = width - text.len();
+    let mut out = Vec::with_capacity(width);
+    if spec.zero {
+        let sign = usize::from(text.first() == Some(&b'-'));
+        let (sign, digits) = text.split_at(sign.min(text.len()));
+        out.extend_from_slice(sign);
+        out.resize(out.len() + pad, b'0');
+        out.extend_from_slice(digits);
+    } else {
+        out.resize(pad, b' ');
+        out.extend_from_slice(&text);
+    }
+    out
+}
+
+/// The value as an integer for the integer conversions.
+fn integer(v: &Value) -> Option<i32> {
+    match v {
+        Value::Real(r) => {
+            let x = f64::from(*r).round();
+            let fits = x >= f64::from(i32::MIN) && x <= f64::from(i32::MAX);
+            fits.then(|| round_to_i32(*r))
+        }
+        other => Some(other.as_int()),
+    }
+}
+
+/// The value as a finite real for the real conversions.
+fn real(v: &Value) -> Option<f64> {
+    let x = match v {
+        Value::Int(i) => f64::from(*i),
+        other => f64::from(other.as_real()),
+    };
+    x.is_finite().then_some(x)
+}
+
+/// The text of the value before padding, or `None` if it cannot be
+/// converted.
+fn render(spec: &Spec, v: &Value) -> Option<Vec<u8>> {
+    let text = match spec.conv {
+        Conv::Int => integer(v)?.to_string(),
+        Conv::Unsigned => (integer(v)? as u32).to_string(),
+        Conv::HexLower => format!("{:x}", integer(v)? as u32),
+        Conv::HexUpper => format!("{:X}", integer(v)? as u32),
+        Conv::Binary => format!("{:b}", integer(v)? as u32),
+        Conv::Octal => format!("{:o}", integer(v)? as u32),
+        Conv::Fixed => fixed(real(v)?, spec),
+        Conv::ExpLower => scientific(real(v)?, spec, 'e')?,
+        Conv::ExpUpper => scientific(real(v)?, spec, 'E')?,
+        Conv::General => return None,
+        Conv::Char => return u8::try_from(integer(v)?).ok().map(|b| vec![b]),
+        Conv::IsoTime => {
+            let t = integer(v)?;
+            let (h, m, s) = (t / 10_000, t / 100 % 100, t % 100);
+            if t < 0 || h > 23 || m > 59 || s > 59 {
+                return None;
+            }
+            return Some(clock(i64::from(h), i64::from(m), i64::from(s), spec.sep));
+        }
+        Conv::PosixTime => {
+            let t = i64::from(integer(v)?).rem_euclid(DAY);
+            return Some(clock(t / 3600, t / 60 % 60, t % 60, spec.sep));
+        }
+        Conv::IsoDate => {
+            let t = integer(v)?;
+            let (y, m, d) = (t / 10_000, t / 100 % 100, t % 100);
+            let (m, d) = (u32::try_from(m).ok()?, u32::try_from(d).ok()?);
+            if t < 0 || !valid_date(i64::from(y), m, d) {
+                return None;
+            }
+            format!("{d:02}/{m:02}/{y:04}")
+        }
+        Conv::PosixDate => {
+            let days = i64::from(integer(v)?).div_euclid(DAY);
+            let (y, m, d) = civil_from_days(days);
+            format!("{d:02}/{m:02}/{:02}", y.rem_euclid(100))
+        }
+    };
+    Some(text.into_bytes())
+}
+
+/// `hh<sep>mm<sep>ss`; the separator may be any byte.
+fn clock(h: i64, m: i64, s: i64, sep: u8) -> Vec<u8> {
+    let mut out = format!("{h:02}").into_bytes();
+    out.push(sep);
+    out.extend_from_slice(format!("{m:02}").as_bytes());
+    out.push(sep);
+    out.extend_from_slice(format!("{s:02}").as_bytes());
+    out
+}
+
+fn fixed(x: f64, spec: &Spec) -> String {
+    let mut text = format!("{:.*}", spec.precision.min(MAX_LEN), x);
+    if spec.point && spec.precision == 0 {
+        text.push('.');
+    }
+    text
+}
+
+/// Scientific notation with a signed exponent of at least two digits.
+fn scientific(x: f64, spec: &Spec, letter: char) -> Option<String> {
+    let raw = format!("{:.*e}", spec.precision.min(MAX_LEN), x);
+    let (mantissa, exp) = raw.split_once('e')?;
+    let exp: i32 = exp.parse().ok()?;
+    let mut text = mantissa.to_string();
+    if spec.point && spec.precision == 0 {
+        text.push('.');
+    }
+    text.push(letter);
+    text.push(if exp < 0 { '-' } else { '+' });
+    text.push_str(&format!("{:02}", exp.unsigned_abs()));
+    Some(text)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn f(fmt: &str, v: Value) -> String {
+        String::from_utf8_lossy(&format(fmt.as_bytes(), &v)).into_owned()
+    }
+
+    #[test]
+    fn padding_and_overrides() {
+        assert_eq!(f("5I", Value::Int(7412)), " 7412");
+        assert_eq!(f("05I", Value::Int(-123)), "-0123");
+        assert_eq!(f("3I!", Value::Int(7412)), "!!!");
+        assert_eq!(f("3I", Value::Int(7412)), "***");
+        assert_eq!(f("I", Value::Int(i32::MIN)), "-2147483648");
+        assert_eq!(f("012I", Value::Int(i32::MIN)), "-02147483648");
+        assert_eq!(f("2000I", Value::Int(1)).len(), MAX_LEN);
+        assert_eq!(f("3C", Value::Int(65)), "  A");
+        assert_eq!(f("03C", Value::Int(65)), "00A");
+    }
+
+    #[test]
+    fn reals_and_integers_cross() {
+        assert_eq!(f("I", Value::Real(2.5)), "3");
+        assert_eq!(f("I", Value::Real(-2.5)), "-3");
+        assert_eq!(f("I", Value::Real(3e9)), "");
+        assert_eq!(f("I", Value::Real(f32::NAN)), "");
+        assert_eq!(f("F", Value::Int(123_456_789)), "123456789");
+        assert_eq!(f("F", Value::Real(f32::INFINITY)), "");
+        assert_eq!(f("E", Value::Real(f32::NAN)), "");
+        assert_eq!(f("I", Value::Bool(true)), "1");
+    }
+
+    #[test]
+    fn scientific_exponents() {
+        assert_eq!(f("E", Value::Real(0.0)), "0E+00");
+        assert_eq!(f(".2e", Value::Real(-0.01456)), "-1.46e-02");
+        assert_eq!(f(".E", Value::Real(333.3)), "3.E+02");
+        assert_eq!(f(".1E", Value::Real(3e38)), "3.0E+38");
+        assert_eq!(f(".1E", Value::Real(1e-40)), "1.0E-40");
+        assert_eq!(f("010.2E", Value::Real(-333.3)), "-03.33E+02");
+    }
+
+    #[test]
+    fn huge_precision_is_null_or_override() {
+        assert_eq!(f(".99999999999999999999F", Value::Real(1.0)), "");
+        assert_eq!(f("5.2000F#", Value::Real(1.0)), "#####");
+        assert_eq!(f(".1000F", Value::Real(1.0)).len(), 1002);
+    }
+
+    #[test]
+    fn times_and_dates_validate() {
+        assert_eq!(f("T", Value::Int(235959)), "23:59:59");
+        assert_eq!(f("T", Value::Int(0)), "00:00:00");
+        for bad in [240000, 126000, 123360, -1, i32::MIN, i32::MAX] {
+            assert_eq!(f("T", Value::Int(bad)), "", "{bad}");
+        }
+        assert_eq!(f("TP", Value::Int(-1)), "23:59:59");
+        assert_eq!(f("TP", Value::Int(86_400 + 61)), "00:01:01");
+        assert_eq!(f("TP", Value::Int(i32::MIN)), "20:45:52");
+        assert_eq!(f("D", Value::Int(20240229)), "29/02/2024");
+        for bad in [20230229, 20231301, 20230100, 99_991_232, -20060923, 100_000_101] {
+            assert_eq!(f("D", Value::Int(bad)), "", "{bad}");
+        }
+        assert_eq!(f("D", Value::Int(101)), "01/01/0000");
+        assert_eq!(f("DP", Value::Int(-1)), "31/12/69");
+        assert_eq!(f("DP", Value::Int(i32::MAX)), "19/01/38");
+        assert_eq!(f("DP", Value::Int(i32::MIN)), "13/12/01");
+        assert_eq!(f("G", Value::Real(1.0)), "");
+    }
+}
