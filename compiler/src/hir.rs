@@ -22,14 +22,41 @@ pub struct Action {
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Stmt {
-    Assign { place: Place, value: Expr, span: Span },
-    If { arms: Vec<(Expr, Vec<Stmt>)>, otherwise: Vec<Stmt>, span: Span },
-    For { place: Place, from: Expr, to: Expr, by: Option<Expr>, body: Vec<Stmt>, span: Span },
-    While { cond: Expr, body: Vec<Stmt>, span: Span },
-    Repeat { body: Vec<Stmt>, until: Expr, span: Span },
-    Exit { span: Span },
+    Assign {
+        place: Place,
+        value: Expr,
+        span: Span,
+    },
+    If {
+        arms: Vec<(Expr, Vec<Stmt>)>,
+        otherwise: Vec<Stmt>,
+        span: Span,
+    },
+    For {
+        place: Place,
+        from: Expr,
+        to: Expr,
+        by: Option<Expr>,
+        body: Vec<Stmt>,
+        span: Span,
+    },
+    While {
+        cond: Expr,
+        body: Vec<Stmt>,
+        span: Span,
+    },
+    Repeat {
+        body: Vec<Stmt>,
+        until: Expr,
+        span: Span,
+    },
+    Exit {
+        span: Span,
+    },
     /// Something already reported; a program holding one is not lowered.
-    Error { span: Span },
+    Error {
+        span: Span,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -51,7 +78,10 @@ pub enum ExprKind {
     Not(Box<Expr>),
     Binary(BinOp, Box<Expr>, Box<Expr>),
     /// A library function by its index in `linc_stdlib::SIGNATURES`.
-    Call { index: usize, args: Vec<Expr> },
+    Call {
+        index: usize,
+        args: Vec<Expr>,
+    },
     Error,
 }
 
@@ -73,17 +103,42 @@ pub struct Place {
 /// runs the action.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Target {
-    Field { block: String, field: String, offset: Option<Box<Expr>> },
-    Bit { block: String, field: String, offset: Option<Box<Expr>>, bit: u8, bit_offset: Option<Box<Expr>> },
-    Alarm { block: String, field: String, alarm: String },
-    Suppress { block: String, field: String, alarm: Option<String> },
-    Step { step: String, x: bool },
+    Field {
+        block: String,
+        field: String,
+        offset: Option<Box<Expr>>,
+    },
+    Bit {
+        block: String,
+        field: String,
+        offset: Option<Box<Expr>>,
+        bit: u8,
+        bit_offset: Option<Box<Expr>>,
+    },
+    Alarm {
+        block: String,
+        field: String,
+        alarm: String,
+    },
+    Suppress {
+        block: String,
+        field: String,
+        alarm: Option<String>,
+    },
+    Step {
+        step: String,
+        x: bool,
+    },
     /// Not resolved (no database was given).
     Unknown,
 }
 
 impl Expr {
     pub fn error(span: Span) -> Expr {
-        Expr { ty: Ty::Any, kind: ExprKind::Error, span }
+        Expr {
+            ty: Ty::Any,
+            kind: ExprKind::Error,
+            span,
+        }
     }
 }

@@ -6,15 +6,37 @@ use std::fmt;
 #[derive(Clone, Debug, PartialEq)]
 pub enum LoadError {
     BadMagic,
-    BadVersion { found: u16, supported: u16 },
-    BadChecksum { stored: u32, actual: u32 },
-    Truncated { what: String },
-    Malformed { what: String },
-    BadInstruction { action: String, offset: usize, opcode: u8 },
+    BadVersion {
+        found: u16,
+        supported: u16,
+    },
+    BadChecksum {
+        stored: u32,
+        actual: u32,
+    },
+    Truncated {
+        what: String,
+    },
+    Malformed {
+        what: String,
+    },
+    BadInstruction {
+        action: String,
+        offset: usize,
+        opcode: u8,
+    },
     /// A verifier finding: `what` says which rule, at instruction `op`.
-    Invalid { code: &'static str, action: String, op: usize, what: String },
+    Invalid {
+        code: &'static str,
+        action: String,
+        op: usize,
+        what: String,
+    },
     /// A symbol the database does not have, or has with another type.
-    Link { symbol: String, why: String },
+    Link {
+        symbol: String,
+        why: String,
+    },
 }
 
 impl LoadError {
@@ -41,12 +63,20 @@ impl fmt::Display for LoadError {
             LoadError::BadChecksum { stored, actual } => {
                 write!(f, "checksum mismatch: the file says {stored:#010x}, its contents give {actual:#010x}; the file is damaged")
             }
-            LoadError::Truncated { what } => write!(f, "the object file is truncated in its {what}"),
+            LoadError::Truncated { what } => {
+                write!(f, "the object file is truncated in its {what}")
+            }
             LoadError::Malformed { what } => write!(f, "malformed object file: {what}"),
-            LoadError::BadInstruction { action, offset, opcode } => {
+            LoadError::BadInstruction {
+                action,
+                offset,
+                opcode,
+            } => {
                 write!(f, "action `{action}`: unknown or incomplete instruction {opcode:#04x} at code offset {offset}")
             }
-            LoadError::Invalid { action, op, what, .. } => write!(f, "action `{action}`, instruction {op}: {what}"),
+            LoadError::Invalid {
+                action, op, what, ..
+            } => write!(f, "action `{action}`, instruction {op}: {what}"),
             LoadError::Link { symbol, why } => write!(f, "can't link `{symbol}`: {why}"),
         }
     }
@@ -87,6 +117,9 @@ pub struct Fault {
 
 impl Fault {
     pub fn new(code: &'static str, message: impl Into<String>) -> Fault {
-        Fault { code, message: message.into() }
+        Fault {
+            code,
+            message: message.into(),
+        }
     }
 }

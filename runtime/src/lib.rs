@@ -30,9 +30,21 @@ pub fn load(bytes: &[u8]) -> Result<ObjectFile, LoadError> {
 
 /// Links action `index` of a verified object to a store, ready to run.
 /// `own` is the block that runs an `ACTION name : TYPE` action.
-pub fn prepare<'a>(obj: &'a ObjectFile, index: usize, store: &Store, own: Option<usize>) -> Result<vm::Loaded<'a>, LoadError> {
-    let action = obj.actions.get(index).ok_or_else(|| LoadError::Malformed { what: format!("no action {index}") })?;
+pub fn prepare<'a>(
+    obj: &'a ObjectFile,
+    index: usize,
+    store: &Store,
+    own: Option<usize>,
+) -> Result<vm::Loaded<'a>, LoadError> {
+    let action = obj.actions.get(index).ok_or_else(|| LoadError::Malformed {
+        what: format!("no action {index}"),
+    })?;
     let limits = verify::verify_action(obj, action)?;
     let targets = verify::link_action(obj, action, store, own)?;
-    Ok(vm::Loaded { obj, action, targets, limits })
+    Ok(vm::Loaded {
+        obj,
+        action,
+        targets,
+        limits,
+    })
 }

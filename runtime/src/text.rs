@@ -65,7 +65,10 @@ mod tests {
 
     #[test]
     fn strings_escape_and_round_trip() {
-        assert_eq!(format_value(&Value::Bytes(b"it's $5\r\n".to_vec())), "'it$'s $$5$0D$0A'");
+        assert_eq!(
+            format_value(&Value::Bytes(b"it's $5\r\n".to_vec())),
+            "'it$'s $$5$0D$0A'"
+        );
         let all: Vec<u8> = (0..=255).collect();
         assert_eq!(decode_dollar(encode_dollar(&all).as_bytes()), all);
     }
@@ -92,7 +95,11 @@ pub fn parse_timestamp(s: &str) -> Option<i64> {
     if d.next().is_some() || t.next().is_some() {
         return None;
     }
-    let valid = (1..=12).contains(&mo) && (1..=31).contains(&da) && (0..24).contains(&h) && (0..60).contains(&mi) && (0..60).contains(&se);
+    let valid = (1..=12).contains(&mo)
+        && (1..=31).contains(&da)
+        && (0..24).contains(&h)
+        && (0..60).contains(&mi)
+        && (0..60).contains(&se);
     valid.then(|| days_from_civil(y, mo, da) * 86_400 + h * 3600 + mi * 60 + se)
 }
 

@@ -24,7 +24,9 @@ pub const DEFAULT_WATCHDOG: u64 = 10_000_000;
 pub enum Outcome {
     Done,
     /// Stopped at a suspension point; the next run resumes at `resume`.
-    Suspended { resume: usize },
+    Suspended {
+        resume: usize,
+    },
 }
 
 /// An action ready to run: code, its bound symbols and stack needs.
@@ -50,7 +52,11 @@ pub struct Clock {
 
 impl Clock {
     pub fn new(seed: u64, utc_offset: i64) -> Clock {
-        Clock { state: seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1, utc_offset, now: 0.0 }
+        Clock {
+            state: seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1,
+            utc_offset,
+            now: 0.0,
+        }
     }
 }
 
@@ -85,7 +91,15 @@ pub struct Vm {
 
 impl Vm {
     pub fn new(watchdog: u64, clock: Clock) -> Vm {
-        Vm { num: Vec::new(), strs: Vec::new(), locals: Vec::new(), args: Vec::new(), watchdog, clock, result: None }
+        Vm {
+            num: Vec::new(),
+            strs: Vec::new(),
+            locals: Vec::new(),
+            args: Vec::new(),
+            watchdog,
+            clock,
+            result: None,
+        }
     }
 
     fn pop(&mut self) -> u32 {
@@ -113,7 +127,13 @@ impl Vm {
     }
 
     /// Runs `l` from instruction `start` (0, or where it was suspended).
-    pub fn run(&mut self, l: &Loaded, store: &mut Store, start: usize, mut trace: Tracer) -> Result<Outcome, RuntimeError> {
+    pub fn run(
+        &mut self,
+        l: &Loaded,
+        store: &mut Store,
+        start: usize,
+        mut trace: Tracer,
+    ) -> Result<Outcome, RuntimeError> {
         self.num.clear();
         self.strs.clear();
         self.num.reserve(l.limits.max_num);
@@ -138,9 +158,17 @@ impl Vm {
         let ops = &l.action.ops[..];
         let (mut ref_cell, mut ref_bit) = (0u32, 0u8);
         loop {
-            let Some(&op) = ops.get(*pc) else { return Err(Fault::new("E0708", "ran past the end of the code")) };
+            let Some(&op) = ops.get(*pc) else {
+                return Err(Fault::new("E0708", "ran past the end of the code"));
+            };
             if *budget == 0 {
-                return Err(Fault::new("R0006", format!("watchdog: more than {} instructions in one run", self.watchdog)));
+                return Err(Fault::new(
+                    "R0006",
+                    format!(
+                        "watchdog: more than {} instructions in one run",
+                        self.watchdog
+                    ),
+                ));
             }
             *budget -= 1;
             *pc += 1;
@@ -162,24 +190,38 @@ impl Vm {
                     }
                 }
                 Op::LoadI { sym } | Op::LoadRefI { sym } => {
-                    let c = if matches!(op, Op::LoadI { .. }) { cell(l, sym) } else { ref_cell };
+                    let c = if matches!(op, Op::LoadI { .. }) {
+                        cell(l, sym)
+                    } else {
+                        ref_cell
+                    };
                     let v = load_int(store, c)?;
                     self.push_i(v);
                 }
                 Op::LoadR { sym } | Op::LoadRefR { sym } => {
-                    let c = if matches!(op, Op::LoadR { .. }) { cell(l, sym) } else { ref_cell };
+                    let c = if matches!(op, Op::LoadR { .. }) {
+                        cell(l, sym)
+                    } else {
+                        ref_cell
+                    };
                     match store.cells.get(c as usize) {
                         Some(Cell::Real(r)) => self.push_r(*r),
                         _ => return Err(corrupt()),
                     }
                 }
                 Op::LoadS { sym } | Op::LoadRefS { sym } => {
-                    let c = if matches!(op, Op::LoadS { .. }) { cell(l, sym) } else { ref_cell };
+                    let c = if matches!(op, Op::LoadS { .. }) {
+                        cell(l, sym)
+                    } else {
+                        ref_cell
+                    };
                     let s = match store.cells.get(c as usize) {
                         Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => t.clone(),
-                        Some(Cell::Enum { idx }) => {
-                            store.enum_names(c).get(usize::from(*idx)).map(|n| n.as_bytes().to_vec()).unwrap_or_default()
-                        }
+                        Some(Cell::Enum { idx }) => store
+                            .enum_names(c)
+                            .get(usize::from(*idx))
+                            .map(|n| n.as_bytes().to_vec())
+                            .unwrap_or_default(),
                         _ => return Err(corrupt()),
                     };
                     self.strs.push(s);
@@ -195,7 +237,9 @@ impl Vm {
                 Op::LoadAlarm { sym } => {
                     let t = target(l, sym);
                     let v = match store.cells.get(t.cell as usize) {
-                        Some(Cell::Alarms(a)) => a.active.get(usize::from(t.alarm)).copied().unwrap_or(false),
+                        Some(Cell::Alarms(a)) => {
+                            a.active.get(usize::from(t.alarm)).copied().unwrap_or(false)
+                        }
                         _ => return Err(corrupt()),
                     };
                     self.push_i(i32::from(v));
@@ -204,23 +248,36 @@ impl Vm {
                     let t = target(l, sym);
                     let until = match store.cells.get(t.cell as usize) {
                         Some(Cell::Alarms(a)) if t.alarm == u16::MAX => a.all_until,
-                        Some(Cell::Alarms(a)) => a.until.get(usize::from(t.alarm)).copied().unwrap_or(0.0),
+                        Some(Cell::Alarms(a)) => {
+                            a.until.get(usize::from(t.alarm)).copied().unwrap_or(0.0)
+                        }
                         _ => return Err(corrupt()),
                     };
                     let v = store.suppress_remaining(until);
                     self.push_i(v);
                 }
                 Op::StoreI { sym } | Op::StoreRefI { sym } => {
-                    let c = if matches!(op, Op::StoreI { .. }) { cell(l, sym) } else { ref_cell };
+                    let c = if matches!(op, Op::StoreI { .. }) {
+                        cell(l, sym)
+                    } else {
+                        ref_cell
+                    };
                     let v = self.pop_i();
                     store_int(store, c, v)?;
                     note(trace, store, c);
                 }
                 Op::StoreR { sym } | Op::StoreRefR { sym } => {
-                    let c = if matches!(op, Op::StoreR { .. }) { cell(l, sym) } else { ref_cell };
+                    let c = if matches!(op, Op::StoreR { .. }) {
+                        cell(l, sym)
+                    } else {
+                        ref_cell
+                    };
                     let v = self.pop_r();
                     if !v.is_finite() {
-                        return Err(Fault::new("R0005", format!("the result is {v}, which can't be stored")));
+                        return Err(Fault::new(
+                            "R0005",
+                            format!("the result is {v}, which can't be stored"),
+                        ));
                     }
                     match store.cells.get_mut(c as usize) {
                         Some(Cell::Real(r)) => *r = v,
@@ -229,7 +286,11 @@ impl Vm {
                     note(trace, store, c);
                 }
                 Op::StoreS { sym } | Op::StoreRefS { sym } => {
-                    let c = if matches!(op, Op::StoreS { .. }) { cell(l, sym) } else { ref_cell };
+                    let c = if matches!(op, Op::StoreS { .. }) {
+                        cell(l, sym)
+                    } else {
+                        ref_cell
+                    };
                     let s = self.pop_s();
                     store_str(store, c, s)?;
                     note(trace, store, c);
@@ -293,7 +354,11 @@ impl Vm {
                     if n < 0 || b >= width {
                         return Err(Fault::new(
                             "R0003",
-                            format!("bit offset {n} from Bit{bit} of {} is beyond Bit{}", store.describe(ref_cell), width - 1),
+                            format!(
+                                "bit offset {n} from Bit{bit} of {} is beyond Bit{}",
+                                store.describe(ref_cell),
+                                width - 1
+                            ),
                         ));
                     }
                     ref_bit = b as u8;
@@ -305,7 +370,10 @@ impl Vm {
                 Op::RToI {} => {
                     let v = self.pop_r();
                     if !v.is_finite() {
-                        return Err(Fault::new("R0005", format!("{v} can't be converted to an integer")));
+                        return Err(Fault::new(
+                            "R0005",
+                            format!("{v} can't be converted to an integer"),
+                        ));
                     }
                     self.push_i(round_to_i32(v));
                 }
@@ -324,10 +392,21 @@ impl Vm {
                     let b = self.pop_i();
                     let a = self.pop_i();
                     if b == 0 {
-                        let what = if matches!(op, Op::DivI {}) { "division" } else { "MOD" };
-                        return Err(Fault::new(if what == "MOD" { "R0002" } else { "R0001" }, format!("{what} by zero")));
+                        let what = if matches!(op, Op::DivI {}) {
+                            "division"
+                        } else {
+                            "MOD"
+                        };
+                        return Err(Fault::new(
+                            if what == "MOD" { "R0002" } else { "R0001" },
+                            format!("{what} by zero"),
+                        ));
                     }
-                    self.push_i(if matches!(op, Op::DivI {}) { a.wrapping_div(b) } else { a.wrapping_rem(b) });
+                    self.push_i(if matches!(op, Op::DivI {}) {
+                        a.wrapping_div(b)
+                    } else {
+                        a.wrapping_rem(b)
+                    });
                 }
                 Op::NegI {} => {
                     let v = self.pop_i();
@@ -347,7 +426,12 @@ impl Vm {
                 Op::PowR {} => {
                     let b = self.pop_r();
                     let a = self.pop_r();
-                    let r = power(a, b).ok_or_else(|| Fault::new("R0005", format!("{a} ** {b} is undefined (A must exceed zero)")))?;
+                    let r = power(a, b).ok_or_else(|| {
+                        Fault::new(
+                            "R0005",
+                            format!("{a} ** {b} is undefined (A must exceed zero)"),
+                        )
+                    })?;
                     self.push_r(r);
                 }
                 Op::NegR {} => {
@@ -408,7 +492,12 @@ impl Vm {
                     });
                     return Ok(Outcome::Done);
                 }
-                Op::Call { func, argc, ret, types } => self.call(func, argc, ret, types)?,
+                Op::Call {
+                    func,
+                    argc,
+                    ret,
+                    types,
+                } => self.call(func, argc, ret, types)?,
             }
         }
     }
@@ -479,11 +568,18 @@ pub fn power(a: f32, b: f32) -> Option<f32> {
 }
 
 fn corrupt() -> Fault {
-    Fault::new("R0099", "the object does not match the database (field of another type)")
+    Fault::new(
+        "R0099",
+        "the object does not match the database (field of another type)",
+    )
 }
 
 fn target(l: &Loaded, sym: u16) -> Target {
-    l.targets.get(usize::from(sym)).copied().unwrap_or(Target { cell: u32::MAX, run_end: 0, alarm: 0 })
+    l.targets.get(usize::from(sym)).copied().unwrap_or(Target {
+        cell: u32::MAX,
+        run_end: 0,
+        alarm: 0,
+    })
 }
 
 fn cell(l: &Loaded, sym: u16) -> u32 {
@@ -517,7 +613,13 @@ fn store_int(store: &mut Store, c: u32, v: i32) -> Result<(), Fault> {
     match store.cells.get_mut(c as usize) {
         Some(Cell::Int(i)) => *i = v,
         Some(Cell::Bool(b)) => *b = v != 0,
-        Some(Cell::Bits { v: bits, width }) => *bits = if *width == 8 { (v as u16) & 0xFF } else { v as u16 },
+        Some(Cell::Bits { v: bits, width }) => {
+            *bits = if *width == 8 {
+                (v as u16) & 0xFF
+            } else {
+                v as u16
+            }
+        }
         _ => return Err(corrupt()),
     }
     Ok(())
@@ -540,7 +642,10 @@ fn store_bit(store: &mut Store, c: u32, bit: u8, v: i32) -> Result<(), Fault> {
 fn store_str(store: &mut Store, c: u32, s: Vec<u8>) -> Result<(), Fault> {
     if let Some(Cell::Enum { .. }) = store.cells.get(c as usize) {
         let names = store.enum_names(c);
-        let Some(idx) = names.iter().position(|n| n.as_bytes().eq_ignore_ascii_case(&s)) else {
+        let Some(idx) = names
+            .iter()
+            .position(|n| n.as_bytes().eq_ignore_ascii_case(&s))
+        else {
             let msg = format!(
                 "'{}' is not a value of {} ({})",
                 String::from_utf8_lossy(&s),
@@ -570,11 +675,22 @@ fn locate(l: &Loaded, pc: usize, f: Fault) -> RuntimeError {
     let mut at = stmt.map(|e| (e.line, e.col)).unwrap_or((0, 0));
     let mut message = f.message;
     if f.code == "R0006" {
-        let inner = a.loops.iter().filter(|lp| (lp.start as usize..lp.end as usize).contains(&pc)).max_by_key(|lp| lp.start);
+        let inner = a
+            .loops
+            .iter()
+            .filter(|lp| (lp.start as usize..lp.end as usize).contains(&pc))
+            .max_by_key(|lp| lp.start);
         if let Some(lp) = inner {
             at = (lp.line, lp.col);
             message = format!("{message}; stopped in the loop at line {}", lp.line);
         }
     }
-    RuntimeError { code: f.code, message, action: a.name.clone(), file: a.file.clone(), line: at.0, col: at.1 }
+    RuntimeError {
+        code: f.code,
+        message,
+        action: a.name.clone(),
+        file: a.file.clone(),
+        line: at.0,
+        col: at.1,
+    }
 }

@@ -194,7 +194,10 @@ mod tests {
     fn bad_index_and_arity_are_errors() {
         let mut env = NoEnv;
         assert!(matches!(call(77, &[], &mut env), Err(FnError::Domain(_))));
-        assert!(matches!(call(usize::MAX, &[], &mut env), Err(FnError::Domain(_))));
+        assert!(matches!(
+            call(usize::MAX, &[], &mut env),
+            Err(FnError::Domain(_))
+        ));
         assert!(matches!(call(0, &[], &mut env), Err(FnError::Domain(_))));
         let two = [Value::Int(1), Value::Int(2)];
         assert!(matches!(call(0, &two, &mut env), Err(FnError::Domain(_))));

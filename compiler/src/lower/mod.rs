@@ -20,9 +20,18 @@ use std::collections::HashMap;
 #[derive(Clone, Debug, PartialEq)]
 pub enum LowerError {
     /// A name whose type is unknown because no database was given.
-    Unresolved { span: Span, path: String },
-    StepVariable { span: Span, path: String },
-    TooMany { span: Span, what: &'static str },
+    Unresolved {
+        span: Span,
+        path: String,
+    },
+    StepVariable {
+        span: Span,
+        path: String,
+    },
+    TooMany {
+        span: Span,
+        what: &'static str,
+    },
 }
 
 impl LowerError {
@@ -33,13 +42,18 @@ impl LowerError {
                     .label("not resolved")
                     .help("compiling needs the database that defines this block: pass --db")
             }
-            LowerError::StepVariable { span, path } => {
-                Diagnostic::error("E0131", format!("step variable `{path}` can't be compiled into a plain action"), *span)
-                    .label("only sequences have steps")
-            }
-            LowerError::TooMany { span, what } => {
-                Diagnostic::error("E0132", format!("too many {what} in one object file"), *span).label("limit reached here")
-            }
+            LowerError::StepVariable { span, path } => Diagnostic::error(
+                "E0131",
+                format!("step variable `{path}` can't be compiled into a plain action"),
+                *span,
+            )
+            .label("only sequences have steps"),
+            LowerError::TooMany { span, what } => Diagnostic::error(
+                "E0132",
+                format!("too many {what} in one object file"),
+                *span,
+            )
+            .label("limit reached here"),
         }
     }
 }
@@ -89,7 +103,9 @@ pub struct Unit<'a> {
 
 /// Lowers checked files into one object file.
 pub fn lower_units(units: &[Unit]) -> Result<ObjectFile, Vec<LowerError>> {
-    let Some(first) = units.first() else { return Ok(ObjectFile::default()) };
+    let Some(first) = units.first() else {
+        return Ok(ObjectFile::default());
+    };
     let mut l = Lowerer::new(first.lines);
     let mut actions = Vec::new();
     for u in units {
@@ -103,8 +119,16 @@ pub fn lower_units(units: &[Unit]) -> Result<ObjectFile, Vec<LowerError>> {
 }
 
 /// Lowers a whole checked file.
-pub fn lower_program(p: &hir::Program, source: &str, lines: &Lines) -> Result<ObjectFile, Vec<LowerError>> {
-    lower_units(&[Unit { program: p, file: source, lines }])
+pub fn lower_program(
+    p: &hir::Program,
+    source: &str,
+    lines: &Lines,
+) -> Result<ObjectFile, Vec<LowerError>> {
+    lower_units(&[Unit {
+        program: p,
+        file: source,
+        lines,
+    }])
 }
 
 /// Lowers one expression into an action named `eval` that returns its value.
@@ -112,7 +136,9 @@ pub fn lower_eval(e: &hir::Expr, lines: &Lines) -> Result<ObjectFile, Vec<LowerE
     let mut l = Lowerer::new(lines);
     l.mark(e.span);
     l.expr(e);
-    l.emit(Op::Return { kind: expr::kind_of(e.ty) as u8 });
+    l.emit(Op::Return {
+        kind: expr::kind_of(e.ty) as u8,
+    });
     let action = l.take_action("eval", "");
     l.finish("<eval>", vec![action])
 }
@@ -139,7 +165,12 @@ impl<'a> Lowerer<'a> {
         if !self.errors.is_empty() {
             return Err(self.errors);
         }
-        Ok(ObjectFile { source: source.to_string(), symbols: self.symbols, strings: self.strings, actions })
+        Ok(ObjectFile {
+            source: source.to_string(),
+            symbols: self.symbols,
+            strings: self.strings,
+            actions,
+        })
     }
 
     fn take_action(&mut self, name: &str, block_type: &str) -> ActionCode {
@@ -190,7 +221,10 @@ impl<'a> Lowerer<'a> {
         }
         let k = self.strings.len() as u32;
         if k == u32::MAX {
-            self.errors.push(LowerError::TooMany { span, what: "string constants" });
+            self.errors.push(LowerError::TooMany {
+                span,
+                what: "string constants",
+            });
         }
         self.strings.push(bytes.to_vec());
         self.string_index.insert(bytes.to_vec(), k);
@@ -203,15 +237,28 @@ impl<'a> Lowerer<'a> {
             Sub::Alarm(a) => format!("A:{}", a.to_ascii_uppercase()),
             Sub::Suppress(a) => format!("S:{}", a.as_deref().unwrap_or("").to_ascii_uppercase()),
         };
-        let key = (block.to_ascii_uppercase(), field.to_ascii_uppercase(), sub_key, class as u8);
+        let key = (
+            block.to_ascii_uppercase(),
+            field.to_ascii_uppercase(),
+            sub_key,
+            class as u8,
+        );
         if let Some(&i) = self.symbol_index.get(&key) {
             return i;
         }
         let Ok(i) = u16::try_from(self.symbols.len()) else {
-            self.errors.push(LowerError::TooMany { span, what: "database references" });
+            self.errors.push(LowerError::TooMany {
+                span,
+                what: "database references",
+            });
             return 0;
         };
-        self.symbols.push(Symbol { block: block.to_string(), field: field.to_string(), sub, class });
+        self.symbols.push(Symbol {
+            block: block.to_string(),
+            field: field.to_string(),
+            sub,
+            class,
+        });
         self.symbol_index.insert(key, i);
         i
     }
@@ -228,7 +275,11 @@ impl<'a> Lowerer<'a> {
                 self.mark(*span);
                 self.store_value(place, value);
             }
-            Stmt::If { arms, otherwise, span } => {
+            Stmt::If {
+                arms,
+                otherwise,
+                span,
+            } => {
                 self.mark(*span);
                 let mut to_end = Vec::new();
                 for (cond, body) in arms {
@@ -251,20 +302,39 @@ impl<'a> Lowerer<'a> {
                 let top = self.here();
                 self.expr_as(cond, Ty::Int);
                 let out = self.emit(Op::JumpIfFalse { to: 0 });
-                self.loop_body(body, *span, top, |l, end| l.patch(out, end), |l| {
-                    l.emit(Op::Jump { to: top });
-                });
+                self.loop_body(
+                    body,
+                    *span,
+                    top,
+                    |l, end| l.patch(out, end),
+                    |l| {
+                        l.emit(Op::Jump { to: top });
+                    },
+                );
             }
             Stmt::Repeat { body, until, span } => {
                 self.mark(*span);
                 let top = self.here();
-                self.loop_body(body, *span, top, |_, _| {}, |l| {
-                    l.mark(until.span);
-                    l.expr_as(until, Ty::Int);
-                    l.emit(Op::JumpIfFalse { to: top });
-                });
+                self.loop_body(
+                    body,
+                    *span,
+                    top,
+                    |_, _| {},
+                    |l| {
+                        l.mark(until.span);
+                        l.expr_as(until, Ty::Int);
+                        l.emit(Op::JumpIfFalse { to: top });
+                    },
+                );
             }
-            Stmt::For { place, from, to, by, body, span } => self.for_loop(place, from, to, by.as_ref(), body, *span),
+            Stmt::For {
+                place,
+                from,
+                to,
+                by,
+                body,
+                span,
+            } => self.for_loop(place, from, to, by.as_ref(), body, *span),
             Stmt::Exit { span } => {
                 self.mark(*span);
                 let j = self.emit(Op::Jump { to: 0 });
@@ -294,17 +364,37 @@ impl<'a> Lowerer<'a> {
             self.patch(j, end);
         }
         let (line, col) = self.lines.at(span.start);
-        self.loops.push(LoopEntry { start: top, end, line, col });
+        self.loops.push(LoopEntry {
+            start: top,
+            end,
+            line,
+            col,
+        });
     }
 
-    fn for_loop(&mut self, place: &Place, from: &hir::Expr, to: &hir::Expr, by: Option<&hir::Expr>, body: &[Stmt], span: Span) {
+    fn for_loop(
+        &mut self,
+        place: &Place,
+        from: &hir::Expr,
+        to: &hir::Expr,
+        by: Option<&hir::Expr>,
+        body: &[Stmt],
+        span: Span,
+    ) {
         self.mark(span);
-        let ty = if place.ty == Ty::Real { Ty::Real } else { Ty::Int };
+        let ty = if place.ty == Ty::Real {
+            Ty::Real
+        } else {
+            Ty::Int
+        };
         self.store_value(place, from);
         let local = self.locals;
         self.locals = self.locals.saturating_add(1);
         if self.locals == u8::MAX {
-            self.errors.push(LowerError::TooMany { span, what: "nested FOR loops" });
+            self.errors.push(LowerError::TooMany {
+                span,
+                what: "nested FOR loops",
+            });
         }
         self.expr_as(to, ty);
         self.emit(Op::StoreLoc { n: local });
@@ -321,21 +411,27 @@ impl<'a> Lowerer<'a> {
         };
         self.emit(exit_test);
         let out = self.emit(Op::JumpIfTrue { to: 0 });
-        self.loop_body(body, span, top, |l, end| l.patch(out, end), |l| {
-            l.load(place);
-            match ty {
-                Ty::Real => {
-                    l.emit(Op::PushR { v: step.real() });
-                    l.emit(Op::AddR {});
+        self.loop_body(
+            body,
+            span,
+            top,
+            |l, end| l.patch(out, end),
+            |l| {
+                l.load(place);
+                match ty {
+                    Ty::Real => {
+                        l.emit(Op::PushR { v: step.real() });
+                        l.emit(Op::AddR {});
+                    }
+                    _ => {
+                        l.emit(Op::PushI { v: step.int() });
+                        l.emit(Op::AddI {});
+                    }
                 }
-                _ => {
-                    l.emit(Op::PushI { v: step.int() });
-                    l.emit(Op::AddI {});
-                }
-            }
-            l.store(place);
-            l.emit(Op::Jump { to: top });
-        });
+                l.store(place);
+                l.emit(Op::Jump { to: top });
+            },
+        );
     }
 
     /// Evaluates `value` converted to the place's type and stores it.
@@ -357,7 +453,11 @@ impl<'a> Lowerer<'a> {
     fn address(&mut self, place: &Place) -> Option<(u16, bool)> {
         let class = place.class?;
         match &place.target {
-            Target::Field { block, field, offset } => {
+            Target::Field {
+                block,
+                field,
+                offset,
+            } => {
                 let sym = self.symbol(block, field, Sub::Field, class, place.span);
                 if let Some(o) = offset {
                     self.expr_as(o, Ty::Int);
@@ -366,7 +466,13 @@ impl<'a> Lowerer<'a> {
                 }
                 Some((sym, false))
             }
-            Target::Bit { block, field, offset, bit, bit_offset } => {
+            Target::Bit {
+                block,
+                field,
+                offset,
+                bit,
+                bit_offset,
+            } => {
                 let sym = self.symbol(block, field, Sub::Field, class, place.span);
                 if offset.is_none() && bit_offset.is_none() {
                     return Some((sym, false));
@@ -392,20 +498,42 @@ impl<'a> Lowerer<'a> {
                 });
                 Some((sym, true))
             }
-            Target::Alarm { block, field, alarm } => {
-                Some((self.symbol(block, field, Sub::Alarm(alarm.clone()), class, place.span), false))
-            }
-            Target::Suppress { block, field, alarm } => {
-                Some((self.symbol(block, field, Sub::Suppress(alarm.clone()), class, place.span), false))
-            }
+            Target::Alarm {
+                block,
+                field,
+                alarm,
+            } => Some((
+                self.symbol(block, field, Sub::Alarm(alarm.clone()), class, place.span),
+                false,
+            )),
+            Target::Suppress {
+                block,
+                field,
+                alarm,
+            } => Some((
+                self.symbol(
+                    block,
+                    field,
+                    Sub::Suppress(alarm.clone()),
+                    class,
+                    place.span,
+                ),
+                false,
+            )),
             Target::Step { .. } | Target::Unknown => None,
         }
     }
 
     fn unaddressable(&mut self, place: &Place) {
         let e = match place.target {
-            Target::Step { .. } => LowerError::StepVariable { span: place.span, path: place.path.clone() },
-            _ => LowerError::Unresolved { span: place.span, path: place.path.clone() },
+            Target::Step { .. } => LowerError::StepVariable {
+                span: place.span,
+                path: place.path.clone(),
+            },
+            _ => LowerError::Unresolved {
+                span: place.span,
+                path: place.path.clone(),
+            },
         };
         self.errors.push(e);
     }
@@ -413,7 +541,9 @@ impl<'a> Lowerer<'a> {
     /// Pushes a place's value (INT/BOOL/bits on the numeric stack as INT,
     /// REAL as REAL, strings on the string stack).
     fn load(&mut self, place: &Place) {
-        let Some((sym, via_ref)) = self.address(place) else { return self.unaddressable(place) };
+        let Some((sym, via_ref)) = self.address(place) else {
+            return self.unaddressable(place);
+        };
         let op = match (&place.target, place.class, via_ref) {
             (Target::Alarm { .. }, ..) => Op::LoadAlarm { sym },
             (Target::Suppress { .. }, ..) => Op::LoadSuppress { sym },
@@ -431,7 +561,9 @@ impl<'a> Lowerer<'a> {
 
     /// Stores the value on top of the stack into a place.
     fn store(&mut self, place: &Place) {
-        let Some((sym, via_ref)) = self.address(place) else { return self.unaddressable(place) };
+        let Some((sym, via_ref)) = self.address(place) else {
+            return self.unaddressable(place);
+        };
         let op = match (&place.target, place.class, via_ref) {
             (Target::Suppress { .. }, ..) => Op::StoreSuppress { sym },
             (Target::Bit { bit, .. }, _, false) => Op::StoreBit { sym, bit: *bit },

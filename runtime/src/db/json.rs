@@ -332,7 +332,10 @@ fn init_value(ty: &FieldType, v: &Value) -> Result<InitValue, String> {
             let mut active = Vec::new();
             for (k, v) in m {
                 if !names.iter().any(|n| n.eq_ignore_ascii_case(k)) {
-                    return Err(format!("`{k}` is not one of the alarms {}", names.join(", ")));
+                    return Err(format!(
+                        "`{k}` is not one of the alarms {}",
+                        names.join(", ")
+                    ));
                 }
                 if v.as_bool().ok_or("alarm states are true or false")? {
                     active.push(k.clone());

@@ -15,7 +15,9 @@ pub fn bcc(s: &[u8], mode: i32, seed: i32) -> i32 {
     match mode {
         0 => s.iter().fold(low, |acc, &b| acc ^ i32::from(b)),
         1 => s.iter().fold(low, |acc, &b| (acc + i32::from(b)) & 0xFF),
-        2 => s.iter().fold(seed, |acc, &b| acc.wrapping_add(i32::from(b))),
+        2 => s
+            .iter()
+            .fold(seed, |acc, &b| acc.wrapping_add(i32::from(b))),
         _ => 0,
     }
 }

@@ -90,9 +90,7 @@ pub fn scan(fmt: &[u8], input: &[u8]) -> Option<Scanned> {
 
 /// SCAN: the scanned value, of the kind the checker gave the call.
 pub fn scan_value(fmt: &[u8], input: &[u8]) -> Value {
-    let real_kind = fmt
-        .iter()
-        .any(|c| matches!(c, b'F' | b'f' | b'G' | b'g'));
+    let real_kind = fmt.iter().any(|c| matches!(c, b'F' | b'f' | b'G' | b'g'));
     match (scan(fmt, input), real_kind) {
         (Some(Scanned::Real(r)), true) => Value::Real(r),
         (Some(Scanned::Int(i)), true) => Value::Real(i as f32),
@@ -229,7 +227,10 @@ mod tests {
         assert_eq!(s("I", ""), None);
         assert_eq!(s("I", "   "), None);
         assert_eq!(s("I", "12AB"), Some(Scanned::Int(12)));
-        assert_eq!(s("I", "99999999999999999999999"), Some(Scanned::Int(i32::MAX)));
+        assert_eq!(
+            s("I", "99999999999999999999999"),
+            Some(Scanned::Int(i32::MAX))
+        );
         assert_eq!(s("I", "-2147483648"), Some(Scanned::Int(i32::MIN)));
         assert_eq!(s("I", "-99999999999"), Some(Scanned::Int(i32::MIN)));
         assert_eq!(s("U", "4294967295"), Some(Scanned::Int(-1)));

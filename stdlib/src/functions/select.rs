@@ -63,9 +63,7 @@ pub fn extreme(args: &[Value], max: bool) -> Value {
 
 /// SWITCH(A, B, C): A when C = 0, else B; REAL if A or B is REAL.
 pub fn switch(a: Option<&Value>, b: Option<&Value>, c: i32) -> Value {
-    let real = [a, b]
-        .iter()
-        .any(|v| matches!(v, Some(Value::Real(_))));
+    let real = [a, b].iter().any(|v| matches!(v, Some(Value::Real(_))));
     let chosen = if c == 0 { a } else { b };
     if real {
         Value::Real(chosen.map_or(0.0, Value::as_real))
@@ -116,7 +114,10 @@ mod tests {
         let mixed = [Value::Int(3), Value::Real(4.5), Value::Bool(true)];
         assert_eq!(extreme(&mixed, true), Value::Real(4.5));
         assert_eq!(extreme(&mixed, false), Value::Real(1.0));
-        assert_eq!(avg(&[Value::Int(i32::MAX), Value::Int(i32::MAX)]), Ok(2_147_483_647.0));
+        assert_eq!(
+            avg(&[Value::Int(i32::MAX), Value::Int(i32::MAX)]),
+            Ok(2_147_483_647.0)
+        );
         assert!(avg(&[Value::Real(f32::INFINITY), Value::Int(1)]).is_err());
         assert_eq!(avg(&[]), Ok(0.0));
         assert_eq!(extreme(&[], true), Value::Int(0));

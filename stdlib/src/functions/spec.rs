@@ -192,14 +192,20 @@ mod tests {
     #[test]
     fn conversions_separators_and_overrides() {
         assert_eq!(p("3I!").map(|s| (s.conv, s.fill)), Some((Conv::Int, b'!')));
-        assert_eq!(p("T.").map(|s| (s.conv, s.sep)), Some((Conv::IsoTime, b'.')));
+        assert_eq!(
+            p("T.").map(|s| (s.conv, s.sep)),
+            Some((Conv::IsoTime, b'.'))
+        );
         assert_eq!(
             p("TP.#").map(|s| (s.conv, s.sep, s.fill)),
             Some((Conv::PosixTime, b'.', b'#'))
         );
         assert_eq!(p("DP").map(|s| s.conv), Some(Conv::PosixDate));
         assert_eq!(p("dp").map(|s| s.conv), Some(Conv::PosixDate));
-        assert_eq!(p("D-").map(|s| (s.conv, s.fill)), Some((Conv::IsoDate, b'-')));
+        assert_eq!(
+            p("D-").map(|s| (s.conv, s.fill)),
+            Some((Conv::IsoDate, b'-'))
+        );
         assert_eq!(p("x").map(|s| s.conv), Some(Conv::HexLower));
         assert_eq!(p("e").map(|s| s.conv), Some(Conv::ExpLower));
         assert_eq!(p("g").map(|s| s.conv), Some(Conv::General));
@@ -207,7 +213,9 @@ mod tests {
 
     #[test]
     fn invalid_formats() {
-        for f in ["", "5", "5.", "Q", "5.2I", ".X", "3I!!", "TP.##", " I", "05"] {
+        for f in [
+            "", "5", "5.", "Q", "5.2I", ".X", "3I!!", "TP.##", " I", "05",
+        ] {
             assert_eq!(p(f), None, "{f:?}");
         }
     }
