@@ -7,6 +7,7 @@ use linc_compiler::render::{self, Format, SourceFiles};
 use linc_runtime::store::Store;
 use linc_runtime::vm::{Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{text, Database};
+use linc_stdlib::value::decode_dollar;
 use std::path::Path;
 
 pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) -> u8 {
@@ -68,6 +69,14 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) 
     });
     match result {
         Ok(Ok(Some(v))) => {
+            // A STRING keeps its $-sequences as written; shown, it is decoded
+            // so that the printed constant reads back to the same text.
+            let v = match v {
+                linc_stdlib::Value::Bytes(b) if is_text => {
+                    linc_stdlib::Value::Bytes(decode_dollar(&b))
+                }
+                v => v,
+            };
             println!("{}", text::format_value(&v));
             0
         }

@@ -176,3 +176,247 @@ fn explain_prints_the_page() {
     let list = stdout(&linc(&["explain", "--list"]));
     assert!(list.lines().count() >= 46 && list.contains("E0001") && list.contains("W0001"));
 }
+
+fn eval(expr: &str) -> (Option<i32>, String, String) {
+    let o = linc(&["eval", expr, "--now", "2024-02-29T13:45:07", "--seed", "42"]);
+    (
+        o.status.code(),
+        stdout(&o),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn eval_prints_values_in_st_form() {
+    let cases = [
+        ("10 - 2 - 3", "5"),
+        ("7 / 2", "3"),
+        ("7 / 2.0", "3.5"),
+        ("2 ** 10", "1024.0"),
+        ("1000 / 3.0", "333.33334"),
+        ("T#1h", "3600.0"),
+        ("16#FF AND 16#0F", "15"),
+        ("1 < 2", "TRUE"),
+        ("NOT TRUE", "FALSE"),
+        ("'abc' = 'ABC'", "TRUE"),
+        ("'it$'s'", "'it$'s'"),
+        ("CONCAT('a$0D', 'b')", "'a$0Db'"),
+        ("CRC('123456789', 1, 16#8005, 16#FFFF)", "19255"),
+        ("DATEANDTIMENOW(1)", "'29/02/2024 13:45:07'"),
+        ("-2147483648", "-2147483648"),
+        ("99999999999", "2147483647"),
+    ];
+    for (expr, want) in cases {
+        let (code, out, err) = eval(expr);
+        assert_eq!((code, out.trim_end()), (Some(0), want), "{expr}: {err}");
+    }
+}
+
+#[test]
+fn eval_reads_the_database_and_reports_errors() {
+    let o = linc(&["eval", "REC1.A0 * 2", "--db", DB]);
+    assert_eq!(
+        (o.status.code(), stdout(&o)),
+        (Some(0), "25.0\n".to_string())
+    );
+    let (code, _, err) = eval("1 / (2 - 2 + 0 * 1)");
+    assert_eq!(code, Some(1), "{err}");
+    assert!(err.contains("R0001"), "{err}");
+    let (code, _, err) = eval("SQRT('x')");
+    assert_eq!(code, Some(2));
+    assert!(err.contains("E0112"), "{err}");
+    let (a, b) = (eval("RANDOM(100)").1, eval("RANDOM(100)").1);
+    assert_eq!(a, b, "--seed makes RANDOM repeatable");
+}
+
+#[test]
+fn run_sets_shows_and_traces() {
+    let o = linc(&[
+        "run",
+        "examples/guide/shift.st",
+        "--db",
+        DB,
+        "--set",
+        "Block_5.PV=42.5",
+        "--show",
+        "Block_5.Val8",
+        "--show",
+        "Block_5.Val1",
+        "--trace",
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    let out = stdout(&o);
+    assert!(
+        out.starts_with("cycle 1: Counters.N0 = 0\ncycle 1: Block_5.Val1 = 2.0\n"),
+        "{out}"
+    );
+    assert!(
+        out.ends_with("Block_5.Val8 = 42.5\nBlock_5.Val1 = 2.0\n"),
+        "{out}"
+    );
+}
+
+#[test]
+fn run_cycles_repeat_the_action() {
+    let f = temp_file("count.st", "Counters.N0 := Counters.N0 + 1;\n");
+    let o = linc(&[
+        "run",
+        &f,
+        "--db",
+        DB,
+        "--cycles",
+        "5",
+        "--show",
+        "Counters.N0",
+    ]);
+    assert_eq!(
+        (o.status.code(), stdout(&o)),
+        (Some(0), "Counters.N0 = 5\n".to_string())
+    );
+}
+
+#[test]
+fn runtime_error_keeps_earlier_writes_in_out() {
+    let f = temp_file(
+        "fault.st",
+        "Counters.N0 := 5;\nCounters.N1 := 1 / Counters.N3;\nCounters.N2 := 7;\n",
+    );
+    let out = temp_file("fault.json", "");
+    let o = linc(&["run", &f, "--db", DB, "--out", &out]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("fault.st:2:1: runtime error[R0001] in action `fault`: division by zero"),
+        "{err}"
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).expect("out written")).expect("json");
+    assert_eq!(v["blocks"]["Counters"]["values"]["N0"], 5);
+    assert_eq!(v["blocks"]["Counters"]["values"]["N2"], 0);
+    assert_eq!(v["blocks"]["Counters"]["type"], "RECIPE");
+    assert!(v["templates"]["VALBLK"].is_object() && v["aliases"]["avg"] == "RECORD.A7");
+}
+
+#[test]
+fn watchdog_names_the_loop_line() {
+    let f = temp_file(
+        "loop.st",
+        "Counters.N0 := 0;\nWHILE 1 DO\n  Counters.N0 := Counters.N0 + 1;\nEND_WHILE;\n",
+    );
+    let o = linc(&["run", &f, "--db", DB, "--watchdog", "1000"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("loop.st:2:1: runtime error[R0006]") && err.contains("line 2"),
+        "{err}"
+    );
+}
+
+#[test]
+fn compile_disasm_and_run_an_object() {
+    let sto = temp_file("control.sto", "");
+    let o = linc(&[
+        "compile",
+        "examples/guide/control.stx",
+        "-o",
+        &sto,
+        "--db",
+        DB,
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+    let listing = stdout(&linc(&["disasm", &sto]));
+    assert!(
+        listing.contains("action Startup") && listing.contains("StoreS       PIC_004.Mode"),
+        "{listing}"
+    );
+    assert!(
+        listing.contains("; 4:5  PIC_004.Mode := \"CASCADE\";"),
+        "{listing}"
+    );
+    let o = linc(&[
+        "run",
+        &sto,
+        "--db",
+        DB,
+        "--action",
+        "startup",
+        "--show",
+        "PIC_004.Mode",
+        "--show",
+        "TIC_100.SL",
+    ]);
+    assert_eq!(stdout(&o), "PIC_004.Mode = 'CASCADE'\nTIC_100.SL = 55.0\n");
+    let o = linc(&[
+        "run",
+        &sto,
+        "--db",
+        DB,
+        "--action",
+        "Modbus",
+        "--block",
+        "Raw1",
+        "--set",
+        "Raw1.I1=1",
+        "--show",
+        "Raw1.I2",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+#[test]
+fn run_usage_and_compile_errors_exit_two() {
+    assert_eq!(
+        linc(&["run", "examples/guide/broken.st", "--db", DB])
+            .status
+            .code(),
+        Some(2)
+    );
+    assert_eq!(
+        linc(&[
+            "run",
+            "examples/guide/shift.st",
+            "--db",
+            DB,
+            "--action",
+            "nope"
+        ])
+        .status
+        .code(),
+        Some(2)
+    );
+    assert_eq!(
+        linc(&[
+            "run",
+            "examples/guide/shift.st",
+            "--db",
+            DB,
+            "--set",
+            "Block_5.PV=abc"
+        ])
+        .status
+        .code(),
+        Some(2)
+    );
+    assert_eq!(
+        linc(&[
+            "run",
+            "examples/guide/shift.st",
+            "--db",
+            DB,
+            "--now",
+            "soon"
+        ])
+        .status
+        .code(),
+        Some(2)
+    );
+    let bad = temp_file("bad.sto", "LINCSTO but not really");
+    let o = linc(&["run", &bad, "--db", DB]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("E0700"));
+}

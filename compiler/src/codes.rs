@@ -60,6 +60,28 @@ codes! {
     "E0118" => "offset is not a number",
     "E0119" => "condition is not BOOL or INT",
     "E0120" => "unknown step",
+    "E0130" => "type of a name unknown when compiling",
+    "E0131" => "step variable in a plain action",
+    "E0132" => "too many references, constants, loops or arguments",
+    "E0700" => "not a linc object file",
+    "E0701" => "unsupported object format version",
+    "E0702" => "object file checksum mismatch",
+    "E0703" => "truncated or malformed object file",
+    "E0704" => "unknown instruction",
+    "E0705" => "jump out of range",
+    "E0706" => "string constant out of range",
+    "E0707" => "symbol out of range or of the wrong kind",
+    "E0708" => "unbalanced stack or code that runs off its end",
+    "E0709" => "object does not fit the database",
+    "E0710" => "invalid function call or result kind",
+    "E0711" => "local variable out of range",
+    "R0001" => "division by zero",
+    "R0002" => "MOD by zero",
+    "R0003" => "offset outside its run of fields",
+    "R0004" => "not a value of an ENUM field",
+    "R0005" => "math domain error or non-finite result",
+    "R0006" => "watchdog: too many instructions in one run",
+    "R0099" => "object and database disagree at run time",
     "E0800" => "database file is not valid JSON",
     "E0801" => "database file has the wrong shape",
     "E0802" => "unknown field type in a template",
@@ -89,9 +111,17 @@ mod tests {
             include_str!("errors.rs"),
             include_str!("check/errors.rs"),
             include_str!("../../runtime/src/db/json.rs"),
+            include_str!("lower/mod.rs"),
+            include_str!("../../runtime/src/errors.rs"),
+            include_str!("../../runtime/src/verify.rs"),
+            include_str!("../../runtime/src/vm.rs"),
         ];
         for src in sources {
-            for (i, _) in src.match_indices("\"E0").chain(src.match_indices("\"W0")) {
+            let starts = src
+                .match_indices("\"E0")
+                .chain(src.match_indices("\"W0"))
+                .chain(src.match_indices("\"R0"));
+            for (i, _) in starts {
                 let code = &src[i + 1..i + 6];
                 assert!(
                     lookup(code).is_some(),

@@ -109,10 +109,7 @@ fn extract_values() {
     assert_eq!(x("EXTRACT_INT32", 1, 0), i(0x7FFF_8001));
     assert_eq!(x("EXTRACT_INT32", 1, 1), i(0x0180_FF7F));
     assert_eq!(x("EXTRACT_REAL", 5, 0), r(1.5));
-    assert_eq!(
-        x("EXTRACT_REAL", 5, 3),
-        r(f32::from_bits(0xC03F_0000))
-    );
+    assert_eq!(x("EXTRACT_REAL", 5, 3), r(f32::from_bits(0xC03F_0000)));
 }
 
 #[test]

@@ -107,3 +107,103 @@ macro_rules! invalid {
         }
     };
 }
+
+/// Running compiled ST against a database, for the runtime semantics tests.
+pub mod exec {
+    use linc_compiler::check::Context;
+    use linc_compiler::lower::{self, Lines};
+    use linc_runtime::store::Store;
+    use linc_runtime::vm::{Clock, Outcome, Vm, DEFAULT_WATCHDOG};
+    use linc_runtime::{Database, ObjectFile, RuntimeError};
+
+    /// Compiles `src` against `db` into object bytes; panics with the
+    /// diagnostics if it does not compile (a test bug, not a finding).
+    pub fn compile(src: &str, db: &Database) -> Vec<u8> {
+        let ctx = Context {
+            db,
+            resolve_blocks: true,
+            steps: None,
+        };
+        let r = linc_compiler::check_source(src, "test", ctx);
+        let program = r
+            .program
+            .unwrap_or_else(|| panic!("does not compile: {:?}", r.diagnostics));
+        let obj = lower::lower_program(&program, "test.st", &Lines::new(src))
+            .unwrap_or_else(|e| panic!("lowering: {e:?}"));
+        obj.to_bytes()
+    }
+
+    /// The outcome of running an action for some cycles.
+    pub struct Run {
+        pub store: Store,
+        pub error: Option<RuntimeError>,
+    }
+
+    impl Run {
+        /// A field's value as `linc run --show` prints it.
+        pub fn get(&self, path: &str) -> String {
+            let (b, f) = path.split_once('.').unwrap_or((path, ""));
+            let block = self
+                .store
+                .db
+                .block(b)
+                .unwrap_or_else(|| panic!("no block {b}"));
+            let (field, bit) = f
+                .split_once('.')
+                .map(|(f, s)| (f, Some(s)))
+                .unwrap_or((f, None));
+            let cell = self
+                .store
+                .cell_of(block, field)
+                .unwrap_or_else(|| panic!("no field {path}"));
+            match bit {
+                Some(sub) => {
+                    let t = self.store.db.block_template(block);
+                    let n = t.fields[t.field(field).unwrap_or(0)]
+                        .ty
+                        .bit_index(sub)
+                        .unwrap_or(0);
+                    match &self.store.cells[cell as usize] {
+                        linc_runtime::store::Cell::Bits { v, .. } => ((v >> n) & 1).to_string(),
+                        other => format!("{other:?}"),
+                    }
+                }
+                None => self.store.show(cell),
+            }
+        }
+
+        pub fn code(&self) -> Option<&'static str> {
+            self.error.as_ref().map(|e| e.code)
+        }
+    }
+
+    /// Runs the first action of `src` for `cycles` cycles of `period` seconds.
+    pub fn run_in(db: &Database, src: &str, cycles: u32, period: f64) -> Run {
+        let bytes = compile(src, db);
+        let obj: ObjectFile = linc_runtime::load(&bytes).unwrap_or_else(|e| panic!("load: {e}"));
+        let mut store = Store::new(db.clone());
+        store.now = 1_000_000.0;
+        let loaded =
+            linc_runtime::prepare(&obj, 0, &store, None).unwrap_or_else(|e| panic!("link: {e}"));
+        let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0));
+        let mut error = None;
+        let mut resume = 0;
+        for _ in 0..cycles {
+            match vm.run(&loaded, &mut store, resume, None) {
+                Ok(Outcome::Done) => resume = 0,
+                Ok(Outcome::Suspended { resume: r }) => resume = r,
+                Err(e) => {
+                    error = Some(e);
+                    break;
+                }
+            }
+            store.now += period;
+        }
+        Run { store, error }
+    }
+
+    /// Runs `src` once against the guide database.
+    pub fn run(src: &str) -> Run {
+        run_in(crate::guide_db(), src, 1, 1.0)
+    }
+}

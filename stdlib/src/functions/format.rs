@@ -11,6 +11,11 @@
 //!   FORMAT("U", -1) = '4294967295', FORMAT("X", -1) = 'FFFFFFFF'.
 //! * `F`, `e` and `E` default to precision 0 (the guide's FORMAT("F", v) =
 //!   '333'); `.` without digits keeps the decimal point ('333.', '3.E+02').
+//!   Without a `.` the width still counts one column for the decimal
+//!   point, which is then left out: the guide's FORMAT("6F", 1000/3) is
+//!   '  333' (five bytes), FORMAT("6.F", ...) '  333.'. So "3F" cannot show
+//!   333 ('333.' needs four columns) and gives '***'. `e` and `E` "behave
+//!   like `F`" and do the same: FORMAT("10E", 1000/3) = '    3E+02'.
 //!   Ties are rounded on the exact binary value, half to even, as C's printf
 //!   does. NaN and infinities give the null sequence.
 //! * `G` is for SCAN only: FORMAT with `G` gives the null sequence.
@@ -33,27 +38,49 @@ use crate::Value;
 
 /// FORMAT: `value` converted as `fmt` says, or the null sequence.
 pub fn format(fmt: &[u8], value: &Value) -> Vec<u8> {
-    let Some(spec) = parse(fmt) else {
+    let Some(mut spec) = parse(fmt) else {
         return Vec::new();
     };
-    match render(&spec, value) {
-        Some(text) => fit(&spec, text),
-        None => Vec::new(),
+    // A real format without a decimal point still counts a column for the
+    // point: the text is laid out as with `W.` and the point then removed
+    // (the guide's FORMAT("6F", 1000/3) = '  333').
+    let drop_point = spec.conv.is_real() && !spec.point;
+    spec.point |= drop_point;
+    let Some(text) = render(&spec, value) else {
+        return Vec::new();
+    };
+    match fit(&spec, text) {
+        Fitted::Text(mut out) => {
+            if drop_point {
+                if let Some(at) = out.iter().position(|&c| c == b'.') {
+                    out.remove(at);
+                }
+            }
+            out
+        }
+        Fitted::Overflow(fill) => fill,
     }
+}
+
+/// A text laid out in its width.
+enum Fitted {
+    Text(Vec<u8>),
+    /// The value did not fit: the override character across the width.
+    Overflow(Vec<u8>),
 }
 
 /// Pads `text` to the width, or fills the width with the override
 /// character when it does not fit.
-fn fit(spec: &Spec, text: Vec<u8>) -> Vec<u8> {
+fn fit(spec: &Spec, text: Vec<u8>) -> Fitted {
     let Some(width) = spec.width.map(|w| w.min(MAX_LEN)) else {
-        return if text.len() > MAX_LEN {
+        return Fitted::Text(if text.len() > MAX_LEN {
             Vec::new()
         } else {
             text
-        };
+        });
     };
     if text.len() > width {
-        return vec![spec.fill; width];
+        return Fitted::Overflow(vec![spec.fill; width]);
     }
     let pad = width - text.len();
     let mut out = Vec::with_capacity(width);
@@ -67,7 +94,7 @@ fn fit(spec: &Spec, text: Vec<u8>) -> Vec<u8> {
         out.resize(pad, b' ');
         out.extend_from_slice(&text);
     }
-    out
+    Fitted::Text(out)
 }
 
 /// The value as an integer for the integer conversions.
@@ -210,6 +237,19 @@ mod tests {
         assert_eq!(f(".1E", Value::Real(3e38)), "3.0E+38");
         assert_eq!(f(".1E", Value::Real(1e-40)), "1.0E-40");
         assert_eq!(f("010.2E", Value::Real(-333.3)), "-03.33E+02");
+    }
+
+    #[test]
+    fn width_without_point_counts_the_point() {
+        let v = Value::Real(1000.0 / 3.0);
+        assert_eq!(f("6F", v.clone()), "  333");
+        assert_eq!(f("4F", v.clone()), "333");
+        assert_eq!(f("3F", v.clone()), "***");
+        assert_eq!(f("3F.", v.clone()), "...");
+        assert_eq!(f("06F", v.clone()), "00333");
+        assert_eq!(f("6F", Value::Real(-333.3)), " -333");
+        assert_eq!(f("10E", v.clone()), "    3E+02");
+        assert_eq!(f("010E", v), "00003E+02");
     }
 
     #[test]

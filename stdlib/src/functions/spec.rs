@@ -54,7 +54,8 @@ pub enum Conv {
 }
 
 impl Conv {
-    fn is_real(self) -> bool {
+    /// `F`, `e`, `E` or `G`.
+    pub fn is_real(self) -> bool {
         matches!(
             self,
             Conv::Fixed | Conv::ExpLower | Conv::ExpUpper | Conv::General
