@@ -33,6 +33,7 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) 
     let Some(program) = report.program else {
         return 2;
     };
+    let is_text = program.ty == linc_stdlib::Ty::Text;
     let obj = match lower::lower_eval(&program, &Lines::new(expr)) {
         Ok(o) => o,
         Err(errors) => {
