@@ -27,11 +27,7 @@ pub fn compile(
             (&builtin, false)
         }
     };
-    let ctx = Context {
-        db,
-        resolve_blocks,
-        steps: None,
-    };
+    let ctx = Context { db, resolve_blocks, steps: None };
     let mut files = SourceFiles::new();
     let mut checked: Vec<(usize, hir::Program, String, Lines)> = Vec::new();
     let mut failed = false;
@@ -41,17 +37,10 @@ pub fn compile(
             Failed(2)
         })?;
         let name = path.display().to_string();
-        let stem = path
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("action")
-            .to_string();
+        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("action").to_string();
         let lines = Lines::new(&text);
         let id = files.add(name.clone(), text);
-        let src = files
-            .get(id)
-            .map(|f| f.source().clone())
-            .unwrap_or_default();
+        let src = files.get(id).map(|f| f.source().clone()).unwrap_or_default();
         let report = linc_compiler::check_source(&src, &stem, ctx);
         for d in &report.diagnostics {
             print!("{}", render::render(&files, id, d, format));
@@ -68,22 +57,12 @@ pub fn compile(
     let mut seen: Vec<(String, usize, linc_compiler::Span)> = Vec::new();
     for (id, p, _, _) in &checked {
         for a in &p.actions {
-            if let Some((_, fid, _)) = seen
-                .iter()
-                .find(|(n, _, _)| n.eq_ignore_ascii_case(&a.name))
-            {
-                let d = Diagnostic::error(
-                    "E0117",
-                    format!("action `{}` is defined twice", a.name),
-                    a.span.to(a.span),
-                )
-                .label(format!(
-                    "also defined in {}",
-                    files
-                        .get(*fid)
-                        .map(|f| f.name().clone())
-                        .unwrap_or_default()
-                ));
+            if let Some((_, fid, _)) = seen.iter().find(|(n, _, _)| n.eq_ignore_ascii_case(&a.name)) {
+                let d = Diagnostic::error("E0117", format!("action `{}` is defined twice", a.name), a.span.to(a.span))
+                    .label(format!(
+                        "also defined in {}",
+                        files.get(*fid).map(|f| f.name().clone()).unwrap_or_default()
+                    ));
                 print!("{}", render::render(&files, *id, &d, format));
                 failed = true;
             }
@@ -93,14 +72,7 @@ pub fn compile(
     if failed {
         return Err(Failed(errors_status));
     }
-    let units: Vec<Unit> = checked
-        .iter()
-        .map(|(_, p, name, lines)| Unit {
-            program: p,
-            file: name,
-            lines,
-        })
-        .collect();
+    let units: Vec<Unit> = checked.iter().map(|(_, p, name, lines)| Unit { program: p, file: name, lines }).collect();
     lower::lower_units(&units).map_err(|errors| {
         // Lowering errors belong to the file whose action failed; with one
         // unit that is exact, with several the first file is named.

@@ -28,26 +28,16 @@ pub fn io_error(path: &Path, e: &std::io::Error, format: Format) {
 }
 
 /// Loads `--db`, printing its diagnostics. `Err` carries the exit status.
-pub fn load_db(
-    path: Option<&Path>,
-    files: &mut SourceFiles,
-    format: Format,
-) -> Result<Option<Database>, u8> {
+pub fn load_db(path: Option<&Path>, files: &mut SourceFiles, format: Format) -> Result<Option<Database>, u8> {
     let Some(path) = path else { return Ok(None) };
     let text = std::fs::read_to_string(path).map_err(|e| {
         io_error(path, &e, format);
         2u8
     })?;
     let id = files.add(path.display().to_string(), text);
-    let source = files
-        .get(id)
-        .map(|f| f.source().clone())
-        .unwrap_or_default();
+    let source = files.get(id).map(|f| f.source().clone()).unwrap_or_default();
     Database::from_json(&source).map(Some).map_err(|e| {
-        let span = e
-            .span
-            .map(|(s, e)| linc_compiler::Span::new(s, e))
-            .unwrap_or_default();
+        let span = e.span.map(|(s, e)| linc_compiler::Span::new(s, e)).unwrap_or_default();
         let d = Diagnostic::error(e.code, e.message, span).label("here");
         print!("{}", render::render(files, id, &d, format));
         2u8
@@ -64,11 +54,7 @@ pub fn run(o: &Options) -> u8 {
     let db = db.unwrap_or_else(Database::builtin);
     let any_step: &[String] = &[];
     let steps = (o.sequence || o.transition).then_some(any_step);
-    let ctx = Context {
-        db: &db,
-        resolve_blocks,
-        steps,
-    };
+    let ctx = Context { db: &db, resolve_blocks, steps };
     let (mut errors, mut warnings, mut status) = (0usize, 0usize, 0u8);
     for path in &o.files {
         let text = match std::fs::read_to_string(path) {
@@ -80,16 +66,9 @@ pub fn run(o: &Options) -> u8 {
             }
         };
         let name = path.display().to_string();
-        let stem = path
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("action")
-            .to_string();
+        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("action").to_string();
         let id = files.add(name, text);
-        let src = files
-            .get(id)
-            .map(|f| f.source().clone())
-            .unwrap_or_default();
+        let src = files.get(id).map(|f| f.source().clone()).unwrap_or_default();
         let (diagnostics, tree) = if o.transition {
             let r = linc_compiler::check_transition(&src, ctx);
             (r.diagnostics, r.tree.map(|e| pretty::expr(&e) + "\n"))
@@ -112,11 +91,7 @@ pub fn run(o: &Options) -> u8 {
         }
     }
     if o.format == Format::Human && (errors > 0 || warnings > 0) {
-        eprintln!(
-            "linc: {errors} error{}, {warnings} warning{}",
-            plural(errors),
-            plural(warnings)
-        );
+        eprintln!("linc: {errors} error{}, {warnings} warning{}", plural(errors), plural(warnings));
     }
     if status == 0 && errors > 0 {
         status = 1;

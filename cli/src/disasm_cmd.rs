@@ -39,22 +39,13 @@ pub fn listing(obj: &ObjectFile) -> String {
     if !obj.strings.is_empty() {
         let _ = writeln!(out, "; strings");
         for (i, s) in obj.strings.iter().enumerate() {
-            let _ = writeln!(
-                out,
-                ";   ${i:<3} {}",
-                format_value(&Value::Bytes(s.clone()))
-            );
+            let _ = writeln!(out, ";   ${i:<3} {}", format_value(&Value::Bytes(s.clone())));
         }
     }
     for a in &obj.actions {
-        let source: Vec<String> = std::fs::read_to_string(&a.file)
-            .map(|t| t.lines().map(str::to_string).collect())
-            .unwrap_or_default();
-        let kind = if a.block_type.is_empty() {
-            String::new()
-        } else {
-            format!(" : {}", a.block_type)
-        };
+        let source: Vec<String> =
+            std::fs::read_to_string(&a.file).map(|t| t.lines().map(str::to_string).collect()).unwrap_or_default();
+        let kind = if a.block_type.is_empty() { String::new() } else { format!(" : {}", a.block_type) };
         let _ = writeln!(
             out,
             "\naction {}{kind}    ; {}, {} instructions, {} locals",
@@ -70,10 +61,7 @@ pub fn listing(obj: &ObjectFile) -> String {
                     continue;
                 }
                 shown_line = e.line;
-                let text = source
-                    .get(e.line as usize - 1)
-                    .map(|s| s.trim())
-                    .unwrap_or("");
+                let text = source.get(e.line as usize - 1).map(|s| s.trim()).unwrap_or("");
                 let _ = writeln!(out, "    ; {}:{}  {text}", e.line, e.col);
             }
             let _ = writeln!(out, "  {pc:>5}  {}", describe(obj, op));
@@ -84,12 +72,7 @@ pub fn listing(obj: &ObjectFile) -> String {
 
 fn describe(obj: &ObjectFile, op: &Op) -> String {
     let name = op.name();
-    let sym = |s: u16| {
-        obj.symbols
-            .get(usize::from(s))
-            .map(|s| s.text())
-            .unwrap_or_else(|| format!("#{s}?"))
-    };
+    let sym = |s: u16| obj.symbols.get(usize::from(s)).map(|s| s.text()).unwrap_or_else(|| format!("#{s}?"));
     match *op {
         Op::PushI { v } => format!("{name:<12} {v}"),
         Op::PushR { v } => format!("{name:<12} {}", linc_runtime::text::format_real(v)),
@@ -98,10 +81,7 @@ fn describe(obj: &ObjectFile, op: &Op) -> String {
             format!("{name:<12} {}", format_value(&Value::Bytes(s)))
         }
         Op::Call { func, argc, .. } => {
-            let f = SIGNATURES
-                .get(usize::from(func))
-                .map(|s| s.name)
-                .unwrap_or("?");
+            let f = SIGNATURES.get(usize::from(func)).map(|s| s.name).unwrap_or("?");
             format!("{name:<12} {f}/{argc}")
         }
         Op::LoadBit { sym: s, bit } | Op::StoreBit { sym: s, bit } => {

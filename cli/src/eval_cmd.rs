@@ -19,14 +19,7 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) 
     let resolve_blocks = db.is_some();
     let db = db.unwrap_or_else(Database::builtin);
     let id = files.add("<expr>".to_string(), expr.to_string());
-    let report = linc_compiler::check_expression(
-        expr,
-        Context {
-            db: &db,
-            resolve_blocks,
-            steps: None,
-        },
-    );
+    let report = linc_compiler::check_expression(expr, Context { db: &db, resolve_blocks, steps: None });
     for d in &report.diagnostics {
         eprint!("{}", render::render(&files, id, d, Format::Human));
     }
@@ -38,10 +31,7 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) 
         Ok(o) => o,
         Err(errors) => {
             for e in errors {
-                eprint!(
-                    "{}",
-                    render::render(&files, id, &e.to_diagnostic(), Format::Human)
-                );
+                eprint!("{}", render::render(&files, id, &e.to_diagnostic(), Format::Human));
             }
             return 2;
         }
@@ -54,28 +44,23 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) 
                 return 2;
             }
         },
-        None => std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .map(|d| d.as_secs() as i64)
-            .unwrap_or(0),
+        None => {
+            std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs() as i64).unwrap_or(0)
+        }
     };
     let mut store = Store::new(db);
     store.now = now as f64;
     let result = linc_runtime::load(&obj.to_bytes()).and_then(|obj| {
         let loaded = linc_runtime::prepare(&obj, 0, &store, None)?;
         let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(seed.unwrap_or(now as u64), 0));
-        Ok(vm
-            .run(&loaded, &mut store, 0, None)
-            .map(|_| vm.result.take()))
+        Ok(vm.run(&loaded, &mut store, 0, None).map(|_| vm.result.take()))
     });
     match result {
         Ok(Ok(Some(v))) => {
             // A STRING keeps its $-sequences as written; shown, it is decoded
             // so that the printed constant reads back to the same text.
             let v = match v {
-                linc_stdlib::Value::Bytes(b) if is_text => {
-                    linc_stdlib::Value::Bytes(decode_dollar(&b))
-                }
+                linc_stdlib::Value::Bytes(b) if is_text => linc_stdlib::Value::Bytes(decode_dollar(&b)),
                 v => v,
             };
             println!("{}", text::format_value(&v));

@@ -141,63 +141,38 @@ fn format(m: MessageFormat) -> linc_compiler::render::Format {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let status = match cli.command {
-        Command::Compile {
-            files,
-            out,
-            db,
-            message_format,
-        } => compile_cmd::run(&files, &out, db.as_deref(), format(message_format)),
-        Command::Run {
-            file,
-            db,
-            action,
-            block,
-            cycles,
-            period,
-            set,
-            show,
-            trace,
-            out,
-            now,
-            seed,
-            watchdog,
-        } => run_cmd::run(&run_cmd::Options {
-            file,
-            db,
-            action,
-            block,
-            cycles,
-            period,
-            set,
-            show,
-            trace,
-            out,
-            now,
-            seed,
-            watchdog,
-        }),
-        Command::Eval {
-            expr,
-            db,
-            now,
-            seed,
-        } => eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed),
+        Command::Compile { files, out, db, message_format } => {
+            compile_cmd::run(&files, &out, db.as_deref(), format(message_format))
+        }
+        Command::Run { file, db, action, block, cycles, period, set, show, trace, out, now, seed, watchdog } => {
+            run_cmd::run(&run_cmd::Options {
+                file,
+                db,
+                action,
+                block,
+                cycles,
+                period,
+                set,
+                show,
+                trace,
+                out,
+                now,
+                seed,
+                watchdog,
+            })
+        }
+        Command::Eval { expr, db, now, seed } => eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed),
         Command::Disasm { file } => disasm_cmd::run(&file),
-        Command::Check {
-            files,
-            db,
-            message_format,
-            tree,
-            transition,
-            sequence,
-        } => check_cmd::run(&check_cmd::Options {
-            files,
-            db,
-            format: format(message_format),
-            tree,
-            transition,
-            sequence,
-        }),
+        Command::Check { files, db, message_format, tree, transition, sequence } => {
+            check_cmd::run(&check_cmd::Options {
+                files,
+                db,
+                format: format(message_format),
+                tree,
+                transition,
+                sequence,
+            })
+        }
         Command::Explain { code, list } => explain_cmd::run(code.as_deref(), list),
     };
     ExitCode::from(status)

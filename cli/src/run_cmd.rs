@@ -49,21 +49,14 @@ pub fn address(store: &Store, path: &str) -> Result<Addr, String> {
     let (Some(b), Some(f)) = (parts.first(), parts.get(1)) else {
         return Err(format!("`{path}` is not BLOCK.FIELD"));
     };
-    let block = store
-        .db
-        .block(b)
-        .ok_or_else(|| format!("the database has no block `{b}`"))?;
-    let cell = store
-        .cell_of(block, f)
-        .ok_or_else(|| format!("`{b}` has no field `{f}`"))?;
+    let block = store.db.block(b).ok_or_else(|| format!("the database has no block `{b}`"))?;
+    let cell = store.cell_of(block, f).ok_or_else(|| format!("`{b}` has no field `{f}`"))?;
     let t = store.db.block_template(block);
     let bit = match parts.get(2) {
         None => None,
         Some(sub) => {
             let field = t.field(f).map(|i| &t.fields[i].ty);
-            let n = field
-                .and_then(|ty| ty.bit_index(sub))
-                .ok_or_else(|| format!("`{b}.{f}` has no bit `{sub}`"))?;
+            let n = field.and_then(|ty| ty.bit_index(sub)).ok_or_else(|| format!("`{b}.{f}` has no bit `{sub}`"))?;
             Some(n)
         }
     };
@@ -75,9 +68,7 @@ pub fn address(store: &Store, path: &str) -> Result<Addr, String> {
 
 fn show(store: &Store, a: Addr) -> String {
     match (a.bit, store.cells.get(a.cell as usize)) {
-        (Some(b), Some(Cell::Bits { v, .. })) => {
-            if (v >> b) & 1 == 1 { "TRUE" } else { "FALSE" }.to_string()
-        }
+        (Some(b), Some(Cell::Bits { v, .. })) => if (v >> b) & 1 == 1 { "TRUE" } else { "FALSE" }.to_string(),
         _ => store.show(a.cell),
     }
 }
@@ -93,9 +84,7 @@ fn unquote(s: &str) -> &str {
 
 /// Applies `BLOCK.FIELD=VALUE`.
 pub fn set(store: &mut Store, assignment: &str) -> Result<(), String> {
-    let (path, value) = assignment
-        .split_once('=')
-        .ok_or_else(|| format!("`{assignment}` is not BLOCK.FIELD=VALUE"))?;
+    let (path, value) = assignment.split_once('=').ok_or_else(|| format!("`{assignment}` is not BLOCK.FIELD=VALUE"))?;
     let a = address(store, path.trim())?;
     let value = value.trim();
     let truth = |v: &str| match v.to_ascii_uppercase().as_str() {
@@ -119,9 +108,7 @@ pub fn set(store: &mut Store, assignment: &str) -> Result<(), String> {
             }
         }
         (Cell::Real(r), _) => {
-            let x: f32 = value
-                .parse()
-                .map_err(|_| format!("`{value}` is not a number"))?;
+            let x: f32 = value.parse().map_err(|_| format!("`{value}` is not a number"))?;
             if !x.is_finite() {
                 return Err(format!("`{value}` is not a finite number"));
             }
@@ -131,11 +118,7 @@ pub fn set(store: &mut Store, assignment: &str) -> Result<(), String> {
         (Cell::Bool(b), _) => *b = truth(value)?,
         (Cell::Bits { v, width }, None) => {
             let x = int(value)?;
-            *v = if *width == 8 {
-                (x as u16) & 0xFF
-            } else {
-                x as u16
-            };
+            *v = if *width == 8 { (x as u16) & 0xFF } else { x as u16 };
         }
         (Cell::Enum { idx }, _) => {
             let text = unquote(value);
@@ -154,23 +137,13 @@ pub fn set(store: &mut Store, assignment: &str) -> Result<(), String> {
 
 /// Loads the object: a `.sto` file as is, anything else compiled.
 fn object(o: &Options, db: &Database) -> Result<ObjectFile, u8> {
-    let is_object = o
-        .file
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("sto"));
+    let is_object = o.file.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"));
     if !is_object {
-        return compile(std::slice::from_ref(&o.file), Some(db), Format::Human, 2)
-            .map_err(|Failed(s)| s);
+        return compile(std::slice::from_ref(&o.file), Some(db), Format::Human, 2).map_err(|Failed(s)| s);
     }
-    let bytes = std::fs::read(&o.file).map_err(|e| {
-        usage(format_args!(
-            "[E0900] can't read `{}`: {e}",
-            o.file.display()
-        ))
-    })?;
-    linc_runtime::load(&bytes)
-        .map_err(|e| usage(format_args!("[{}] {}: {e}", e.code(), o.file.display())))
+    let bytes =
+        std::fs::read(&o.file).map_err(|e| usage(format_args!("[E0900] can't read `{}`: {e}", o.file.display())))?;
+    linc_runtime::load(&bytes).map_err(|e| usage(format_args!("[{}] {}: {e}", e.code(), o.file.display())))
 }
 
 pub fn run(o: &Options) -> u8 {
@@ -180,27 +153,17 @@ pub fn run(o: &Options) -> u8 {
         Ok(None) => return 2,
         Err(status) => return status,
     };
-    let db_text = dbfiles
-        .get(0)
-        .map(|f| f.source().clone())
-        .unwrap_or_default();
+    let db_text = dbfiles.get(0).map(|f| f.source().clone()).unwrap_or_default();
     let obj = match object(o, &db) {
         Ok(obj) => obj,
         Err(status) => return status,
     };
     let index = match &o.action {
-        Some(name) => match obj
-            .actions
-            .iter()
-            .position(|a| a.name.eq_ignore_ascii_case(name))
-        {
+        Some(name) => match obj.actions.iter().position(|a| a.name.eq_ignore_ascii_case(name)) {
             Some(i) => i,
             None => {
                 let names: Vec<&str> = obj.actions.iter().map(|a| a.name.as_str()).collect();
-                return usage(format_args!(
-                    "no action `{name}` (the file has {})",
-                    names.join(", ")
-                ));
+                return usage(format_args!("no action `{name}` (the file has {})", names.join(", ")));
             }
         },
         None if obj.actions.is_empty() => return usage("the file has no actions"),
@@ -217,12 +180,7 @@ pub fn run(o: &Options) -> u8 {
             return usage(format_args!("--set {s}: {msg}"));
         }
     }
-    let shows: Vec<(String, Addr)> = match o
-        .show
-        .iter()
-        .map(|p| address(&store, p).map(|a| (p.clone(), a)))
-        .collect()
-    {
+    let shows: Vec<(String, Addr)> = match o.show.iter().map(|p| address(&store, p).map(|a| (p.clone(), a))).collect() {
         Ok(v) => v,
         Err(msg) => return usage(format_args!("--show: {msg}")),
     };
@@ -231,26 +189,21 @@ pub fn run(o: &Options) -> u8 {
             Some(s) => s,
             None => return usage(format_args!("--now `{t}` is not YYYY-MM-DDTHH:MM:SS")),
         },
-        None => std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .map(|d| d.as_secs() as i64)
-            .unwrap_or(0),
+        None => {
+            std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs() as i64).unwrap_or(0)
+        }
     };
     store.now = now as f64;
     let loaded = match linc_runtime::prepare(&obj, index, &store, own) {
         Ok(l) => l,
         Err(e) => return usage(format_args!("[{}] {e}", e.code())),
     };
-    let seed = o
-        .seed
-        .unwrap_or_else(|| now as u64 ^ u64::from(std::process::id()));
+    let seed = o.seed.unwrap_or_else(|| now as u64 ^ u64::from(std::process::id()));
     let mut vm = Vm::new(o.watchdog, Clock::new(seed, 0));
     let mut resume = 0;
     let mut status = 0;
     for cycle in 1..=o.cycles {
-        let mut tracer = |s: &Store, cell: u32| {
-            println!("cycle {cycle}: {} = {}", s.describe(cell), s.show(cell))
-        };
+        let mut tracer = |s: &Store, cell: u32| println!("cycle {cycle}: {} = {}", s.describe(cell), s.show(cell));
         let trace: linc_runtime::vm::Tracer = if o.trace { Some(&mut tracer) } else { None };
         match vm.run(&loaded, &mut store, resume, trace) {
             Ok(Outcome::Done) => resume = 0,
@@ -276,33 +229,20 @@ pub fn run(o: &Options) -> u8 {
 }
 
 /// Picks the block that runs an `ACTION name : TYPE` action.
-fn own_block(
-    store: &Store,
-    named: Option<&str>,
-    block_type: &str,
-) -> Result<Option<usize>, String> {
+fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result<Option<usize>, String> {
     if let Some(n) = named {
-        let b = store
-            .db
-            .block(n)
-            .ok_or_else(|| format!("--block: the database has no block `{n}`"))?;
+        let b = store.db.block(n).ok_or_else(|| format!("--block: the database has no block `{n}`"))?;
         return Ok(Some(b));
     }
     if block_type.is_empty() {
         return Ok(None);
     }
     let t = store.db.template(block_type);
-    let of_type: Vec<usize> = (0..store.db.blocks.len())
-        .filter(|&b| Some(store.db.blocks[b].template) == t)
-        .collect();
+    let of_type: Vec<usize> = (0..store.db.blocks.len()).filter(|&b| Some(store.db.blocks[b].template) == t).collect();
     match of_type.as_slice() {
         [b] => Ok(Some(*b)),
-        [] => Err(format!(
-            "the action runs on a {block_type} block and the database has none"
-        )),
-        _ => Err(format!(
-            "the database has several {block_type} blocks; choose one with --block"
-        )),
+        [] => Err(format!("the action runs on a {block_type} block and the database has none")),
+        _ => Err(format!("the database has several {block_type} blocks; choose one with --block")),
     }
 }
 

@@ -27,27 +27,14 @@ fn temp_file(name: &str, text: &str) -> String {
 
 #[test]
 fn clean_files_exit_zero_and_print_nothing() {
-    let o = linc(&[
-        "check",
-        "examples/guide/control.stx",
-        "examples/guide/shift.st",
-        "--db",
-        DB,
-    ]);
+    let o = linc(&["check", "examples/guide/control.stx", "examples/guide/shift.st", "--db", DB]);
     assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
     assert_eq!(stdout(&o), "");
 }
 
 #[test]
 fn errors_exit_one_with_short_locations() {
-    let o = linc(&[
-        "check",
-        "examples/guide/broken.st",
-        "--db",
-        DB,
-        "--message-format",
-        "short",
-    ]);
+    let o = linc(&["check", "examples/guide/broken.st", "--db", DB, "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stdout(&o),
@@ -67,29 +54,17 @@ fn human_format_renders_snippets_and_help() {
 
 #[test]
 fn json_format_is_one_object_per_line() {
-    let o = linc(&[
-        "check",
-        "examples/guide/broken.st",
-        "--db",
-        DB,
-        "--message-format",
-        "json",
-    ]);
+    let o = linc(&["check", "examples/guide/broken.st", "--db", DB, "--message-format", "json"]);
     assert_eq!(o.status.code(), Some(1));
-    let lines: Vec<serde_json::Value> = stdout(&o)
-        .lines()
-        .map(|l| serde_json::from_str(l).expect("each line is JSON"))
-        .collect();
+    let lines: Vec<serde_json::Value> =
+        stdout(&o).lines().map(|l| serde_json::from_str(l).expect("each line is JSON")).collect();
     assert_eq!(lines.len(), 3);
     assert_eq!(lines[1]["code"], "E0104");
     assert_eq!(lines[1]["line"], 3);
     assert_eq!(lines[1]["column"], 17);
     assert_eq!(lines[1]["file"], "examples/guide/broken.st");
     assert_eq!(lines[1]["severity"], "error");
-    assert!(lines[1]["help"][0]
-        .as_str()
-        .unwrap_or_default()
-        .contains("MANUAL"));
+    assert!(lines[1]["help"][0].as_str().unwrap_or_default().contains("MANUAL"));
 }
 
 #[test]
@@ -107,35 +82,16 @@ fn missing_file_is_an_io_error() {
 
 #[test]
 fn broken_database_is_reported_with_its_location() {
-    let db = temp_file(
-        "bad.json",
-        "{ \"blocks\": { \"B1\": { \"type\": \"NOPE\" } } }",
-    );
-    let o = linc(&[
-        "check",
-        "examples/guide/shift.st",
-        "--db",
-        &db,
-        "--message-format",
-        "short",
-    ]);
+    let db = temp_file("bad.json", "{ \"blocks\": { \"B1\": { \"type\": \"NOPE\" } } }");
+    let o = linc(&["check", "examples/guide/shift.st", "--db", &db, "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stdout(&o).contains("bad.json:1:31: error[E0803]: block `B1` has unknown type `NOPE`"),
-        "{}",
-        stdout(&o)
-    );
+    assert!(stdout(&o).contains("bad.json:1:31: error[E0803]: block `B1` has unknown type `NOPE`"), "{}", stdout(&o));
 }
 
 #[test]
 fn usage_errors_exit_two() {
     assert_eq!(linc(&["check"]).status.code(), Some(2));
-    assert_eq!(
-        linc(&["check", "x.st", "--message-format", "xml"])
-            .status
-            .code(),
-        Some(2)
-    );
+    assert_eq!(linc(&["check", "x.st", "--message-format", "xml"]).status.code(), Some(2));
     assert_eq!(linc(&["frobnicate"]).status.code(), Some(2));
 }
 
@@ -144,24 +100,13 @@ fn tree_prints_the_grouping() {
     let f = temp_file("prec.st", "Recipe.N0 := 10 - 2 - 3;\n");
     let o = linc(&["check", &f, "--db", DB, "--tree"]);
     assert_eq!(o.status.code(), Some(0));
-    assert_eq!(
-        stdout(&o),
-        "(action prec\n  (:= Recipe.N0 (- (- 10 2) 3))\n)\n"
-    );
+    assert_eq!(stdout(&o), "(action prec\n  (:= Recipe.N0 (- (- 10 2) 3))\n)\n");
 }
 
 #[test]
 fn transitions_are_checked_in_sequence_context() {
-    let path = &temp_file(
-        "t1.stt",
-        "Dig_B.Out.Bit5 AND (Rec.A0<4 OR Rec.A0>5) OR step6.T>=T#4s",
-    );
-    assert_eq!(
-        linc(&["check", path, "--db", DB, "--transition"])
-            .status
-            .code(),
-        Some(0)
-    );
+    let path = &temp_file("t1.stt", "Dig_B.Out.Bit5 AND (Rec.A0<4 OR Rec.A0>5) OR step6.T>=T#4s");
+    assert_eq!(linc(&["check", path, "--db", DB, "--transition"]).status.code(), Some(0));
     assert_eq!(linc(&["check", path, "--db", DB]).status.code(), Some(1));
 }
 
@@ -179,11 +124,7 @@ fn explain_prints_the_page() {
 
 fn eval(expr: &str) -> (Option<i32>, String, String) {
     let o = linc(&["eval", expr, "--now", "2024-02-29T13:45:07", "--seed", "42"]);
-    (
-        o.status.code(),
-        stdout(&o),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
+    (o.status.code(), stdout(&o), String::from_utf8_lossy(&o.stderr).into_owned())
 }
 
 #[test]
@@ -215,10 +156,7 @@ fn eval_prints_values_in_st_form() {
 #[test]
 fn eval_reads_the_database_and_reports_errors() {
     let o = linc(&["eval", "REC1.A0 * 2", "--db", DB]);
-    assert_eq!(
-        (o.status.code(), stdout(&o)),
-        (Some(0), "25.0\n".to_string())
-    );
+    assert_eq!((o.status.code(), stdout(&o)), (Some(0), "25.0\n".to_string()));
     let (code, _, err) = eval("1 / (2 - 2 + 0 * 1)");
     assert_eq!(code, Some(1), "{err}");
     assert!(err.contains("R0001"), "{err}");
@@ -246,49 +184,25 @@ fn run_sets_shows_and_traces() {
     ]);
     assert_eq!(o.status.code(), Some(0));
     let out = stdout(&o);
-    assert!(
-        out.starts_with("cycle 1: Counters.N0 = 0\ncycle 1: Block_5.Val1 = 2.0\n"),
-        "{out}"
-    );
-    assert!(
-        out.ends_with("Block_5.Val8 = 42.5\nBlock_5.Val1 = 2.0\n"),
-        "{out}"
-    );
+    assert!(out.starts_with("cycle 1: Counters.N0 = 0\ncycle 1: Block_5.Val1 = 2.0\n"), "{out}");
+    assert!(out.ends_with("Block_5.Val8 = 42.5\nBlock_5.Val1 = 2.0\n"), "{out}");
 }
 
 #[test]
 fn run_cycles_repeat_the_action() {
     let f = temp_file("count.st", "Counters.N0 := Counters.N0 + 1;\n");
-    let o = linc(&[
-        "run",
-        &f,
-        "--db",
-        DB,
-        "--cycles",
-        "5",
-        "--show",
-        "Counters.N0",
-    ]);
-    assert_eq!(
-        (o.status.code(), stdout(&o)),
-        (Some(0), "Counters.N0 = 5\n".to_string())
-    );
+    let o = linc(&["run", &f, "--db", DB, "--cycles", "5", "--show", "Counters.N0"]);
+    assert_eq!((o.status.code(), stdout(&o)), (Some(0), "Counters.N0 = 5\n".to_string()));
 }
 
 #[test]
 fn runtime_error_keeps_earlier_writes_in_out() {
-    let f = temp_file(
-        "fault.st",
-        "Counters.N0 := 5;\nCounters.N1 := 1 / Counters.N3;\nCounters.N2 := 7;\n",
-    );
+    let f = temp_file("fault.st", "Counters.N0 := 5;\nCounters.N1 := 1 / Counters.N3;\nCounters.N2 := 7;\n");
     let out = temp_file("fault.json", "");
     let o = linc(&["run", &f, "--db", DB, "--out", &out]);
     assert_eq!(o.status.code(), Some(1));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("fault.st:2:1: runtime error[R0001] in action `fault`: division by zero"),
-        "{err}"
-    );
+    assert!(err.contains("fault.st:2:1: runtime error[R0001] in action `fault`: division by zero"), "{err}");
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&out).expect("out written")).expect("json");
     assert_eq!(v["blocks"]["Counters"]["values"]["N0"], 5);
@@ -299,52 +213,22 @@ fn runtime_error_keeps_earlier_writes_in_out() {
 
 #[test]
 fn watchdog_names_the_loop_line() {
-    let f = temp_file(
-        "loop.st",
-        "Counters.N0 := 0;\nWHILE 1 DO\n  Counters.N0 := Counters.N0 + 1;\nEND_WHILE;\n",
-    );
+    let f = temp_file("loop.st", "Counters.N0 := 0;\nWHILE 1 DO\n  Counters.N0 := Counters.N0 + 1;\nEND_WHILE;\n");
     let o = linc(&["run", &f, "--db", DB, "--watchdog", "1000"]);
     assert_eq!(o.status.code(), Some(1));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("loop.st:2:1: runtime error[R0006]") && err.contains("line 2"),
-        "{err}"
-    );
+    assert!(err.contains("loop.st:2:1: runtime error[R0006]") && err.contains("line 2"), "{err}");
 }
 
 #[test]
 fn compile_disasm_and_run_an_object() {
     let sto = temp_file("control.sto", "");
-    let o = linc(&[
-        "compile",
-        "examples/guide/control.stx",
-        "-o",
-        &sto,
-        "--db",
-        DB,
-    ]);
+    let o = linc(&["compile", "examples/guide/control.stx", "-o", &sto, "--db", DB]);
     assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
     let listing = stdout(&linc(&["disasm", &sto]));
-    assert!(
-        listing.contains("action Startup") && listing.contains("StoreS       PIC_004.Mode"),
-        "{listing}"
-    );
-    assert!(
-        listing.contains("; 4:5  PIC_004.Mode := \"CASCADE\";"),
-        "{listing}"
-    );
-    let o = linc(&[
-        "run",
-        &sto,
-        "--db",
-        DB,
-        "--action",
-        "startup",
-        "--show",
-        "PIC_004.Mode",
-        "--show",
-        "TIC_100.SL",
-    ]);
+    assert!(listing.contains("action Startup") && listing.contains("StoreS       PIC_004.Mode"), "{listing}");
+    assert!(listing.contains("; 4:5  PIC_004.Mode := \"CASCADE\";"), "{listing}");
+    let o = linc(&["run", &sto, "--db", DB, "--action", "startup", "--show", "PIC_004.Mode", "--show", "TIC_100.SL"]);
     assert_eq!(stdout(&o), "PIC_004.Mode = 'CASCADE'\nTIC_100.SL = 55.0\n");
     let o = linc(&[
         "run",
@@ -360,61 +244,15 @@ fn compile_disasm_and_run_an_object() {
         "--show",
         "Raw1.I2",
     ]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 #[test]
 fn run_usage_and_compile_errors_exit_two() {
-    assert_eq!(
-        linc(&["run", "examples/guide/broken.st", "--db", DB])
-            .status
-            .code(),
-        Some(2)
-    );
-    assert_eq!(
-        linc(&[
-            "run",
-            "examples/guide/shift.st",
-            "--db",
-            DB,
-            "--action",
-            "nope"
-        ])
-        .status
-        .code(),
-        Some(2)
-    );
-    assert_eq!(
-        linc(&[
-            "run",
-            "examples/guide/shift.st",
-            "--db",
-            DB,
-            "--set",
-            "Block_5.PV=abc"
-        ])
-        .status
-        .code(),
-        Some(2)
-    );
-    assert_eq!(
-        linc(&[
-            "run",
-            "examples/guide/shift.st",
-            "--db",
-            DB,
-            "--now",
-            "soon"
-        ])
-        .status
-        .code(),
-        Some(2)
-    );
+    assert_eq!(linc(&["run", "examples/guide/broken.st", "--db", DB]).status.code(), Some(2));
+    assert_eq!(linc(&["run", "examples/guide/shift.st", "--db", DB, "--action", "nope"]).status.code(), Some(2));
+    assert_eq!(linc(&["run", "examples/guide/shift.st", "--db", DB, "--set", "Block_5.PV=abc"]).status.code(), Some(2));
+    assert_eq!(linc(&["run", "examples/guide/shift.st", "--db", DB, "--now", "soon"]).status.code(), Some(2));
     let bad = temp_file("bad.sto", "LINCSTO but not really");
     let o = linc(&["run", &bad, "--db", DB]);
     assert_eq!(o.status.code(), Some(2));

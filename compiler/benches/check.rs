@@ -33,19 +33,10 @@ fn bench(c: &mut Criterion) {
     let src = generate();
     let _ = std::fs::create_dir_all("../target");
     let _ = std::fs::write("../target/check-bench.st", &src);
-    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json"))
-        .expect("guide database");
-    let ctx = Context {
-        db: &db,
-        resolve_blocks: true,
-        steps: None,
-    };
+    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide database");
+    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
     let clean = linc_compiler::check_source(&src, "bench", ctx);
-    assert!(
-        clean.diagnostics.is_empty(),
-        "generated input must check clean: {:?}",
-        clean.diagnostics.first()
-    );
+    assert!(clean.diagnostics.is_empty(), "generated input must check clean: {:?}", clean.diagnostics.first());
 
     let mut g = c.benchmark_group("check");
     g.throughput(Throughput::Bytes(src.len() as u64));
@@ -53,22 +44,12 @@ fn bench(c: &mut Criterion) {
     g.bench_function("baseline: count lines (native)", |b| {
         b.iter(|| black_box(&src).bytes().filter(|&b| b == b'\n').count())
     });
-    g.bench_function("lex", |b| {
-        b.iter(|| linc_compiler::lexer::lex(black_box(&src)).0.len())
-    });
+    g.bench_function("lex", |b| b.iter(|| linc_compiler::lexer::lex(black_box(&src)).0.len()));
     g.bench_function("lex + parse", |b| {
-        b.iter(|| {
-            linc_compiler::parser::parse_file(black_box(&src), "bench")
-                .0
-                .map(|f| f.actions.len())
-        })
+        b.iter(|| linc_compiler::parser::parse_file(black_box(&src), "bench").0.map(|f| f.actions.len()))
     });
     g.bench_function("check (lex + parse + resolve + types)", |b| {
-        b.iter(|| {
-            linc_compiler::check_source(black_box(&src), "bench", ctx)
-                .diagnostics
-                .len()
-        })
+        b.iter(|| linc_compiler::check_source(black_box(&src), "bench", ctx).diagnostics.len())
     });
     g.finish();
 }

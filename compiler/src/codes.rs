@@ -94,9 +94,7 @@ codes! {
 
 /// Looks a code up, ignoring case (`e0001` works too).
 pub fn lookup(code: &str) -> Option<&'static Code> {
-    CODES
-        .iter()
-        .find(|c| c.code.eq_ignore_ascii_case(code.trim()))
+    CODES.iter().find(|c| c.code.eq_ignore_ascii_case(code.trim()))
 }
 
 #[cfg(test)]
@@ -117,30 +115,15 @@ mod tests {
             include_str!("../../runtime/src/vm.rs"),
         ];
         for src in sources {
-            let starts = src
-                .match_indices("\"E0")
-                .chain(src.match_indices("\"W0"))
-                .chain(src.match_indices("\"R0"));
+            let starts = src.match_indices("\"E0").chain(src.match_indices("\"W0")).chain(src.match_indices("\"R0"));
             for (i, _) in starts {
                 let code = &src[i + 1..i + 6];
-                assert!(
-                    lookup(code).is_some(),
-                    "{code} is emitted but not registered"
-                );
+                assert!(lookup(code).is_some(), "{code} is emitted but not registered");
             }
         }
         for c in CODES {
-            assert!(
-                c.explanation
-                    .starts_with(&format!("# {}: {}", c.code, c.title)),
-                "{} title line",
-                c.code
-            );
-            assert!(
-                c.explanation.contains("## Wrong") && c.explanation.contains("## Right"),
-                "{} examples",
-                c.code
-            );
+            assert!(c.explanation.starts_with(&format!("# {}: {}", c.code, c.title)), "{} title line", c.code);
+            assert!(c.explanation.contains("## Wrong") && c.explanation.contains("## Right"), "{} examples", c.code);
         }
     }
 }

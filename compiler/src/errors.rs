@@ -59,9 +59,10 @@ impl LexError {
                 .label("this comment runs to the end of the file")
                 .help("close comments with *)"),
             LexError::IllegalSpace { span, what, fixed } => {
-                let d = Diagnostic::error("E0004", format!("space inside {what}"), *span)
-                    .label("remove this space")
-                    .help("spaces are not allowed inside operators, database names, identifiers or constants (§12.2.2)");
+                let d =
+                    Diagnostic::error("E0004", format!("space inside {what}"), *span).label("remove this space").help(
+                        "spaces are not allowed inside operators, database names, identifiers or constants (§12.2.2)",
+                    );
                 if fixed.is_empty() {
                     d
                 } else {
@@ -186,11 +187,7 @@ fn expected_text(expected: &[String]) -> String {
     match expected.len() {
         0 => "not expected here".to_string(),
         1 => format!("expected {}", expected[0]),
-        n if n <= 6 => format!(
-            "expected {} or {}",
-            expected[..n - 1].join(", "),
-            expected[n - 1]
-        ),
+        n if n <= 6 => format!("expected {} or {}", expected[..n - 1].join(", "), expected[n - 1]),
         _ => format!("expected one of {}, ...", expected[..5].join(", ")),
     }
 }

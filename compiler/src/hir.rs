@@ -135,10 +135,6 @@ pub enum Target {
 
 impl Expr {
     pub fn error(span: Span) -> Expr {
-        Expr {
-            ty: Ty::Any,
-            kind: ExprKind::Error,
-            span,
-        }
+        Expr { ty: Ty::Any, kind: ExprKind::Error, span }
     }
 }

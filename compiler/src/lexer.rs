@@ -236,13 +236,7 @@ fn split_operator(first: &Tok, second: Raw) -> Option<Tok<'static>> {
     })
 }
 
-fn lex_into<'s>(
-    src: &'s str,
-    from: usize,
-    to: usize,
-    out: &mut Vec<Spanned<'s>>,
-    errors: &mut Vec<LexError>,
-) {
+fn lex_into<'s>(src: &'s str, from: usize, to: usize, out: &mut Vec<Spanned<'s>>, errors: &mut Vec<LexError>) {
     let mut raw = Raw::lexer(&src[..to]);
     raw.bump(from);
     let mut pending: Option<(Raw, std::ops::Range<usize>)> = None;
@@ -255,10 +249,7 @@ fn lex_into<'s>(
                 Some(Err(())) => {
                     let span = raw.span();
                     let ch = src[span.start..].chars().next().unwrap_or('?');
-                    errors.push(LexError::UnexpectedChar {
-                        span: Span::new(span.start, span.end),
-                        ch,
-                    });
+                    errors.push(LexError::UnexpectedChar { span: Span::new(span.start, span.end), ch });
                     continue;
                 }
             },
@@ -288,48 +279,33 @@ fn lex_into<'s>(
         match tok {
             Raw::Name | Raw::BadName => out.push((s, Tok::Name(text), e)),
             Raw::Int => {
-                let v = text
-                    .bytes()
-                    .fold(0i64, |a, b| (a * 10 + i64::from(b - b'0')).min(1 << 40));
+                let v = text.bytes().fold(0i64, |a, b| (a * 10 + i64::from(b - b'0')).min(1 << 40));
                 out.push((s, Tok::Int(v), e));
             }
             Raw::Based => out.push((s, Tok::Int(based(text)), e)),
             Raw::BadBased => {
-                errors.push(LexError::BadNumber {
-                    span: Span::new(s, e),
-                    text: text.to_string(),
-                });
+                errors.push(LexError::BadNumber { span: Span::new(s, e), text: text.to_string() });
                 out.push((s, Tok::Int(0), e));
             }
             Raw::Real => out.push((s, Tok::Real(text.parse().unwrap_or(0.0)), e)),
             Raw::Time => out.push((s, Tok::Time(time_seconds(&text[2..])), e)),
             Raw::BadTime => {
-                errors.push(LexError::BadTime {
-                    span: Span::new(s, e),
-                    text: text.to_string(),
-                });
+                errors.push(LexError::BadTime { span: Span::new(s, e), text: text.to_string() });
                 out.push((s, Tok::Time(0.0), e));
             }
             Raw::Str => out.push((s, Tok::Str(&text[1..text.len() - 1]), e)),
             Raw::UnclosedStr => {
-                errors.push(LexError::UnclosedString {
-                    span: Span::new(s, e),
-                });
+                errors.push(LexError::UnclosedString { span: Span::new(s, e) });
                 out.push((s, Tok::Str(&text[1..]), e));
             }
             Raw::CurlyStr => {
                 let ch = text.chars().next().unwrap_or('"');
-                errors.push(LexError::UnexpectedChar {
-                    span: Span::new(s, s + ch.len_utf8()),
-                    ch,
-                });
+                errors.push(LexError::UnexpectedChar { span: Span::new(s, s + ch.len_utf8()), ch });
                 let close = text.chars().last().map(char::len_utf8).unwrap_or(0);
                 out.push((s, Tok::Str(&text[ch.len_utf8()..text.len() - close]), e));
             }
             Raw::UnclosedComment => {
-                errors.push(LexError::UnclosedComment {
-                    span: Span::new(s, e),
-                });
+                errors.push(LexError::UnclosedComment { span: Span::new(s, e) });
                 break;
             }
             Raw::Bracketed if prev_adjacent && ends_name(out) => {
@@ -340,9 +316,7 @@ fn lex_into<'s>(
             }
             Raw::Bracketed => out.push((s, Tok::Bracketed(&text[1..text.len() - 1]), e)),
             Raw::UnclosedBracket => {
-                errors.push(LexError::UnclosedBracket {
-                    span: Span::new(s, e),
-                });
+                errors.push(LexError::UnclosedBracket { span: Span::new(s, e) });
                 out.push((s, Tok::Bracketed(&text[1..]), e));
             }
             Raw::DotName => match out.last().map(|p| (p.0, p.1.clone(), p.2)) {
@@ -357,17 +331,11 @@ fn lex_into<'s>(
                     out.push((s, Tok::DotName(&text[1..]), e));
                 }
                 Some((ps, Tok::Name(_), pe)) => {
-                    errors.push(LexError::IllegalSpace {
-                        span: Span::new(pe, s),
-                        what: "a database name",
-                        fixed: "",
-                    });
+                    errors.push(LexError::IllegalSpace { span: Span::new(pe, s), what: "a database name", fixed: "" });
                     out.pop();
                     out.push((ps, Tok::Name(&src[ps..e]), e));
                 }
-                _ => errors.push(LexError::StrayDot {
-                    span: Span::new(s, e),
-                }),
+                _ => errors.push(LexError::StrayDot { span: Span::new(s, e) }),
             },
             Raw::Dot => {
                 let next = raw.next();
@@ -377,48 +345,31 @@ fn lex_into<'s>(
                     _ => None,
                 };
                 let joined = match (out.last(), next_tok) {
-                    (Some((ps, Tok::Name(_), pe)), Some(Raw::Name | Raw::Int | Raw::BadName))
-                        if *pe == s =>
-                    {
+                    (Some((ps, Tok::Name(_), pe)), Some(Raw::Name | Raw::Int | Raw::BadName)) if *pe == s => {
                         Some((*ps, Tok::Name(&src[*ps..next_span.end])))
                     }
                     (Some((ps, Tok::Int(_), pe)), Some(Raw::Int)) if *pe == s => {
-                        let digits: String = src[*ps..next_span.end]
-                            .chars()
-                            .filter(|c| !c.is_whitespace())
-                            .collect();
+                        let digits: String = src[*ps..next_span.end].chars().filter(|c| !c.is_whitespace()).collect();
                         Some((*ps, Tok::Real(digits.parse().unwrap_or(0.0))))
                     }
                     _ => None,
                 };
                 match joined {
                     Some((start, tok)) => {
-                        let what = if matches!(tok, Tok::Real(_)) {
-                            "a constant"
-                        } else {
-                            "a database name"
-                        };
-                        errors.push(LexError::IllegalSpace {
-                            span: Span::new(e, next_span.start),
-                            what,
-                            fixed: "",
-                        });
+                        let what = if matches!(tok, Tok::Real(_)) { "a constant" } else { "a database name" };
+                        errors.push(LexError::IllegalSpace { span: Span::new(e, next_span.start), what, fixed: "" });
                         out.pop();
                         out.push((start, tok, next_span.end));
                     }
                     None => {
-                        errors.push(LexError::StrayDot {
-                            span: Span::new(s, e),
-                        });
+                        errors.push(LexError::StrayDot { span: Span::new(s, e) });
                         if let Some(t) = next_tok {
                             pending = Some((t, next_span));
                         } else if let Some(Err(())) = next {
                             pending = None;
                             let ch = src[next_span.start..].chars().next().unwrap_or('?');
-                            errors.push(LexError::UnexpectedChar {
-                                span: Span::new(next_span.start, next_span.end),
-                                ch,
-                            });
+                            errors
+                                .push(LexError::UnexpectedChar { span: Span::new(next_span.start, next_span.end), ch });
                         }
                     }
                 }
@@ -430,14 +381,7 @@ fn lex_into<'s>(
 
 /// Whether the last token can carry an offset (`name`, `}` or `[name]`).
 fn ends_name(out: &[Spanned]) -> bool {
-    matches!(
-        out.last(),
-        Some((
-            _,
-            Tok::Name(_) | Tok::DotName(_) | Tok::RBrace | Tok::Bracketed(_),
-            _
-        ))
-    )
+    matches!(out.last(), Some((_, Tok::Name(_) | Tok::DotName(_) | Tok::RBrace | Tok::Bracketed(_), _)))
 }
 
 /// Value of `16#FF`, `8#17` or `2#1010`, saturating well above 32 bits.
@@ -450,9 +394,7 @@ fn based(text: &str) -> i64 {
         .chars()
         .filter(|c| *c != '_')
         .filter_map(|c| c.to_digit(radix))
-        .fold(0i64, |a, d| {
-            (a * i64::from(radix) + i64::from(d)).min(1 << 40)
-        })
+        .fold(0i64, |a, d| (a * i64::from(radix) + i64::from(d)).min(1 << 40))
 }
 
 /// Seconds in the body of a time constant such as `1d12.2h`.
@@ -486,9 +428,7 @@ pub fn glued_word_operator(prev: Option<&Tok>, tok: &Tok) -> Option<&'static str
         return None;
     }
     let upper = text.to_ascii_uppercase();
-    ["AND", "XOR", "OR", "MOD", "NOT"]
-        .into_iter()
-        .find(|op| upper.starts_with(op) && upper.len() > op.len())
+    ["AND", "XOR", "OR", "MOD", "NOT"].into_iter().find(|op| upper.starts_with(op) && upper.len() > op.len())
 }
 
 #[cfg(test)]
@@ -503,22 +443,11 @@ mod tests {
     fn numbers_and_times() {
         assert_eq!(
             toks("16#FF 16#00ff 2#1100 45 3.6"),
-            [
-                Tok::Int(255),
-                Tok::Int(255),
-                Tok::Int(12),
-                Tok::Int(45),
-                Tok::Real(3.6)
-            ]
+            [Tok::Int(255), Tok::Int(255), Tok::Int(12), Tok::Int(45), Tok::Real(3.6)]
         );
         assert_eq!(
             toks("T#3s t#4m13.0S T#5.6h T#1d12.2h"),
-            [
-                Tok::Time(3.0),
-                Tok::Time(253.0),
-                Tok::Time(20160.0),
-                Tok::Time(130320.0)
-            ]
+            [Tok::Time(3.0), Tok::Time(253.0), Tok::Time(20160.0), Tok::Time(130320.0)]
         );
     }
 
@@ -526,10 +455,7 @@ mod tests {
     fn illegal_spaces_are_reported_and_repaired() {
         let (t, e) = lex("HEAT_PID. SL:=REC1. A3;");
         assert_eq!(e.len(), 2);
-        assert_eq!(
-            t.iter().map(|t| t.1.clone()).collect::<Vec<_>>()[1],
-            Tok::Assign
-        );
+        assert_eq!(t.iter().map(|t| t.1.clone()).collect::<Vec<_>>()[1], Tok::Assign);
         let (t, e) = lex("a : = 3. 5");
         assert_eq!(e.len(), 2);
         assert_eq!(t[1].1, Tok::Assign);
@@ -538,33 +464,19 @@ mod tests {
 
     #[test]
     fn bracket_after_name_is_an_offset() {
-        assert_eq!(
-            toks("f[PIC_004.PV]"),
-            [
-                Tok::Name("f"),
-                Tok::LBrace,
-                Tok::Name("PIC_004.PV"),
-                Tok::RBrace
-            ]
-        );
+        assert_eq!(toks("f[PIC_004.PV]"), [Tok::Name("f"), Tok::LBrace, Tok::Name("PIC_004.PV"), Tok::RBrace]);
         assert_eq!(toks("[6366.MN]"), [Tok::Bracketed("6366.MN")]);
     }
 
     #[test]
     fn comments_are_spaces() {
-        assert_eq!(
-            toks("(*ADJUST*) a(*x*):=1;(* y *)"),
-            [Tok::Name("a"), Tok::Assign, Tok::Int(1), Tok::Semi]
-        );
+        assert_eq!(toks("(*ADJUST*) a(*x*):=1;(* y *)"), [Tok::Name("a"), Tok::Assign, Tok::Int(1), Tok::Semi]);
         assert_eq!(lex("a (* never closed").1.len(), 1);
     }
 
     #[test]
     fn strings_keep_dollar_sequences() {
-        assert_eq!(
-            toks(r#"'a$'b' "a$62c""#),
-            [Tok::Str("a$'b"), Tok::Str("a$62c")]
-        );
+        assert_eq!(toks(r#"'a$'b' "a$62c""#), [Tok::Str("a$'b"), Tok::Str("a$62c")]);
         assert_eq!(lex("'open").1.len(), 1);
     }
 }

@@ -42,11 +42,7 @@ impl<T, P> Report<T, P> {
 }
 
 fn collect(errors: parser::ParseErrors, checked: &[check::CheckError]) -> Vec<Diagnostic> {
-    let mut out: Vec<Diagnostic> = errors
-        .lex
-        .iter()
-        .map(errors::LexError::to_diagnostic)
-        .collect();
+    let mut out: Vec<Diagnostic> = errors.lex.iter().map(errors::LexError::to_diagnostic).collect();
     out.extend(errors.syntax.iter().map(errors::SyntaxError::to_diagnostic));
     out.extend(checked.iter().map(check::CheckError::to_diagnostic));
     out.sort_by_key(|d| (d.span.start, d.span.end));
@@ -66,11 +62,7 @@ pub fn check_source(src: &str, stem: &str, ctx: Context) -> Report<ast::SourceFi
     };
     let diagnostics = collect(errors, &checked);
     let program = program.filter(|_| !diagnostics.iter().any(Diagnostic::is_error));
-    Report {
-        tree,
-        program,
-        diagnostics,
-    }
+    Report { tree, program, diagnostics }
 }
 
 /// Lexes, parses and checks a transition expression (§12.11).
@@ -98,9 +90,5 @@ fn expression(
     };
     let diagnostics = collect(errors, &checked);
     let program = program.filter(|_| !diagnostics.iter().any(Diagnostic::is_error));
-    Report {
-        tree,
-        program,
-        diagnostics,
-    }
+    Report { tree, program, diagnostics }
 }

@@ -38,39 +38,24 @@ pub fn clip(v: i64) -> i64 {
 }
 
 pub fn leaf(kind: ExprKind, l: usize, r: usize) -> Box<Expr> {
-    Box::new(Expr {
-        kind,
-        span: Span::new(l, r),
-    })
+    Box::new(Expr { kind, span: Span::new(l, r) })
 }
 
 pub fn binary(op: BinOp, a: Box<Expr>, b: Box<Expr>) -> Box<Expr> {
     let span = a.span.to(b.span);
-    Box::new(Expr {
-        kind: ExprKind::Binary(op, a, b),
-        span,
-    })
+    Box::new(Expr { kind: ExprKind::Binary(op, a, b), span })
 }
 
 pub fn unary(op: UnOp, e: Box<Expr>, span: Span) -> Box<Expr> {
-    Box::new(Expr {
-        kind: ExprKind::Unary(op, e),
-        span,
-    })
+    Box::new(Expr { kind: ExprKind::Unary(op, e), span })
 }
 
 /// Unary minus; a negated numeric constant is folded so that `-12345` and
 /// `BY -2` are constants, and `-2147483648` fits.
 pub fn negate(e: Box<Expr>, span: Span) -> Box<Expr> {
     match e.kind {
-        ExprKind::Int(v) if e.span.start == span.start + 1 => Box::new(Expr {
-            kind: ExprKind::Int(-v),
-            span,
-        }),
-        ExprKind::Real(x) if e.span.start == span.start + 1 => Box::new(Expr {
-            kind: ExprKind::Real(-x),
-            span,
-        }),
+        ExprKind::Int(v) if e.span.start == span.start + 1 => Box::new(Expr { kind: ExprKind::Int(-v), span }),
+        ExprKind::Real(x) if e.span.start == span.start + 1 => Box::new(Expr { kind: ExprKind::Real(-x), span }),
         _ => unary(UnOp::Neg, e, span),
     }
 }
@@ -82,38 +67,18 @@ pub fn paren(mut e: Box<Expr>, span: Span) -> Box<Expr> {
 }
 
 pub fn call(name: &str, l: usize, nr: usize, args: Vec<Box<Expr>>, span: Span) -> Box<Expr> {
-    let name = Ident {
-        text: name.to_string(),
-        span: Span::new(l, nr),
-    };
-    Box::new(Expr {
-        kind: ExprKind::Call {
-            name,
-            args: args.into_iter().map(|a| *a).collect(),
-        },
-        span,
-    })
+    let name = Ident { text: name.to_string(), span: Span::new(l, nr) };
+    Box::new(Expr { kind: ExprKind::Call { name, args: args.into_iter().map(|a| *a).collect() }, span })
 }
 
 /// Checks one identifier against §12.8.
 fn check_ident(syntax: &mut Vec<SyntaxError>, text: &str, span: Span) {
     let first = text.chars().next();
     if first.map(|c| c.is_ascii_digit()).unwrap_or(true) {
-        let why = if text.is_empty() {
-            "empty name part"
-        } else {
-            "starts with a digit"
-        };
-        syntax.push(SyntaxError::InvalidName {
-            span,
-            name: text.to_string(),
-            why,
-        });
+        let why = if text.is_empty() { "empty name part" } else { "starts with a digit" };
+        syntax.push(SyntaxError::InvalidName { span, name: text.to_string(), why });
     } else if text.chars().count() > 8 {
-        syntax.push(SyntaxError::NameTooLong {
-            span,
-            name: text.to_string(),
-        });
+        syntax.push(SyntaxError::NameTooLong { span, name: text.to_string() });
     }
 }
 
@@ -145,23 +110,13 @@ fn split(syntax: &mut Vec<SyntaxError>, text: &str, at: usize, bracketed: bool) 
     let mut start = at;
     for part in text.split('.') {
         let name = if bracketed { part } else { strip_spaces(part) };
-        let lead = if bracketed {
-            0
-        } else {
-            name.as_ptr() as usize - part.as_ptr() as usize
-        };
+        let lead = if bracketed { 0 } else { name.as_ptr() as usize - part.as_ptr() as usize };
         let s = if bracketed { start } else { start + lead };
         let span = Span::new(s, s + name.len());
         if !bracketed {
             check_ident(syntax, name, span);
         }
-        segs.push(Seg {
-            name: Ident {
-                text: name.to_string(),
-                span,
-            },
-            offset: None,
-        });
+        segs.push(Seg { name: Ident { text: name.to_string(), span }, offset: None });
         start += part.len() + 1;
     }
     segs
@@ -194,22 +149,11 @@ pub fn var(
                 end = span.end;
                 let nspan = Span::new(span.start + 1, span.end);
                 check_ident(syntax, &name, nspan);
-                segs.push(Seg {
-                    name: Ident {
-                        text: name,
-                        span: nspan,
-                    },
-                    offset: None,
-                });
+                segs.push(Seg { name: Ident { text: name, span: nspan }, offset: None });
             }
         }
     }
-    Var {
-        segs,
-        bracketed,
-        span: Span::new(l, end),
-        malformed: syntax.len() > before,
-    }
+    Var { segs, bracketed, span: Span::new(l, end), malformed: syntax.len() > before }
 }
 
 /// Validates an action header (§10.2.1) and builds the action.
@@ -223,20 +167,11 @@ pub fn action(
 ) -> RawAction {
     let name_span = Span::new(nl, nr);
     if name.contains('.') || name.len() > 8 || name.starts_with(|c: char| c.is_ascii_digit()) {
-        syntax.push(SyntaxError::BadActionName {
-            span: name_span,
-            name: name.to_string(),
-        });
+        syntax.push(SyntaxError::BadActionName { span: name_span, name: name.to_string() });
     }
-    let block_type = block_type.map(|(l, t, r)| Ident {
-        text: t.to_string(),
-        span: Span::new(l, r),
-    });
+    let block_type = block_type.map(|(l, t, r)| Ident { text: t.to_string(), span: Span::new(l, r) });
     RawAction(Action {
-        name: Ident {
-            text: name.to_string(),
-            span: name_span,
-        },
+        name: Ident { text: name.to_string(), span: name_span },
         block_type,
         body,
         header: Some(header),

@@ -27,16 +27,9 @@ pub fn parse_file(src: &str, stem: &str) -> (Option<SourceFile>, ParseErrors) {
     let file = parsed.and_then(|p| match p {
         Parsed::File(body, actions) => {
             if let (Some(first), false) = (body.first(), actions.is_empty()) {
-                errors
-                    .syntax
-                    .push(SyntaxError::StatementOutsideAction { span: first.span() });
+                errors.syntax.push(SyntaxError::StatementOutsideAction { span: first.span() });
             }
-            Some(file_from(
-                src,
-                stem,
-                body,
-                actions.into_iter().map(|a| a.0).collect(),
-            ))
+            Some(file_from(src, stem, body, actions.into_iter().map(|a| a.0).collect()))
         }
         Parsed::Expr(_) => None,
     });
@@ -53,27 +46,11 @@ pub fn parse_expr(src: &str) -> (Option<Expr>, ParseErrors) {
     (expr, errors)
 }
 
-fn file_from(
-    src: &str,
-    stem: &str,
-    body: Vec<crate::ast::Stmt>,
-    actions: Vec<Action>,
-) -> SourceFile {
+fn file_from(src: &str, stem: &str, body: Vec<crate::ast::Stmt>, actions: Vec<Action>) -> SourceFile {
     if actions.is_empty() {
         let span = Span::new(0, src.len());
-        let name = Ident {
-            text: stem.to_string(),
-            span: Span::new(0, 0),
-        };
-        return SourceFile {
-            actions: vec![Action {
-                name,
-                block_type: None,
-                body,
-                header: None,
-                span,
-            }],
-        };
+        let name = Ident { text: stem.to_string(), span: Span::new(0, 0) };
+        return SourceFile { actions: vec![Action { name, block_type: None, body, header: None, span }] };
     }
     SourceFile { actions }
 }
@@ -84,11 +61,7 @@ fn run(src: &str, start: Tok<'static>) -> (Option<Parsed>, ParseErrors) {
     let mut recovered: Vec<ErrorRecovery<usize, Tok, Never>> = Vec::new();
     let mut syntax = Vec::new();
     let parser = grammar::StartParser::new();
-    let result = parser.parse(
-        &mut recovered,
-        &mut syntax,
-        tokens.iter().cloned().map(Ok::<Spanned, Never>),
-    );
+    let result = parser.parse(&mut recovered, &mut syntax, tokens.iter().cloned().map(Ok::<Spanned, Never>));
     let mut found: Vec<SyntaxError> = Vec::new();
     for r in recovered {
         found.push(convert(&tokens, r.error, src.len()));
@@ -125,43 +98,25 @@ pub fn syntax_span(e: &SyntaxError) -> Span {
 
 fn convert(tokens: &[Spanned], e: ParseError<usize, Tok, Never>, len: usize) -> SyntaxError {
     match e {
-        ParseError::UnrecognizedToken {
-            token: (l, tok, r),
-            expected,
-        } => {
+        ParseError::UnrecognizedToken { token: (l, tok, r), expected } => {
             let span = Span::new(l, r);
             let at = tokens.partition_point(|t| t.0 < l);
             let prev = at.checked_sub(1).and_then(|i| tokens.get(i)).map(|t| &t.1);
             if let Some(op) = lexer::glued_word_operator(prev, &tok) {
-                return SyntaxError::GluedWordOperator {
-                    span,
-                    op,
-                    name: tok.describe_name(),
-                };
+                return SyntaxError::GluedWordOperator { span, op, name: tok.describe_name() };
             }
-            SyntaxError::Unexpected {
-                span,
-                found: tok.describe(),
-                expected: readable(&expected),
-            }
+            SyntaxError::Unexpected { span, found: tok.describe(), expected: readable(&expected) }
         }
         ParseError::UnrecognizedEof { location, expected } => {
             let at = location.min(len);
-            SyntaxError::UnexpectedEof {
-                span: Span::new(at, at),
-                expected: readable(&expected),
-            }
+            SyntaxError::UnexpectedEof { span: Span::new(at, at), expected: readable(&expected) }
         }
-        ParseError::ExtraToken { token: (l, tok, r) } => SyntaxError::Unexpected {
-            span: Span::new(l, r),
-            found: tok.describe(),
-            expected: Vec::new(),
-        },
-        ParseError::InvalidToken { location } => SyntaxError::Unexpected {
-            span: Span::new(location, location),
-            found: "token".into(),
-            expected: Vec::new(),
-        },
+        ParseError::ExtraToken { token: (l, tok, r) } => {
+            SyntaxError::Unexpected { span: Span::new(l, r), found: tok.describe(), expected: Vec::new() }
+        }
+        ParseError::InvalidToken { location } => {
+            SyntaxError::Unexpected { span: Span::new(location, location), found: "token".into(), expected: Vec::new() }
+        }
         ParseError::User { error } => match error {},
     }
 }

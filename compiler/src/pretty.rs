@@ -42,18 +42,11 @@ fn stmt(out: &mut String, s: &Stmt, depth: usize) {
         Stmt::Assign { target, value, .. } => {
             let _ = writeln!(out, "(:= {} {})", var(target), expr(value));
         }
-        Stmt::If {
-            arms, otherwise, ..
-        } => {
+        Stmt::If { arms, otherwise, .. } => {
             out.push_str("(if\n");
             for (i, (cond, body)) in arms.iter().enumerate() {
                 indent(out, depth + 1);
-                let _ = writeln!(
-                    out,
-                    "({} {}",
-                    if i == 0 { "then" } else { "elsif" },
-                    expr(cond)
-                );
+                let _ = writeln!(out, "({} {}", if i == 0 { "then" } else { "elsif" }, expr(cond));
                 stmts(out, body, depth + 2);
                 indent(out, depth + 1);
                 out.push_str(")\n");
@@ -68,14 +61,7 @@ fn stmt(out: &mut String, s: &Stmt, depth: usize) {
             indent(out, depth);
             out.push_str(")\n");
         }
-        Stmt::For {
-            var: v,
-            from,
-            to,
-            by,
-            body,
-            ..
-        } => {
+        Stmt::For { var: v, from, to, by, body, .. } => {
             let _ = write!(out, "(for {} {} {}", var(v), expr(from), expr(to));
             if let Some(b) = by {
                 let _ = write!(out, " by {}", expr(b));

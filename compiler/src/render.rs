@@ -51,8 +51,7 @@ fn human(files: &SourceFiles, id: usize, d: &Diagnostic) -> String {
         Severity::Error => cs::Diagnostic::error(),
         Severity::Warning => cs::Diagnostic::warning(),
     };
-    let mut labels =
-        vec![cs::Label::primary(id, range(files, id, d.span)).with_message(d.label.clone())];
+    let mut labels = vec![cs::Label::primary(id, range(files, id, d.span)).with_message(d.label.clone())];
     for (span, text) in &d.secondary {
         labels.push(cs::Label::secondary(id, range(files, id, *span)).with_message(text.clone()));
     }
@@ -83,12 +82,7 @@ fn severity_word(s: Severity) -> &'static str {
 fn short(files: &SourceFiles, id: usize, d: &Diagnostic) -> String {
     let (line, col) = line_col(files, id, d.span.start);
     let name = files.name(id).map(|n| n.to_string()).unwrap_or_default();
-    format!(
-        "{name}:{line}:{col}: {}[{}]: {}\n",
-        severity_word(d.severity),
-        d.code,
-        d.message
-    )
+    format!("{name}:{line}:{col}: {}[{}]: {}\n", severity_word(d.severity), d.code, d.message)
 }
 
 fn json(files: &SourceFiles, id: usize, d: &Diagnostic) -> String {

@@ -119,10 +119,7 @@ pub enum Raw {
 
     #[regex(r"[0-9]+", priority = 10)]
     Int,
-    #[regex(
-        r"(16#[0-9A-Fa-f][0-9A-Fa-f_]*|8#[0-7][0-7_]*|2#[01][01_]*)",
-        priority = 10
-    )]
+    #[regex(r"(16#[0-9A-Fa-f][0-9A-Fa-f_]*|8#[0-7][0-7_]*|2#[01][01_]*)", priority = 10)]
     Based,
     #[regex(r"[0-9]+#[0-9A-Za-z_]*", priority = 1)]
     BadBased,
@@ -135,10 +132,7 @@ pub enum Raw {
     BadTime,
     /// Something that starts like a number and goes on like a name: `1A`,
     /// `6366.MN`.
-    #[regex(
-        r"[0-9][A-Za-z0-9_]*(\.[A-Za-z0-9_]+)+|[0-9]+[A-Za-z_][A-Za-z0-9_]*",
-        priority = 1
-    )]
+    #[regex(r"[0-9][A-Za-z0-9_]*(\.[A-Za-z0-9_]+)+|[0-9]+[A-Za-z_][A-Za-z0-9_]*", priority = 1)]
     BadName,
     #[regex(r"'([^'$\n]|\$[^\n])*'")]
     #[regex(r#""([^"$\n]|\$[^\n])*""#)]

@@ -161,34 +161,20 @@ fn mutate(rng: &mut Rng, input: &str) -> String {
 }
 
 fn random_tokens(rng: &mut Rng) -> String {
-    (0..rng.below(40))
-        .map(|_| VOCAB[rng.below(VOCAB.len())])
-        .collect()
+    (0..rng.below(40)).map(|_| VOCAB[rng.below(VOCAB.len())]).collect()
 }
 
 fn exercise(db: &Database, src: &str) {
     let steps: &[String] = &[];
-    for ctx in [
-        Context {
-            db,
-            resolve_blocks: true,
-            steps: None,
-        },
-        Context {
-            db,
-            resolve_blocks: false,
-            steps: Some(steps),
-        },
-    ] {
+    for ctx in
+        [Context { db, resolve_blocks: true, steps: None }, Context { db, resolve_blocks: false, steps: Some(steps) }]
+    {
         let report = linc_compiler::check_source(src, "fuzz", ctx);
         let expr = linc_compiler::check_transition(src, ctx);
         let mut files = SourceFiles::new();
         let id = files.add("fuzz.st".into(), src.to_string());
         for d in report.diagnostics.iter().chain(&expr.diagnostics) {
-            assert!(
-                d.span.start <= d.span.end && d.span.end <= src.len(),
-                "span out of range: {d:?} in {src:?}"
-            );
+            assert!(d.span.start <= d.span.end && d.span.end <= src.len(), "span out of range: {d:?} in {src:?}");
             for f in [Format::Human, Format::Short, Format::Json] {
                 let _ = render(&files, id, d, f);
             }
@@ -201,12 +187,8 @@ fn exercise(db: &Database, src: &str) {
 
 #[test]
 fn random_and_mutated_inputs_never_panic() {
-    let cases: usize = std::env::var("LINC_FUZZ_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(3_000);
-    let db =
-        Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
+    let cases: usize = std::env::var("LINC_FUZZ_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(3_000);
+    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
     for i in 0..cases {
         let src = if i % 4 == 0 {
@@ -221,8 +203,7 @@ fn random_and_mutated_inputs_never_panic() {
 
 #[test]
 fn corpus_checks_without_panicking() {
-    let db =
-        Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
+    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
     for src in CORPUS {
         exercise(&db, src);
     }

@@ -67,16 +67,10 @@ impl fmt::Display for LoadError {
                 write!(f, "the object file is truncated in its {what}")
             }
             LoadError::Malformed { what } => write!(f, "malformed object file: {what}"),
-            LoadError::BadInstruction {
-                action,
-                offset,
-                opcode,
-            } => {
+            LoadError::BadInstruction { action, offset, opcode } => {
                 write!(f, "action `{action}`: unknown or incomplete instruction {opcode:#04x} at code offset {offset}")
             }
-            LoadError::Invalid {
-                action, op, what, ..
-            } => write!(f, "action `{action}`, instruction {op}: {what}"),
+            LoadError::Invalid { action, op, what, .. } => write!(f, "action `{action}`, instruction {op}: {what}"),
             LoadError::Link { symbol, why } => write!(f, "can't link `{symbol}`: {why}"),
         }
     }
@@ -117,9 +111,6 @@ pub struct Fault {
 
 impl Fault {
     pub fn new(code: &'static str, message: impl Into<String>) -> Fault {
-        Fault {
-            code,
-            message: message.into(),
-        }
+        Fault { code, message: message.into() }
     }
 }

@@ -213,13 +213,9 @@ impl Op {
     /// The instruction's effect on the two stacks.
     pub fn effect(&self) -> Effect {
         match *self {
-            Op::Call {
-                argc, ret, types, ..
-            } => {
+            Op::Call { argc, ret, types, .. } => {
                 let n = usize::from(argc).min(MAX_CALL_ARGS);
-                let strs = (0..n)
-                    .filter(|&i| Kind::arg(types, i).on_string_stack())
-                    .count() as u32;
+                let strs = (0..n).filter(|&i| Kind::arg(types, i).on_string_stack()).count() as u32;
                 let ret_str = Kind::from_bits(u32::from(ret)).on_string_stack();
                 Effect {
                     num_pop: n as u32 - strs,
@@ -230,12 +226,7 @@ impl Op {
             }
             Op::Return { kind } => {
                 let s = Kind::from_bits(u32::from(kind)).on_string_stack();
-                Effect {
-                    num_pop: u32::from(!s),
-                    num_push: 0,
-                    str_pop: u32::from(s),
-                    str_push: 0,
-                }
+                Effect { num_pop: u32::from(!s), num_push: 0, str_pop: u32::from(s), str_push: 0 }
             }
             _ => self.fixed_effect(),
         }
@@ -289,12 +280,7 @@ mod tests {
             Op::PushR { v: 2.5 },
             Op::LoadBit { sym: 3, bit: 7 },
             Op::Jump { to: 99 },
-            Op::Call {
-                func: 5,
-                argc: 2,
-                ret: 3,
-                types: 0b1101,
-            },
+            Op::Call { func: 5, argc: 2, ret: 3, types: 0b1101 },
             Op::Ret {},
         ];
         for op in samples {
@@ -317,20 +303,7 @@ mod tests {
 
     #[test]
     fn call_effect_counts_string_arguments() {
-        let op = Op::Call {
-            func: 0,
-            argc: 3,
-            ret: Kind::Bytes as u8,
-            types: 3 | (3 << 4),
-        };
-        assert_eq!(
-            op.effect(),
-            Effect {
-                num_pop: 1,
-                num_push: 0,
-                str_pop: 2,
-                str_push: 1
-            }
-        );
+        let op = Op::Call { func: 0, argc: 3, ret: Kind::Bytes as u8, types: 3 | (3 << 4) };
+        assert_eq!(op.effect(), Effect { num_pop: 1, num_push: 0, str_pop: 2, str_push: 1 });
     }
 }

@@ -36,15 +36,8 @@ pub fn prepare<'a>(
     store: &Store,
     own: Option<usize>,
 ) -> Result<vm::Loaded<'a>, LoadError> {
-    let action = obj.actions.get(index).ok_or_else(|| LoadError::Malformed {
-        what: format!("no action {index}"),
-    })?;
+    let action = obj.actions.get(index).ok_or_else(|| LoadError::Malformed { what: format!("no action {index}") })?;
     let limits = verify::verify_action(obj, action)?;
     let targets = verify::link_action(obj, action, store, own)?;
-    Ok(vm::Loaded {
-        obj,
-        action,
-        targets,
-        limits,
-    })
+    Ok(vm::Loaded { obj, action, targets, limits })
 }

@@ -63,18 +63,12 @@ impl Class {
 
     /// Loaded and stored through the numeric stack as INT.
     pub fn is_int(self) -> bool {
-        matches!(
-            self,
-            Class::Int | Class::Bool | Class::Bits8 | Class::Bits16
-        )
+        matches!(self, Class::Int | Class::Bool | Class::Bits8 | Class::Bits16)
     }
 
     /// Loaded and stored through the string stack.
     pub fn is_string(self) -> bool {
-        matches!(
-            self,
-            Class::Enum | Class::String | Class::Date | Class::Time | Class::Bseq | Class::Wstr
-        )
+        matches!(self, Class::Enum | Class::String | Class::Date | Class::Time | Class::Bseq | Class::Wstr)
     }
 
     /// Number of bits of a bitfield.
@@ -111,11 +105,7 @@ pub struct Symbol {
 impl Symbol {
     /// `BLOCK.Field[.Alarm][.Suppress]` as an engineer would write it.
     pub fn text(&self) -> String {
-        let base = if self.block.is_empty() {
-            self.field.clone()
-        } else {
-            format!("{}.{}", self.block, self.field)
-        };
+        let base = if self.block.is_empty() { self.field.clone() } else { format!("{}.{}", self.block, self.field) };
         match &self.sub {
             Sub::Field => base,
             Sub::Alarm(a) => format!("{base}.{a}"),
@@ -174,19 +164,13 @@ pub fn crc32(data: &[u8]) -> u32 {
         for (i, e) in t.iter_mut().enumerate() {
             let mut c = i as u32;
             for _ in 0..8 {
-                c = if c & 1 != 0 {
-                    0xEDB8_8320 ^ (c >> 1)
-                } else {
-                    c >> 1
-                };
+                c = if c & 1 != 0 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 };
             }
             *e = c;
         }
         t
     });
-    !data.iter().fold(!0u32, |c, &b| {
-        table[((c ^ u32::from(b)) & 0xFF) as usize] ^ (c >> 8)
-    })
+    !data.iter().fold(!0u32, |c, &b| table[((c ^ u32::from(b)) & 0xFF) as usize] ^ (c >> 8))
 }
 
 fn put_str(out: &mut Vec<u8>, s: &str) {
@@ -273,38 +257,26 @@ impl ObjectFile {
             return Err(LoadError::BadMagic);
         }
         if data.len() < HEADER {
-            return Err(LoadError::Truncated {
-                what: "header".into(),
-            });
+            return Err(LoadError::Truncated { what: "header".into() });
         }
         let version = u16::from_le_bytes([data[8], data[9]]);
         if version != VERSION {
-            return Err(LoadError::BadVersion {
-                found: version,
-                supported: VERSION,
-            });
+            return Err(LoadError::BadVersion { found: version, supported: VERSION });
         }
         let stored_crc = u32::from_le_bytes([data[12], data[13], data[14], data[15]]);
         let len = u32::from_le_bytes([data[16], data[17], data[18], data[19]]) as usize;
         if len != data.len() {
             return Err(if len > data.len() {
-                LoadError::Truncated {
-                    what: format!("file ({} of {len} bytes)", data.len()),
-                }
+                LoadError::Truncated { what: format!("file ({} of {len} bytes)", data.len()) }
             } else {
-                LoadError::Malformed {
-                    what: format!("{} bytes after the end of the object", data.len() - len),
-                }
+                LoadError::Malformed { what: format!("{} bytes after the end of the object", data.len() - len) }
             });
         }
         let mut zeroed = data.to_vec();
         zeroed[12..16].fill(0);
         let actual = crc32(&zeroed);
         if actual != stored_crc {
-            return Err(LoadError::BadChecksum {
-                stored: stored_crc,
-                actual,
-            });
+            return Err(LoadError::BadChecksum { stored: stored_crc, actual });
         }
         let mut r = Reader { data, at: HEADER };
         let source = r.string("source name")?;
@@ -321,18 +293,9 @@ impl ObjectFile {
                 1 => Sub::Alarm(r.string("symbol")?),
                 2 => Sub::Suppress(Some(r.string("symbol")?)),
                 3 => Sub::Suppress(None),
-                k => {
-                    return Err(LoadError::Malformed {
-                        what: format!("symbol `{block}.{field}` has sub-kind {k}"),
-                    })
-                }
+                k => return Err(LoadError::Malformed { what: format!("symbol `{block}.{field}` has sub-kind {k}") }),
             };
-            symbols.push(Symbol {
-                block,
-                field,
-                sub,
-                class,
-            });
+            symbols.push(Symbol { block, field, sub, class });
         }
         let mut strings = Vec::new();
         for _ in 0..r.count("constant pool")? {
@@ -375,27 +338,12 @@ impl ObjectFile {
                     col: r.u32("loop table")?,
                 });
             }
-            actions.push(ActionCode {
-                name,
-                file,
-                block_type,
-                locals,
-                ops,
-                lines,
-                loops,
-            });
+            actions.push(ActionCode { name, file, block_type, locals, ops, lines, loops });
         }
         if r.at != data.len() {
-            return Err(LoadError::Malformed {
-                what: format!("{} unread bytes at the end", data.len() - r.at),
-            });
+            return Err(LoadError::Malformed { what: format!("{} unread bytes at the end", data.len() - r.at) });
         }
-        Ok(ObjectFile {
-            source,
-            symbols,
-            strings,
-            actions,
-        })
+        Ok(ObjectFile { source, symbols, strings, actions })
     }
 }
 
@@ -408,9 +356,7 @@ struct Reader<'a> {
 impl<'a> Reader<'a> {
     fn bytes(&mut self, n: usize, what: &str) -> Result<&'a [u8], LoadError> {
         let end = self.at.checked_add(n).filter(|&e| e <= self.data.len());
-        let end = end.ok_or_else(|| LoadError::Truncated {
-            what: what.to_string(),
-        })?;
+        let end = end.ok_or_else(|| LoadError::Truncated { what: what.to_string() })?;
         let s = &self.data[self.at..end];
         self.at = end;
         Ok(s)
@@ -430,9 +376,7 @@ impl<'a> Reader<'a> {
     fn count(&mut self, what: &str) -> Result<u32, LoadError> {
         let n = self.u32(what)?;
         if n as usize > self.data.len() - self.at {
-            return Err(LoadError::Truncated {
-                what: what.to_string(),
-            });
+            return Err(LoadError::Truncated { what: what.to_string() });
         }
         Ok(n)
     }
@@ -441,8 +385,6 @@ impl<'a> Reader<'a> {
         let b = self.bytes(2, what)?;
         let n = usize::from(u16::from_le_bytes([b[0], b[1]]));
         let s = self.bytes(n, what)?;
-        String::from_utf8(s.to_vec()).map_err(|_| LoadError::Malformed {
-            what: format!("{what}: text is not UTF-8"),
-        })
+        String::from_utf8(s.to_vec()).map_err(|_| LoadError::Malformed { what: format!("{what}: text is not UTF-8") })
     }
 }

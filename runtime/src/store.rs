@@ -92,21 +92,11 @@ impl Store {
             let mut ends = vec![0u32; n];
             for i in (0..n).rev() {
                 let same_next = i + 1 < n && t.fields[i + 1].ty.same_kind(&t.fields[i].ty);
-                ends[i] = if same_next {
-                    ends[i + 1]
-                } else {
-                    start + i as u32
-                };
+                ends[i] = if same_next { ends[i + 1] } else { start + i as u32 };
             }
             run_end.extend(ends);
         }
-        Store {
-            db,
-            cells,
-            first,
-            run_end,
-            now: 0.0,
-        }
+        Store { db, cells, first, run_end, now: 0.0 }
     }
 
     /// The cell of `block.field`, by names (ignoring case).
@@ -122,11 +112,7 @@ impl Store {
             Some(block) => {
                 let t = &self.db.templates[block.template];
                 let f = (cell - self.first[b]) as usize;
-                format!(
-                    "{}.{}",
-                    block.name,
-                    t.fields.get(f).map(|f| f.name.as_str()).unwrap_or("?")
-                )
+                format!("{}.{}", block.name, t.fields.get(f).map(|f| f.name.as_str()).unwrap_or("?"))
             }
             None => format!("cell {cell}"),
         }
@@ -153,24 +139,13 @@ impl Store {
             Some(Cell::Bool(b)) => format_value(&Value::Bool(*b)),
             Some(Cell::Bits { v, width }) => bits_value(*v, *width).to_string(),
             Some(Cell::Enum { idx }) => {
-                let name = self
-                    .enum_names(cell)
-                    .get(usize::from(*idx))
-                    .cloned()
-                    .unwrap_or_default();
+                let name = self.enum_names(cell).get(usize::from(*idx)).cloned().unwrap_or_default();
                 format_value(&Value::Bytes(name.into_bytes()))
             }
-            Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => {
-                format_value(&Value::Bytes(t.clone()))
-            }
+            Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => format_value(&Value::Bytes(t.clone())),
             Some(Cell::Alarms(a)) => {
-                let on: Vec<&str> = a
-                    .names
-                    .iter()
-                    .zip(&a.active)
-                    .filter(|(_, on)| **on)
-                    .map(|(n, _)| n.as_str())
-                    .collect();
+                let on: Vec<&str> =
+                    a.names.iter().zip(&a.active).filter(|(_, on)| **on).map(|(n, _)| n.as_str()).collect();
                 format!("[{}]", on.join(", "))
             }
             None => String::new(),
@@ -220,12 +195,8 @@ impl Store {
                     Cell::Text(t) => json!(String::from_utf8_lossy(t)),
                     Cell::Bseq(t) | Cell::Wstr(t) => json!(encode_dollar(t)),
                     Cell::Alarms(a) => {
-                        let m: serde_json::Map<String, J> = a
-                            .names
-                            .iter()
-                            .zip(&a.active)
-                            .map(|(n, on)| (n.clone(), J::Bool(*on)))
-                            .collect();
+                        let m: serde_json::Map<String, J> =
+                            a.names.iter().zip(&a.active).map(|(n, on)| (n.clone(), J::Bool(*on))).collect();
                         J::Object(m)
                     }
                 };
@@ -261,15 +232,9 @@ fn initial(ty: &FieldType, init: Option<&InitValue>) -> Cell {
         FieldType::Real => Cell::Real(num as f32),
         FieldType::Int => Cell::Int(linc_stdlib::value::round_to_i32(num as f32)),
         FieldType::Bool => Cell::Bool(num != 0.0),
-        FieldType::Bits { width, .. } => Cell::Bits {
-            v: (num as i64) as u16,
-            width: *width,
-        },
+        FieldType::Bits { width, .. } => Cell::Bits { v: (num as i64) as u16, width: *width },
         FieldType::Enum(names) => {
-            let idx = names
-                .iter()
-                .position(|n| n.as_bytes().eq_ignore_ascii_case(&text))
-                .unwrap_or(0);
+            let idx = names.iter().position(|n| n.as_bytes().eq_ignore_ascii_case(&text)).unwrap_or(0);
             Cell::Enum { idx: idx as u16 }
         }
         FieldType::String | FieldType::Date | FieldType::Time => Cell::Text(text),

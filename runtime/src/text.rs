@@ -65,10 +65,7 @@ mod tests {
 
     #[test]
     fn strings_escape_and_round_trip() {
-        assert_eq!(
-            format_value(&Value::Bytes(b"it's $5\r\n".to_vec())),
-            "'it$'s $$5$0D$0A'"
-        );
+        assert_eq!(format_value(&Value::Bytes(b"it's $5\r\n".to_vec())), "'it$'s $$5$0D$0A'");
         let all: Vec<u8> = (0..=255).collect();
         assert_eq!(decode_dollar(encode_dollar(&all).as_bytes()), all);
     }

@@ -52,11 +52,7 @@ pub struct Clock {
 
 impl Clock {
     pub fn new(seed: u64, utc_offset: i64) -> Clock {
-        Clock {
-            state: seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1,
-            utc_offset,
-            now: 0.0,
-        }
+        Clock { state: seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1, utc_offset, now: 0.0 }
     }
 }
 
@@ -91,15 +87,7 @@ pub struct Vm {
 
 impl Vm {
     pub fn new(watchdog: u64, clock: Clock) -> Vm {
-        Vm {
-            num: Vec::new(),
-            strs: Vec::new(),
-            locals: Vec::new(),
-            args: Vec::new(),
-            watchdog,
-            clock,
-            result: None,
-        }
+        Vm { num: Vec::new(), strs: Vec::new(), locals: Vec::new(), args: Vec::new(), watchdog, clock, result: None }
     }
 
     fn pop(&mut self) -> u32 {
@@ -164,10 +152,7 @@ impl Vm {
             if *budget == 0 {
                 return Err(Fault::new(
                     "R0006",
-                    format!(
-                        "watchdog: more than {} instructions in one run",
-                        self.watchdog
-                    ),
+                    format!("watchdog: more than {} instructions in one run", self.watchdog),
                 ));
             }
             *budget -= 1;
@@ -190,31 +175,19 @@ impl Vm {
                     }
                 }
                 Op::LoadI { sym } | Op::LoadRefI { sym } => {
-                    let c = if matches!(op, Op::LoadI { .. }) {
-                        cell(l, sym)
-                    } else {
-                        ref_cell
-                    };
+                    let c = if matches!(op, Op::LoadI { .. }) { cell(l, sym) } else { ref_cell };
                     let v = load_int(store, c)?;
                     self.push_i(v);
                 }
                 Op::LoadR { sym } | Op::LoadRefR { sym } => {
-                    let c = if matches!(op, Op::LoadR { .. }) {
-                        cell(l, sym)
-                    } else {
-                        ref_cell
-                    };
+                    let c = if matches!(op, Op::LoadR { .. }) { cell(l, sym) } else { ref_cell };
                     match store.cells.get(c as usize) {
                         Some(Cell::Real(r)) => self.push_r(*r),
                         _ => return Err(corrupt()),
                     }
                 }
                 Op::LoadS { sym } | Op::LoadRefS { sym } => {
-                    let c = if matches!(op, Op::LoadS { .. }) {
-                        cell(l, sym)
-                    } else {
-                        ref_cell
-                    };
+                    let c = if matches!(op, Op::LoadS { .. }) { cell(l, sym) } else { ref_cell };
                     let s = match store.cells.get(c as usize) {
                         Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => t.clone(),
                         Some(Cell::Enum { idx }) => store
@@ -237,9 +210,7 @@ impl Vm {
                 Op::LoadAlarm { sym } => {
                     let t = target(l, sym);
                     let v = match store.cells.get(t.cell as usize) {
-                        Some(Cell::Alarms(a)) => {
-                            a.active.get(usize::from(t.alarm)).copied().unwrap_or(false)
-                        }
+                        Some(Cell::Alarms(a)) => a.active.get(usize::from(t.alarm)).copied().unwrap_or(false),
                         _ => return Err(corrupt()),
                     };
                     self.push_i(i32::from(v));
@@ -248,36 +219,23 @@ impl Vm {
                     let t = target(l, sym);
                     let until = match store.cells.get(t.cell as usize) {
                         Some(Cell::Alarms(a)) if t.alarm == u16::MAX => a.all_until,
-                        Some(Cell::Alarms(a)) => {
-                            a.until.get(usize::from(t.alarm)).copied().unwrap_or(0.0)
-                        }
+                        Some(Cell::Alarms(a)) => a.until.get(usize::from(t.alarm)).copied().unwrap_or(0.0),
                         _ => return Err(corrupt()),
                     };
                     let v = store.suppress_remaining(until);
                     self.push_i(v);
                 }
                 Op::StoreI { sym } | Op::StoreRefI { sym } => {
-                    let c = if matches!(op, Op::StoreI { .. }) {
-                        cell(l, sym)
-                    } else {
-                        ref_cell
-                    };
+                    let c = if matches!(op, Op::StoreI { .. }) { cell(l, sym) } else { ref_cell };
                     let v = self.pop_i();
                     store_int(store, c, v)?;
                     note(trace, store, c);
                 }
                 Op::StoreR { sym } | Op::StoreRefR { sym } => {
-                    let c = if matches!(op, Op::StoreR { .. }) {
-                        cell(l, sym)
-                    } else {
-                        ref_cell
-                    };
+                    let c = if matches!(op, Op::StoreR { .. }) { cell(l, sym) } else { ref_cell };
                     let v = self.pop_r();
                     if !v.is_finite() {
-                        return Err(Fault::new(
-                            "R0005",
-                            format!("the result is {v}, which can't be stored"),
-                        ));
+                        return Err(Fault::new("R0005", format!("the result is {v}, which can't be stored")));
                     }
                     match store.cells.get_mut(c as usize) {
                         Some(Cell::Real(r)) => *r = v,
@@ -286,11 +244,7 @@ impl Vm {
                     note(trace, store, c);
                 }
                 Op::StoreS { sym } | Op::StoreRefS { sym } => {
-                    let c = if matches!(op, Op::StoreS { .. }) {
-                        cell(l, sym)
-                    } else {
-                        ref_cell
-                    };
+                    let c = if matches!(op, Op::StoreS { .. }) { cell(l, sym) } else { ref_cell };
                     let s = self.pop_s();
                     store_str(store, c, s)?;
                     note(trace, store, c);
@@ -370,10 +324,7 @@ impl Vm {
                 Op::RToI {} => {
                     let v = self.pop_r();
                     if !v.is_finite() {
-                        return Err(Fault::new(
-                            "R0005",
-                            format!("{v} can't be converted to an integer"),
-                        ));
+                        return Err(Fault::new("R0005", format!("{v} can't be converted to an integer")));
                     }
                     self.push_i(round_to_i32(v));
                 }
@@ -392,21 +343,13 @@ impl Vm {
                     let b = self.pop_i();
                     let a = self.pop_i();
                     if b == 0 {
-                        let what = if matches!(op, Op::DivI {}) {
-                            "division"
-                        } else {
-                            "MOD"
-                        };
+                        let what = if matches!(op, Op::DivI {}) { "division" } else { "MOD" };
                         return Err(Fault::new(
                             if what == "MOD" { "R0002" } else { "R0001" },
                             format!("{what} by zero"),
                         ));
                     }
-                    self.push_i(if matches!(op, Op::DivI {}) {
-                        a.wrapping_div(b)
-                    } else {
-                        a.wrapping_rem(b)
-                    });
+                    self.push_i(if matches!(op, Op::DivI {}) { a.wrapping_div(b) } else { a.wrapping_rem(b) });
                 }
                 Op::NegI {} => {
                     let v = self.pop_i();
@@ -426,12 +369,8 @@ impl Vm {
                 Op::PowR {} => {
                     let b = self.pop_r();
                     let a = self.pop_r();
-                    let r = power(a, b).ok_or_else(|| {
-                        Fault::new(
-                            "R0005",
-                            format!("{a} ** {b} is undefined (A must exceed zero)"),
-                        )
-                    })?;
+                    let r = power(a, b)
+                        .ok_or_else(|| Fault::new("R0005", format!("{a} ** {b} is undefined (A must exceed zero)")))?;
                     self.push_r(r);
                 }
                 Op::NegR {} => {
@@ -492,12 +431,7 @@ impl Vm {
                     });
                     return Ok(Outcome::Done);
                 }
-                Op::Call {
-                    func,
-                    argc,
-                    ret,
-                    types,
-                } => self.call(func, argc, ret, types)?,
+                Op::Call { func, argc, ret, types } => self.call(func, argc, ret, types)?,
             }
         }
     }
@@ -568,18 +502,11 @@ pub fn power(a: f32, b: f32) -> Option<f32> {
 }
 
 fn corrupt() -> Fault {
-    Fault::new(
-        "R0099",
-        "the object does not match the database (field of another type)",
-    )
+    Fault::new("R0099", "the object does not match the database (field of another type)")
 }
 
 fn target(l: &Loaded, sym: u16) -> Target {
-    l.targets.get(usize::from(sym)).copied().unwrap_or(Target {
-        cell: u32::MAX,
-        run_end: 0,
-        alarm: 0,
-    })
+    l.targets.get(usize::from(sym)).copied().unwrap_or(Target { cell: u32::MAX, run_end: 0, alarm: 0 })
 }
 
 fn cell(l: &Loaded, sym: u16) -> u32 {
@@ -613,13 +540,7 @@ fn store_int(store: &mut Store, c: u32, v: i32) -> Result<(), Fault> {
     match store.cells.get_mut(c as usize) {
         Some(Cell::Int(i)) => *i = v,
         Some(Cell::Bool(b)) => *b = v != 0,
-        Some(Cell::Bits { v: bits, width }) => {
-            *bits = if *width == 8 {
-                (v as u16) & 0xFF
-            } else {
-                v as u16
-            }
-        }
+        Some(Cell::Bits { v: bits, width }) => *bits = if *width == 8 { (v as u16) & 0xFF } else { v as u16 },
         _ => return Err(corrupt()),
     }
     Ok(())
@@ -642,10 +563,7 @@ fn store_bit(store: &mut Store, c: u32, bit: u8, v: i32) -> Result<(), Fault> {
 fn store_str(store: &mut Store, c: u32, s: Vec<u8>) -> Result<(), Fault> {
     if let Some(Cell::Enum { .. }) = store.cells.get(c as usize) {
         let names = store.enum_names(c);
-        let Some(idx) = names
-            .iter()
-            .position(|n| n.as_bytes().eq_ignore_ascii_case(&s))
-        else {
+        let Some(idx) = names.iter().position(|n| n.as_bytes().eq_ignore_ascii_case(&s)) else {
             let msg = format!(
                 "'{}' is not a value of {} ({})",
                 String::from_utf8_lossy(&s),
@@ -675,22 +593,12 @@ fn locate(l: &Loaded, pc: usize, f: Fault) -> RuntimeError {
     let mut at = stmt.map(|e| (e.line, e.col)).unwrap_or((0, 0));
     let mut message = f.message;
     if f.code == "R0006" {
-        let inner = a
-            .loops
-            .iter()
-            .filter(|lp| (lp.start as usize..lp.end as usize).contains(&pc))
-            .max_by_key(|lp| lp.start);
+        let inner =
+            a.loops.iter().filter(|lp| (lp.start as usize..lp.end as usize).contains(&pc)).max_by_key(|lp| lp.start);
         if let Some(lp) = inner {
             at = (lp.line, lp.col);
             message = format!("{message}; stopped in the loop at line {}", lp.line);
         }
     }
-    RuntimeError {
-        code: f.code,
-        message,
-        action: a.name.clone(),
-        file: a.file.clone(),
-        line: at.0,
-        col: at.1,
-    }
+    RuntimeError { code: f.code, message, action: a.name.clone(), file: a.file.clone(), line: at.0, col: at.1 }
 }

@@ -152,15 +152,10 @@ static TABLE: [(&str, Imp); 77] = [
 /// allow is a [`FnError::Domain`]; nothing here panics.
 pub fn call(index: usize, args: &[Value], env: &mut dyn Env) -> Result<Value, FnError> {
     let (Some(sig), Some((_, imp))) = (SIGNATURES.get(index), TABLE.get(index)) else {
-        return Err(FnError::Domain(format!(
-            "there is no library function number {index}"
-        )));
+        return Err(FnError::Domain(format!("there is no library function number {index}")));
     };
     if !sig.arity_ok(args.len()) {
-        return Err(FnError::Domain(format!(
-            "{sig} cannot be called with {} argument(s)",
-            args.len()
-        )));
+        return Err(FnError::Domain(format!("{sig} cannot be called with {} argument(s)", args.len())));
     }
     imp(Args(args), env)
 }
@@ -194,10 +189,7 @@ mod tests {
     fn bad_index_and_arity_are_errors() {
         let mut env = NoEnv;
         assert!(matches!(call(77, &[], &mut env), Err(FnError::Domain(_))));
-        assert!(matches!(
-            call(usize::MAX, &[], &mut env),
-            Err(FnError::Domain(_))
-        ));
+        assert!(matches!(call(usize::MAX, &[], &mut env), Err(FnError::Domain(_))));
         assert!(matches!(call(0, &[], &mut env), Err(FnError::Domain(_))));
         let two = [Value::Int(1), Value::Int(2)];
         assert!(matches!(call(0, &two, &mut env), Err(FnError::Domain(_))));

@@ -88,11 +88,7 @@ impl Signature {
         match self.returns {
             Returns::Fixed(t) => t,
             Returns::NumericOfArgs => {
-                let relevant: &[Ty] = if self.name == "SWITCH" {
-                    &args[..args.len().min(2)]
-                } else {
-                    args
-                };
+                let relevant: &[Ty] = if self.name == "SWITCH" { &args[..args.len().min(2)] } else { args };
                 if relevant.contains(&Ty::Real) {
                     Ty::Real
                 } else if relevant.contains(&Ty::Any) {
@@ -152,25 +148,11 @@ const fn sig(
     returns: Returns,
     category: &'static str,
 ) -> Signature {
-    Signature {
-        name,
-        params,
-        required,
-        variadic: false,
-        returns,
-        category,
-    }
+    Signature { name, params, required, variadic: false, returns, category }
 }
 
 const fn var(name: &'static str, returns: Returns) -> Signature {
-    Signature {
-        name,
-        params: &[N, N],
-        required: 2,
-        variadic: true,
-        returns,
-        category: "Selector",
-    }
+    Signature { name, params: &[N, N], required: 2, variadic: true, returns, category: "Selector" }
 }
 
 const INT: Returns = Returns::Fixed(Ty::Int);
@@ -261,9 +243,7 @@ pub static SIGNATURES: &[Signature] = &[
 
 /// Finds a function by name, ignoring case as ST does.
 pub fn lookup(name: &str) -> Option<&'static Signature> {
-    SIGNATURES
-        .iter()
-        .find(|s| s.name.eq_ignore_ascii_case(name))
+    SIGNATURES.iter().find(|s| s.name.eq_ignore_ascii_case(name))
 }
 
 #[cfg(test)]
@@ -294,14 +274,8 @@ mod tests {
 
     #[test]
     fn signature_display_names_optional_parameters() {
-        assert_eq!(
-            lookup("FIND").map(|s| s.to_string()).as_deref(),
-            Some("FIND(BSEQ, BSEQ, [INT]) : INT")
-        );
-        assert_eq!(
-            lookup("MAX").map(|s| s.to_string()).as_deref(),
-            Some("MAX(ANY_NUM, ANY_NUM, ...) : ANY_NUM")
-        );
+        assert_eq!(lookup("FIND").map(|s| s.to_string()).as_deref(), Some("FIND(BSEQ, BSEQ, [INT]) : INT"));
+        assert_eq!(lookup("MAX").map(|s| s.to_string()).as_deref(), Some("MAX(ANY_NUM, ANY_NUM, ...) : ANY_NUM"));
     }
 
     #[test]

@@ -35,12 +35,7 @@ fn check(index: usize, args: &[Value], out: &Result<Value, FnError>) {
     };
     if let Value::Bytes(bytes) = v {
         let input: usize = args.iter().map(|a| a.as_bytes().len()).sum();
-        assert!(
-            bytes.len() <= input + 1020,
-            "{} made {} bytes",
-            sig.name,
-            bytes.len()
-        );
+        assert!(bytes.len() <= input + 1020, "{} made {} bytes", sig.name, bytes.len());
     }
     let kind_ok = match sig.returns {
         Returns::Fixed(Ty::Int) => matches!(v, Value::Int(_)),
@@ -93,11 +88,7 @@ fn wrong_counts_are_errors() {
             let args = vec![Value::Int(1); count];
             let out = call(index, &args, &mut env);
             if !sig.arity_ok(count) {
-                assert!(
-                    matches!(out, Err(FnError::Domain(_))),
-                    "{} {count}",
-                    sig.name
-                );
+                assert!(matches!(out, Err(FnError::Domain(_))), "{} {count}", sig.name);
             }
         }
     }
@@ -110,8 +101,7 @@ fn any_value() -> impl Strategy<Value = Value> {
         any::<f32>().prop_map(Value::Real),
         any::<bool>().prop_map(Value::Bool),
         proptest::collection::vec(any::<u8>(), 0..24).prop_map(Value::Bytes),
-        "[0-9 .+-]{0,4}[IUxXBOFeEGCTDPiuf]{0,3}[.:!*]{0,2}"
-            .prop_map(|t| Value::Bytes(t.into_bytes())),
+        "[0-9 .+-]{0,4}[IUxXBOFeEGCTDPiuf]{0,3}[.:!*]{0,2}".prop_map(|t| Value::Bytes(t.into_bytes())),
         "[ 0-9A-Fa-f+.:/eE-]{0,14}".prop_map(|t| Value::Bytes(t.into_bytes())),
     ]
 }

@@ -20,10 +20,7 @@ fn numeric_functions() {
     use std::f32::consts::PI;
     let close = |name: &str, a: Vec<Value>, want: f32| {
         let got = real(f(name, &a));
-        assert!(
-            (got - want).abs() <= 1e-5 * want.abs().max(1.0),
-            "{name}: {got} vs {want}"
-        );
+        assert!((got - want).abs() <= 1e-5 * want.abs().max(1.0), "{name}: {got} vs {want}");
     };
     close("ACOS", vec![r(0.0)], PI / 2.0);
     close("ASIN", vec![i(1)], PI / 2.0);
@@ -52,10 +49,7 @@ fn numeric_domain_errors() {
         ("DEG", vec![r(f32::MAX)]),
         ("ATAN2", vec![r(f32::NAN), i(1)]),
     ] {
-        assert!(
-            matches!(try_call(name, &args), Err(FnError::Domain(_))),
-            "{name}{args:?}"
-        );
+        assert!(matches!(try_call(name, &args), Err(FnError::Domain(_))), "{name}{args:?}");
     }
     assert_eq!(power(2.0, 3.0), Ok(8.0));
     assert_eq!(power(0.0, 2.0), Ok(0.0));
@@ -65,10 +59,7 @@ fn numeric_domain_errors() {
 
 #[test]
 fn random() {
-    let mut env = TestEnv {
-        random: 0.25,
-        ..TestEnv::default()
-    };
+    let mut env = TestEnv { random: 0.25, ..TestEnv::default() };
     assert_eq!(try_call_in(&mut env, "RANDOM", &[i(100)]), Ok(r(25.0)));
     assert_eq!(try_call_in(&mut env, "RANDOM", &[r(2.0)]), Ok(r(0.5)));
     env.random = 0.999_999_999_999;
@@ -130,22 +121,10 @@ fn extract_beyond_the_end_is_zero() {
 #[test]
 fn replace_values() {
     let buf = b(&[0; 4]);
-    assert_eq!(
-        f("REPLACE_BOOL", &[buf.clone(), i(2), i(1), T]),
-        b(&[0, 2, 0, 0])
-    );
-    assert_eq!(
-        f("REPLACE_BOOL", &[b(&[0xFF]), i(1), i(7), i(0)]),
-        b(&[0x7F])
-    );
-    assert_eq!(
-        f("REPLACE_INT8", &[buf.clone(), i(4), i(-1)]),
-        b(&[0, 0, 0, 0xFF])
-    );
-    assert_eq!(
-        f("REPLACE_UINT8", &[buf.clone(), i(1), i(200)]),
-        b(&[200, 0, 0, 0])
-    );
+    assert_eq!(f("REPLACE_BOOL", &[buf.clone(), i(2), i(1), T]), b(&[0, 2, 0, 0]));
+    assert_eq!(f("REPLACE_BOOL", &[b(&[0xFF]), i(1), i(7), i(0)]), b(&[0x7F]));
+    assert_eq!(f("REPLACE_INT8", &[buf.clone(), i(4), i(-1)]), b(&[0, 0, 0, 0xFF]));
+    assert_eq!(f("REPLACE_UINT8", &[buf.clone(), i(1), i(200)]), b(&[200, 0, 0, 0]));
     let v16 = |name: &str, o: i32| f(name, &[buf.clone(), i(2), i(0x1234), i(o)]);
     assert_eq!(v16("REPLACE_INT16", 0), b(&[0, 0x34, 0x12, 0]));
     assert_eq!(v16("REPLACE_UINT16", 1), b(&[0, 0x12, 0x34, 0]));
@@ -170,15 +149,9 @@ fn replace_beyond_the_end_is_null() {
     assert_eq!(f("REPLACE_INT8", &[buf.clone(), i(0), i(1)]), null());
     assert_eq!(f("REPLACE_UINT8", &[buf.clone(), i(4), i(1)]), null());
     assert_eq!(f("REPLACE_INT16", &[buf.clone(), i(3), i(1), i(0)]), null());
-    assert_eq!(
-        f("REPLACE_UINT16", &[buf.clone(), i(-1), i(1), i(0)]),
-        null()
-    );
+    assert_eq!(f("REPLACE_UINT16", &[buf.clone(), i(-1), i(1), i(0)]), null());
     assert_eq!(f("REPLACE_INT32", &[buf.clone(), i(1), i(1), i(0)]), null());
-    assert_eq!(
-        f("REPLACE_REAL", &[buf.clone(), i(1), r(1.0), i(0)]),
-        null()
-    );
+    assert_eq!(f("REPLACE_REAL", &[buf.clone(), i(1), r(1.0), i(0)]), null());
     // REPLACE cannot initialise a buffer.
     assert_eq!(f("REPLACE_INT8", &[null(), i(1), i(1)]), null());
     // Order outside 0-3 (decision).
@@ -217,32 +190,20 @@ fn bit_functions() {
 #[test]
 fn bcc() {
     let data = b(&[0x02, 0x31, 0x32, 0x03]);
-    assert_eq!(
-        f("BCC", &[data.clone(), i(0), i(0)]),
-        i(0x02 ^ 0x31 ^ 0x32 ^ 0x03)
-    );
+    assert_eq!(f("BCC", &[data.clone(), i(0), i(0)]), i(0x02 ^ 0x31 ^ 0x32 ^ 0x03));
     assert_eq!(f("BCC", &[data.clone(), i(1), i(0)]), i(0x68));
     assert_eq!(f("BCC", &[b(&[0xFF; 3]), i(1), i(0)]), i(0xFD));
     assert_eq!(f("BCC", &[b(&[0xFF; 3]), i(2), i(0)]), i(765));
-    assert_eq!(
-        f("BCC", &[data.clone(), i(0), i(0x55)]),
-        i(0x55 ^ 0x02 ^ 0x31 ^ 0x32 ^ 0x03)
-    );
+    assert_eq!(f("BCC", &[data.clone(), i(0), i(0x55)]), i(0x55 ^ 0x02 ^ 0x31 ^ 0x32 ^ 0x03));
     assert_eq!(f("BCC", &[data, i(9), i(0)]), i(0));
 }
 
 #[test]
 fn crc_example_12_6_1() {
     // CRC('123456789',1,16#8005,16#FFFF) returns 16#4B37 (MODBUS).
-    assert_eq!(
-        f("CRC", &[s("123456789"), i(1), i(0x8005), i(0xFFFF)]),
-        i(0x4B37)
-    );
+    assert_eq!(f("CRC", &[s("123456789"), i(1), i(0x8005), i(0xFFFF)]), i(0x4B37));
     // CRC16 (8005) non-reversed, seed 0: CRC-16/UMTS (BUYPASS).
-    assert_eq!(
-        f("CRC", &[s("123456789"), i(0), i(0x8005), i(0)]),
-        i(0xFEE8)
-    );
+    assert_eq!(f("CRC", &[s("123456789"), i(0), i(0x8005), i(0)]), i(0xFEE8));
     // Other modes (decision): 0.
     assert_eq!(f("CRC", &[s("123456789"), i(2), i(0x8005), i(0)]), i(0));
 }

@@ -84,10 +84,7 @@ fn delete() {
 
 #[test]
 fn replace() {
-    assert_eq!(
-        f("REPLACE", &[s("abcdef"), s("XYZ"), i(2), i(3)]),
-        s("abXYZef")
-    );
+    assert_eq!(f("REPLACE", &[s("abcdef"), s("XYZ"), i(2), i(3)]), s("abXYZef"));
     assert_eq!(f("REPLACE", &[s("abcdef"), s(""), i(2), i(3)]), s("abef"));
     assert_eq!(f("REPLACE", &[s("abc"), s("Z"), i(1), i(3)]), s("abZ"));
     // Fewer than L+P-1 bytes, or P zero or negative.

@@ -20,9 +20,8 @@ fn scan(fmt: &str, text: Value) -> Value {
 /// every INT; `U`, `x`, `X`, `B` and `O` write the 32-bit pattern as
 /// unsigned and SCAN gives the same pattern back, so they too cover every
 /// INT. A width only has to be wide enough for the longest text.
-const WHOLE_RANGE: &[&str] = &[
-    "I", "11I", "011I", "12I!", "U", "10U", "010U", "x", "X", "08x", "8X", "B", "032B", "O", "011O",
-];
+const WHOLE_RANGE: &[&str] =
+    &["I", "11I", "011I", "12I!", "U", "10U", "010U", "x", "X", "08x", "8X", "B", "032B", "O", "011O"];
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(512))]
@@ -113,20 +112,7 @@ fn civil(days_since_1970: i64) -> (i64, i64, i64) {
         let leap = (y % 4 == 0 && y % 100 != 0) || y % 400 == 0;
         let len = if leap { 366 } else { 365 };
         if days < len {
-            let months = [
-                31,
-                if leap { 29 } else { 28 },
-                31,
-                30,
-                31,
-                30,
-                31,
-                31,
-                30,
-                31,
-                30,
-                31,
-            ];
+            let months = [31, if leap { 29 } else { 28 }, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31];
             for (m, ml) in (1..).zip(months) {
                 if days < ml {
                     return (y, m, days + 1);
@@ -160,14 +146,7 @@ const SETS: &[Params] = &[
         check: 0x4B37,
         oracle: &crc::CRC_16_MODBUS,
     },
-    Params {
-        name: "CRC-16/ARC",
-        poly: 0x8005,
-        init: 0x0000,
-        reflected: true,
-        check: 0xBB3D,
-        oracle: &crc::CRC_16_ARC,
-    },
+    Params { name: "CRC-16/ARC", poly: 0x8005, init: 0x0000, reflected: true, check: 0xBB3D, oracle: &crc::CRC_16_ARC },
     Params {
         name: "CRC-16/XMODEM",
         poly: 0x1021,
@@ -288,11 +267,7 @@ fn table_crc(poly: u16, init: u16, reflected: bool, data: &[u8]) -> u16 {
         for (n, slot) in table.iter_mut().enumerate() {
             let mut c = (n as u16) << 8;
             for _ in 0..8 {
-                c = if c & 0x8000 != 0 {
-                    (c << 1) ^ poly
-                } else {
-                    c << 1
-                };
+                c = if c & 0x8000 != 0 { (c << 1) ^ poly } else { c << 1 };
             }
             *slot = c;
         }
@@ -307,16 +282,9 @@ fn table_crc(poly: u16, init: u16, reflected: bool, data: &[u8]) -> u16 {
 /// LIN's CRC for a catalogue set: the seed is the register as loaded, so a
 /// reflected set's `init` is bit-reversed.
 fn lin_crc(p: &Params, data: &[u8]) -> Value {
-    let seed = if p.reflected {
-        p.init.reverse_bits()
-    } else {
-        p.init
-    };
+    let seed = if p.reflected { p.init.reverse_bits() } else { p.init };
     let mode = i32::from(p.reflected);
-    f(
-        "CRC",
-        &[b(data), i(mode), i(i32::from(p.poly)), i(i32::from(seed))],
-    )
+    f("CRC", &[b(data), i(mode), i(i32::from(p.poly)), i(i32::from(seed))])
 }
 
 #[test]
@@ -325,26 +293,11 @@ fn crc_sets_match_their_published_check_values() {
     for p in SETS {
         assert_eq!(p.oracle.poly, p.poly, "{}", p.name);
         assert_eq!(p.oracle.init, p.init, "{}", p.name);
-        assert_eq!(
-            (p.oracle.refin, p.oracle.refout),
-            (p.reflected, p.reflected),
-            "{}",
-            p.name
-        );
+        assert_eq!((p.oracle.refin, p.oracle.refout), (p.reflected, p.reflected), "{}", p.name);
         assert_eq!(p.oracle.xorout, 0, "{}", p.name);
         assert_eq!(p.oracle.check, p.check, "{}", p.name);
-        assert_eq!(
-            table_crc(p.poly, p.init, p.reflected, b"123456789"),
-            p.check,
-            "{}",
-            p.name
-        );
-        assert_eq!(
-            lin_crc(p, b"123456789"),
-            i(i32::from(p.check)),
-            "{}",
-            p.name
-        );
+        assert_eq!(table_crc(p.poly, p.init, p.reflected, b"123456789"), p.check, "{}", p.name);
+        assert_eq!(lin_crc(p, b"123456789"), i(i32::from(p.check)), "{}", p.name);
     }
 }
 

@@ -49,11 +49,7 @@ pub fn run(section: &str, src: &str, mode: Mode) -> Outcome {
     };
     let steps: &[String] = &[];
     let steps = matches!(mode, Mode::Sequence | Mode::Transition).then_some(steps);
-    let ctx = Context {
-        db,
-        resolve_blocks,
-        steps,
-    };
+    let ctx = Context { db, resolve_blocks, steps };
     let (tree, diagnostics): (Option<String>, Vec<Diagnostic>) = if mode == Mode::Transition {
         let r = linc_compiler::check_transition(src, ctx);
         (r.tree.map(|e| pretty::expr(&e) + "\n"), r.diagnostics)
@@ -72,10 +68,7 @@ pub fn run(section: &str, src: &str, mode: Mode) -> Outcome {
     for d in &diagnostics {
         snapshot.push_str(&render::render(&files, id, d, Format::Human));
     }
-    Outcome {
-        codes: diagnostics.iter().map(|d| d.code).collect(),
-        snapshot,
-    }
+    Outcome { codes: diagnostics.iter().map(|d| d.code).collect(), snapshot }
 }
 
 /// A case that must check clean (warnings allowed only when listed).
@@ -86,11 +79,7 @@ macro_rules! valid {
         fn $name() {
             let o = $crate::run($section, $src, $crate::Mode::$mode);
             insta::assert_snapshot!(stringify!($name), o.snapshot);
-            assert!(
-                o.codes.is_empty(),
-                "expected no diagnostics, got {:?}",
-                o.codes
-            );
+            assert!(o.codes.is_empty(), "expected no diagnostics, got {:?}", o.codes);
         }
     };
 }
@@ -119,17 +108,11 @@ pub mod exec {
     /// Compiles `src` against `db` into object bytes; panics with the
     /// diagnostics if it does not compile (a test bug, not a finding).
     pub fn compile(src: &str, db: &Database) -> Vec<u8> {
-        let ctx = Context {
-            db,
-            resolve_blocks: true,
-            steps: None,
-        };
+        let ctx = Context { db, resolve_blocks: true, steps: None };
         let r = linc_compiler::check_source(src, "test", ctx);
-        let program = r
-            .program
-            .unwrap_or_else(|| panic!("does not compile: {:?}", r.diagnostics));
-        let obj = lower::lower_program(&program, "test.st", &Lines::new(src))
-            .unwrap_or_else(|e| panic!("lowering: {e:?}"));
+        let program = r.program.unwrap_or_else(|| panic!("does not compile: {:?}", r.diagnostics));
+        let obj =
+            lower::lower_program(&program, "test.st", &Lines::new(src)).unwrap_or_else(|e| panic!("lowering: {e:?}"));
         obj.to_bytes()
     }
 
@@ -143,26 +126,13 @@ pub mod exec {
         /// A field's value as `linc run --show` prints it.
         pub fn get(&self, path: &str) -> String {
             let (b, f) = path.split_once('.').unwrap_or((path, ""));
-            let block = self
-                .store
-                .db
-                .block(b)
-                .unwrap_or_else(|| panic!("no block {b}"));
-            let (field, bit) = f
-                .split_once('.')
-                .map(|(f, s)| (f, Some(s)))
-                .unwrap_or((f, None));
-            let cell = self
-                .store
-                .cell_of(block, field)
-                .unwrap_or_else(|| panic!("no field {path}"));
+            let block = self.store.db.block(b).unwrap_or_else(|| panic!("no block {b}"));
+            let (field, bit) = f.split_once('.').map(|(f, s)| (f, Some(s))).unwrap_or((f, None));
+            let cell = self.store.cell_of(block, field).unwrap_or_else(|| panic!("no field {path}"));
             match bit {
                 Some(sub) => {
                     let t = self.store.db.block_template(block);
-                    let n = t.fields[t.field(field).unwrap_or(0)]
-                        .ty
-                        .bit_index(sub)
-                        .unwrap_or(0);
+                    let n = t.fields[t.field(field).unwrap_or(0)].ty.bit_index(sub).unwrap_or(0);
                     match &self.store.cells[cell as usize] {
                         linc_runtime::store::Cell::Bits { v, .. } => ((v >> n) & 1).to_string(),
                         other => format!("{other:?}"),
@@ -183,8 +153,7 @@ pub mod exec {
         let obj: ObjectFile = linc_runtime::load(&bytes).unwrap_or_else(|e| panic!("load: {e}"));
         let mut store = Store::new(db.clone());
         store.now = 1_000_000.0;
-        let loaded =
-            linc_runtime::prepare(&obj, 0, &store, None).unwrap_or_else(|e| panic!("link: {e}"));
+        let loaded = linc_runtime::prepare(&obj, 0, &store, None).unwrap_or_else(|e| panic!("link: {e}"));
         let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0));
         let mut error = None;
         let mut resume = 0;

@@ -47,10 +47,7 @@ fn every_single_byte_flip_is_rejected_by_the_checksum() {
     for i in 0..good.len() {
         let mut bad = good.clone();
         bad[i] ^= 0xFF;
-        assert!(
-            linc_runtime::load(&bad).is_err(),
-            "flip at {i} was accepted"
-        );
+        assert!(linc_runtime::load(&bad).is_err(), "flip at {i} was accepted");
     }
 }
 
@@ -93,18 +90,10 @@ fn header_errors_have_their_own_codes() {
     let good = small();
     let mut magic = good.clone();
     magic[0] = b'X';
-    assert_eq!(
-        linc_runtime::load(&magic).map(|_| ()).map_err(|e| e.code()),
-        Err("E0700")
-    );
+    assert_eq!(linc_runtime::load(&magic).map(|_| ()).map_err(|e| e.code()), Err("E0700"));
     let mut version = good.clone();
     version[8] = 9;
-    assert_eq!(
-        linc_runtime::load(&version)
-            .map(|_| ())
-            .map_err(|e| e.code()),
-        Err("E0701")
-    );
+    assert_eq!(linc_runtime::load(&version).map(|_| ()).map_err(|e| e.code()), Err("E0701"));
     let mut body = good.clone();
     let last = body.len() - 1;
     body[last] ^= 1;

@@ -136,18 +136,16 @@ impl CheckError {
                     _ => d,
                 }
             }
-            CheckError::AssignType { span, target, expected, found } => Diagnostic::error(
-                "E0103",
-                format!("can't store a {found} value in a {expected} field"),
-                *span,
-            )
-            .label(format!("this is {found}"))
-            .with(*target, format!("this field is {expected}"))
-            .help(match (expected.as_str(), found.as_str()) {
-                ("REAL" | "INT" | "BOOL", _) => "use SCAN to turn a string into a number",
-                (_, "REAL" | "INT" | "BOOL") => "use FORMAT to turn a number into a string",
-                _ => "the value and the field must both be numbers or both be strings",
-            }),
+            CheckError::AssignType { span, target, expected, found } => {
+                Diagnostic::error("E0103", format!("can't store a {found} value in a {expected} field"), *span)
+                    .label(format!("this is {found}"))
+                    .with(*target, format!("this field is {expected}"))
+                    .help(match (expected.as_str(), found.as_str()) {
+                        ("REAL" | "INT" | "BOOL", _) => "use SCAN to turn a string into a number",
+                        (_, "REAL" | "INT" | "BOOL") => "use FORMAT to turn a number into a string",
+                        _ => "the value and the field must both be numbers or both be strings",
+                    })
+            }
             CheckError::BadEnumValue { span, value, field, values } => {
                 Diagnostic::error("E0104", format!("`{value}` is not a value of `{field}`"), *span)
                     .label("unknown enumeration value")
@@ -158,9 +156,11 @@ impl CheckError {
                     .label("not an integer")
                     .help("use TRUNC or ROUND to make an integer first")
             }
-            CheckError::ForByNotLiteral { span } => Diagnostic::error("E0106", "the step of a FOR loop must be a constant", *span)
-                .label("not a literal")
-                .help("write `BY 2` or `BY -1`; the step is fixed when the loop is compiled (§12.4.3)"),
+            CheckError::ForByNotLiteral { span } => {
+                Diagnostic::error("E0106", "the step of a FOR loop must be a constant", *span)
+                    .label("not a literal")
+                    .help("write `BY 2` or `BY -1`; the step is fixed when the loop is compiled (§12.4.3)")
+            }
             CheckError::ExitOutsideLoop { span } => Diagnostic::error("E0107", "EXIT outside a loop", *span)
                 .label("there is no FOR, WHILE or REPEAT around this")
                 .help("EXIT ends the innermost loop; to end an action early, wrap its rest in IF"),
@@ -187,13 +187,11 @@ impl CheckError {
             )
             .label("wrong number of arguments")
             .help(format!("expected {signature}")),
-            CheckError::WrongArgType { span, index, found, expected, signature } => Diagnostic::error(
-                "E0112",
-                format!("argument {} should be {expected}, found {found}", index + 1),
-                *span,
-            )
-            .label(format!("this is {found}"))
-            .help(format!("expected {signature}")),
+            CheckError::WrongArgType { span, index, found, expected, signature } => {
+                Diagnostic::error("E0112", format!("argument {} should be {expected}, found {found}", index + 1), *span)
+                    .label(format!("this is {found}"))
+                    .help(format!("expected {signature}"))
+            }
             CheckError::StepOutsideSequence { span, name } => {
                 Diagnostic::error("E0113", format!("step variable `{name}` outside a sequence"), *span)
                     .label("`.X` and `.T` of a step exist only in sequence actions and transitions")
@@ -206,7 +204,8 @@ impl CheckError {
                 Diagnostic::error("E0114", msg, *span).label("operand types do not fit").help(*help)
             }
             CheckError::NotAValue { span, what } => {
-                Diagnostic::error("E0115", format!("`{what}` is not a value"), *span).label("name a field, bit or alarm")
+                Diagnostic::error("E0115", format!("`{what}` is not a value"), *span)
+                    .label("name a field, bit or alarm")
             }
             CheckError::UnknownBlockType { span, name } => {
                 Diagnostic::error("E0116", format!("unknown block type `{name}`"), *span)
@@ -219,7 +218,8 @@ impl CheckError {
                     .help("action names ignore case")
             }
             CheckError::OffsetNotNumber { span, found } => {
-                Diagnostic::error("E0118", format!("an offset must be a number, found {found}"), *span).label("not a number")
+                Diagnostic::error("E0118", format!("an offset must be a number, found {found}"), *span)
+                    .label("not a number")
             }
             CheckError::ConditionType { span, found } => {
                 Diagnostic::error("E0119", format!("a condition must be BOOL or INT, found {found}"), *span)

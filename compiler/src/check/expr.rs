@@ -10,10 +10,7 @@ impl Checker<'_> {
     /// Types an expression; errors are reported and give `Any`.
     pub(super) fn expr(&mut self, e: &Expr) -> hir::Expr {
         let (ty, kind) = match &e.kind {
-            ExprKind::Int(_) => (
-                Ty::Int,
-                hir::ExprKind::Int(e.int_value().unwrap_or_default()),
-            ),
+            ExprKind::Int(_) => (Ty::Int, hir::ExprKind::Int(e.int_value().unwrap_or_default())),
             ExprKind::Real(x) => (Ty::Real, hir::ExprKind::Real(*x as f32)),
             ExprKind::Time(x) => (Ty::Real, hir::ExprKind::Real(*x as f32)),
             ExprKind::Bool(b) => (Ty::Bool, hir::ExprKind::Bool(*b)),
@@ -51,11 +48,7 @@ impl Checker<'_> {
             ExprKind::Binary(op, a, b) => self.binary(*op, a, b, e),
             ExprKind::Call { name, args } => self.call(&name.text, name.span, args, e),
         };
-        hir::Expr {
-            ty,
-            kind,
-            span: e.span,
-        }
+        hir::Expr { ty, kind, span: e.span }
     }
 
     fn binary(&mut self, op: BinOp, a: &Expr, b: &Expr, whole: &Expr) -> (Ty, hir::ExprKind) {
@@ -64,11 +57,7 @@ impl Checker<'_> {
         let (ta, tb) = (ha.ty, hb.ty);
         let node = |ha, hb| hir::ExprKind::Binary(op, Box::new(ha), Box::new(hb));
         if ta == Ty::Any && tb == Ty::Any {
-            let ty = if op.is_comparison() {
-                Ty::Bool
-            } else {
-                Ty::Any
-            };
+            let ty = if op.is_comparison() { Ty::Bool } else { Ty::Any };
             return (ty, node(ha, hb));
         }
         let mismatch = |help: &'static str| CheckError::OperandTypes {
@@ -100,10 +89,7 @@ impl Checker<'_> {
             BinOp::Mod => {
                 for (t, e) in [(ta, a), (tb, b)] {
                     if !t.is_integral() {
-                        self.errors.push(CheckError::ModNotInteger {
-                            span: e.span,
-                            found: t.name().into(),
-                        });
+                        self.errors.push(CheckError::ModNotInteger { span: e.span, found: t.name().into() });
                         return (Ty::Any, hir::ExprKind::Error);
                     }
                 }
@@ -111,9 +97,7 @@ impl Checker<'_> {
             }
             BinOp::And | BinOp::Or | BinOp::Xor => {
                 if !(ta.is_integral() && tb.is_integral()) {
-                    self.errors.push(mismatch(
-                        "AND, OR and XOR take BOOL values, or INT values bit by bit (16 bits)",
-                    ));
+                    self.errors.push(mismatch("AND, OR and XOR take BOOL values, or INT values bit by bit (16 bits)"));
                     return (Ty::Any, hir::ExprKind::Error);
                 }
                 if ta == Ty::Bool && tb == Ty::Bool {
@@ -125,12 +109,9 @@ impl Checker<'_> {
                 }
             }
             _ => {
-                let ok =
-                    (ta.is_numeric() && tb.is_numeric()) || (ta.is_stringy() && tb.is_stringy());
+                let ok = (ta.is_numeric() && tb.is_numeric()) || (ta.is_stringy() && tb.is_stringy());
                 if !ok {
-                    self.errors.push(mismatch(
-                        "compare numbers with numbers and strings with strings",
-                    ));
+                    self.errors.push(mismatch("compare numbers with numbers and strings with strings"));
                     return (Ty::Bool, hir::ExprKind::Error);
                 }
                 self.enum_comparison(&ha, &hb);
@@ -150,25 +131,12 @@ impl Checker<'_> {
         }
     }
 
-    fn call(
-        &mut self,
-        name: &str,
-        name_span: crate::Span,
-        args: &[Expr],
-        whole: &Expr,
-    ) -> (Ty, hir::ExprKind) {
+    fn call(&mut self, name: &str, name_span: crate::Span, args: &[Expr], whole: &Expr) -> (Ty, hir::ExprKind) {
         let hargs: Vec<hir::Expr> = args.iter().map(|a| self.expr(a)).collect();
         let types: Vec<Ty> = hargs.iter().map(|a| a.ty).collect();
-        let Some(index) = SIGNATURES
-            .iter()
-            .position(|s| s.name.eq_ignore_ascii_case(name))
-        else {
+        let Some(index) = SIGNATURES.iter().position(|s| s.name.eq_ignore_ascii_case(name)) else {
             let suggestion = suggest(name);
-            self.errors.push(CheckError::UnknownFunction {
-                span: name_span,
-                name: name.to_string(),
-                suggestion,
-            });
+            self.errors.push(CheckError::UnknownFunction { span: name_span, name: name.to_string(), suggestion });
             return (Ty::Any, hir::ExprKind::Error);
         };
         let sig = &SIGNATURES[index];

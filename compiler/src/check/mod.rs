@@ -38,18 +38,10 @@ pub(crate) struct Checker<'a> {
 /// Checks every action of a file and builds the checked program. The
 /// program is complete only when there are no errors.
 pub fn check_file(file: &SourceFile, ctx: Context) -> (Vec<CheckError>, hir::Program) {
-    let mut c = Checker {
-        ctx,
-        errors: Vec::new(),
-        loop_depth: 0,
-        self_template: None,
-    };
+    let mut c = Checker { ctx, errors: Vec::new(), loop_depth: 0, self_template: None };
     let mut actions = Vec::new();
     for (i, a) in file.actions.iter().enumerate() {
-        if let Some(first) = file.actions[..i]
-            .iter()
-            .find(|b| b.name.text.eq_ignore_ascii_case(&a.name.text))
-        {
+        if let Some(first) = file.actions[..i].iter().find(|b| b.name.text.eq_ignore_ascii_case(&a.name.text)) {
             c.errors.push(CheckError::DuplicateAction {
                 span: a.name.span,
                 first: first.name.span,
@@ -63,24 +55,14 @@ pub fn check_file(file: &SourceFile, ctx: Context) -> (Vec<CheckError>, hir::Pro
 
 /// Checks a transition: an expression that must be a truth value (§12.11).
 pub fn check_transition(e: &Expr, ctx: Context) -> (Vec<CheckError>, hir::Expr) {
-    let mut c = Checker {
-        ctx,
-        errors: Vec::new(),
-        loop_depth: 0,
-        self_template: None,
-    };
+    let mut c = Checker { ctx, errors: Vec::new(), loop_depth: 0, self_template: None };
     let h = c.condition(e);
     (c.errors, h)
 }
 
 /// Checks a value expression of any type (for `linc eval`).
 pub fn check_expression(e: &Expr, ctx: Context) -> (Vec<CheckError>, hir::Expr) {
-    let mut c = Checker {
-        ctx,
-        errors: Vec::new(),
-        loop_depth: 0,
-        self_template: None,
-    };
+    let mut c = Checker { ctx, errors: Vec::new(), loop_depth: 0, self_template: None };
     let h = c.expr(e);
     (c.errors, h)
 }
@@ -91,24 +73,14 @@ impl Checker<'_> {
         if let Some(t) = &a.block_type {
             match self.ctx.db.template(&t.text) {
                 Some(i) => self.self_template = Some(i),
-                None => self.errors.push(CheckError::UnknownBlockType {
-                    span: t.span,
-                    name: t.text.clone(),
-                }),
+                None => self.errors.push(CheckError::UnknownBlockType { span: t.span, name: t.text.clone() }),
             }
         }
         let body = self.stmts(&a.body);
         let block_type = a.block_type.as_ref().map(|t| {
-            self.self_template
-                .map(|i| self.ctx.db.templates[i].name.clone())
-                .unwrap_or_else(|| t.text.clone())
+            self.self_template.map(|i| self.ctx.db.templates[i].name.clone()).unwrap_or_else(|| t.text.clone())
         });
-        hir::Action {
-            name: a.name.text.clone(),
-            block_type,
-            body,
-            span: a.span,
-        }
+        hir::Action { name: a.name.text.clone(), block_type, body, span: a.span }
     }
 
     fn stmts(&mut self, list: &[Stmt]) -> Vec<hir::Stmt> {
@@ -117,11 +89,7 @@ impl Checker<'_> {
 
     fn stmt(&mut self, s: &Stmt) -> hir::Stmt {
         match s {
-            Stmt::Assign {
-                target,
-                value,
-                span,
-            } => {
+            Stmt::Assign { target, value, span } => {
                 let value = self.expr(value);
                 let Some(r) = self.resolve(target) else {
                     return hir::Stmt::Error { span: *span };
@@ -137,61 +105,27 @@ impl Checker<'_> {
                 if !self.store(&r, &value, target) {
                     return hir::Stmt::Error { span: *span };
                 }
-                hir::Stmt::Assign {
-                    place: r.place,
-                    value,
-                    span: *span,
-                }
+                hir::Stmt::Assign { place: r.place, value, span: *span }
             }
-            Stmt::If {
-                arms,
-                otherwise,
-                span,
-            } => {
-                let arms = arms
-                    .iter()
-                    .map(|(cond, body)| (self.condition(cond), self.stmts(body)))
-                    .collect();
-                let otherwise = otherwise
-                    .as_ref()
-                    .map(|b| self.stmts(b))
-                    .unwrap_or_default();
-                hir::Stmt::If {
-                    arms,
-                    otherwise,
-                    span: *span,
-                }
+            Stmt::If { arms, otherwise, span } => {
+                let arms = arms.iter().map(|(cond, body)| (self.condition(cond), self.stmts(body))).collect();
+                let otherwise = otherwise.as_ref().map(|b| self.stmts(b)).unwrap_or_default();
+                hir::Stmt::If { arms, otherwise, span: *span }
             }
-            Stmt::For {
-                var,
-                from,
-                to,
-                by,
-                body,
-                span,
-            } => self.for_loop(var, from, to, by.as_ref(), body, *span),
+            Stmt::For { var, from, to, by, body, span } => self.for_loop(var, from, to, by.as_ref(), body, *span),
             Stmt::While { cond, body, span } => {
                 let cond = self.condition(cond);
                 let body = self.in_loop(body);
-                hir::Stmt::While {
-                    cond,
-                    body,
-                    span: *span,
-                }
+                hir::Stmt::While { cond, body, span: *span }
             }
             Stmt::Repeat { body, until, span } => {
                 let body = self.in_loop(body);
                 let until = self.condition(until);
-                hir::Stmt::Repeat {
-                    body,
-                    until,
-                    span: *span,
-                }
+                hir::Stmt::Repeat { body, until, span: *span }
             }
             Stmt::Exit { span } => {
                 if self.loop_depth == 0 {
-                    self.errors
-                        .push(CheckError::ExitOutsideLoop { span: *span });
+                    self.errors.push(CheckError::ExitOutsideLoop { span: *span });
                 }
                 hir::Stmt::Exit { span: *span }
             }
@@ -210,11 +144,7 @@ impl Checker<'_> {
     ) -> hir::Stmt {
         let place = match self.resolve(var) {
             Some(r) if !r.writable => {
-                self.errors.push(CheckError::NotWritable {
-                    span: var.span,
-                    what: var.path(),
-                    why: r.why_readonly,
-                });
+                self.errors.push(CheckError::NotWritable { span: var.span, what: var.path(), why: r.why_readonly });
                 None
             }
             Some(r) if !matches!(r.ty(), Ty::Int | Ty::Real | Ty::Any) => {
@@ -245,21 +175,13 @@ impl Checker<'_> {
         }
         if let Some(b) = by {
             if !matches!(b.kind, ExprKind::Int(_) | ExprKind::Real(_)) {
-                self.errors
-                    .push(CheckError::ForByNotLiteral { span: b.span });
+                self.errors.push(CheckError::ForByNotLiteral { span: b.span });
             }
         }
         let body = self.in_loop(body);
         let mut bounds = bounds.into_iter();
         match (place, bounds.next(), bounds.next()) {
-            (Some(place), Some(from), Some(to)) => hir::Stmt::For {
-                place,
-                from,
-                to,
-                by: bounds.next(),
-                body,
-                span,
-            },
+            (Some(place), Some(from), Some(to)) => hir::Stmt::For { place, from, to, by: bounds.next(), body, span },
             _ => hir::Stmt::Error { span },
         }
     }
@@ -274,10 +196,7 @@ impl Checker<'_> {
     fn condition(&mut self, e: &Expr) -> hir::Expr {
         let h = self.expr(e);
         if !matches!(h.ty, Ty::Bool | Ty::Int | Ty::Any) {
-            self.errors.push(CheckError::ConditionType {
-                span: e.span,
-                found: h.ty.name().into(),
-            });
+            self.errors.push(CheckError::ConditionType { span: e.span, found: h.ty.name().into() });
         }
         h
     }
@@ -291,11 +210,7 @@ impl Checker<'_> {
             Ty::Text | Ty::Bytes | Ty::WStr => vt.is_stringy(),
         };
         if !fits {
-            let expected = if r.place.enum_values.is_some() {
-                "ENUM".to_string()
-            } else {
-                r.ty().name().to_string()
-            };
+            let expected = if r.place.enum_values.is_some() { "ENUM".to_string() } else { r.ty().name().to_string() };
             self.errors.push(CheckError::AssignType {
                 span: value.span,
                 target: target.span,
@@ -310,23 +225,12 @@ impl Checker<'_> {
         true
     }
 
-    fn enum_literal(
-        &mut self,
-        values: &[String],
-        s: &[u8],
-        span: crate::Span,
-        field: String,
-    ) -> bool {
+    fn enum_literal(&mut self, values: &[String], s: &[u8], span: crate::Span, field: String) -> bool {
         if values.iter().any(|v| v.as_bytes().eq_ignore_ascii_case(s)) {
             return true;
         }
         let value = String::from_utf8_lossy(s).into_owned();
-        self.errors.push(CheckError::BadEnumValue {
-            span,
-            value,
-            field,
-            values: values.to_vec(),
-        });
+        self.errors.push(CheckError::BadEnumValue { span, value, field, values: values.to_vec() });
         false
     }
 }

@@ -24,19 +24,8 @@ pub struct Resolved {
 
 impl Resolved {
     fn new(v: &Var, ty: Ty, target: Target) -> Resolved {
-        let place = Place {
-            ty,
-            class: None,
-            target,
-            enum_values: None,
-            path: v.path(),
-            span: v.span,
-        };
-        Resolved {
-            place,
-            writable: true,
-            why_readonly: "",
-        }
+        let place = Place { ty, class: None, target, enum_values: None, path: v.path(), span: v.span };
+        Resolved { place, writable: true, why_readonly: "" }
     }
 
     fn read_only(mut self, why: &'static str) -> Resolved {
@@ -68,10 +57,7 @@ impl Checker<'_> {
             let c = seg.offset.as_ref().map(|o| {
                 let e = self.expr(o);
                 if !e.ty.is_numeric() {
-                    self.errors.push(CheckError::OffsetNotNumber {
-                        span: o.span,
-                        found: e.ty.name().into(),
-                    });
+                    self.errors.push(CheckError::OffsetNotNumber { span: o.span, found: e.ty.name().into() });
                 }
                 e
             });
@@ -91,35 +77,16 @@ impl Checker<'_> {
             for (i, t) in alias.target.iter().enumerate() {
                 let last = i + 1 == n;
                 let offset = if last { first.offset.as_deref() } else { None };
-                let checked = if last {
-                    first_checked.take().flatten()
-                } else {
-                    None
-                };
-                parts.push(Part {
-                    name: t,
-                    span: first.name.span,
-                    offset,
-                    checked,
-                });
+                let checked = if last { first_checked.take().flatten() } else { None };
+                parts.push(Part { name: t, span: first.name.span, offset, checked });
             }
         } else {
             let offset = first.offset.as_deref();
-            parts.push(Part {
-                name: &first.name.text,
-                span: first.name.span,
-                offset,
-                checked: first_checked,
-            });
+            parts.push(Part { name: &first.name.text, span: first.name.span, offset, checked: first_checked });
         }
         for s in &v.segs[1..] {
             let checked = checked.next().flatten();
-            parts.push(Part {
-                name: &s.name.text,
-                span: s.name.span,
-                offset: s.offset.as_deref(),
-                checked,
-            });
+            parts.push(Part { name: &s.name.text, span: s.name.span, offset: s.offset.as_deref(), checked });
         }
 
         if let Some(b) = db.block(parts[0].name) {
@@ -132,10 +99,7 @@ impl Checker<'_> {
                 return None;
             }
             if parts.len() < 2 {
-                self.errors.push(CheckError::NotAValue {
-                    span: v.span,
-                    what: v.path(),
-                });
+                self.errors.push(CheckError::NotAValue { span: v.span, what: v.path() });
                 return None;
             }
             let block = db.blocks[b].name.clone();
@@ -147,8 +111,8 @@ impl Checker<'_> {
                 return self.field_path(tpl, "", &mut parts, v);
             }
         }
-        let step_like = parts.len() == 2
-            && (parts[1].name.eq_ignore_ascii_case("X") || parts[1].name.eq_ignore_ascii_case("T"));
+        let step_like =
+            parts.len() == 2 && (parts[1].name.eq_ignore_ascii_case("X") || parts[1].name.eq_ignore_ascii_case("T"));
         if step_like && self.ctx.steps.is_some() {
             return self.step_variable(&parts, v);
         }
@@ -161,60 +125,33 @@ impl Checker<'_> {
         if step_like {
             return self.step_variable(&parts, v);
         }
-        self.errors.push(CheckError::UnknownName {
-            span: parts[0].span,
-            name: parts[0].name.to_string(),
-        });
+        self.errors.push(CheckError::UnknownName { span: parts[0].span, name: parts[0].name.to_string() });
         None
     }
 
     fn step_variable(&mut self, parts: &[Part], v: &Var) -> Option<Resolved> {
         let Some(steps) = self.ctx.steps else {
-            self.errors.push(CheckError::StepOutsideSequence {
-                span: v.span,
-                name: v.path(),
-            });
+            self.errors.push(CheckError::StepOutsideSequence { span: v.span, name: v.path() });
             return None;
         };
         if !steps.is_empty() && !steps.iter().any(|s| s.eq_ignore_ascii_case(parts[0].name)) {
-            self.errors.push(CheckError::UnknownStep {
-                span: parts[0].span,
-                name: parts[0].name.to_string(),
-            });
+            self.errors.push(CheckError::UnknownStep { span: parts[0].span, name: parts[0].name.to_string() });
             return None;
         }
         let x = parts[1].name.eq_ignore_ascii_case("X");
         let ty = if x { Ty::Bool } else { Ty::Real };
-        let target = Target::Step {
-            step: parts[0].name.to_string(),
-            x,
-        };
-        Some(
-            Resolved::new(v, ty, target).read_only("step variables are maintained by the sequence"),
-        )
+        let target = Target::Step { step: parts[0].name.to_string(), x };
+        Some(Resolved::new(v, ty, target).read_only("step variables are maintained by the sequence"))
     }
 
     /// Resolves `field[.sub[.sub]]` within a template. `block` is the block's
     /// name, or empty for the block that runs the action.
-    fn field_path(
-        &mut self,
-        tpl: &Template,
-        block: &str,
-        parts: &mut [Part],
-        v: &Var,
-    ) -> Option<Resolved> {
+    fn field_path(&mut self, tpl: &Template, block: &str, parts: &mut [Part], v: &Var) -> Option<Resolved> {
         let fpart = &parts[0];
         let Some(fi) = tpl.field(fpart.name) else {
-            let known = if tpl.fields.len() <= 16 {
-                tpl.fields.iter().map(|f| f.name.clone()).collect()
-            } else {
-                Vec::new()
-            };
-            let owner = if block.is_empty() {
-                "this action's block".to_string()
-            } else {
-                block.to_string()
-            };
+            let known =
+                if tpl.fields.len() <= 16 { tpl.fields.iter().map(|f| f.name.clone()).collect() } else { Vec::new() };
+            let owner = if block.is_empty() { "this action's block".to_string() } else { block.to_string() };
             self.errors.push(CheckError::UnknownField {
                 span: fpart.span,
                 field: fpart.name.to_string(),
@@ -248,23 +185,12 @@ impl Checker<'_> {
         let rest = &mut parts[1..];
         match (&field.ty, rest) {
             (FieldType::Alarms(_), []) => {
-                self.errors.push(CheckError::NotAValue {
-                    span: v.span,
-                    what: v.path(),
-                });
+                self.errors.push(CheckError::NotAValue { span: v.span, what: v.path() });
                 None
             }
             (ty, []) => {
                 let (t, enum_values) = value_type(ty);
-                let mut r = Resolved::new(
-                    v,
-                    t,
-                    Target::Field {
-                        block: b,
-                        field: f,
-                        offset,
-                    },
-                );
+                let mut r = Resolved::new(v, t, Target::Field { block: b, field: f, offset });
                 r.place.class = Some(class);
                 r.place.enum_values = enum_values;
                 Some(readonly(r))
@@ -277,49 +203,27 @@ impl Checker<'_> {
                     let span = bit.span.to(o.span);
                     if n + 1 >= *width {
                         let why = format!("Bit{n} is the last bit of a {}-bit field", width);
-                        self.errors.push(CheckError::BadOffsetBase {
-                            span,
-                            base: bit.name.to_string(),
-                            why,
-                        });
+                        self.errors.push(CheckError::BadOffsetBase { span, base: bit.name.to_string(), why });
                         return None;
                     }
                     if let Some(k) = o.int_value() {
                         if k < 0 || i64::from(n) + i64::from(k) >= i64::from(*width) {
-                            let why =
-                                format!("Bit{n}{{{k}}} is beyond the last bit, Bit{}", width - 1);
-                            self.errors.push(CheckError::BadOffsetBase {
-                                span,
-                                base: bit.name.to_string(),
-                                why,
-                            });
+                            let why = format!("Bit{n}{{{k}}} is beyond the last bit, Bit{}", width - 1);
+                            self.errors.push(CheckError::BadOffsetBase { span, base: bit.name.to_string(), why });
                             return None;
                         }
                     }
                 }
                 let bit_offset = bit.checked.take().map(Box::new);
-                let target = Target::Bit {
-                    block: b,
-                    field: f,
-                    offset,
-                    bit: n,
-                    bit_offset,
-                };
+                let target = Target::Bit { block: b, field: f, offset, bit: n, bit_offset };
                 let mut r = Resolved::new(v, Ty::Bool, target);
                 r.place.class = Some(class);
                 Some(readonly(r))
             }
             (FieldType::Alarms(names), [sub, more @ ..]) => {
                 let suppress = |alarm: Option<String>| {
-                    let mut r = Resolved::new(
-                        v,
-                        Ty::Int,
-                        Target::Suppress {
-                            block: b.clone(),
-                            field: f.clone(),
-                            alarm,
-                        },
-                    );
+                    let mut r =
+                        Resolved::new(v, Ty::Int, Target::Suppress { block: b.clone(), field: f.clone(), alarm });
                     r.place.class = Some(class);
                     r
                 };
@@ -332,39 +236,20 @@ impl Checker<'_> {
                 let alarm = names[ai].clone();
                 match more {
                     [] => {
-                        let mut r = Resolved::new(
-                            v,
-                            Ty::Bool,
-                            Target::Alarm {
-                                block: b.clone(),
-                                field: f.clone(),
-                                alarm,
-                            },
-                        );
+                        let mut r =
+                            Resolved::new(v, Ty::Bool, Target::Alarm { block: b.clone(), field: f.clone(), alarm });
                         r.place.class = Some(class);
-                        Some(r.read_only(
-                            "an alarm's state is set by its block; write its .Suppress instead",
-                        ))
+                        Some(r.read_only("an alarm's state is set by its block; write its .Suppress instead"))
                     }
                     [s] if s.name.eq_ignore_ascii_case("Suppress") => Some(suppress(Some(alarm))),
                     [s, ..] => {
-                        let s = Part {
-                            name: s.name,
-                            span: s.span,
-                            offset: None,
-                            checked: None,
-                        };
+                        let s = Part { name: s.name, span: s.span, offset: None, checked: None };
                         self.no_sub(&s, &alarm, &FieldType::Bool)
                     }
                 }
             }
             (_, [sub, ..]) => {
-                let sub = Part {
-                    name: sub.name,
-                    span: sub.span,
-                    offset: None,
-                    checked: None,
-                };
+                let sub = Part { name: sub.name, span: sub.span, offset: None, checked: None };
                 let owner_ty = field.ty.clone();
                 let name = field.name.clone();
                 self.no_sub(&sub, &name, &owner_ty)
@@ -373,11 +258,7 @@ impl Checker<'_> {
     }
 
     fn no_sub(&mut self, part: &Part, field: &str, ty: &FieldType) -> Option<Resolved> {
-        let field_type = if field.eq_ignore_ascii_case("") {
-            ""
-        } else {
-            ty.keyword()
-        };
+        let field_type = if field.eq_ignore_ascii_case("") { "" } else { ty.keyword() };
         self.errors.push(CheckError::UnknownSubField {
             span: part.span,
             sub: part.name.to_string(),
@@ -389,32 +270,19 @@ impl Checker<'_> {
 
     /// §12.12: the base must start a run of same-typed fields, and a
     /// constant offset must stay inside it.
-    fn check_field_offset(
-        &mut self,
-        tpl: &Template,
-        fi: usize,
-        o: &Expr,
-        part: &Part,
-    ) -> Option<()> {
+    fn check_field_offset(&mut self, tpl: &Template, fi: usize, o: &Expr, part: &Part) -> Option<()> {
         let kind = &tpl.fields[fi].ty;
-        let run = tpl.fields[fi..]
-            .iter()
-            .take_while(|f| f.ty.same_kind(kind))
-            .count();
+        let run = tpl.fields[fi..].iter().take_while(|f| f.ty.same_kind(kind)).count();
         let span = part.span.to(o.span);
         let base = part.name.to_string();
         if run < 2 {
             let why = match tpl.fields.get(fi + 1) {
-                Some(next) => format!(
-                    "the next field, {}, is {} but this is {}",
-                    next.name,
-                    next.ty.keyword(),
-                    kind.keyword()
-                ),
+                Some(next) => {
+                    format!("the next field, {}, is {} but this is {}", next.name, next.ty.keyword(), kind.keyword())
+                }
                 None => "it is the last field of its block".to_string(),
             };
-            self.errors
-                .push(CheckError::BadOffsetBase { span, base, why });
+            self.errors.push(CheckError::BadOffsetBase { span, base, why });
             return None;
         }
         if let Some(n) = o.int_value() {
@@ -426,8 +294,7 @@ impl Checker<'_> {
                     tpl.fields[fi].name,
                     tpl.fields[fi + run - 1].name
                 );
-                self.errors
-                    .push(CheckError::BadOffsetBase { span, base, why });
+                self.errors.push(CheckError::BadOffsetBase { span, base, why });
                 return None;
             }
         }

@@ -116,9 +116,7 @@ impl Lowerer<'_> {
         if let Some(c) = constant(e) {
             match want {
                 Ty::Real => self.emit(Op::PushR { v: c.real() }),
-                Ty::Bool => self.emit(Op::PushI {
-                    v: i32::from(c.int() != 0),
-                }),
+                Ty::Bool => self.emit(Op::PushI { v: i32::from(c.int() != 0) }),
                 _ if e.ty == Ty::Real && want == Ty::Int => self.emit(Op::PushI { v: c.int() }),
                 _ => match c {
                     Const::I(i) => self.emit(Op::PushI { v: i }),
@@ -171,11 +169,7 @@ impl Lowerer<'_> {
             ExprKind::Neg(a) => {
                 let want = if is_real(e.ty) { Ty::Real } else { Ty::Int };
                 self.expr_as(a, want);
-                self.emit(if is_real(e.ty) {
-                    Op::NegR {}
-                } else {
-                    Op::NegI {}
-                });
+                self.emit(if is_real(e.ty) { Op::NegR {} } else { Op::NegI {} });
             }
             ExprKind::Not(a) => {
                 self.expr_as(a, Ty::Int);
@@ -212,8 +206,7 @@ impl Lowerer<'_> {
             return;
         }
         let real = op == BinOp::Pow
-            || (!matches!(op, BinOp::Mod | BinOp::And | BinOp::Or | BinOp::Xor)
-                && (is_real(a.ty) || is_real(b.ty)));
+            || (!matches!(op, BinOp::Mod | BinOp::And | BinOp::Or | BinOp::Xor) && (is_real(a.ty) || is_real(b.ty)));
         let want = if real { Ty::Real } else { Ty::Int };
         self.expr_as(a, want);
         self.expr_as(b, want);
@@ -253,10 +246,7 @@ impl Lowerer<'_> {
         };
         if args.len() > linc_runtime::isa::MAX_CALL_ARGS {
             let span = args.last().map(|a| a.span).unwrap_or_default();
-            self.errors.push(super::LowerError::TooMany {
-                span,
-                what: "arguments in one call (16 at most)",
-            });
+            self.errors.push(super::LowerError::TooMany { span, what: "arguments in one call (16 at most)" });
             return;
         }
         let mut types = 0u32;
@@ -285,11 +275,6 @@ impl Lowerer<'_> {
             };
             types |= (kind as u32) << (2 * i);
         }
-        self.emit(Op::Call {
-            func: index as u8,
-            argc: args.len() as u8,
-            ret: kind_of(ty) as u8,
-            types,
-        });
+        self.emit(Op::Call { func: index as u8, argc: args.len() as u8, ret: kind_of(ty) as u8, types });
     }
 }

@@ -48,12 +48,10 @@ impl LowerError {
                 *span,
             )
             .label("only sequences have steps"),
-            LowerError::TooMany { span, what } => Diagnostic::error(
-                "E0132",
-                format!("too many {what} in one object file"),
-                *span,
-            )
-            .label("limit reached here"),
+            LowerError::TooMany { span, what } => {
+                Diagnostic::error("E0132", format!("too many {what} in one object file"), *span)
+                    .label("limit reached here")
+            }
         }
     }
 }
@@ -119,16 +117,8 @@ pub fn lower_units(units: &[Unit]) -> Result<ObjectFile, Vec<LowerError>> {
 }
 
 /// Lowers a whole checked file.
-pub fn lower_program(
-    p: &hir::Program,
-    source: &str,
-    lines: &Lines,
-) -> Result<ObjectFile, Vec<LowerError>> {
-    lower_units(&[Unit {
-        program: p,
-        file: source,
-        lines,
-    }])
+pub fn lower_program(p: &hir::Program, source: &str, lines: &Lines) -> Result<ObjectFile, Vec<LowerError>> {
+    lower_units(&[Unit { program: p, file: source, lines }])
 }
 
 /// Lowers one expression into an action named `eval` that returns its value.
@@ -136,9 +126,7 @@ pub fn lower_eval(e: &hir::Expr, lines: &Lines) -> Result<ObjectFile, Vec<LowerE
     let mut l = Lowerer::new(lines);
     l.mark(e.span);
     l.expr(e);
-    l.emit(Op::Return {
-        kind: expr::kind_of(e.ty) as u8,
-    });
+    l.emit(Op::Return { kind: expr::kind_of(e.ty) as u8 });
     let action = l.take_action("eval", "");
     l.finish("<eval>", vec![action])
 }
@@ -165,12 +153,7 @@ impl<'a> Lowerer<'a> {
         if !self.errors.is_empty() {
             return Err(self.errors);
         }
-        Ok(ObjectFile {
-            source: source.to_string(),
-            symbols: self.symbols,
-            strings: self.strings,
-            actions,
-        })
+        Ok(ObjectFile { source: source.to_string(), symbols: self.symbols, strings: self.strings, actions })
     }
 
     fn take_action(&mut self, name: &str, block_type: &str) -> ActionCode {
@@ -221,10 +204,7 @@ impl<'a> Lowerer<'a> {
         }
         let k = self.strings.len() as u32;
         if k == u32::MAX {
-            self.errors.push(LowerError::TooMany {
-                span,
-                what: "string constants",
-            });
+            self.errors.push(LowerError::TooMany { span, what: "string constants" });
         }
         self.strings.push(bytes.to_vec());
         self.string_index.insert(bytes.to_vec(), k);
@@ -237,28 +217,15 @@ impl<'a> Lowerer<'a> {
             Sub::Alarm(a) => format!("A:{}", a.to_ascii_uppercase()),
             Sub::Suppress(a) => format!("S:{}", a.as_deref().unwrap_or("").to_ascii_uppercase()),
         };
-        let key = (
-            block.to_ascii_uppercase(),
-            field.to_ascii_uppercase(),
-            sub_key,
-            class as u8,
-        );
+        let key = (block.to_ascii_uppercase(), field.to_ascii_uppercase(), sub_key, class as u8);
         if let Some(&i) = self.symbol_index.get(&key) {
             return i;
         }
         let Ok(i) = u16::try_from(self.symbols.len()) else {
-            self.errors.push(LowerError::TooMany {
-                span,
-                what: "database references",
-            });
+            self.errors.push(LowerError::TooMany { span, what: "database references" });
             return 0;
         };
-        self.symbols.push(Symbol {
-            block: block.to_string(),
-            field: field.to_string(),
-            sub,
-            class,
-        });
+        self.symbols.push(Symbol { block: block.to_string(), field: field.to_string(), sub, class });
         self.symbol_index.insert(key, i);
         i
     }
@@ -275,11 +242,7 @@ impl<'a> Lowerer<'a> {
                 self.mark(*span);
                 self.store_value(place, value);
             }
-            Stmt::If {
-                arms,
-                otherwise,
-                span,
-            } => {
+            Stmt::If { arms, otherwise, span } => {
                 self.mark(*span);
                 let mut to_end = Vec::new();
                 for (cond, body) in arms {
@@ -327,14 +290,7 @@ impl<'a> Lowerer<'a> {
                     },
                 );
             }
-            Stmt::For {
-                place,
-                from,
-                to,
-                by,
-                body,
-                span,
-            } => self.for_loop(place, from, to, by.as_ref(), body, *span),
+            Stmt::For { place, from, to, by, body, span } => self.for_loop(place, from, to, by.as_ref(), body, *span),
             Stmt::Exit { span } => {
                 self.mark(*span);
                 let j = self.emit(Op::Jump { to: 0 });
@@ -364,12 +320,7 @@ impl<'a> Lowerer<'a> {
             self.patch(j, end);
         }
         let (line, col) = self.lines.at(span.start);
-        self.loops.push(LoopEntry {
-            start: top,
-            end,
-            line,
-            col,
-        });
+        self.loops.push(LoopEntry { start: top, end, line, col });
     }
 
     fn for_loop(
@@ -382,19 +333,12 @@ impl<'a> Lowerer<'a> {
         span: Span,
     ) {
         self.mark(span);
-        let ty = if place.ty == Ty::Real {
-            Ty::Real
-        } else {
-            Ty::Int
-        };
+        let ty = if place.ty == Ty::Real { Ty::Real } else { Ty::Int };
         self.store_value(place, from);
         let local = self.locals;
         self.locals = self.locals.saturating_add(1);
         if self.locals == u8::MAX {
-            self.errors.push(LowerError::TooMany {
-                span,
-                what: "nested FOR loops",
-            });
+            self.errors.push(LowerError::TooMany { span, what: "nested FOR loops" });
         }
         self.expr_as(to, ty);
         self.emit(Op::StoreLoc { n: local });
@@ -453,11 +397,7 @@ impl<'a> Lowerer<'a> {
     fn address(&mut self, place: &Place) -> Option<(u16, bool)> {
         let class = place.class?;
         match &place.target {
-            Target::Field {
-                block,
-                field,
-                offset,
-            } => {
+            Target::Field { block, field, offset } => {
                 let sym = self.symbol(block, field, Sub::Field, class, place.span);
                 if let Some(o) = offset {
                     self.expr_as(o, Ty::Int);
@@ -466,13 +406,7 @@ impl<'a> Lowerer<'a> {
                 }
                 Some((sym, false))
             }
-            Target::Bit {
-                block,
-                field,
-                offset,
-                bit,
-                bit_offset,
-            } => {
+            Target::Bit { block, field, offset, bit, bit_offset } => {
                 let sym = self.symbol(block, field, Sub::Field, class, place.span);
                 if offset.is_none() && bit_offset.is_none() {
                     return Some((sym, false));
@@ -498,42 +432,20 @@ impl<'a> Lowerer<'a> {
                 });
                 Some((sym, true))
             }
-            Target::Alarm {
-                block,
-                field,
-                alarm,
-            } => Some((
-                self.symbol(block, field, Sub::Alarm(alarm.clone()), class, place.span),
-                false,
-            )),
-            Target::Suppress {
-                block,
-                field,
-                alarm,
-            } => Some((
-                self.symbol(
-                    block,
-                    field,
-                    Sub::Suppress(alarm.clone()),
-                    class,
-                    place.span,
-                ),
-                false,
-            )),
+            Target::Alarm { block, field, alarm } => {
+                Some((self.symbol(block, field, Sub::Alarm(alarm.clone()), class, place.span), false))
+            }
+            Target::Suppress { block, field, alarm } => {
+                Some((self.symbol(block, field, Sub::Suppress(alarm.clone()), class, place.span), false))
+            }
             Target::Step { .. } | Target::Unknown => None,
         }
     }
 
     fn unaddressable(&mut self, place: &Place) {
         let e = match place.target {
-            Target::Step { .. } => LowerError::StepVariable {
-                span: place.span,
-                path: place.path.clone(),
-            },
-            _ => LowerError::Unresolved {
-                span: place.span,
-                path: place.path.clone(),
-            },
+            Target::Step { .. } => LowerError::StepVariable { span: place.span, path: place.path.clone() },
+            _ => LowerError::Unresolved { span: place.span, path: place.path.clone() },
         };
         self.errors.push(e);
     }

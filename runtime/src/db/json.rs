@@ -32,11 +32,7 @@ impl Database {
         let mut db = Database::default();
         // The built-in library is tested to load; an empty library is the
         // only possible fallback and keeps this path free of panics.
-        let _ = Loader {
-            text: BUILTIN,
-            db: &mut db,
-        }
-        .load();
+        let _ = Loader { text: BUILTIN, db: &mut db }.load();
         db
     }
 
@@ -57,11 +53,7 @@ impl Loader<'_> {
     fn load(&mut self) -> Result<(), DbError> {
         let root: Value = serde_json::from_str(self.text).map_err(|e| {
             let at = offset_of(self.text, e.line(), e.column());
-            DbError {
-                code: "E0800",
-                message: format!("the database is not valid JSON: {e}"),
-                span: Some((at, at)),
-            }
+            DbError { code: "E0800", message: format!("the database is not valid JSON: {e}"), span: Some((at, at)) }
         })?;
         let root = self.object(&root, "the database")?;
         for key in root.keys() {
@@ -92,11 +84,7 @@ impl Loader<'_> {
     }
 
     fn err(&self, code: &'static str, message: String, near: &str) -> DbError {
-        DbError {
-            code,
-            message,
-            span: locate(self.text, near),
-        }
+        DbError { code, message, span: locate(self.text, near) }
     }
 
     fn object<'v>(&self, v: &'v Value, what: &str) -> Result<&'v Map<String, Value>, DbError> {
@@ -108,57 +96,28 @@ impl Loader<'_> {
     }
 
     fn template(&mut self, name: &str, spec: &Value) -> Result<(), DbError> {
-        let spec = spec.as_object().ok_or_else(|| {
-            self.err(
-                "E0801",
-                format!("template `{name}` must be an object with `fields`"),
-                name,
-            )
-        })?;
-        let doc = spec
-            .get("doc")
-            .and_then(Value::as_str)
-            .unwrap_or_default()
-            .to_string();
+        let spec = spec
+            .as_object()
+            .ok_or_else(|| self.err("E0801", format!("template `{name}` must be an object with `fields`"), name))?;
+        let doc = spec.get("doc").and_then(Value::as_str).unwrap_or_default().to_string();
         let mut fields = Vec::new();
         if let Some(fs) = spec.get("fields") {
-            let fs = fs.as_object().ok_or_else(|| {
-                self.err(
-                    "E0801",
-                    format!("`fields` of template `{name}` must be an object"),
-                    name,
-                )
-            })?;
+            let fs = fs
+                .as_object()
+                .ok_or_else(|| self.err("E0801", format!("`fields` of template `{name}` must be an object"), name))?;
             for (fname, fspec) in fs {
-                if fields
-                    .iter()
-                    .any(|f: &FieldDef| f.name.eq_ignore_ascii_case(fname))
-                {
-                    return Err(self.err(
-                        "E0806",
-                        format!("template `{name}` declares field `{fname}` twice"),
-                        fname,
-                    ));
+                if fields.iter().any(|f: &FieldDef| f.name.eq_ignore_ascii_case(fname)) {
+                    return Err(self.err("E0806", format!("template `{name}` declares field `{fname}` twice"), fname));
                 }
                 let (ty, readonly) = self.field_spec(name, fname, fspec)?;
-                fields.push(FieldDef {
-                    name: fname.clone(),
-                    ty,
-                    readonly,
-                });
+                fields.push(FieldDef { name: fname.clone(), ty, readonly });
             }
         }
-        self.db
-            .put_template(Template::new(name.to_string(), doc, fields));
+        self.db.put_template(Template::new(name.to_string(), doc, fields));
         Ok(())
     }
 
-    fn field_spec(
-        &self,
-        tname: &str,
-        fname: &str,
-        spec: &Value,
-    ) -> Result<(FieldType, bool), DbError> {
+    fn field_spec(&self, tname: &str, fname: &str, spec: &Value) -> Result<(FieldType, bool), DbError> {
         let bad = || {
             self.err(
                 "E0802",
@@ -172,14 +131,8 @@ impl Loader<'_> {
                     "REAL" => FieldType::Real,
                     "INT" => FieldType::Int,
                     "BOOL" => FieldType::Bool,
-                    "BITS8" => FieldType::Bits {
-                        width: 8,
-                        names: vec![],
-                    },
-                    "BITS16" => FieldType::Bits {
-                        width: 16,
-                        names: vec![],
-                    },
+                    "BITS8" => FieldType::Bits { width: 8, names: vec![] },
+                    "BITS16" => FieldType::Bits { width: 16, names: vec![] },
                     "STRING" => FieldType::String,
                     "DATE" => FieldType::Date,
                     "TIME" => FieldType::Time,
@@ -216,87 +169,45 @@ impl Loader<'_> {
     }
 
     fn block(&mut self, name: &str, spec: &Value) -> Result<(), DbError> {
-        let spec = spec.as_object().ok_or_else(|| {
-            self.err(
-                "E0801",
-                format!("block `{name}` must be an object with `type`"),
-                name,
-            )
-        })?;
+        let spec = spec
+            .as_object()
+            .ok_or_else(|| self.err("E0801", format!("block `{name}` must be an object with `type`"), name))?;
         let tname = spec
             .get("type")
             .and_then(Value::as_str)
             .ok_or_else(|| self.err("E0801", format!("block `{name}` has no `type`"), name))?;
-        let template = self.db.template(tname).ok_or_else(|| {
-            self.err(
-                "E0803",
-                format!("block `{name}` has unknown type `{tname}`"),
-                tname,
-            )
-        })?;
+        let template = self
+            .db
+            .template(tname)
+            .ok_or_else(|| self.err("E0803", format!("block `{name}` has unknown type `{tname}`"), tname))?;
         let mut values = Vec::new();
         if let Some(vs) = spec.get("values") {
-            let vs = vs.as_object().ok_or_else(|| {
-                self.err(
-                    "E0801",
-                    format!("`values` of block `{name}` must be an object"),
-                    name,
-                )
-            })?;
+            let vs = vs
+                .as_object()
+                .ok_or_else(|| self.err("E0801", format!("`values` of block `{name}` must be an object"), name))?;
             for (fname, v) in vs {
                 let t = &self.db.templates[template];
                 let fi = t.field(fname).ok_or_else(|| {
-                    self.err(
-                        "E0804",
-                        format!("block `{name}` of type `{}` has no field `{fname}`", t.name),
-                        fname,
-                    )
+                    self.err("E0804", format!("block `{name}` of type `{}` has no field `{fname}`", t.name), fname)
                 })?;
-                let value = init_value(&t.fields[fi].ty, v).map_err(|why| {
-                    self.err(
-                        "E0804",
-                        format!("initial value of `{name}.{fname}`: {why}"),
-                        fname,
-                    )
-                })?;
+                let value = init_value(&t.fields[fi].ty, v)
+                    .map_err(|why| self.err("E0804", format!("initial value of `{name}.{fname}`: {why}"), fname))?;
                 values.push((fi, value));
             }
         }
-        if !self.db.add_block(Block {
-            name: name.to_string(),
-            template,
-            values,
-        }) {
-            return Err(self.err(
-                "E0806",
-                format!("block `{name}` is declared twice (names ignore case)"),
-                name,
-            ));
+        if !self.db.add_block(Block { name: name.to_string(), template, values }) {
+            return Err(self.err("E0806", format!("block `{name}` is declared twice (names ignore case)"), name));
         }
         Ok(())
     }
 
     fn alias(&mut self, name: &str, target: &Value) -> Result<(), DbError> {
-        let t = target
-            .as_str()
-            .filter(|t| !t.is_empty() && t.split('.').all(|s| !s.is_empty()))
-            .ok_or_else(|| {
-                self.err(
-                    "E0805",
-                    format!("alias `{name}` must name a reference like \"BLOCK.FIELD\""),
-                    name,
-                )
-            })?;
-        let alias = Alias {
-            name: name.to_string(),
-            target: t.split('.').map(str::to_string).collect(),
-        };
+        let t = target.as_str().filter(|t| !t.is_empty() && t.split('.').all(|s| !s.is_empty())).ok_or_else(|| {
+            self.err("E0805", format!("alias `{name}` must name a reference like \"BLOCK.FIELD\""), name)
+        })?;
+        let alias = Alias { name: name.to_string(), target: t.split('.').map(str::to_string).collect() };
         if !self.db.add_alias(alias) {
-            return Err(self.err(
-                "E0806",
-                format!("alias `{name}` is declared twice (names ignore case)"),
-                name,
-            ));
+            return Err(self.err("E0806", format!("alias `{name}` is declared twice (names ignore case)"), name));
         }
         Ok(())
     }
@@ -310,9 +221,7 @@ fn init_value(ty: &FieldType, v: &Value) -> Result<InitValue, String> {
             Ok(InitValue::Num(x))
         }
         (FieldType::Bool, Value::Bool(b)) => Ok(InitValue::Bool(*b)),
-        (FieldType::Bool, Value::Number(n)) => {
-            Ok(InitValue::Bool(n.as_f64().unwrap_or(0.0) != 0.0))
-        }
+        (FieldType::Bool, Value::Number(n)) => Ok(InitValue::Bool(n.as_f64().unwrap_or(0.0) != 0.0)),
         (FieldType::Enum(names), Value::String(s)) => {
             if names.iter().any(|n| n.eq_ignore_ascii_case(s)) {
                 Ok(InitValue::Text(s.clone()))
@@ -321,21 +230,14 @@ fn init_value(ty: &FieldType, v: &Value) -> Result<InitValue, String> {
             }
         }
         (
-            FieldType::String
-            | FieldType::Date
-            | FieldType::Time
-            | FieldType::Bseq
-            | FieldType::Wstr,
+            FieldType::String | FieldType::Date | FieldType::Time | FieldType::Bseq | FieldType::Wstr,
             Value::String(s),
         ) => Ok(InitValue::Text(s.clone())),
         (FieldType::Alarms(names), Value::Object(m)) => {
             let mut active = Vec::new();
             for (k, v) in m {
                 if !names.iter().any(|n| n.eq_ignore_ascii_case(k)) {
-                    return Err(format!(
-                        "`{k}` is not one of the alarms {}",
-                        names.join(", ")
-                    ));
+                    return Err(format!("`{k}` is not one of the alarms {}", names.join(", ")));
                 }
                 if v.as_bool().ok_or("alarm states are true or false")? {
                     active.push(k.clone());
@@ -349,11 +251,7 @@ fn init_value(ty: &FieldType, v: &Value) -> Result<InitValue, String> {
 
 /// Byte offset of a 1-based line and column.
 fn offset_of(text: &str, line: usize, column: usize) -> usize {
-    let start: usize = text
-        .split_inclusive('\n')
-        .take(line.saturating_sub(1))
-        .map(str::len)
-        .sum();
+    let start: usize = text.split_inclusive('\n').take(line.saturating_sub(1)).map(str::len).sum();
     (start + column.saturating_sub(1)).min(text.len())
 }
 
@@ -370,15 +268,9 @@ mod tests {
     #[test]
     fn builtin_library_loads() {
         let mut db = Database::default();
-        let r = Loader {
-            text: BUILTIN,
-            db: &mut db,
-        }
-        .load();
+        let r = Loader { text: BUILTIN, db: &mut db }.load();
         assert_eq!(r, Ok(()));
-        for t in [
-            "ACTION", "DIGACT", "SFC_CON", "RAW_COM", "PID", "AN_CONN", "DG_CONN",
-        ] {
+        for t in ["ACTION", "DIGACT", "SFC_CON", "RAW_COM", "PID", "AN_CONN", "DG_CONN"] {
             assert!(db.template(t).is_some(), "{t}");
         }
     }
@@ -396,31 +288,26 @@ mod tests {
             t.fields.iter().map(|f| f.name.as_str()).collect::<Vec<_>>(),
             ["A0", "N0", "Flags", "Mode", "Alarms"]
         );
-        assert_eq!(
-            db.alias("AVG").map(|a| a.target.clone()),
-            Some(vec!["REC1".to_string(), "A0".to_string()])
-        );
+        assert_eq!(db.alias("AVG").map(|a| a.target.clone()), Some(vec!["REC1".to_string(), "A0".to_string()]));
     }
 
     #[test]
     fn errors_are_coded_and_located() {
-        let e = Database::from_json("{ \"blocks\": { \"B\": { \"type\": \"NOPE\" } } }")
-            .expect_err("fails");
+        let e = Database::from_json("{ \"blocks\": { \"B\": { \"type\": \"NOPE\" } } }").expect_err("fails");
         assert_eq!(e.code, "E0803");
         assert_eq!(e.span, Some((29, 35)));
         let e = Database::from_json("{ \"blocks\": ").expect_err("fails");
         assert_eq!(e.code, "E0800");
-        let e = Database::from_json(r#"{"templates":{"T":{"fields":{"M":{"ENUM":["A"]}}}},"blocks":{"B":{"type":"T","values":{"M":"Z"}}}}"#)
-            .expect_err("fails");
+        let e = Database::from_json(
+            r#"{"templates":{"T":{"fields":{"M":{"ENUM":["A"]}}}},"blocks":{"B":{"type":"T","values":{"M":"Z"}}}}"#,
+        )
+        .expect_err("fails");
         assert_eq!(e.code, "E0804");
     }
 
     #[test]
     fn bit_names() {
-        let t = FieldType::Bits {
-            width: 8,
-            names: vec!["Run".into()],
-        };
+        let t = FieldType::Bits { width: 8, names: vec!["Run".into()] };
         assert_eq!(t.bit_index("BIT7"), Some(7));
         assert_eq!(t.bit_index("Bit8"), None);
         assert_eq!(t.bit_index("run"), Some(0));

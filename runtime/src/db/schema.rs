@@ -61,10 +61,7 @@ impl FieldType {
         if let Some(i) = names.iter().position(|n| n.eq_ignore_ascii_case(sub)) {
             return u8::try_from(i).ok();
         }
-        let digits = sub
-            .get(..3)
-            .filter(|p| p.eq_ignore_ascii_case("bit"))
-            .and(sub.get(3..))?;
+        let digits = sub.get(..3).filter(|p| p.eq_ignore_ascii_case("bit")).and(sub.get(3..))?;
         if digits.is_empty() || digits.len() > 2 || !digits.bytes().all(|b| b.is_ascii_digit()) {
             return None;
         }
@@ -94,17 +91,8 @@ pub struct Template {
 
 impl Template {
     pub fn new(name: String, doc: String, fields: Vec<FieldDef>) -> Self {
-        let index = fields
-            .iter()
-            .enumerate()
-            .map(|(i, f)| (f.name.to_ascii_uppercase(), i))
-            .collect();
-        Template {
-            name,
-            doc,
-            fields,
-            index,
-        }
+        let index = fields.iter().enumerate().map(|(i, f)| (f.name.to_ascii_uppercase(), i)).collect();
+        Template { name, doc, fields, index }
     }
 
     /// Finds a field by case-insensitive name.
@@ -195,9 +183,7 @@ impl Database {
     }
 
     pub fn alias(&self, name: &str) -> Option<&Alias> {
-        self.alias_index
-            .get(&name.to_ascii_uppercase())
-            .map(|&i| &self.aliases[i])
+        self.alias_index.get(&name.to_ascii_uppercase()).map(|&i| &self.aliases[i])
     }
 
     /// The template of a block.

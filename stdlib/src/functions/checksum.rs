@@ -15,9 +15,7 @@ pub fn bcc(s: &[u8], mode: i32, seed: i32) -> i32 {
     match mode {
         0 => s.iter().fold(low, |acc, &b| acc ^ i32::from(b)),
         1 => s.iter().fold(low, |acc, &b| (acc + i32::from(b)) & 0xFF),
-        2 => s
-            .iter()
-            .fold(seed, |acc, &b| acc.wrapping_add(i32::from(b))),
+        2 => s.iter().fold(seed, |acc, &b| acc.wrapping_add(i32::from(b))),
         _ => 0,
     }
 }
@@ -49,11 +47,7 @@ pub fn crc(s: &[u8], mode: i32, poly: i32, seed: i32) -> i32 {
             for &b in s {
                 reg ^= u16::from(b) << 8;
                 for _ in 0..8 {
-                    reg = if reg & 0x8000 != 0 {
-                        (reg << 1) ^ poly
-                    } else {
-                        reg << 1
-                    };
+                    reg = if reg & 0x8000 != 0 { (reg << 1) ^ poly } else { reg << 1 };
                 }
             }
         }
@@ -62,11 +56,7 @@ pub fn crc(s: &[u8], mode: i32, poly: i32, seed: i32) -> i32 {
             for &b in s {
                 reg ^= u16::from(b);
                 for _ in 0..8 {
-                    reg = if reg & 1 != 0 {
-                        (reg >> 1) ^ rpoly
-                    } else {
-                        reg >> 1
-                    };
+                    reg = if reg & 1 != 0 { (reg >> 1) ^ rpoly } else { reg >> 1 };
                 }
             }
         }
@@ -98,6 +88,8 @@ mod tests {
         assert_eq!(crc(b"123456789", 1, 0x8005, -1), 0x4B37);
         assert_eq!(crc(b"123456789", 0, 0x1021, 0), 0x31C3);
         assert_eq!(crc(b"", 0, 0x1021, 0x1234), 0x1234);
+        // CRC-16/RIELLO: init 16#B2AA, given reflected as the seed.
+        assert_eq!(crc(b"123456789", 1, 0x1021, 0x554D), 0x63D0);
         assert_eq!(crc(b"123456789", 2, 0x8005, 0), 0);
         assert_eq!(crc(b"123456789", i32::MIN, 0x8005, 0), 0);
     }

@@ -70,13 +70,7 @@ pub fn date_time_text(secs: i64) -> Vec<u8> {
     }
     let (y, m, d) = civil_from_days(secs.div_euclid(DAY));
     let t = secs.rem_euclid(DAY);
-    format!(
-        "{d:02}/{m:02}/{y:04} {:02}:{:02}:{:02}",
-        t / 3600,
-        t / 60 % 60,
-        t % 60
-    )
-    .into_bytes()
+    format!("{d:02}/{m:02}/{y:04} {:02}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60).into_bytes()
 }
 
 /// DATEANDTIMENOW([mode]): the current date and time as

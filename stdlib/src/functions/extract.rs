@@ -87,30 +87,22 @@ pub fn extract_uint8(s: &[u8], p: i32) -> i32 {
 
 /// EXTRACT_INT16(s, P, Order): a signed 16-bit value.
 pub fn extract_int16(s: &[u8], p: i32, order: i32) -> i32 {
-    layout16(order)
-        .and_then(|l| read(s, p, l))
-        .map_or(0, |le| i32::from(i16::from_le_bytes(le)))
+    layout16(order).and_then(|l| read(s, p, l)).map_or(0, |le| i32::from(i16::from_le_bytes(le)))
 }
 
 /// EXTRACT_UINT16(s, P, Order): an unsigned 16-bit value (0–65535).
 pub fn extract_uint16(s: &[u8], p: i32, order: i32) -> i32 {
-    layout16(order)
-        .and_then(|l| read(s, p, l))
-        .map_or(0, |le| i32::from(u16::from_le_bytes(le)))
+    layout16(order).and_then(|l| read(s, p, l)).map_or(0, |le| i32::from(u16::from_le_bytes(le)))
 }
 
 /// EXTRACT_INT32(s, P, Order): a 32-bit value.
 pub fn extract_int32(s: &[u8], p: i32, order: i32) -> i32 {
-    layout32(order)
-        .and_then(|l| read(s, p, l))
-        .map_or(0, i32::from_le_bytes)
+    layout32(order).and_then(|l| read(s, p, l)).map_or(0, i32::from_le_bytes)
 }
 
 /// EXTRACT_REAL(s, P, Order): a 32-bit IEEE 754 REAL.
 pub fn extract_real(s: &[u8], p: i32, order: i32) -> f32 {
-    layout32(order)
-        .and_then(|l| read(s, p, l))
-        .map_or(0.0, f32::from_le_bytes)
+    layout32(order).and_then(|l| read(s, p, l)).map_or(0.0, f32::from_le_bytes)
 }
 
 /// REPLACE_BOOL(s, P, B, V): `s` with bit B (0–7) of byte P set to V.

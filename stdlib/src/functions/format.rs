@@ -73,11 +73,7 @@ enum Fitted {
 /// character when it does not fit.
 fn fit(spec: &Spec, text: Vec<u8>) -> Fitted {
     let Some(width) = spec.width.map(|w| w.min(MAX_LEN)) else {
-        return Fitted::Text(if text.len() > MAX_LEN {
-            Vec::new()
-        } else {
-            text
-        });
+        return Fitted::Text(if text.len() > MAX_LEN { Vec::new() } else { text });
     };
     if text.len() > width {
         return Fitted::Overflow(vec![spec.fill; width]);
@@ -270,14 +266,7 @@ mod tests {
         assert_eq!(f("TP", Value::Int(86_400 + 61)), "00:01:01");
         assert_eq!(f("TP", Value::Int(i32::MIN)), "20:45:52");
         assert_eq!(f("D", Value::Int(20240229)), "29/02/2024");
-        for bad in [
-            20230229,
-            20231301,
-            20230100,
-            99_991_232,
-            -20060923,
-            100_000_101,
-        ] {
+        for bad in [20230229, 20231301, 20230100, 99_991_232, -20060923, 100_000_101] {
             assert_eq!(f("D", Value::Int(bad)), "", "{bad}");
         }
         assert_eq!(f("D", Value::Int(101)), "01/01/0000");

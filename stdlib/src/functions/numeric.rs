@@ -14,10 +14,7 @@ fn finite(name: &str, args: &[f32], x: f64) -> Result<f32, FnError> {
         Ok(r)
     } else {
         let shown: Vec<String> = args.iter().map(|a| a.to_string()).collect();
-        Err(FnError::Domain(format!(
-            "{name}({}) is not a finite REAL",
-            shown.join(", ")
-        )))
+        Err(FnError::Domain(format!("{name}({}) is not a finite REAL", shown.join(", "))))
     }
 }
 
@@ -110,10 +107,7 @@ mod tests {
             ("COS", f32::NAN),
             ("NOPE", 1.0),
         ] {
-            assert!(
-                matches!(unary(name, a), Err(FnError::Domain(_))),
-                "{name}({a})"
-            );
+            assert!(matches!(unary(name, a), Err(FnError::Domain(_))), "{name}({a})");
         }
         assert!(atan2(f32::NAN, 1.0).is_err());
     }

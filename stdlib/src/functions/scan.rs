@@ -113,9 +113,7 @@ fn digits(s: &[u8], radix: u32) -> (u64, usize) {
     let mut v: u64 = 0;
     let mut n = 0;
     for d in s.iter().map_while(|&c| char::from(c).to_digit(radix)) {
-        v = v
-            .saturating_mul(u64::from(radix))
-            .saturating_add(u64::from(d));
+        v = v.saturating_mul(u64::from(radix)).saturating_add(u64::from(d));
         n += 1;
     }
     (v, n)
@@ -227,10 +225,7 @@ mod tests {
         assert_eq!(s("I", ""), None);
         assert_eq!(s("I", "   "), None);
         assert_eq!(s("I", "12AB"), Some(Scanned::Int(12)));
-        assert_eq!(
-            s("I", "99999999999999999999999"),
-            Some(Scanned::Int(i32::MAX))
-        );
+        assert_eq!(s("I", "99999999999999999999999"), Some(Scanned::Int(i32::MAX)));
         assert_eq!(s("I", "-2147483648"), Some(Scanned::Int(i32::MIN)));
         assert_eq!(s("I", "-99999999999"), Some(Scanned::Int(i32::MIN)));
         assert_eq!(s("U", "4294967295"), Some(Scanned::Int(-1)));

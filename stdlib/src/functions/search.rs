@@ -15,9 +15,7 @@ fn find_from(hay: &[u8], needle: &[u8], from: usize) -> Option<usize> {
         return None;
     }
     let tail = hay.get(from..)?;
-    tail.windows(needle.len())
-        .position(|w| w == needle)
-        .map(|p| p + from)
+    tail.windows(needle.len()).position(|w| w == needle).map(|p| p + from)
 }
 
 /// The last occurrence of `needle` (non-empty) lying wholly before `end`.

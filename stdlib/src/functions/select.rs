@@ -19,11 +19,7 @@ pub fn random(a: f32, env: &mut dyn Env) -> Result<f32, FnError> {
     let x = (f64::from(a) * r) as f32;
     // For a non-zero f32, the bit pattern minus one is the neighbour nearer
     // to zero.
-    let inside = if a != 0.0 && x.abs() >= a.abs() {
-        f32::from_bits(a.to_bits() - 1)
-    } else {
-        x
-    };
+    let inside = if a != 0.0 && x.abs() >= a.abs() { f32::from_bits(a.to_bits() - 1) } else { x };
     Ok(inside)
 }
 
@@ -114,10 +110,7 @@ mod tests {
         let mixed = [Value::Int(3), Value::Real(4.5), Value::Bool(true)];
         assert_eq!(extreme(&mixed, true), Value::Real(4.5));
         assert_eq!(extreme(&mixed, false), Value::Real(1.0));
-        assert_eq!(
-            avg(&[Value::Int(i32::MAX), Value::Int(i32::MAX)]),
-            Ok(2_147_483_647.0)
-        );
+        assert_eq!(avg(&[Value::Int(i32::MAX), Value::Int(i32::MAX)]), Ok(2_147_483_647.0));
         assert!(avg(&[Value::Real(f32::INFINITY), Value::Int(1)]).is_err());
         assert_eq!(avg(&[]), Ok(0.0));
         assert_eq!(extreme(&[], true), Value::Int(0));

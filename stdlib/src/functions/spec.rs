@@ -56,10 +56,7 @@ pub enum Conv {
 impl Conv {
     /// `F`, `e`, `E` or `G`.
     pub fn is_real(self) -> bool {
-        matches!(
-            self,
-            Conv::Fixed | Conv::ExpLower | Conv::ExpUpper | Conv::General
-        )
+        matches!(self, Conv::Fixed | Conv::ExpLower | Conv::ExpUpper | Conv::General)
     }
 
     fn has_separator(self) -> bool {
@@ -152,15 +149,7 @@ pub fn parse(f: &[u8]) -> Option<Spec> {
             _ => return None,
         }
     };
-    Some(Spec {
-        zero,
-        width,
-        point,
-        precision,
-        conv,
-        sep,
-        fill,
-    })
+    Some(Spec { zero, width, point, precision, conv, sep, fill })
 }
 
 #[cfg(test)]
@@ -193,20 +182,11 @@ mod tests {
     #[test]
     fn conversions_separators_and_overrides() {
         assert_eq!(p("3I!").map(|s| (s.conv, s.fill)), Some((Conv::Int, b'!')));
-        assert_eq!(
-            p("T.").map(|s| (s.conv, s.sep)),
-            Some((Conv::IsoTime, b'.'))
-        );
-        assert_eq!(
-            p("TP.#").map(|s| (s.conv, s.sep, s.fill)),
-            Some((Conv::PosixTime, b'.', b'#'))
-        );
+        assert_eq!(p("T.").map(|s| (s.conv, s.sep)), Some((Conv::IsoTime, b'.')));
+        assert_eq!(p("TP.#").map(|s| (s.conv, s.sep, s.fill)), Some((Conv::PosixTime, b'.', b'#')));
         assert_eq!(p("DP").map(|s| s.conv), Some(Conv::PosixDate));
         assert_eq!(p("dp").map(|s| s.conv), Some(Conv::PosixDate));
-        assert_eq!(
-            p("D-").map(|s| (s.conv, s.fill)),
-            Some((Conv::IsoDate, b'-'))
-        );
+        assert_eq!(p("D-").map(|s| (s.conv, s.fill)), Some((Conv::IsoDate, b'-')));
         assert_eq!(p("x").map(|s| s.conv), Some(Conv::HexLower));
         assert_eq!(p("e").map(|s| s.conv), Some(Conv::ExpLower));
         assert_eq!(p("g").map(|s| s.conv), Some(Conv::General));
@@ -214,9 +194,7 @@ mod tests {
 
     #[test]
     fn invalid_formats() {
-        for f in [
-            "", "5", "5.", "Q", "5.2I", ".X", "3I!!", "TP.##", " I", "05",
-        ] {
+        for f in ["", "5", "5.", "Q", "5.2I", ".X", "3I!!", "TP.##", " I", "05"] {
             assert_eq!(p(f), None, "{f:?}");
         }
     }

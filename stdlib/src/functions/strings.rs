@@ -28,27 +28,19 @@ pub fn len(s: &[u8]) -> i32 {
 /// LEFT(s, L): the first L bytes; null if `s` has fewer than L bytes or
 /// L <= 0.
 pub fn left(s: &[u8], l: i32) -> Vec<u8> {
-    count(l)
-        .and_then(|l| s.get(..l))
-        .map_or_else(Vec::new, <[u8]>::to_vec)
+    count(l).and_then(|l| s.get(..l)).map_or_else(Vec::new, <[u8]>::to_vec)
 }
 
 /// RIGHT(s, L): the last L bytes; null if `s` has fewer than L bytes or
 /// L <= 0.
 pub fn right(s: &[u8], l: i32) -> Vec<u8> {
-    count(l)
-        .and_then(|l| s.len().checked_sub(l))
-        .and_then(|start| s.get(start..))
-        .map_or_else(Vec::new, <[u8]>::to_vec)
+    count(l).and_then(|l| s.len().checked_sub(l)).and_then(|start| s.get(start..)).map_or_else(Vec::new, <[u8]>::to_vec)
 }
 
 /// MID(s, L, P): L bytes from position P; null if `s` has fewer than
 /// L+P-1 bytes, P <= 0, P > LEN(s) or L <= 0.
 pub fn mid(s: &[u8], l: i32, p: i32) -> Vec<u8> {
-    count(l)
-        .and_then(|l| span(s.len(), p, l))
-        .and_then(|r| s.get(r))
-        .map_or_else(Vec::new, <[u8]>::to_vec)
+    count(l).and_then(|l| span(s.len(), p, l)).and_then(|r| s.get(r)).map_or_else(Vec::new, <[u8]>::to_vec)
 }
 
 /// CONCAT: `a` followed by `b`.
@@ -60,12 +52,9 @@ pub fn concat(a: &[u8], b: &[u8]) -> Vec<u8> {
 /// P <= 0 or P > LEN(s1)+1.
 pub fn insert(s1: &[u8], s2: &[u8], p: i32) -> Vec<u8> {
     match span(s1.len(), p, 0) {
-        Some(at) => [s1.get(..at.start), Some(s2), s1.get(at.start..)]
-            .into_iter()
-            .flatten()
-            .flatten()
-            .copied()
-            .collect(),
+        Some(at) => {
+            [s1.get(..at.start), Some(s2), s1.get(at.start..)].into_iter().flatten().flatten().copied().collect()
+        }
         None => Vec::new(),
     }
 }
@@ -81,12 +70,7 @@ pub fn delete(s: &[u8], l: i32, p: i32) -> Vec<u8> {
 /// L <= 0.
 pub fn replace(s1: &[u8], s2: &[u8], l: i32, p: i32) -> Vec<u8> {
     match count(l).and_then(|l| span(s1.len(), p, l)) {
-        Some(r) => [s1.get(..r.start), Some(s2), s1.get(r.end..)]
-            .into_iter()
-            .flatten()
-            .flatten()
-            .copied()
-            .collect(),
+        Some(r) => [s1.get(..r.start), Some(s2), s1.get(r.end..)].into_iter().flatten().flatten().copied().collect(),
         None => Vec::new(),
     }
 }
@@ -190,14 +174,7 @@ mod tests {
     #[test]
     fn extreme_positions_and_lengths_are_null() {
         let s = b"ABCDE";
-        for (l, p) in [
-            (i32::MAX, 1),
-            (1, i32::MAX),
-            (i32::MAX, i32::MAX),
-            (i32::MIN, 1),
-            (1, i32::MIN),
-            (-1, -1),
-        ] {
+        for (l, p) in [(i32::MAX, 1), (1, i32::MAX), (i32::MAX, i32::MAX), (i32::MIN, 1), (1, i32::MIN), (-1, -1)] {
             assert_eq!(mid(s, l, p), b"", "MID {l} {p}");
             assert_eq!(delete(s, l, p), b"", "DELETE {l} {p}");
             assert_eq!(replace(s, b"x", l, p), b"", "REPLACE {l} {p}");

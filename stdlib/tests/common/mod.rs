@@ -38,10 +38,7 @@ impl Env for TestEnv {
 /// The table index of a function.
 pub fn index(name: &str) -> usize {
     let sig = lookup(name).unwrap_or_else(|| panic!("no function {name}"));
-    SIGNATURES
-        .iter()
-        .position(|s| s.name == sig.name)
-        .unwrap_or_else(|| panic!("{name} not in SIGNATURES"))
+    SIGNATURES.iter().position(|s| s.name == sig.name).unwrap_or_else(|| panic!("{name} not in SIGNATURES"))
 }
 
 /// Calls `name` with `args` in `env`.
