@@ -15,6 +15,17 @@ use crate::verify::{Limits, Target};
 use linc_stdlib::value::{decode_dollar, round_to_i32};
 use linc_stdlib::{Env, FnError, Value};
 
+/// `?` for the dispatch loop: a fault leaves the loop, so the program
+/// counter is written back.
+macro_rules! tri {
+    ($e:expr) => {
+        match $e {
+            Ok(v) => v,
+            Err(f) => break Err(f),
+        }
+    };
+}
+
 /// Default instruction budget per run: far beyond any sane action, reached
 /// by a runaway loop in well under a second.
 pub const DEFAULT_WATCHDOG: u64 = 10_000_000;
@@ -130,8 +141,7 @@ impl Vm {
         self.locals.resize(usize::from(l.action.locals), 0);
         self.clock.now = store.now;
         let mut pc = start;
-        let mut budget = self.watchdog;
-        let result = self.exec(l, store, &mut pc, &mut budget, &mut trace);
+        let result = self.exec(l, store, &mut pc, &mut trace);
         result.map_err(|f| locate(l, pc.saturating_sub(1), f))
     }
 
@@ -139,24 +149,27 @@ impl Vm {
         &mut self,
         l: &Loaded,
         store: &mut Store,
-        pc: &mut usize,
-        budget: &mut u64,
+        pc_out: &mut usize,
         trace: &mut Tracer,
     ) -> Result<Outcome, Fault> {
         let ops = &l.action.ops[..];
         let (mut ref_cell, mut ref_bit) = (0u32, 0u8);
-        loop {
-            let Some(&op) = ops.get(*pc) else {
-                return Err(Fault::new("E0708", "ran past the end of the code"));
+        // The program counter and budget live in locals (registers) and are
+        // written back only when the run stops.
+        let mut pc = *pc_out;
+        let mut budget = self.watchdog;
+        let result = loop {
+            let Some(&op) = ops.get(pc) else {
+                break Err(Fault::new("E0708", "ran past the end of the code"));
             };
-            if *budget == 0 {
-                return Err(Fault::new(
+            if budget == 0 {
+                break Err(Fault::new(
                     "R0006",
                     format!("watchdog: more than {} instructions in one run", self.watchdog),
                 ));
             }
-            *budget -= 1;
-            *pc += 1;
+            budget -= 1;
+            pc += 1;
             match op {
                 Op::PushI { v } => self.push_i(v),
                 Op::PushR { v } => self.push_r(v),
@@ -176,14 +189,14 @@ impl Vm {
                 }
                 Op::LoadI { sym } | Op::LoadRefI { sym } => {
                     let c = if matches!(op, Op::LoadI { .. }) { cell(l, sym) } else { ref_cell };
-                    let v = load_int(store, c)?;
+                    let v = tri!(load_int(store, c));
                     self.push_i(v);
                 }
                 Op::LoadR { sym } | Op::LoadRefR { sym } => {
                     let c = if matches!(op, Op::LoadR { .. }) { cell(l, sym) } else { ref_cell };
                     match store.cells.get(c as usize) {
                         Some(Cell::Real(r)) => self.push_r(*r),
-                        _ => return Err(corrupt()),
+                        _ => break Err(corrupt()),
                     }
                 }
                 Op::LoadS { sym } | Op::LoadRefS { sym } => {
@@ -195,23 +208,23 @@ impl Vm {
                             .get(usize::from(*idx))
                             .map(|n| n.as_bytes().to_vec())
                             .unwrap_or_default(),
-                        _ => return Err(corrupt()),
+                        _ => break Err(corrupt()),
                     };
                     self.strs.push(s);
                 }
                 Op::LoadBit { sym, bit } => {
-                    let v = load_bit(store, cell(l, sym), bit)?;
+                    let v = tri!(load_bit(store, cell(l, sym), bit));
                     self.push_i(v);
                 }
                 Op::LoadRefBit { .. } => {
-                    let v = load_bit(store, ref_cell, ref_bit)?;
+                    let v = tri!(load_bit(store, ref_cell, ref_bit));
                     self.push_i(v);
                 }
                 Op::LoadAlarm { sym } => {
                     let t = target(l, sym);
                     let v = match store.cells.get(t.cell as usize) {
                         Some(Cell::Alarms(a)) => a.active.get(usize::from(t.alarm)).copied().unwrap_or(false),
-                        _ => return Err(corrupt()),
+                        _ => break Err(corrupt()),
                     };
                     self.push_i(i32::from(v));
                 }
@@ -220,7 +233,7 @@ impl Vm {
                     let until = match store.cells.get(t.cell as usize) {
                         Some(Cell::Alarms(a)) if t.alarm == u16::MAX => a.all_until,
                         Some(Cell::Alarms(a)) => a.until.get(usize::from(t.alarm)).copied().unwrap_or(0.0),
-                        _ => return Err(corrupt()),
+                        _ => break Err(corrupt()),
                     };
                     let v = store.suppress_remaining(until);
                     self.push_i(v);
@@ -228,36 +241,36 @@ impl Vm {
                 Op::StoreI { sym } | Op::StoreRefI { sym } => {
                     let c = if matches!(op, Op::StoreI { .. }) { cell(l, sym) } else { ref_cell };
                     let v = self.pop_i();
-                    store_int(store, c, v)?;
+                    tri!(store_int(store, c, v));
                     note(trace, store, c);
                 }
                 Op::StoreR { sym } | Op::StoreRefR { sym } => {
                     let c = if matches!(op, Op::StoreR { .. }) { cell(l, sym) } else { ref_cell };
                     let v = self.pop_r();
                     if !v.is_finite() {
-                        return Err(Fault::new("R0005", format!("the result is {v}, which can't be stored")));
+                        break Err(Fault::new("R0005", format!("the result is {v}, which can't be stored")));
                     }
                     match store.cells.get_mut(c as usize) {
                         Some(Cell::Real(r)) => *r = v,
-                        _ => return Err(corrupt()),
+                        _ => break Err(corrupt()),
                     }
                     note(trace, store, c);
                 }
                 Op::StoreS { sym } | Op::StoreRefS { sym } => {
                     let c = if matches!(op, Op::StoreS { .. }) { cell(l, sym) } else { ref_cell };
                     let s = self.pop_s();
-                    store_str(store, c, s)?;
+                    tri!(store_str(store, c, s));
                     note(trace, store, c);
                 }
                 Op::StoreBit { sym, bit } => {
                     let v = self.pop_i();
                     let c = cell(l, sym);
-                    store_bit(store, c, bit, v)?;
+                    tri!(store_bit(store, c, bit, v));
                     note(trace, store, c);
                 }
                 Op::StoreRefBit { .. } => {
                     let v = self.pop_i();
-                    store_bit(store, ref_cell, ref_bit, v)?;
+                    tri!(store_bit(store, ref_cell, ref_bit, v));
                     note(trace, store, ref_cell);
                 }
                 Op::StoreSuppress { sym } => {
@@ -271,7 +284,7 @@ impl Vm {
                                     *u = deadline;
                                 }
                             }
-                            _ => return Err(corrupt()),
+                            _ => break Err(corrupt()),
                         }
                         note(trace, store, t.cell);
                     }
@@ -285,7 +298,7 @@ impl Vm {
                     let t = target(l, sym);
                     let room = t.run_end.saturating_sub(t.cell);
                     if n < 0 || n as u32 > room {
-                        return Err(Fault::new(
+                        break Err(Fault::new(
                             "R0003",
                             format!(
                                 "offset {n} from {} leaves its run of {} same-typed fields",
@@ -302,11 +315,11 @@ impl Vm {
                     let n = self.pop_i();
                     let width = match store.cells.get(ref_cell as usize) {
                         Some(Cell::Bits { width, .. }) => i64::from(*width),
-                        _ => return Err(corrupt()),
+                        _ => break Err(corrupt()),
                     };
                     let b = i64::from(bit) + i64::from(n);
                     if n < 0 || b >= width {
-                        return Err(Fault::new(
+                        break Err(Fault::new(
                             "R0003",
                             format!(
                                 "bit offset {n} from Bit{bit} of {} is beyond Bit{}",
@@ -324,7 +337,7 @@ impl Vm {
                 Op::RToI {} => {
                     let v = self.pop_r();
                     if !v.is_finite() {
-                        return Err(Fault::new("R0005", format!("{v} can't be converted to an integer")));
+                        break Err(Fault::new("R0005", format!("{v} can't be converted to an integer")));
                     }
                     self.push_i(round_to_i32(v));
                 }
@@ -344,7 +357,7 @@ impl Vm {
                     let a = self.pop_i();
                     if b == 0 {
                         let what = if matches!(op, Op::DivI {}) { "division" } else { "MOD" };
-                        return Err(Fault::new(
+                        break Err(Fault::new(
                             if what == "MOD" { "R0002" } else { "R0001" },
                             format!("{what} by zero"),
                         ));
@@ -362,7 +375,7 @@ impl Vm {
                     let b = self.pop_r();
                     let a = self.pop_r();
                     if b == 0.0 {
-                        return Err(Fault::new("R0001", "division by zero"));
+                        break Err(Fault::new("R0001", "division by zero"));
                     }
                     self.push_r(a / b);
                 }
@@ -370,7 +383,8 @@ impl Vm {
                     let b = self.pop_r();
                     let a = self.pop_r();
                     let r = power(a, b)
-                        .ok_or_else(|| Fault::new("R0005", format!("{a} ** {b} is undefined (A must exceed zero)")))?;
+                        .ok_or_else(|| Fault::new("R0005", format!("{a} ** {b} is undefined (A must exceed zero)")));
+                    let r = tri!(r);
                     self.push_r(r);
                 }
                 Op::NegR {} => {
@@ -409,19 +423,19 @@ impl Vm {
                     let v = self.pop_i();
                     self.push_i(i32::from(v == 0));
                 }
-                Op::Jump { to } => *pc = to as usize,
+                Op::Jump { to } => pc = to as usize,
                 Op::JumpIfFalse { to } => {
                     if self.pop() == 0 {
-                        *pc = to as usize;
+                        pc = to as usize;
                     }
                 }
                 Op::JumpIfTrue { to } => {
                     if self.pop() != 0 {
-                        *pc = to as usize;
+                        pc = to as usize;
                     }
                 }
-                Op::Yield {} => return Ok(Outcome::Suspended { resume: *pc }),
-                Op::Ret {} => return Ok(Outcome::Done),
+                Op::Yield {} => break Ok(Outcome::Suspended { resume: pc }),
+                Op::Ret {} => break Ok(Outcome::Done),
                 Op::Return { kind } => {
                     self.result = Some(match Kind::from_bits(u32::from(kind)) {
                         Kind::Int => Value::Int(self.pop_i()),
@@ -429,11 +443,13 @@ impl Vm {
                         Kind::Bool => Value::Bool(self.pop() != 0),
                         Kind::Bytes => Value::Bytes(self.pop_s()),
                     });
-                    return Ok(Outcome::Done);
+                    break Ok(Outcome::Done);
                 }
-                Op::Call { func, argc, ret, types } => self.call(func, argc, ret, types)?,
+                Op::Call { func, argc, ret, types } => tri!(self.call(func, argc, ret, types)),
             }
-        }
+        };
+        *pc_out = pc;
+        result
     }
 
     fn int2(&mut self, f: impl Fn(i32, i32) -> i32) {

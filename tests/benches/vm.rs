@@ -1,0 +1,153 @@
+//! ST kernels on the VM beside the same kernel in plain Rust, in one run.
+//!
+//! Each kernel is an action from the guide's world run by `linc`'s VM
+//! (compiled once, linked once; the measurement is `Vm::run`), and the same
+//! computation written natively over the same data. After criterion's
+//! measurements the bench prints the VM/native ratio of each kernel.
+
+use criterion::{criterion_group, Criterion};
+use linc_conformance::exec::compile;
+use linc_conformance::guide_db;
+use linc_runtime::store::{Cell, Store};
+use linc_runtime::vm::{Clock, Vm, DEFAULT_WATCHDOG};
+use linc_runtime::ObjectFile;
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+struct Kernel {
+    name: &'static str,
+    source: &'static str,
+    native: fn() -> f64,
+}
+
+const N: i32 = 10_000;
+
+fn native_int_branch() -> f64 {
+    let mut acc: i32 = 0;
+    for i in 1..=black_box(N) {
+        if i % 3 == 0 {
+            acc = acc.wrapping_add(i);
+        } else {
+            acc = acc.wrapping_sub(1);
+        }
+    }
+    f64::from(acc)
+}
+
+fn native_poly() -> f64 {
+    let (a2, a3, a4, a5, a6) = black_box((1.5f32, -2.0f32, 0.5f32, 3.0f32, -1.0f32));
+    let mut x = black_box(0.0f32);
+    let mut y = 0.0f32;
+    for _ in 0..black_box(N) {
+        y = (((a2 * x + a3) * x + a4) * x + a5) * x + a6;
+        x += 0.001;
+    }
+    f64::from(y)
+}
+
+fn native_shift() -> f64 {
+    let mut v = black_box([1.0f32, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0]);
+    for k in 0..black_box(N / 8) {
+        for i in 0..7 {
+            v[i] = v[i + 1];
+        }
+        v[7] = k as f32;
+    }
+    f64::from(v[0])
+}
+
+fn native_strings() -> f64 {
+    let mut s: Vec<u8> = Vec::new();
+    for i in 1..=black_box(100) {
+        s.extend_from_slice(format!("{i:05}").as_bytes());
+    }
+    s.len() as f64
+}
+
+const KERNELS: &[Kernel] = &[
+    Kernel {
+        name: "integer loop with a data-dependent branch",
+        source: "Counters.N1 := 0;\nFOR Counters.N0 := 1 TO 10000 DO\n  IF Counters.N0 MOD 3 = 0 THEN Counters.N1 := Counters.N1 + Counters.N0;\n  ELSE Counters.N1 := Counters.N1 - 1; END_IF;\nEND_FOR;\n",
+        native: native_int_branch,
+    },
+    Kernel {
+        name: "real polynomial (Horner, degree 4)",
+        source: "Recipe.A0 := 0;\nRecipe.A2 := 1.5; Recipe.A3 := -2.0; Recipe.A4 := 0.5; Recipe.A5 := 3.0; Recipe.A6 := -1.0;\nFOR Counters.N0 := 1 TO 10000 DO\n  Recipe.A1 := (((Recipe.A2 * Recipe.A0 + Recipe.A3) * Recipe.A0 + Recipe.A4) * Recipe.A0 + Recipe.A5) * Recipe.A0 + Recipe.A6;\n  Recipe.A0 := Recipe.A0 + 0.001;\nEND_FOR;\n",
+        native: native_poly,
+    },
+    Kernel {
+        name: "offset-array shift register (§12.12)",
+        source: "FOR Counters.N1 := 0 TO 1249 DO\n  FOR TC001 := 0 TO 6 DO\n    Block_5.Val1{TC001} := Block_5.Val1{TC001 + 1};\n  END_FOR;\n  Block_5.Val1{7} := Counters.N1;\nEND_FOR;\n",
+        native: native_shift,
+    },
+    Kernel {
+        name: "string building with CONCAT/FORMAT",
+        source: "RAW_COM.Buffer1 := '';\nFOR Counters.N0 := 1 TO 100 DO\n  RAW_COM.Buffer1 := CONCAT(RAW_COM.Buffer1, FORMAT('05I', Counters.N0));\nEND_FOR;\n",
+        native: native_strings,
+    },
+];
+
+struct Ready {
+    obj: ObjectFile,
+    store: Store,
+    vm: Vm,
+}
+
+fn ready(k: &Kernel) -> Ready {
+    let obj = linc_runtime::load(&compile(k.source, guide_db())).expect("kernel loads");
+    Ready { obj, store: Store::new(guide_db().clone()), vm: Vm::new(DEFAULT_WATCHDOG * 10, Clock::new(1, 0)) }
+}
+
+fn run_vm(r: &mut Ready) -> f64 {
+    let loaded = linc_runtime::prepare(&r.obj, 0, &r.store, None).expect("kernel links");
+    r.vm.run(&loaded, &mut r.store, 0, None).expect("kernel runs");
+    match r.store.cells.first() {
+        Some(Cell::Real(x)) => f64::from(*x),
+        _ => 0.0,
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    for k in KERNELS {
+        let mut g = c.benchmark_group(k.name);
+        let mut r = ready(k);
+        let obj = r.obj.clone();
+        let loaded = linc_runtime::prepare(&obj, 0, &r.store, None).expect("links");
+        g.bench_function("linc VM", |b| b.iter(|| r.vm.run(&loaded, &mut r.store, 0, None).map(|_| ())));
+        g.bench_function("native Rust", |b| b.iter(k.native));
+        g.finish();
+    }
+}
+
+/// Median time of `f` over several timed batches.
+fn median(mut f: impl FnMut() -> f64) -> Duration {
+    let mut times = Vec::new();
+    for _ in 0..15 {
+        let start = Instant::now();
+        for _ in 0..20 {
+            black_box(f());
+        }
+        times.push(start.elapsed() / 20);
+    }
+    times.sort();
+    times[times.len() / 2]
+}
+
+fn ratios() {
+    println!("\nVM / native, median of 15 × 20 runs:");
+    for k in KERNELS {
+        let mut r = ready(k);
+        let vm = median(|| run_vm(&mut r));
+        let native = median(k.native);
+        let ratio = vm.as_secs_f64() / native.as_secs_f64().max(1e-12);
+        println!("  {:<45} VM {:>10.1?}  native {:>10.1?}  ratio {ratio:>6.1}x", k.name, vm, native);
+    }
+}
+
+criterion_group!(benches, bench);
+
+fn main() {
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+    ratios();
+}
