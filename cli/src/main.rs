@@ -110,6 +110,8 @@ enum Command {
     },
     /// Evaluate one ST expression and print its value.
     Eval {
+        /// The expression; it may start with `-`.
+        #[arg(allow_hyphen_values = true)]
         expr: String,
         #[arg(long)]
         db: Option<PathBuf>,

@@ -258,3 +258,74 @@ fn run_usage_and_compile_errors_exit_two() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("E0700"));
 }
+
+#[test]
+fn eval_calls_every_category_of_the_library() {
+    let cases = [
+        // Convert
+        ("ABS(-3)", "3"),
+        ("ROUND(2.5) + ROUND(-2.5)", "0"),
+        ("TRUNC(-2.7)", "-2"),
+        ("FLOAT(7) / 2", "3.5"),
+        ("FORMAT('05I', -123)", "'-0123'"),
+        ("FORMAT('6.F', 1000/3.0)", "'  333.'"),
+        ("FORMAT('3I!', 7412)", "'!!!'"),
+        ("FORMAT('10.2E', 1000/3.0)", "'  3.33E+02'"),
+        ("SCAN('3I', '-4789')", "-47"),
+        ("SCAN('X', MID('[M01G0DI*01C5E5$R', 4, 10))", "453"),
+        ("SCAN('G', ' -1.456E-2')", "-0.01456"),
+        ("IS_VALID('U', ' -4789')", "FALSE"),
+        // Numeric and random
+        ("SQRT(16)", "4.0"),
+        ("DEG(ATAN2(1, 1))", "45.0"),
+        ("RANDOM(10) < 10", "TRUE"),
+        // Selector
+        ("AVG(1, 2, 3, 4)", "2.5"),
+        ("MAX(1, 7.5, 3)", "7.5"),
+        ("MIN(4, 2, 9)", "2"),
+        ("SWITCH(10, 20, 0)", "10"),
+        // String basics
+        ("MID('ABCDEFG', 3, 2)", "'BCD'"),
+        ("FIND('ABACABA', 'AB', 2)", "5"),
+        ("FIND('AAAAA', '', -1)", "6"),
+        ("DELIMIT('a::bb::ccc::dddd', '::', -2)", "'ccc'"),
+        ("JUSTIFY_CENTRE('ab', 5)", "' ab  '"),
+        ("PURGE('abcdabcde', 'bd')", "'acace'"),
+        ("LEFT('abc', 4)", "''"),
+        ("STRCOMP('aa', 'aaa')", "-1"),
+        ("EQUAL('abc', 'ABC')", "FALSE"),
+        // Date and time (the clock is fixed by --now)
+        ("DATEANDTIMENOW(0)", "'29/02/2024 13:45:07'"),
+        // Extract and replace
+        ("EXTRACT_INT16('$12$34', 1, 1)", "4660"),
+        ("EXTRACT_UINT16(REPLACE_INT16('$00$00', 1, -2, 0), 1, 0)", "65534"),
+        ("EXTRACT_REAL(REPLACE_REAL('$00$00$00$00', 1, 2.5, 3), 1, 3)", "2.5"),
+        ("EXTRACT_BOOL('$80', 1, 7)", "TRUE"),
+        // Bit
+        ("SHL8(255, 1)", "254"),
+        ("ROR16(1, 1)", "32768"),
+        ("ROL32(16#40000000, 2)", "1"),
+        ("BIT_INVERT(0)", "-1"),
+        // Checksum
+        ("CRC('123456789', 0, 16#1021, 16#FFFF)", "10673"),
+        ("BCC('123456789', 0, 0)", "49"),
+        ("BCC('123456789', 2, 0)", "477"),
+    ];
+    for (expr, want) in cases {
+        let (code, out, err) = eval(expr);
+        assert_eq!((code, out.trim_end()), (Some(0), want), "{expr}: {err}");
+    }
+}
+
+#[test]
+fn wrong_calls_name_the_expected_signature() {
+    let (code, _, err) = eval("MID('abc', 1)");
+    assert_eq!(code, Some(2));
+    assert!(err.contains("error[E0111]") && err.contains("expected MID(BSEQ, INT, INT) : BSEQ"), "{err}");
+    let (code, _, err) = eval("CRC(12, 1, 2, 3)");
+    assert_eq!(code, Some(2));
+    assert!(
+        err.contains("error[E0112]") && err.contains("argument 1 should be a string") && err.contains("<expr>:1:5"),
+        "{err}"
+    );
+}

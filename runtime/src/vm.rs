@@ -505,16 +505,9 @@ impl Vm {
     }
 }
 
-/// `A ** B`: needs A > 0, except that 0 ** B is 0 for B > 0 (§12.6 note 1).
+/// `A ** B` (§12.6 note 1), shared with the library and constant folding.
 pub fn power(a: f32, b: f32) -> Option<f32> {
-    let r = if a > 0.0 {
-        a.powf(b)
-    } else if a == 0.0 && b > 0.0 {
-        0.0
-    } else {
-        return None;
-    };
-    r.is_finite().then_some(r)
+    linc_stdlib::power(a, b).ok()
 }
 
 fn corrupt() -> Fault {
