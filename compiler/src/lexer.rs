@@ -401,7 +401,13 @@ fn based(text: &str) -> i64 {
 pub fn time_seconds(body: &str) -> f64 {
     let mut total = 0.0;
     let mut number = String::new();
+    let mut after_unit = false;
     for c in body.chars() {
+        if after_unit && (c == '.' || c == '_') {
+            after_unit = false;
+            continue;
+        }
+        after_unit = false;
         let unit = match c.to_ascii_lowercase() {
             'd' => 86_400.0,
             'h' => 3_600.0,
@@ -414,6 +420,7 @@ pub fn time_seconds(body: &str) -> f64 {
         };
         total += number.parse::<f64>().unwrap_or(0.0) * unit;
         number.clear();
+        after_unit = true;
     }
     total
 }
@@ -446,8 +453,15 @@ mod tests {
             [Tok::Int(255), Tok::Int(255), Tok::Int(12), Tok::Int(45), Tok::Real(3.6)]
         );
         assert_eq!(
-            toks("T#3s t#4m13.0S T#5.6h T#1d12.2h"),
-            [Tok::Time(3.0), Tok::Time(253.0), Tok::Time(20160.0), Tok::Time(130320.0)]
+            toks("T#3s t#4m13.0S T#5.6h T#1d12.2h T#1d.12.2h T#1h_30m"),
+            [
+                Tok::Time(3.0),
+                Tok::Time(253.0),
+                Tok::Time(20160.0),
+                Tok::Time(130320.0),
+                Tok::Time(130320.0),
+                Tok::Time(5400.0)
+            ]
         );
     }
 

@@ -126,7 +126,8 @@ pub enum Raw {
     #[regex(r"[0-9]+\.[0-9]+([eE][+-]?[0-9]+)?", priority = 10)]
     Real,
     /// `T#4m13.0s`; units d h m s in either case (§12.9).
-    #[regex(r"[tT]#([0-9]+(\.[0-9]+)?[dDhHmMsS])+", priority = 10)]
+    /// A `.` or `_` may follow a unit (`T#1d.12.2h`, §18.3).
+    #[regex(r"[tT]#([0-9]+(\.[0-9]+)?[dDhHmMsS][._]?)*[0-9]+(\.[0-9]+)?[dDhHmMsS]", priority = 10)]
     Time,
     #[regex(r"[tT]#[0-9A-Za-z_.]*", priority = 1)]
     BadTime,

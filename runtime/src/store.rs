@@ -182,7 +182,8 @@ impl Store {
             for (fi, f) in t.fields.iter().enumerate() {
                 let cell = &self.cells[self.first[bi] as usize + fi];
                 let v = match cell {
-                    Cell::Real(r) => json!(f64::from(*r)),
+                    // The shortest text that reads back to the same f32.
+                    Cell::Real(r) => json!(crate::text::format_real(*r).parse::<f64>().unwrap_or(0.0)),
                     Cell::Int(i) => json!(i),
                     Cell::Bool(b) => json!(b),
                     Cell::Bits { v, width } => json!(bits_value(*v, *width)),

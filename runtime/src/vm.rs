@@ -163,6 +163,9 @@ impl Vm {
                 break Err(Fault::new("E0708", "ran past the end of the code"));
             };
             if budget == 0 {
+                // Point past the instruction that did not run, so the fault
+                // is located at it (faults are reported at `pc - 1`).
+                pc += 1;
                 break Err(Fault::new(
                     "R0006",
                     format!("watchdog: more than {} instructions in one run", self.watchdog),
@@ -223,7 +226,12 @@ impl Vm {
                 Op::LoadAlarm { sym } => {
                     let t = target(l, sym);
                     let v = match store.cells.get(t.cell as usize) {
-                        Some(Cell::Alarms(a)) => a.active.get(usize::from(t.alarm)).copied().unwrap_or(false),
+                        // A suppressed alarm reads FALSE (§18.4).
+                        Some(Cell::Alarms(a)) => {
+                            let i = usize::from(t.alarm);
+                            let until = a.until.get(i).copied().unwrap_or(0.0).max(a.all_until);
+                            a.active.get(i).copied().unwrap_or(false) && until <= store.now
+                        }
                         _ => break Err(corrupt()),
                     };
                     self.push_i(i32::from(v));

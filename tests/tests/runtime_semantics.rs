@@ -224,3 +224,22 @@ fn watchdog_stops_an_endless_loop_within_a_second_naming_its_line() {
     let r = run("REPEAT\n  FOR Counters.N0 := 1 TO 10 BY 0 DO\n  END_FOR;\nUNTIL FALSE END_REPEAT;\n");
     assert_eq!(r.error.map(|e| (e.code, e.line)), Some(("R0006", 2)));
 }
+
+#[test]
+fn suppressed_alarms_read_false() {
+    let db = db(
+        r#"{ "blocks": { "AI": { "type": "ANIN", "values": { "Alarms": { "HiLevel": true } } }, "R": { "type": "RECIPE" } } }"#,
+    );
+    let src = "R.N0 := AI.Alarms.HiLevel;\nAI.Alarms.HiLevel.Suppress := T#1d.12.2h;\nR.N1 := AI.Alarms.HiLevel;\nR.N2 := AI.Alarms.HiLevel.Suppress;\nAI.Alarms.HiLevel.Suppress := 0;\nR.N3 := AI.Alarms.HiLevel;\nAI.Alarms.Suppress := -1;\nR.N4 := AI.Alarms.HiLevel;\n";
+    let r = run_in(&db, src, 1, 1.0);
+    assert_eq!(r.error, None);
+    let got: Vec<String> = (0..5).map(|i| r.get(&format!("R.N{i}"))).collect();
+    assert_eq!(got, ["1", "0", "130320", "1", "0"]);
+}
+
+#[test]
+fn equality_ignores_case_only_between_strings() {
+    let r = run("RAW_COM.Buffer1 := 'abc';\nDig_A.Out.Bit0 := RAW_COM.Buffer1 = 'ABC';\nDig_A.Out.Bit1 := RAW_COM.Buffer1 = 'abc';\nSFC_CON.FileName := 'abc';\nDig_A.Out.Bit2 := SFC_CON.FileName = 'ABC';\n");
+    assert_eq!(r.error, None);
+    assert_eq!([r.get("Dig_A.Out.Bit0"), r.get("Dig_A.Out.Bit1"), r.get("Dig_A.Out.Bit2")], ["0", "1", "1"]);
+}

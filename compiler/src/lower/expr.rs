@@ -195,6 +195,13 @@ impl Lowerer<'_> {
                     self.emit(Op::Decode {});
                 }
             }
+            // `=` ignores case only between STRING items (§12.6, EQUAL);
+            // with a byte sequence or wide string it is strict.
+            if op == BinOp::Eq && (a.ty != Ty::Text || b.ty != Ty::Text) {
+                self.emit(Op::NeS {});
+                self.emit(Op::Not {});
+                return;
+            }
             self.emit(match op {
                 BinOp::Eq => Op::EqS {},
                 BinOp::Ne => Op::NeS {},

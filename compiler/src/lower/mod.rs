@@ -338,7 +338,7 @@ impl<'a> Lowerer<'a> {
         let local = self.locals;
         self.locals = self.locals.saturating_add(1);
         if self.locals == u8::MAX {
-            self.errors.push(LowerError::TooMany { span, what: "nested FOR loops" });
+            self.errors.push(LowerError::TooMany { span, what: "FOR loops in one action (254 at most)" });
         }
         self.expr_as(to, ty);
         self.emit(Op::StoreLoc { n: local });
