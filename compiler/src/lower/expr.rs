@@ -57,8 +57,21 @@ pub fn constant(e: &Expr) -> Option<Const> {
     }
 }
 
+/// A comparison folded over either kind of number.
+fn compare<T: PartialOrd>(op: BinOp, a: T, c: T) -> Option<Const> {
+    let v = match op {
+        BinOp::Eq => a == c,
+        BinOp::Ne => a != c,
+        BinOp::Lt => a < c,
+        BinOp::Gt => a > c,
+        BinOp::Le => a <= c,
+        BinOp::Ge => a >= c,
+        _ => return None,
+    };
+    Some(Const::I(i32::from(v)))
+}
+
 fn fold(op: BinOp, x: Const, y: Const, real: bool) -> Option<Const> {
-    let b = |v: bool| Some(Const::I(i32::from(v)));
     if real || op == BinOp::Pow {
         let (a, c) = (x.real(), y.real());
         return match op {
@@ -67,13 +80,7 @@ fn fold(op: BinOp, x: Const, y: Const, real: bool) -> Option<Const> {
             BinOp::Mul => Some(Const::R(a * c)),
             BinOp::Div if c != 0.0 => Some(Const::R(a / c)),
             BinOp::Pow => linc_runtime::vm::power(a, c).map(Const::R),
-            BinOp::Eq => b(a == c),
-            BinOp::Ne => b(a != c),
-            BinOp::Lt => b(a < c),
-            BinOp::Gt => b(a > c),
-            BinOp::Le => b(a <= c),
-            BinOp::Ge => b(a >= c),
-            _ => None,
+            _ => compare(op, a, c),
         };
     }
     let (a, c) = (x.int(), y.int());
@@ -83,16 +90,10 @@ fn fold(op: BinOp, x: Const, y: Const, real: bool) -> Option<Const> {
         BinOp::Mul => Some(Const::I(a.wrapping_mul(c))),
         BinOp::Div if c != 0 => Some(Const::I(a.wrapping_div(c))),
         BinOp::Mod if c != 0 => Some(Const::I(a.wrapping_rem(c))),
-        BinOp::Eq => b(a == c),
-        BinOp::Ne => b(a != c),
-        BinOp::Lt => b(a < c),
-        BinOp::Gt => b(a > c),
-        BinOp::Le => b(a <= c),
-        BinOp::Ge => b(a >= c),
         BinOp::And => Some(Const::I(i32::from((a & c) as i16))),
         BinOp::Or => Some(Const::I(i32::from((a | c) as i16))),
         BinOp::Xor => Some(Const::I(i32::from((a ^ c) as i16))),
-        _ => None,
+        _ => compare(op, a, c),
     }
 }
 

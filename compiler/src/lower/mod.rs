@@ -453,39 +453,33 @@ impl<'a> Lowerer<'a> {
     /// Pushes a place's value (INT/BOOL/bits on the numeric stack as INT,
     /// REAL as REAL, strings on the string stack).
     fn load(&mut self, place: &Place) {
-        let Some((sym, via_ref)) = self.address(place) else {
-            return self.unaddressable(place);
-        };
-        let op = match (&place.target, place.class, via_ref) {
-            (Target::Alarm { .. }, ..) => Op::LoadAlarm { sym },
-            (Target::Suppress { .. }, ..) => Op::LoadSuppress { sym },
-            (Target::Bit { bit, .. }, _, false) => Op::LoadBit { sym, bit: *bit },
-            (Target::Bit { .. }, _, true) => Op::LoadRefBit { sym },
-            (_, Some(Class::Real), false) => Op::LoadR { sym },
-            (_, Some(Class::Real), true) => Op::LoadRefR { sym },
-            (_, Some(c), false) if c.is_string() => Op::LoadS { sym },
-            (_, Some(c), true) if c.is_string() => Op::LoadRefS { sym },
-            (_, _, false) => Op::LoadI { sym },
-            (_, _, true) => Op::LoadRefI { sym },
-        };
-        self.emit(op);
+        self.access(place, false);
     }
 
     /// Stores the value on top of the stack into a place.
     fn store(&mut self, place: &Place) {
+        self.access(place, true);
+    }
+
+    /// Emits the load or store instruction for a place's kind of cell.
+    fn access(&mut self, place: &Place, store: bool) {
         let Some((sym, via_ref)) = self.address(place) else {
             return self.unaddressable(place);
         };
+        let pick = |load: Op, save: Op| if store { save } else { load };
         let op = match (&place.target, place.class, via_ref) {
-            (Target::Suppress { .. }, ..) => Op::StoreSuppress { sym },
-            (Target::Bit { bit, .. }, _, false) => Op::StoreBit { sym, bit: *bit },
-            (Target::Bit { .. }, _, true) => Op::StoreRefBit { sym },
-            (_, Some(Class::Real), false) => Op::StoreR { sym },
-            (_, Some(Class::Real), true) => Op::StoreRefR { sym },
-            (_, Some(c), false) if c.is_string() => Op::StoreS { sym },
-            (_, Some(c), true) if c.is_string() => Op::StoreRefS { sym },
-            (_, _, false) => Op::StoreI { sym },
-            (_, _, true) => Op::StoreRefI { sym },
+            (Target::Alarm { .. }, ..) => Op::LoadAlarm { sym },
+            (Target::Suppress { .. }, ..) => pick(Op::LoadSuppress { sym }, Op::StoreSuppress { sym }),
+            (Target::Bit { bit, .. }, _, false) => {
+                pick(Op::LoadBit { sym, bit: *bit }, Op::StoreBit { sym, bit: *bit })
+            }
+            (Target::Bit { .. }, _, true) => pick(Op::LoadRefBit { sym }, Op::StoreRefBit { sym }),
+            (_, Some(Class::Real), false) => pick(Op::LoadR { sym }, Op::StoreR { sym }),
+            (_, Some(Class::Real), true) => pick(Op::LoadRefR { sym }, Op::StoreRefR { sym }),
+            (_, Some(c), false) if c.is_string() => pick(Op::LoadS { sym }, Op::StoreS { sym }),
+            (_, Some(c), true) if c.is_string() => pick(Op::LoadRefS { sym }, Op::StoreRefS { sym }),
+            (_, _, false) => pick(Op::LoadI { sym }, Op::StoreI { sym }),
+            (_, _, true) => pick(Op::LoadRefI { sym }, Op::StoreRefI { sym }),
         };
         self.emit(op);
     }
