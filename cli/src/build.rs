@@ -39,9 +39,8 @@ pub fn compile(
         let name = path.display().to_string();
         let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("action").to_string();
         let lines = Lines::new(&text);
+        let report = linc_compiler::check_source(&text, &stem, ctx);
         let id = files.add(name.clone(), text);
-        let src = files.get(id).map(|f| f.source().clone()).unwrap_or_default();
-        let report = linc_compiler::check_source(&src, &stem, ctx);
         for d in &report.diagnostics {
             print!("{}", render::render(&files, id, d, format));
         }

@@ -34,9 +34,9 @@ pub fn load_db(path: Option<&Path>, files: &mut SourceFiles, format: Format) -> 
         io_error(path, &e, format);
         2u8
     })?;
+    let loaded = Database::from_json(&text);
     let id = files.add(path.display().to_string(), text);
-    let source = files.get(id).map(|f| f.source().clone()).unwrap_or_default();
-    Database::from_json(&source).map(Some).map_err(|e| {
+    loaded.map(Some).map_err(|e| {
         let span = e.span.map(|(s, e)| linc_compiler::Span::new(s, e)).unwrap_or_default();
         let d = Diagnostic::error(e.code, e.message, span).label("here");
         print!("{}", render::render(files, id, &d, format));
@@ -67,15 +67,14 @@ pub fn run(o: &Options) -> u8 {
         };
         let name = path.display().to_string();
         let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("action").to_string();
-        let id = files.add(name, text);
-        let src = files.get(id).map(|f| f.source().clone()).unwrap_or_default();
         let (diagnostics, tree) = if o.transition {
-            let r = linc_compiler::check_transition(&src, ctx);
+            let r = linc_compiler::check_transition(&text, ctx);
             (r.diagnostics, r.tree.map(|e| pretty::expr(&e) + "\n"))
         } else {
-            let r = linc_compiler::check_source(&src, &stem, ctx);
+            let r = linc_compiler::check_source(&text, &stem, ctx);
             (r.diagnostics, r.tree.map(|t| pretty::file(&t)))
         };
+        let id = files.add(name, text);
         if o.tree {
             if let Some(t) = tree {
                 print!("{t}");

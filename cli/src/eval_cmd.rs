@@ -36,24 +36,18 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) 
             return 2;
         }
     };
-    let now = match now {
-        Some(t) => match text::parse_timestamp(t) {
-            Some(s) => s,
-            None => {
-                eprintln!("error: --now `{t}` is not YYYY-MM-DDTHH:MM:SS");
-                return 2;
-            }
-        },
-        None => {
-            std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs() as i64).unwrap_or(0)
+    let now = match crate::run_cmd::start_time(now) {
+        Ok(s) => s,
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return 2;
         }
     };
     let mut store = Store::new(db);
     store.now = now as f64;
-    let result = linc_runtime::load(&obj.to_bytes()).and_then(|obj| {
-        let loaded = linc_runtime::prepare(&obj, 0, &store, None)?;
+    let result = linc_runtime::prepare(&obj, 0, &store, None).map(|loaded| {
         let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(seed.unwrap_or(now as u64), 0));
-        Ok(vm.run(&loaded, &mut store, 0, None).map(|_| vm.result.take()))
+        vm.run(&loaded, &mut store, 0, None).map(|_| vm.result.take())
     });
     match result {
         Ok(Ok(Some(v))) => {

@@ -184,14 +184,9 @@ pub fn run(o: &Options) -> u8 {
         Ok(v) => v,
         Err(msg) => return usage(format_args!("--show: {msg}")),
     };
-    let now = match &o.now {
-        Some(t) => match text::parse_timestamp(t) {
-            Some(s) => s,
-            None => return usage(format_args!("--now `{t}` is not YYYY-MM-DDTHH:MM:SS")),
-        },
-        None => {
-            std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs() as i64).unwrap_or(0)
-        }
+    let now = match start_time(o.now.as_deref()) {
+        Ok(s) => s,
+        Err(msg) => return usage(msg),
     };
     store.now = now as f64;
     let loaded = match linc_runtime::prepare(&obj, index, &store, own) {
@@ -226,6 +221,17 @@ pub fn run(o: &Options) -> u8 {
         }
     }
     status
+}
+
+/// The clock's start in POSIX seconds: `--now`, or the system time.
+pub fn start_time(now: Option<&str>) -> Result<i64, String> {
+    match now {
+        Some(t) => text::parse_timestamp(t).ok_or_else(|| format!("--now `{t}` is not YYYY-MM-DDTHH:MM:SS")),
+        None => Ok(std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map(|d| d.as_secs() as i64)
+            .unwrap_or(0)),
+    }
 }
 
 /// Picks the block that runs an `ACTION name : TYPE` action.

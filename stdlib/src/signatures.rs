@@ -241,9 +241,14 @@ pub static SIGNATURES: &[Signature] = &[
     sig("CRC", &[S, I, I, I], 4, INT, "Checksum"),
 ];
 
+/// Position of a function in [`SIGNATURES`], ignoring case as ST does.
+pub fn index_of(name: &str) -> Option<usize> {
+    SIGNATURES.iter().position(|s| s.name.eq_ignore_ascii_case(name))
+}
+
 /// Finds a function by name, ignoring case as ST does.
 pub fn lookup(name: &str) -> Option<&'static Signature> {
-    SIGNATURES.iter().find(|s| s.name.eq_ignore_ascii_case(name))
+    index_of(name).map(|i| &SIGNATURES[i])
 }
 
 #[cfg(test)]

@@ -4,7 +4,8 @@ use super::errors::CheckError;
 use super::Checker;
 use crate::ast::{BinOp, Expr, ExprKind, UnOp};
 use crate::hir;
-use linc_stdlib::{lookup, Param, Ty, SIGNATURES};
+use linc_stdlib::signatures::index_of;
+use linc_stdlib::{Param, Ty, SIGNATURES};
 
 impl Checker<'_> {
     /// Types an expression; errors are reported and give `Any`.
@@ -134,13 +135,12 @@ impl Checker<'_> {
     fn call(&mut self, name: &str, name_span: crate::Span, args: &[Expr], whole: &Expr) -> (Ty, hir::ExprKind) {
         let hargs: Vec<hir::Expr> = args.iter().map(|a| self.expr(a)).collect();
         let types: Vec<Ty> = hargs.iter().map(|a| a.ty).collect();
-        let Some(index) = SIGNATURES.iter().position(|s| s.name.eq_ignore_ascii_case(name)) else {
+        let Some(index) = index_of(name) else {
             let suggestion = suggest(name);
             self.errors.push(CheckError::UnknownFunction { span: name_span, name: name.to_string(), suggestion });
             return (Ty::Any, hir::ExprKind::Error);
         };
         let sig = &SIGNATURES[index];
-        debug_assert!(lookup(name).is_some());
         if !sig.arity_ok(args.len()) {
             self.errors.push(CheckError::WrongArity {
                 span: whole.span,
