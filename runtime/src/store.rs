@@ -4,7 +4,7 @@
 //! other in template order, so `X{n}` is "n cells further" and a run of
 //! same-typed fields is a contiguous range of cells.
 
-use crate::db::{Database, FieldType, InitValue};
+use crate::db::{Database, FieldDef, FieldType, InitValue};
 use crate::object::Class;
 use crate::text::{encode_dollar, format_value};
 use linc_stdlib::value::decode_dollar;
@@ -105,27 +105,25 @@ impl Store {
         t.field(field).map(|f| self.first[block] + f as u32)
     }
 
+    /// The block and field definition a cell holds.
+    fn field_at(&self, cell: u32) -> Option<(usize, &FieldDef)> {
+        let b = self.first.partition_point(|&f| f <= cell).checked_sub(1)?;
+        let block = self.db.blocks.get(b)?;
+        let field = self.db.templates[block.template].fields.get((cell - self.first[b]) as usize)?;
+        Some((b, field))
+    }
+
     /// `BLOCK.Field` for a cell, for traces and messages.
     pub fn describe(&self, cell: u32) -> String {
-        let b = self.first.partition_point(|&f| f <= cell).saturating_sub(1);
-        match self.db.blocks.get(b) {
-            Some(block) => {
-                let t = &self.db.templates[block.template];
-                let f = (cell - self.first[b]) as usize;
-                format!("{}.{}", block.name, t.fields.get(f).map(|f| f.name.as_str()).unwrap_or("?"))
-            }
+        match self.field_at(cell) {
+            Some((block, field)) => format!("{}.{}", self.db.blocks[block].name, field.name),
             None => format!("cell {cell}"),
         }
     }
 
     /// Enumeration names of an ENUM cell's field.
     pub fn enum_names(&self, cell: u32) -> &[String] {
-        let b = self.first.partition_point(|&f| f <= cell).saturating_sub(1);
-        let Some(block) = self.db.blocks.get(b) else {
-            return &[];
-        };
-        let t = &self.db.templates[block.template];
-        match t.fields.get((cell - self.first[b]) as usize).map(|f| &f.ty) {
+        match self.field_at(cell).map(|(_, f)| &f.ty) {
             Some(FieldType::Enum(names)) => names,
             _ => &[],
         }
