@@ -1,7 +1,8 @@
 //! `linc disasm OUT.sto`: a readable listing of an object file.
 
 use linc_runtime::isa::Op;
-use linc_runtime::object::ObjectFile;
+use linc_runtime::object::{CodeBlock, ObjectFile};
+use std::collections::HashMap;
 use linc_runtime::text::format_value;
 use linc_stdlib::{Value, SIGNATURES};
 use std::fmt::Write;
@@ -17,7 +18,7 @@ pub fn run(path: &Path) -> u8 {
     };
     match linc_runtime::load(&bytes) {
         Ok(obj) => {
-            print!("{}", listing(&obj));
+            print!("{}", listing(obj.object()));
             0
         }
         Err(e) => {
@@ -27,11 +28,13 @@ pub fn run(path: &Path) -> u8 {
     }
 }
 
-/// The listing: symbols, constants, then each action's code with the
-/// source line of each statement (when the source file can be read).
+/// The listing: symbols, constants, then each unit's code blocks with
+/// labels, retained slots and the source line of each statement (when the
+/// source file can be read). Linear in the object's size: each source file
+/// is read once, and the line table is walked alongside the code.
 pub fn listing(obj: &ObjectFile) -> String {
     let mut out = String::new();
-    let _ = writeln!(out, "; object compiled from {}", obj.source);
+    let _ = writeln!(out, "; object compiled from {} (format version {})", obj.source, linc_runtime::object::VERSION);
     let _ = writeln!(out, "; symbols");
     for (i, s) in obj.symbols.iter().enumerate() {
         let _ = writeln!(out, ";   #{i:<3} {} ({:?})", s.text(), s.class);
@@ -39,35 +42,63 @@ pub fn listing(obj: &ObjectFile) -> String {
     if !obj.strings.is_empty() {
         let _ = writeln!(out, "; strings");
         for (i, s) in obj.strings.iter().enumerate() {
-            let _ = writeln!(out, ";   ${i:<3} {}", format_value(&Value::Bytes(s.clone())));
+            let _ = writeln!(out, ";   ${i:<3} {}", format_value(&Value::Bytes(s.0.clone())));
         }
     }
-    for a in &obj.actions {
-        let source: Vec<String> =
-            std::fs::read_to_string(&a.file).map(|t| t.lines().map(str::to_string).collect()).unwrap_or_default();
-        let kind = if a.block_type.is_empty() { String::new() } else { format!(" : {}", a.block_type) };
+    let mut sources: HashMap<&str, Vec<String>> = HashMap::new();
+    for u in &obj.units {
+        let source = sources.entry(u.file.as_str()).or_insert_with(|| {
+            std::fs::read_to_string(&u.file).map(|t| t.lines().map(str::to_string).collect()).unwrap_or_default()
+        });
+        let kind = if u.block_type.is_empty() { String::new() } else { format!(" : {}", u.block_type) };
         let _ = writeln!(
             out,
-            "\naction {}{kind}    ; {}, {} instructions, {} locals",
-            a.name,
-            a.file,
-            a.ops.len(),
-            a.locals
+            "\n{} {}{kind}    ; {}, {} code block{}, {} retained slot{}",
+            format!("{:?}", u.kind).to_lowercase(),
+            u.name,
+            u.file,
+            u.blocks.len(),
+            if u.blocks.len() == 1 { "" } else { "s" },
+            u.retained,
+            if u.retained == 1 { "" } else { "s" },
         );
-        let mut shown_line = 0;
-        for (pc, op) in a.ops.iter().enumerate() {
-            for e in a.lines.iter().filter(|e| e.op as usize == pc) {
-                if e.line == shown_line {
-                    continue;
-                }
-                shown_line = e.line;
-                let text = source.get(e.line as usize - 1).map(|s| s.trim()).unwrap_or("");
-                let _ = writeln!(out, "    ; {}:{}  {text}", e.line, e.col);
-            }
-            let _ = writeln!(out, "  {pc:>5}  {}", describe(obj, op));
+        for (bi, b) in u.blocks.iter().enumerate() {
+            block(&mut out, obj, bi, b, source);
         }
     }
     out
+}
+
+fn block(out: &mut String, obj: &ObjectFile, index: usize, b: &CodeBlock, source: &[String]) {
+    let name = if b.name.is_empty() { format!("#{index}") } else { b.name.clone() };
+    let _ = writeln!(
+        out,
+        "  block {name}    ; {} instructions, {} locals, {} labels",
+        b.ops.len(),
+        b.locals,
+        b.labels.len()
+    );
+    let mut labels_at: Vec<(u32, usize)> = b.labels.iter().enumerate().map(|(l, &at)| (at, l)).collect();
+    labels_at.sort_unstable();
+    let (mut next_line, mut next_label, mut shown_line) = (0, 0, 0);
+    for (pc, op) in b.ops.iter().enumerate() {
+        while let Some(&(at, l)) = labels_at.get(next_label).filter(|(at, _)| *at as usize <= pc) {
+            if at as usize == pc {
+                let _ = writeln!(out, "  L{l}:");
+            }
+            next_label += 1;
+        }
+        while let Some(e) = b.lines.get(next_line).filter(|e| e.op as usize <= pc) {
+            next_line += 1;
+            if e.op as usize != pc || e.line == shown_line {
+                continue;
+            }
+            shown_line = e.line;
+            let text = source.get((e.line as usize).wrapping_sub(1)).map(|s| s.trim()).unwrap_or("");
+            let _ = writeln!(out, "    ; {}:{}  {text}", e.line, e.col);
+        }
+        let _ = writeln!(out, "  {pc:>5}  {}", describe(obj, op));
+    }
 }
 
 fn describe(obj: &ObjectFile, op: &Op) -> String {
@@ -78,7 +109,7 @@ fn describe(obj: &ObjectFile, op: &Op) -> String {
         Op::PushR { v } => format!("{name:<12} {}", linc_runtime::text::format_real(v)),
         Op::PushS { k } => {
             let s = obj.strings.get(k as usize).cloned().unwrap_or_default();
-            format!("{name:<12} {}", format_value(&Value::Bytes(s)))
+            format!("{name:<12} {}", format_value(&Value::Bytes(s.0)))
         }
         Op::Call { func, argc, .. } => {
             let f = SIGNATURES.get(usize::from(func)).map(|s| s.name).unwrap_or("?");
@@ -89,7 +120,7 @@ fn describe(obj: &ObjectFile, op: &Op) -> String {
         }
         _ => match (op.symbol(), op.target()) {
             (Some(s), _) => format!("{name:<12} {}", sym(s)),
-            (_, Some(t)) => format!("{name:<12} -> {t}"),
+            (_, Some(t)) => format!("{name:<12} -> L{t}"),
             _ => {
                 let operands = op.operands().join(" ");
                 format!("{name:<12} {operands}").trim_end().to_string()

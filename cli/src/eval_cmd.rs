@@ -5,7 +5,7 @@ use linc_compiler::check::Context;
 use linc_compiler::lower::{self, Lines};
 use linc_compiler::render::{self, Format, SourceFiles};
 use linc_runtime::store::Store;
-use linc_runtime::vm::{Clock, Vm, DEFAULT_WATCHDOG};
+use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{text, Database};
 use linc_stdlib::value::decode_dollar;
 use std::path::Path;
@@ -45,9 +45,11 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) 
     };
     let mut store = Store::new(db);
     store.now = now as f64;
-    let result = linc_runtime::prepare(&obj, 0, &store, None).map(|loaded| {
+    let program = linc_runtime::Program { unit: 0, own: None };
+    let result = linc_runtime::verify::verify(obj).and_then(|v| v.link(&store, &[program])).map(|linked| {
         let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(seed.unwrap_or(now as u64), 0));
-        vm.run(&loaded, &mut store, 0, None).map(|_| vm.result.take())
+        let mut act = Activation::new(&linked, 0, 0);
+        vm.run(&linked, &mut act, &mut store, None).map(|_| act.result.take())
     });
     match result {
         Ok(Ok(Some(v))) => {

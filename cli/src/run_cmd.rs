@@ -4,8 +4,8 @@ use crate::build::{compile, Failed};
 use crate::check_cmd::load_db;
 use linc_compiler::render::{Format, SourceFiles};
 use linc_runtime::store::{Cell, Store};
-use linc_runtime::vm::{Clock, Outcome, Vm};
-use linc_runtime::{text, Database, ObjectFile};
+use linc_runtime::vm::{Activation, Clock, Vm};
+use linc_runtime::{text, Database, Program, Verified};
 use linc_stdlib::value::decode_dollar;
 use std::path::PathBuf;
 
@@ -136,10 +136,11 @@ pub fn set(store: &mut Store, assignment: &str) -> Result<(), String> {
 }
 
 /// Loads the object: a `.sto` file as is, anything else compiled.
-fn object(o: &Options, db: &Database) -> Result<ObjectFile, u8> {
+fn object(o: &Options, db: &Database) -> Result<Verified, u8> {
     let is_object = o.file.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"));
     if !is_object {
-        return compile(std::slice::from_ref(&o.file), Some(db), Format::Human, 2).map_err(|Failed(s)| s);
+        let obj = compile(std::slice::from_ref(&o.file), Some(db), Format::Human, 2).map_err(|Failed(s)| s)?;
+        return linc_runtime::verify::verify(obj).map_err(|e| usage(format_args!("[{}] {e}", e.code())));
     }
     let bytes =
         std::fs::read(&o.file).map_err(|e| usage(format_args!("[E0900] can't read `{}`: {e}", o.file.display())))?;
@@ -158,18 +159,19 @@ pub fn run(o: &Options) -> u8 {
         Ok(obj) => obj,
         Err(status) => return status,
     };
+    let units = &obj.object().units;
     let index = match &o.action {
-        Some(name) => match obj.actions.iter().position(|a| a.name.eq_ignore_ascii_case(name)) {
+        Some(name) => match obj.unit_named(name) {
             Some(i) => i,
             None => {
-                let names: Vec<&str> = obj.actions.iter().map(|a| a.name.as_str()).collect();
+                let names: Vec<&str> = units.iter().map(|a| a.name.as_str()).collect();
                 return usage(format_args!("no action `{name}` (the file has {})", names.join(", ")));
             }
         },
-        None if obj.actions.is_empty() => return usage("the file has no actions"),
+        None if units.is_empty() => return usage("the file has no actions"),
         None => 0,
     };
-    let action = &obj.actions[index];
+    let action = &units[index];
     let mut store = Store::new(db);
     let own = match own_block(&store, o.block.as_deref(), &action.block_type) {
         Ok(b) => b,
@@ -189,20 +191,19 @@ pub fn run(o: &Options) -> u8 {
         Err(msg) => return usage(msg),
     };
     store.now = now as f64;
-    let loaded = match linc_runtime::prepare(&obj, index, &store, own) {
+    let linked = match obj.link(&store, &[Program { unit: index, own }]) {
         Ok(l) => l,
         Err(e) => return usage(format_args!("[{}] {e}", e.code())),
     };
+    let mut act = Activation::new(&linked, 0, 0);
     let seed = o.seed.unwrap_or_else(|| now as u64 ^ u64::from(std::process::id()));
     let mut vm = Vm::new(o.watchdog, Clock::new(seed, 0));
-    let mut resume = 0;
     let mut status = 0;
     for cycle in 1..=o.cycles {
         let mut tracer = |s: &Store, cell: u32| println!("cycle {cycle}: {} = {}", s.describe(cell), s.show(cell));
         let trace: linc_runtime::vm::Tracer = if o.trace { Some(&mut tracer) } else { None };
-        match vm.run(&loaded, &mut store, resume, trace) {
-            Ok(Outcome::Done) => resume = 0,
-            Ok(Outcome::Suspended { resume: at }) => resume = at,
+        match vm.run(&linked, &mut act, &mut store, trace) {
+            Ok(_) => {}
             Err(e) => {
                 eprintln!("{e}");
                 status = 1;

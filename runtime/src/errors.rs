@@ -20,9 +20,10 @@ pub enum LoadError {
     Malformed {
         what: String,
     },
+    /// An opcode that does not exist or an instruction cut short, at byte
+    /// `at` of the file.
     BadInstruction {
-        action: String,
-        offset: usize,
+        at: usize,
         opcode: u8,
     },
     /// A verifier finding: `what` says which rule, at instruction `op`.
@@ -67,10 +68,10 @@ impl fmt::Display for LoadError {
                 write!(f, "the object file is truncated in its {what}")
             }
             LoadError::Malformed { what } => write!(f, "malformed object file: {what}"),
-            LoadError::BadInstruction { action, offset, opcode } => {
-                write!(f, "action `{action}`: unknown or incomplete instruction {opcode:#04x} at code offset {offset}")
+            LoadError::BadInstruction { at, opcode } => {
+                write!(f, "unknown or incomplete instruction {opcode:#04x} at byte {at} of the file")
             }
-            LoadError::Invalid { action, op, what, .. } => write!(f, "action `{action}`, instruction {op}: {what}"),
+            LoadError::Invalid { action, op, what, .. } => write!(f, "`{action}`, instruction {op}: {what}"),
             LoadError::Link { symbol, why } => write!(f, "can't link `{symbol}`: {why}"),
         }
     }
@@ -101,6 +102,13 @@ impl fmt::Display for RuntimeError {
 }
 
 impl std::error::Error for RuntimeError {}
+
+impl RuntimeError {
+    /// A fault that belongs to no source position (a program that can't start).
+    pub fn unlocated(f: Fault) -> RuntimeError {
+        RuntimeError { code: f.code, message: f.message, action: String::new(), file: String::new(), line: 0, col: 0 }
+    }
+}
 
 /// A fault before it is located: the VM adds action, file and position.
 #[derive(Clone, Debug, PartialEq)]

@@ -44,7 +44,8 @@ pub struct Effect {
 
 macro_rules! instructions {
     ($( $code:literal $name:ident { $($field:ident : $ty:ty),* } [$np:literal $nq:literal $sp:literal $sq:literal] $doc:literal ;)*) => {
-        /// One instruction. Jump targets are instruction indices.
+        /// One instruction. In an object file a jump names a label of its
+        /// code block; linking replaces it by the label's instruction index.
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub enum Op {
             $( #[doc = $doc] $name { $($field: $ty),* }, )*
@@ -107,6 +108,8 @@ instructions! {
     0x03 PushS { k: u32 }            [0 0 0 1] "Push string constant `k` of the pool.";
     0x04 LoadLoc { n: u8 }           [0 1 0 0] "Push numeric local `n` (FOR limits).";
     0x05 StoreLoc { n: u8 }          [1 0 0 0] "Pop into numeric local `n`.";
+    0x06 LoadRet { n: u16 }          [0 1 0 0] "Push retained slot `n` of the running program.";
+    0x07 StoreRet { n: u16 }         [1 0 0 0] "Pop into retained slot `n` (kept from run to run).";
     0x10 LoadI { sym: u16 }          [0 1 0 0] "Push an INT, BOOL or bitfield field as INT.";
     0x11 LoadR { sym: u16 }          [0 1 0 0] "Push a REAL field.";
     0x12 LoadS { sym: u16 }          [0 0 0 1] "Push a string-family, ENUM (its name), BSEQ or WSTR field.";
@@ -168,10 +171,10 @@ instructions! {
     0x69 Or {}                       [2 1 0 0] "OR: 16-bit bitwise.";
     0x6A Xor {}                      [2 1 0 0] "XOR: 16-bit bitwise.";
     0x6B Not {}                      [1 1 0 0] "Logical NOT: 0 becomes 1, anything else 0.";
-    0x70 Jump { to: u32 }            [0 0 0 0] "Continue at instruction `to`.";
-    0x71 JumpIfFalse { to: u32 }     [1 0 0 0] "Pop; continue at `to` if it is 0.";
-    0x72 JumpIfTrue { to: u32 }      [1 0 0 0] "Pop; continue at `to` if it is not 0.";
-    0x73 Yield {}                    [0 0 0 0] "Suspend: end this run here and resume after it next time (FST WT).";
+    0x70 Jump { to: u32 }            [0 0 0 0] "Continue at label `to`.";
+    0x71 JumpIfFalse { to: u32 }     [1 0 0 0] "Pop; continue at label `to` if it is 0.";
+    0x72 JumpIfTrue { to: u32 }      [1 0 0 0] "Pop; continue at label `to` if it is not 0.";
+    0x73 Yield {}                    [0 0 0 0] "Suspend: end this run here and resume after it next time (FST WT); locals survive.";
     0x74 Ret {}                      [0 0 0 0] "End the run.";
     0x75 Return { kind: u8 }         [0 0 0 0] "Pop a value of `kind` as the run's result and end (linc eval).";
     0x78 Call { func: u8, argc: u8, ret: u8, types: u32 } [0 0 0 0] "Call library function `func`; argument kinds in `types` (2 bits each), result kind `ret`.";
@@ -238,6 +241,62 @@ impl Op {
             Op::Jump { to } | Op::JumpIfFalse { to } | Op::JumpIfTrue { to } => Some(to),
             _ => None,
         }
+    }
+
+    /// The same jump with another target (labels become instruction indices
+    /// when a program is linked).
+    pub fn retarget(self, to: u32) -> Op {
+        match self {
+            Op::Jump { .. } => Op::Jump { to },
+            Op::JumpIfFalse { .. } => Op::JumpIfFalse { to },
+            Op::JumpIfTrue { .. } => Op::JumpIfTrue { to },
+            other => other,
+        }
+    }
+
+    /// The same instruction naming symbol `n` instead (linking renumbers
+    /// symbols per program).
+    pub fn with_symbol(self, n: u16) -> Op {
+        match self {
+            Op::LoadI { .. } => Op::LoadI { sym: n },
+            Op::LoadR { .. } => Op::LoadR { sym: n },
+            Op::LoadS { .. } => Op::LoadS { sym: n },
+            Op::LoadBit { bit, .. } => Op::LoadBit { sym: n, bit },
+            Op::LoadAlarm { .. } => Op::LoadAlarm { sym: n },
+            Op::LoadSuppress { .. } => Op::LoadSuppress { sym: n },
+            Op::StoreI { .. } => Op::StoreI { sym: n },
+            Op::StoreR { .. } => Op::StoreR { sym: n },
+            Op::StoreS { .. } => Op::StoreS { sym: n },
+            Op::StoreBit { bit, .. } => Op::StoreBit { sym: n, bit },
+            Op::StoreSuppress { .. } => Op::StoreSuppress { sym: n },
+            Op::Ref { .. } => Op::Ref { sym: n },
+            Op::RefOff { .. } => Op::RefOff { sym: n },
+            Op::LoadRefI { .. } => Op::LoadRefI { sym: n },
+            Op::LoadRefR { .. } => Op::LoadRefR { sym: n },
+            Op::LoadRefS { .. } => Op::LoadRefS { sym: n },
+            Op::LoadRefBit { .. } => Op::LoadRefBit { sym: n },
+            Op::StoreRefI { .. } => Op::StoreRefI { sym: n },
+            Op::StoreRefR { .. } => Op::StoreRefR { sym: n },
+            Op::StoreRefS { .. } => Op::StoreRefS { sym: n },
+            Op::StoreRefBit { .. } => Op::StoreRefBit { sym: n },
+            other => other,
+        }
+    }
+
+    /// Whether this instruction writes the database through its symbol.
+    pub fn writes(&self) -> bool {
+        matches!(
+            self,
+            Op::StoreI { .. }
+                | Op::StoreR { .. }
+                | Op::StoreS { .. }
+                | Op::StoreBit { .. }
+                | Op::StoreSuppress { .. }
+                | Op::StoreRefI { .. }
+                | Op::StoreRefR { .. }
+                | Op::StoreRefS { .. }
+                | Op::StoreRefBit { .. }
+        )
     }
 
     /// The database symbol this instruction names, if any.

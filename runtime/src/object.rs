@@ -1,27 +1,27 @@
-//! The `.sto` object file: compiled actions, independent of any database.
+//! The `.sto` object file: compiled programs, independent of any database.
 //!
-//! Layout (all integers little-endian, strings as u16 length + UTF-8):
+//! Layout (all integers little-endian; names are u16 length + UTF-8; every
+//! table is a u32 count and its records, as declared below with `records!`):
 //!
 //! ```text
-//! magic "LINCSTO\x1a" | version u16 | flags u16 | crc32 u32 | length u32
-//! source file name
-//! symbols:  u32 count, each: block, field, class u8, sub u8 [, alarm name]
-//! strings:  u32 count, each: u32 length + bytes          (constant pool)
-//! actions:  u32 count, each: name, source file, block type, locals u8,
-//!           u32 code length + code, u32 n + n × (op, line, col),
-//!           u32 n + n × (start, end, line, col)          (loops)
+//! magic "LINCSTO\x1a" | version u16 (2) | flags u16 | crc32 u32 | length u32
+//! object: source name, symbols, constant pool, units
+//! unit:   kind u8, name, source file, block type, retained u16, code blocks
+//! block:  name, locals u8, u32 code length + code, labels (u32 each),
+//!         line table (op, line, col), loop table (start, end, line, col)
 //! ```
 //!
 //! The CRC-32 (ISO-HDLC, the zip/PNG one) covers the whole file with its own
 //! field zeroed. Symbols name database references by text (guide §10.1: one
 //! compiled action runs against any database that has those fields); they
-//! become slot indices when the object is loaded against a database.
+//! become cells when the object is linked to a store. See ADR 0004.
 
 use crate::errors::LoadError;
-use crate::isa::Op;
+use crate::records;
+use crate::wire::{Bytes, Code, Reader, Wire};
 
 pub const MAGIC: &[u8; 8] = b"LINCSTO\x1a";
-pub const VERSION: u16 = 1;
+pub const VERSION: u16 = 2;
 const HEADER: usize = 8 + 2 + 2 + 4 + 4;
 
 /// The storage class of a field, as the compiler assumed it.
@@ -115,51 +115,115 @@ impl Symbol {
     }
 }
 
-/// Where a statement starts, for error positions.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LineEntry {
-    pub op: u32,
-    pub line: u32,
-    pub col: u32,
+records! {
+    /// Where a statement starts, for error positions.
+    LineEntry "line table" { op: u32, line: u32, col: u32 }
+
+    /// The instructions of a loop and where its statement is, so a watchdog
+    /// error can name the loop.
+    LoopEntry "loop table" { start: u32, end: u32, line: u32, col: u32 }
+
+    /// A straight piece of code with its own labels, locals and tables: an
+    /// action body, and later a transition or a step's action of a chart.
+    /// Jumps name labels of the same block; a label is an instruction index.
+    CodeBlock "code block" {
+        name: String,
+        locals: u8,
+        ops: Code,
+        labels: Vec<u32>,
+        lines: Vec<LineEntry>,
+        loops: Vec<LoopEntry>,
+    }
+
+    /// A program: what one block of a strategy runs. `retained` numeric slots
+    /// keep their value from one run to the next (edge memory, timers).
+    Unit "unit" {
+        kind: UnitKind,
+        name: String,
+        /// The source file the unit was compiled from.
+        file: String,
+        /// Block type of `ACTION name : TYPE`, or empty.
+        block_type: String,
+        retained: u16,
+        blocks: Vec<CodeBlock>,
+    }
+
+    /// A whole object file in memory (without its header).
+    ObjectFile "object" {
+        /// The first source file (objects may hold units of several).
+        source: String,
+        symbols: Vec<Symbol>,
+        strings: Vec<Bytes>,
+        units: Vec<Unit>,
+    }
 }
 
-/// The instructions of a loop and where its statement is, so a watchdog
-/// error can name the loop.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LoopEntry {
-    pub start: u32,
-    pub end: u32,
-    pub line: u32,
-    pub col: u32,
+/// What kind of program a unit is. Today every unit is an ST action; the
+/// engines for sequences, ladder and FST tables add theirs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum UnitKind {
+    #[default]
+    Action = 1,
 }
 
-/// One compiled action.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ActionCode {
-    pub name: String,
-    /// The source file the action was compiled from.
-    pub file: String,
-    /// Block type of `ACTION name : TYPE`, or empty.
-    pub block_type: String,
-    pub locals: u8,
-    pub ops: Vec<Op>,
-    pub lines: Vec<LineEntry>,
-    pub loops: Vec<LoopEntry>,
+impl Wire for UnitKind {
+    fn put(&self, out: &mut Vec<u8>) {
+        (*self as u8).put(out);
+    }
+    fn get(r: &mut Reader, what: &str) -> Result<Self, LoadError> {
+        match u8::get(r, what)? {
+            1 => Ok(UnitKind::Action),
+            k => Err(LoadError::Malformed { what: format!("{what}: unknown unit kind {k}") }),
+        }
+    }
 }
 
-/// A whole object file in memory.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct ObjectFile {
-    pub source: String,
-    pub symbols: Vec<Symbol>,
-    pub strings: Vec<Vec<u8>>,
-    pub actions: Vec<ActionCode>,
+impl Wire for Symbol {
+    fn put(&self, out: &mut Vec<u8>) {
+        self.block.put(out);
+        self.field.put(out);
+        (self.class as u8).put(out);
+        match &self.sub {
+            Sub::Field => 0u8.put(out),
+            Sub::Alarm(a) => {
+                1u8.put(out);
+                a.put(out);
+            }
+            Sub::Suppress(Some(a)) => {
+                2u8.put(out);
+                a.put(out);
+            }
+            Sub::Suppress(None) => 3u8.put(out),
+        }
+    }
+
+    fn get(r: &mut Reader, what: &str) -> Result<Self, LoadError> {
+        let block = String::get(r, what)?;
+        let field = String::get(r, what)?;
+        let class_byte = u8::get(r, what)?;
+        let class = Class::from_u8(class_byte)
+            .ok_or_else(|| LoadError::Malformed { what: format!("symbol `{block}.{field}` has class {class_byte}") })?;
+        let sub = match u8::get(r, what)? {
+            0 => Sub::Field,
+            1 => Sub::Alarm(String::get(r, what)?),
+            2 => Sub::Suppress(Some(String::get(r, what)?)),
+            3 => Sub::Suppress(None),
+            k => return Err(LoadError::Malformed { what: format!("symbol `{block}.{field}` has sub-kind {k}") }),
+        };
+        Ok(Symbol { block, field, sub, class })
+    }
 }
 
-/// CRC-32/ISO-HDLC (reflected, polynomial 0x04C11DB7, init and xor-out all ones).
-pub fn crc32(data: &[u8]) -> u32 {
+impl Unit {
+    /// The unit's main block (an action's body).
+    pub fn main(&self) -> Option<&CodeBlock> {
+        self.blocks.first()
+    }
+}
+
+fn crc_table() -> &'static [u32; 256] {
     static TABLE: std::sync::OnceLock<[u32; 256]> = std::sync::OnceLock::new();
-    let table = TABLE.get_or_init(|| {
+    TABLE.get_or_init(|| {
         let mut t = [0u32; 256];
         for (i, e) in t.iter_mut().enumerate() {
             let mut c = i as u32;
@@ -169,79 +233,30 @@ pub fn crc32(data: &[u8]) -> u32 {
             *e = c;
         }
         t
-    });
-    !data.iter().fold(!0u32, |c, &b| table[((c ^ u32::from(b)) & 0xFF) as usize] ^ (c >> 8))
+    })
 }
 
-fn put_str(out: &mut Vec<u8>, s: &str) {
-    let b = s.as_bytes();
-    let n = b.len().min(u16::MAX as usize);
-    out.extend_from_slice(&(n as u16).to_le_bytes());
-    out.extend_from_slice(&b[..n]);
+/// Feeds bytes into a running (not yet inverted) CRC-32 state.
+fn crc32_update(state: u32, data: &[u8]) -> u32 {
+    let table = crc_table();
+    data.iter().fold(state, |c, &b| table[((c ^ u32::from(b)) & 0xFF) as usize] ^ (c >> 8))
 }
 
-fn put_u32(out: &mut Vec<u8>, v: u32) {
-    out.extend_from_slice(&v.to_le_bytes());
+/// CRC-32/ISO-HDLC (reflected, polynomial 0x04C11DB7, init and xor-out all ones).
+pub fn crc32(data: &[u8]) -> u32 {
+    !crc32_update(!0, data)
 }
 
 impl ObjectFile {
-    /// Encodes the object, checksum included.
+    /// Encodes the object, header and checksum included.
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(256);
         out.extend_from_slice(MAGIC);
-        out.extend_from_slice(&VERSION.to_le_bytes());
-        out.extend_from_slice(&0u16.to_le_bytes());
-        put_u32(&mut out, 0);
-        put_u32(&mut out, 0);
-        put_str(&mut out, &self.source);
-        put_u32(&mut out, self.symbols.len() as u32);
-        for s in &self.symbols {
-            put_str(&mut out, &s.block);
-            put_str(&mut out, &s.field);
-            out.push(s.class as u8);
-            match &s.sub {
-                Sub::Field => out.push(0),
-                Sub::Alarm(a) => {
-                    out.push(1);
-                    put_str(&mut out, a);
-                }
-                Sub::Suppress(Some(a)) => {
-                    out.push(2);
-                    put_str(&mut out, a);
-                }
-                Sub::Suppress(None) => out.push(3),
-            }
-        }
-        put_u32(&mut out, self.strings.len() as u32);
-        for s in &self.strings {
-            put_u32(&mut out, s.len() as u32);
-            out.extend_from_slice(s);
-        }
-        put_u32(&mut out, self.actions.len() as u32);
-        for a in &self.actions {
-            put_str(&mut out, &a.name);
-            put_str(&mut out, &a.file);
-            put_str(&mut out, &a.block_type);
-            out.push(a.locals);
-            let mut code = Vec::new();
-            for op in &a.ops {
-                op.encode(&mut code);
-            }
-            put_u32(&mut out, code.len() as u32);
-            out.extend_from_slice(&code);
-            put_u32(&mut out, a.lines.len() as u32);
-            for l in &a.lines {
-                for v in [l.op, l.line, l.col] {
-                    put_u32(&mut out, v);
-                }
-            }
-            put_u32(&mut out, a.loops.len() as u32);
-            for l in &a.loops {
-                for v in [l.start, l.end, l.line, l.col] {
-                    put_u32(&mut out, v);
-                }
-            }
-        }
+        VERSION.put(&mut out);
+        0u16.put(&mut out);
+        0u32.put(&mut out);
+        0u32.put(&mut out);
+        self.put(&mut out);
         let len = out.len() as u32;
         out[16..20].copy_from_slice(&len.to_le_bytes());
         let crc = crc32(&out);
@@ -250,7 +265,7 @@ impl ObjectFile {
     }
 
     /// Decodes an object, checking magic, version, length and checksum and
-    /// that every section is complete. Instructions are decoded but not yet
+    /// that every table is complete. Instructions are decoded but not yet
     /// verified (see [`crate::verify`]).
     pub fn from_bytes(data: &[u8]) -> Result<ObjectFile, LoadError> {
         if data.len() < 8 || &data[..8] != MAGIC {
@@ -272,119 +287,22 @@ impl ObjectFile {
                 LoadError::Malformed { what: format!("{} bytes after the end of the object", data.len() - len) }
             });
         }
-        let mut zeroed = data.to_vec();
-        zeroed[12..16].fill(0);
-        let actual = crc32(&zeroed);
+        let actual = crc32_zeroed(data);
         if actual != stored_crc {
             return Err(LoadError::BadChecksum { stored: stored_crc, actual });
         }
         let mut r = Reader { data, at: HEADER };
-        let source = r.string("source name")?;
-        let mut symbols = Vec::new();
-        for _ in 0..r.count("symbol table")? {
-            let block = r.string("symbol")?;
-            let field = r.string("symbol")?;
-            let class_byte = r.u8("symbol")?;
-            let class = Class::from_u8(class_byte).ok_or_else(|| LoadError::Malformed {
-                what: format!("symbol `{block}.{field}` has class {class_byte}"),
-            })?;
-            let sub = match r.u8("symbol")? {
-                0 => Sub::Field,
-                1 => Sub::Alarm(r.string("symbol")?),
-                2 => Sub::Suppress(Some(r.string("symbol")?)),
-                3 => Sub::Suppress(None),
-                k => return Err(LoadError::Malformed { what: format!("symbol `{block}.{field}` has sub-kind {k}") }),
-            };
-            symbols.push(Symbol { block, field, sub, class });
-        }
-        let mut strings = Vec::new();
-        for _ in 0..r.count("constant pool")? {
-            let n = r.u32("constant pool")? as usize;
-            strings.push(r.bytes(n, "constant pool")?.to_vec());
-        }
-        let mut actions = Vec::new();
-        for _ in 0..r.count("action table")? {
-            let name = r.string("action")?;
-            let file = r.string("action")?;
-            let block_type = r.string("action")?;
-            let locals = r.u8("action")?;
-            let n = r.u32("action code")? as usize;
-            let code = r.bytes(n, "action code")?;
-            let mut ops = Vec::new();
-            let mut at = 0;
-            while at < code.len() {
-                let start = at;
-                let op = Op::decode(code, &mut at).ok_or_else(|| LoadError::BadInstruction {
-                    action: name.clone(),
-                    offset: start,
-                    opcode: code[start],
-                })?;
-                ops.push(op);
-            }
-            let mut lines = Vec::new();
-            for _ in 0..r.count("line table")? {
-                lines.push(LineEntry {
-                    op: r.u32("line table")?,
-                    line: r.u32("line table")?,
-                    col: r.u32("line table")?,
-                });
-            }
-            let mut loops = Vec::new();
-            for _ in 0..r.count("loop table")? {
-                loops.push(LoopEntry {
-                    start: r.u32("loop table")?,
-                    end: r.u32("loop table")?,
-                    line: r.u32("loop table")?,
-                    col: r.u32("loop table")?,
-                });
-            }
-            actions.push(ActionCode { name, file, block_type, locals, ops, lines, loops });
-        }
+        let obj = ObjectFile::get(&mut r, "object")?;
         if r.at != data.len() {
             return Err(LoadError::Malformed { what: format!("{} unread bytes at the end", data.len() - r.at) });
         }
-        Ok(ObjectFile { source, symbols, strings, actions })
+        Ok(obj)
     }
 }
 
-/// A bounds-checked cursor; every read names the section it is in.
-struct Reader<'a> {
-    data: &'a [u8],
-    at: usize,
-}
-
-impl<'a> Reader<'a> {
-    fn bytes(&mut self, n: usize, what: &str) -> Result<&'a [u8], LoadError> {
-        let end = self.at.checked_add(n).filter(|&e| e <= self.data.len());
-        let end = end.ok_or_else(|| LoadError::Truncated { what: what.to_string() })?;
-        let s = &self.data[self.at..end];
-        self.at = end;
-        Ok(s)
-    }
-
-    fn u8(&mut self, what: &str) -> Result<u8, LoadError> {
-        Ok(self.bytes(1, what)?[0])
-    }
-
-    fn u32(&mut self, what: &str) -> Result<u32, LoadError> {
-        let b = self.bytes(4, what)?;
-        Ok(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-    }
-
-    /// An element count; it cannot exceed the bytes left (each element takes
-    /// at least one), which keeps a damaged count from allocating wildly.
-    fn count(&mut self, what: &str) -> Result<u32, LoadError> {
-        let n = self.u32(what)?;
-        if n as usize > self.data.len() - self.at {
-            return Err(LoadError::Truncated { what: what.to_string() });
-        }
-        Ok(n)
-    }
-
-    fn string(&mut self, what: &str) -> Result<String, LoadError> {
-        let b = self.bytes(2, what)?;
-        let n = usize::from(u16::from_le_bytes([b[0], b[1]]));
-        let s = self.bytes(n, what)?;
-        String::from_utf8(s.to_vec()).map_err(|_| LoadError::Malformed { what: format!("{what}: text is not UTF-8") })
-    }
+/// The CRC of a file with its own CRC field taken as zero, without copying it.
+fn crc32_zeroed(data: &[u8]) -> u32 {
+    let state = crc32_update(!0, &data[..12]);
+    let state = crc32_update(state, &[0; 4]);
+    !crc32_update(state, &data[16..])
 }

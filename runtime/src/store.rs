@@ -70,6 +70,8 @@ pub struct Store {
     pub first: Vec<u32>,
     /// For each cell, the last cell of its run of same-typed fields.
     pub run_end: Vec<u32>,
+    /// For each cell, whether programs may not write it (the block computes it).
+    readonly: Vec<bool>,
     /// Current time, POSIX seconds.
     pub now: f64,
 }
@@ -80,6 +82,7 @@ impl Store {
         let mut cells = Vec::new();
         let mut first = Vec::new();
         let mut run_end = Vec::new();
+        let mut readonly = Vec::new();
         for b in &db.blocks {
             let t = &db.templates[b.template];
             let start = cells.len() as u32;
@@ -87,6 +90,7 @@ impl Store {
             for (fi, f) in t.fields.iter().enumerate() {
                 let init = b.values.iter().find(|(i, _)| *i == fi).map(|(_, v)| v);
                 cells.push(initial(&f.ty, init));
+                readonly.push(f.readonly);
             }
             let n = t.fields.len();
             let mut ends = vec![0u32; n];
@@ -96,7 +100,12 @@ impl Store {
             }
             run_end.extend(ends);
         }
-        Store { db, cells, first, run_end, now: 0.0 }
+        Store { db, cells, first, run_end, readonly, now: 0.0 }
+    }
+
+    /// Whether programs may not write this cell.
+    pub fn is_readonly(&self, cell: u32) -> bool {
+        self.readonly.get(cell as usize).copied().unwrap_or(true)
     }
 
     /// The cell of `block.field`, by names (ignoring case).

@@ -1,83 +1,166 @@
-//! The load-time verifier and linker.
+//! The load-time verifier.
 //!
-//! Verification is separate from decoding and from execution: it proves,
-//! for every instruction of an action, that jumps land on instructions,
-//! constants, symbols, locals and bits are in range and of the right kind,
-//! calls name real functions with acceptable arguments, and both stacks are
-//! balanced on every path (never popped below empty, equal where paths
-//! meet, empty at `Ret` and `Yield`). The VM relies on this and on typed
-//! cells, so no object file, however damaged, can make it read or write out
-//! of bounds.
+//! Verification is separate from decoding, linking and execution. It proves,
+//! for every code block of every unit, that jumps name labels and labels land
+//! on instructions; constants, symbols, locals, retained slots and bits are
+//! in range and of the right kind; calls name real functions with acceptable
+//! arguments; both stacks are balanced on every path (never popped below
+//! empty, equal where paths meet, empty at `Ret` and `Yield`, so the state at
+//! every resume point is known); the reference register is set on every path
+//! before it is used; and line and loop tables stay inside the code.
+//!
+//! Only [`verify`] makes a [`Verified`] object, and linking takes one, so an
+//! object is verified exactly once on its way to the VM (ADR 0005).
 
 use crate::errors::LoadError;
 use crate::isa::{Kind, Op, MAX_CALL_ARGS};
-use crate::object::{ActionCode, Class, ObjectFile, Sub, Symbol};
-use crate::store::{class_of, Cell, Store};
+use crate::object::{Class, CodeBlock, ObjectFile, Sub, Symbol, Unit};
 use linc_stdlib::SIGNATURES;
+use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Stack sizes an action needs, found by the verifier.
+/// Stack sizes a code block needs, found by the verifier.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Limits {
     pub max_num: usize,
     pub max_str: usize,
 }
 
-fn invalid(code: &'static str, a: &ActionCode, op: usize, what: impl Into<String>) -> LoadError {
-    LoadError::Invalid { code, action: a.name.clone(), op, what: what.into() }
+/// An object that passed the verifier; the fields are private so that no
+/// other path can make one.
+#[derive(Clone, Debug)]
+pub struct Verified {
+    obj: ObjectFile,
+    /// Per unit, per code block.
+    limits: Vec<Vec<Limits>>,
+}
+
+impl Verified {
+    pub fn object(&self) -> &ObjectFile {
+        &self.obj
+    }
+
+    pub fn limits(&self, unit: usize, block: usize) -> Limits {
+        self.limits.get(unit).and_then(|u| u.get(block)).copied().unwrap_or_default()
+    }
+
+    /// The unit called `name` (names ignore case).
+    pub fn unit_named(&self, name: &str) -> Option<usize> {
+        self.obj.units.iter().position(|u| u.name.eq_ignore_ascii_case(name))
+    }
+}
+
+static RUNS: AtomicU64 = AtomicU64::new(0);
+
+/// How many objects this process has verified (tests prove that a load
+/// verifies once).
+pub fn verifications() -> u64 {
+    RUNS.load(Ordering::Relaxed)
+}
+
+/// Verifies every unit of an object.
+pub fn verify(obj: ObjectFile) -> Result<Verified, LoadError> {
+    RUNS.fetch_add(1, Ordering::Relaxed);
+    let mut limits = Vec::with_capacity(obj.units.len());
+    for u in &obj.units {
+        if u.blocks.is_empty() {
+            return Err(LoadError::Invalid { code: "E0708", action: u.name.clone(), op: 0, what: "no code".into() });
+        }
+        let per_block = u.blocks.iter().map(|b| verify_block(&obj, u, b)).collect::<Result<Vec<_>, _>>()?;
+        limits.push(per_block);
+    }
+    Ok(Verified { obj, limits })
+}
+
+/// Where a finding is: the unit, and the block when the unit has several.
+fn place(u: &Unit, b: &CodeBlock) -> String {
+    if u.blocks.len() == 1 || b.name.is_empty() {
+        u.name.clone()
+    } else {
+        format!("{}/{}", u.name, b.name)
+    }
+}
+
+fn invalid(code: &'static str, u: &Unit, b: &CodeBlock, op: usize, what: impl Into<String>) -> LoadError {
+    LoadError::Invalid { code, action: place(u, b), op, what: what.into() }
+}
+
+/// Checks the block's label, line and loop tables against its code.
+fn check_tables(u: &Unit, b: &CodeBlock) -> Result<(), LoadError> {
+    let n = b.ops.len();
+    if n == 0 {
+        return Err(invalid("E0708", u, b, 0, "empty code (a block ends with Ret)"));
+    }
+    if let Some(l) = b.labels.iter().position(|&at| at as usize >= n) {
+        return Err(invalid("E0705", u, b, 0, format!("label {l} is past the last instruction")));
+    }
+    let mut last = 0;
+    for e in &b.lines {
+        if e.op as usize >= n || e.op < last {
+            return Err(invalid("E0712", u, b, e.op as usize, "line table out of order or past the code"));
+        }
+        last = e.op;
+    }
+    if let Some(lp) = b.loops.iter().find(|lp| lp.start > lp.end || lp.end as usize > n) {
+        return Err(invalid("E0712", u, b, lp.start as usize, "loop table entry outside the code"));
+    }
+    Ok(())
 }
 
 /// Checks one instruction's operands against the object's tables.
-fn check_operands(obj: &ObjectFile, a: &ActionCode, pc: usize, op: &Op) -> Result<(), LoadError> {
-    let n = a.ops.len();
+fn check_operands(obj: &ObjectFile, u: &Unit, b: &CodeBlock, pc: usize, op: &Op) -> Result<(), LoadError> {
     if let Some(t) = op.target() {
-        if t as usize >= n {
-            return Err(invalid("E0705", a, pc, format!("jump to instruction {t}, but the action has {n}")));
+        if t as usize >= b.labels.len() {
+            return Err(invalid("E0705", u, b, pc, format!("jump to label {t}, but the block has {}", b.labels.len())));
         }
     }
     match *op {
         Op::PushS { k } if k as usize >= obj.strings.len() => {
-            return Err(invalid("E0706", a, pc, format!("string constant {k} does not exist")));
+            return Err(invalid("E0706", u, b, pc, format!("string constant {k} does not exist")));
         }
         Op::Return { kind } if kind > 3 => {
-            return Err(invalid("E0710", a, pc, format!("result kind {kind} does not exist")));
+            return Err(invalid("E0710", u, b, pc, format!("result kind {kind} does not exist")));
         }
-        Op::LoadLoc { n } | Op::StoreLoc { n } if n >= a.locals => {
-            return Err(invalid("E0711", a, pc, format!("local {n} does not exist (the action has {})", a.locals)));
+        Op::LoadLoc { n } | Op::StoreLoc { n } if n >= b.locals => {
+            return Err(invalid("E0711", u, b, pc, format!("local {n} does not exist (the block has {})", b.locals)));
         }
-        Op::Call { func, argc, ret, types } => {
-            let sig = SIGNATURES
-                .get(usize::from(func))
-                .ok_or_else(|| invalid("E0710", a, pc, format!("function {func} does not exist")))?;
-            let argc = usize::from(argc);
-            if argc > MAX_CALL_ARGS || !sig.arity_ok(argc) || ret > 3 {
-                return Err(invalid("E0710", a, pc, format!("{} can't be called with {argc} arguments", sig.name)));
-            }
-            for i in 0..argc {
-                let k = Kind::arg(types, i);
-                let ok = match sig.param(i) {
-                    Some(linc_stdlib::Param::Bytes) => k == Kind::Bytes,
-                    Some(_) => k != Kind::Bytes,
-                    None => false,
-                };
-                if !ok {
-                    return Err(invalid(
-                        "E0710",
-                        a,
-                        pc,
-                        format!("argument {} of {} has the wrong kind", i + 1, sig.name),
-                    ));
-                }
-            }
+        Op::LoadRet { n } | Op::StoreRet { n } if n >= u.retained => {
+            let what = format!("retained slot {n} does not exist (the unit has {})", u.retained);
+            return Err(invalid("E0711", u, b, pc, what));
         }
+        Op::Call { func, argc, ret, types } => check_call(u, b, pc, func, argc, ret, types)?,
         _ => {}
     }
     if let Some(s) = op.symbol() {
         let sym = obj
             .symbols
             .get(usize::from(s))
-            .ok_or_else(|| invalid("E0707", a, pc, format!("symbol {s} does not exist")))?;
+            .ok_or_else(|| invalid("E0707", u, b, pc, format!("symbol {s} does not exist")))?;
         if !symbol_fits(op, sym) {
-            return Err(invalid("E0707", a, pc, format!("{} can't use `{}` ({:?})", op.name(), sym.text(), sym.class)));
+            let what = format!("{} can't use `{}` ({:?})", op.name(), sym.text(), sym.class);
+            return Err(invalid("E0707", u, b, pc, what));
+        }
+    }
+    Ok(())
+}
+
+fn check_call(u: &Unit, b: &CodeBlock, pc: usize, func: u8, argc: u8, ret: u8, types: u32) -> Result<(), LoadError> {
+    let sig = SIGNATURES
+        .get(usize::from(func))
+        .ok_or_else(|| invalid("E0710", u, b, pc, format!("function {func} does not exist")))?;
+    let argc = usize::from(argc);
+    if argc > MAX_CALL_ARGS || !sig.arity_ok(argc) || ret > 3 {
+        return Err(invalid("E0710", u, b, pc, format!("{} can't be called with {argc} arguments", sig.name)));
+    }
+    for i in 0..argc {
+        let k = Kind::arg(types, i);
+        let ok = match sig.param(i) {
+            Some(linc_stdlib::Param::Bytes) => k == Kind::Bytes,
+            Some(_) => k != Kind::Bytes,
+            None => false,
+        };
+        if !ok {
+            let what = format!("argument {} of {} has the wrong kind", i + 1, sig.name);
+            return Err(invalid("E0710", u, b, pc, what));
         }
     }
     Ok(())
@@ -100,115 +183,102 @@ fn symbol_fits(op: &Op, sym: &Symbol) -> bool {
     }
 }
 
-/// Verifies one action; returns the stack sizes it needs.
-pub fn verify_action(obj: &ObjectFile, a: &ActionCode) -> Result<Limits, LoadError> {
-    let n = a.ops.len();
-    if n == 0 {
-        return Err(invalid("E0708", a, 0, "empty code (an action ends with Ret)"));
+/// What the verifier knows at an instruction: both stack depths and whether
+/// the reference register is set on every path to it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct State {
+    num: u32,
+    strs: u32,
+    ref_set: bool,
+}
+
+fn uses_ref(op: &Op) -> bool {
+    matches!(
+        op,
+        Op::LoadRefI { .. }
+            | Op::LoadRefR { .. }
+            | Op::LoadRefS { .. }
+            | Op::LoadRefBit { .. }
+            | Op::StoreRefI { .. }
+            | Op::StoreRefR { .. }
+            | Op::StoreRefS { .. }
+            | Op::StoreRefBit { .. }
+            | Op::RefBit { .. }
+            | Op::RefBitOff { .. }
+    )
+}
+
+/// The state after one instruction, or why it is not allowed there.
+fn step(u: &Unit, b: &CodeBlock, pc: usize, s: State) -> Result<State, LoadError> {
+    let op = &b.ops[pc];
+    let e = op.effect();
+    if s.num < e.num_pop || s.strs < e.str_pop {
+        return Err(invalid("E0708", u, b, pc, format!("{} pops an empty stack", op.name())));
     }
-    for (pc, op) in a.ops.iter().enumerate() {
-        check_operands(obj, a, pc, op)?;
+    if uses_ref(op) && !s.ref_set {
+        return Err(invalid("E0713", u, b, pc, format!("{} uses the reference register before it is set", op.name())));
     }
-    // Abstract interpretation of the two stack depths.
-    let mut depth: Vec<Option<(u32, u32)>> = vec![None; n];
+    let num = s.num - e.num_pop + e.num_push;
+    let strs = s.strs - e.str_pop + e.str_push;
+    if matches!(op, Op::Ret {} | Op::Yield {} | Op::Return { .. }) && (num, strs) != (0, 0) {
+        return Err(invalid("E0708", u, b, pc, format!("{} with values left on the stack", op.name())));
+    }
+    let ref_set = match op {
+        Op::Ref { .. } | Op::RefOff { .. } => true,
+        // The register does not survive a suspension.
+        Op::Yield {} => false,
+        _ => s.ref_set,
+    };
+    Ok(State { num, strs, ref_set })
+}
+
+/// Verifies one code block; returns the stack sizes it needs.
+fn verify_block(obj: &ObjectFile, u: &Unit, b: &CodeBlock) -> Result<Limits, LoadError> {
+    check_tables(u, b)?;
+    for (pc, op) in b.ops.iter().enumerate() {
+        check_operands(obj, u, b, pc, op)?;
+    }
+    let n = b.ops.len();
+    // Abstract interpretation: depths must agree where paths meet; the
+    // reference flag only falls from set to unset, so each instruction is
+    // visited at most twice and the walk is linear.
+    let mut state: Vec<Option<State>> = vec![None; n];
     let mut work = vec![0usize];
-    depth[0] = Some((0, 0));
+    state[0] = Some(State { num: 0, strs: 0, ref_set: false });
     let mut limits = Limits::default();
     while let Some(pc) = work.pop() {
-        let Some((num, strs)) = depth[pc] else {
-            continue;
+        let Some(s) = state[pc] else { continue };
+        let after = step(u, b, pc, s)?;
+        limits.max_num = limits.max_num.max(after.num as usize);
+        limits.max_str = limits.max_str.max(after.strs as usize);
+        let op = &b.ops[pc];
+        let label = |to: u32| b.labels[to as usize] as usize;
+        let next: [Option<usize>; 2] = match *op {
+            Op::Ret {} | Op::Return { .. } => [None, None],
+            Op::Jump { to } => [Some(label(to)), None],
+            Op::JumpIfFalse { to } | Op::JumpIfTrue { to } => [Some(label(to)), Some(pc + 1)],
+            _ => [Some(pc + 1), None],
         };
-        let op = &a.ops[pc];
-        let e = op.effect();
-        if num < e.num_pop || strs < e.str_pop {
-            return Err(invalid("E0708", a, pc, format!("{} pops an empty stack", op.name())));
-        }
-        let after = (num - e.num_pop + e.num_push, strs - e.str_pop + e.str_push);
-        limits.max_num = limits.max_num.max(after.0 as usize);
-        limits.max_str = limits.max_str.max(after.1 as usize);
-        if matches!(op, Op::Ret {} | Op::Yield {} | Op::Return { .. }) && after != (0, 0) {
-            return Err(invalid("E0708", a, pc, format!("{} with values left on the stack", op.name())));
-        }
-        let mut next = Vec::with_capacity(2);
-        match op {
-            Op::Ret {} | Op::Return { .. } => {}
-            Op::Jump { to } => next.push(*to as usize),
-            Op::JumpIfFalse { to } | Op::JumpIfTrue { to } => {
-                next.push(*to as usize);
-                next.push(pc + 1);
-            }
-            _ => next.push(pc + 1),
-        }
-        for t in next {
+        for t in next.into_iter().flatten() {
             if t >= n {
-                return Err(invalid("E0708", a, pc, "execution runs past the last instruction"));
+                return Err(invalid("E0708", u, b, pc, "execution runs past the last instruction"));
             }
-            match depth[t] {
+            match state[t] {
                 None => {
-                    depth[t] = Some(after);
+                    state[t] = Some(after);
                     work.push(t);
                 }
-                Some(d) if d != after => {
-                    return Err(invalid("E0708", a, t, format!("stack depths {d:?} and {after:?} meet here")));
+                Some(d) if (d.num, d.strs) != (after.num, after.strs) => {
+                    let what = format!("stack depths {:?} and {:?} meet here", (d.num, d.strs), (after.num, after.strs));
+                    return Err(invalid("E0708", u, b, t, what));
+                }
+                Some(d) if d.ref_set && !after.ref_set => {
+                    state[t] = Some(State { ref_set: false, ..d });
+                    work.push(t);
                 }
                 Some(_) => {}
             }
         }
     }
     Ok(limits)
-}
-
-/// A symbol bound to the live database.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Target {
-    pub cell: u32,
-    /// Last cell of the run `cell` starts (for offsets).
-    pub run_end: u32,
-    /// Alarm index for alarm symbols; `u16::MAX` for the block-wide suppression.
-    pub alarm: u16,
-}
-
-/// Binds the symbols an action uses to cells of `store`. `own` is the block
-/// that runs the action, for `ACTION name : TYPE` field references.
-pub fn link_action(
-    obj: &ObjectFile,
-    a: &ActionCode,
-    store: &Store,
-    own: Option<usize>,
-) -> Result<Vec<Target>, LoadError> {
-    let used: std::collections::BTreeSet<u16> = a.ops.iter().filter_map(Op::symbol).collect();
-    let mut targets = vec![Target { cell: u32::MAX, run_end: 0, alarm: 0 }; obj.symbols.len()];
-    for s in used {
-        let sym = &obj.symbols[usize::from(s)];
-        let fail = |why: String| LoadError::Link { symbol: sym.text(), why };
-        let block = if sym.block.is_empty() {
-            own.ok_or_else(|| {
-                fail(format!("action `{}` runs on a {} block; name one with --block", a.name, a.block_type))
-            })?
-        } else {
-            store.db.block(&sym.block).ok_or_else(|| fail("the database has no such block".into()))?
-        };
-        let t = store.db.block_template(block);
-        let fi = t.field(&sym.field).ok_or_else(|| fail(format!("block type {} has no such field", t.name)))?;
-        let class = class_of(&t.fields[fi].ty);
-        if class != sym.class {
-            return Err(fail(format!(
-                "the field is {class:?} in this database, but the action was compiled for {:?}",
-                sym.class
-            )));
-        }
-        let cell = store.first[block] + fi as u32;
-        let alarm = match (&sym.sub, store.cells.get(cell as usize)) {
-            (Sub::Field, _) | (Sub::Suppress(None), _) => u16::MAX,
-            (Sub::Alarm(name) | Sub::Suppress(Some(name)), Some(Cell::Alarms(al))) => al
-                .names
-                .iter()
-                .position(|n| n.eq_ignore_ascii_case(name))
-                .map(|i| i as u16)
-                .ok_or_else(|| fail("the block has no such alarm".into()))?,
-            _ => return Err(fail("not an alarm field".into())),
-        };
-        targets[usize::from(s)] = Target { cell, run_end: store.run_end[cell as usize], alarm };
-    }
-    Ok(targets)
 }

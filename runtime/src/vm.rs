@@ -9,9 +9,9 @@
 
 use crate::errors::{Fault, RuntimeError};
 use crate::isa::{Kind, Op};
-use crate::object::{ActionCode, ObjectFile};
+use crate::link::{Linked, LinkedBlock, LinkedProgram, Target};
+use crate::object::{CodeBlock, Unit};
 use crate::store::{bits_value, Cell, Store};
-use crate::verify::{Limits, Target};
 use linc_stdlib::value::{decode_dollar, round_to_i32};
 use linc_stdlib::{Env, FnError, Value};
 
@@ -34,23 +34,72 @@ pub const DEFAULT_WATCHDOG: u64 = 10_000_000;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Outcome {
     Done,
-    /// Stopped at a suspension point; the next run resumes at `resume`.
-    Suspended {
-        resume: usize,
-    },
+    /// Stopped at a suspension point; the next run of the same activation
+    /// resumes after it, with its locals as they were.
+    Suspended,
 }
 
-/// An action ready to run: code, its bound symbols and stack needs.
-#[derive(Clone, Debug)]
-pub struct Loaded<'a> {
-    pub obj: &'a ObjectFile,
-    pub action: &'a ActionCode,
-    pub targets: Vec<Target>,
-    pub limits: Limits,
+/// One running instance of a program: where it resumes and the state that
+/// survives from one run to the next. The caller owns it (a strategy keeps
+/// one per block), so the VM itself holds no program state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Activation {
+    pub program: usize,
+    pub block: usize,
+    /// Resume point when suspended.
+    resume: Option<u32>,
+    locals: Vec<u32>,
+    /// Retained slots: kept from run to run until the activation is reset.
+    pub retained: Vec<u32>,
+    /// The value of the last `Return` (linc eval).
+    pub result: Option<Value>,
+}
+
+impl Activation {
+    /// An activation of block `block` of `program`, at its start.
+    pub fn new(linked: &Linked, program: usize, block: usize) -> Activation {
+        let retained = linked.unit(program).map_or(0, |u| usize::from(u.retained));
+        Activation { program, block, resume: None, locals: Vec::new(), retained: vec![0; retained], result: None }
+    }
+
+    pub fn is_suspended(&self) -> bool {
+        self.resume.is_some()
+    }
+
+    /// Back to the start: no resume point, retained slots cleared.
+    pub fn reset(&mut self) {
+        self.resume = None;
+        self.retained.fill(0);
+        self.result = None;
+    }
+}
+
+/// The code an activation runs, looked up once per run.
+struct Running<'a> {
+    linked: &'a Linked,
+    prog: &'a LinkedProgram,
+    block: &'a LinkedBlock,
+    /// The object's block, for its tables.
+    code: &'a CodeBlock,
+    unit: &'a Unit,
+}
+
+impl<'a> Running<'a> {
+    fn of(linked: &'a Linked, act: &Activation) -> Option<Running<'a>> {
+        let prog = linked.program(act.program)?;
+        let unit = linked.unit(act.program)?;
+        Some(Running { linked, prog, block: prog.blocks.get(act.block)?, code: unit.blocks.get(act.block)?, unit })
+    }
 }
 
 /// What a run reports as it writes, for `--trace`.
 pub type Tracer<'t> = Option<&'t mut dyn FnMut(&Store, u32)>;
+
+/// Most bytes one string value may hold.
+pub const MAX_STRING: usize = 65_535;
+
+/// Default bytes of string values one run may produce.
+pub const DEFAULT_STRING_BUDGET: usize = 16 << 20;
 
 /// The random generator and clock the library sees.
 #[derive(Clone, Debug)]
@@ -83,22 +132,50 @@ impl Env for Clock {
     }
 }
 
-/// The machine's reusable state between runs.
+/// The machine: scratch stacks reused from run to run, the watchdog and
+/// string budgets, and the library's clock. It keeps no program state.
 #[derive(Debug)]
 pub struct Vm {
     num: Vec<u32>,
     strs: Vec<Vec<u8>>,
     locals: Vec<u32>,
     args: Vec<Value>,
+    /// Instructions one run may execute.
     pub watchdog: u64,
+    /// Bytes of string values one run may produce.
+    pub string_budget: usize,
+    string_used: usize,
+    result: Option<Value>,
     pub clock: Clock,
-    /// The value of the last `Return` (linc eval).
-    pub result: Option<Value>,
 }
 
 impl Vm {
     pub fn new(watchdog: u64, clock: Clock) -> Vm {
-        Vm { num: Vec::new(), strs: Vec::new(), locals: Vec::new(), args: Vec::new(), watchdog, clock, result: None }
+        Vm {
+            num: Vec::new(),
+            strs: Vec::new(),
+            locals: Vec::new(),
+            args: Vec::new(),
+            watchdog,
+            string_budget: DEFAULT_STRING_BUDGET,
+            string_used: 0,
+            result: None,
+            clock,
+        }
+    }
+
+    /// Pushes a string value produced by this run, within the budgets.
+    fn push_s(&mut self, s: Vec<u8>) -> Result<(), Fault> {
+        if s.len() > MAX_STRING {
+            return Err(Fault::new("R0007", format!("a string of {} bytes; the limit is {MAX_STRING}", s.len())));
+        }
+        self.string_used += s.len();
+        if self.string_used > self.string_budget {
+            let what = format!("more than {} bytes of strings made in one run", self.string_budget);
+            return Err(Fault::new("R0007", what));
+        }
+        self.strs.push(s);
+        Ok(())
     }
 
     fn pop(&mut self) -> u32 {
@@ -125,34 +202,59 @@ impl Vm {
         self.strs.pop().unwrap_or_default()
     }
 
-    /// Runs `l` from instruction `start` (0, or where it was suspended).
+    /// Runs an activation from its start or its resume point. A fault stops
+    /// it (the activation is back at its start; writes made stay).
     pub fn run(
         &mut self,
-        l: &Loaded,
+        linked: &Linked,
+        act: &mut Activation,
         store: &mut Store,
-        start: usize,
         mut trace: Tracer,
     ) -> Result<Outcome, RuntimeError> {
+        let Some(l) = Running::of(linked, act) else {
+            let f = Fault::new("E0708", format!("no block {} in program {}", act.block, act.program));
+            return Err(RuntimeError::unlocated(f));
+        };
         self.num.clear();
         self.strs.clear();
-        self.num.reserve(l.limits.max_num);
-        self.strs.reserve(l.limits.max_str);
-        self.locals.clear();
-        self.locals.resize(usize::from(l.action.locals), 0);
+        self.num.reserve(l.block.limits.max_num);
+        self.strs.reserve(l.block.limits.max_str);
+        self.string_used = 0;
+        self.result = None;
+        let mut pc = match act.resume.take() {
+            Some(at) => {
+                std::mem::swap(&mut self.locals, &mut act.locals);
+                at as usize
+            }
+            None => {
+                self.locals.clear();
+                self.locals.resize(usize::from(l.code.locals), 0);
+                0
+            }
+        };
         self.clock.now = store.now;
-        let mut pc = start;
-        let result = self.exec(l, store, &mut pc, &mut trace);
-        result.map_err(|f| locate(l, pc.saturating_sub(1), f))
+        let result = self.exec(&l, act, store, &mut pc, &mut trace);
+        act.result = self.result.take();
+        match result {
+            Ok(Outcome::Suspended) => {
+                act.resume = Some(pc as u32);
+                std::mem::swap(&mut self.locals, &mut act.locals);
+                Ok(Outcome::Suspended)
+            }
+            Ok(Outcome::Done) => Ok(Outcome::Done),
+            Err(f) => Err(locate(&l, pc.saturating_sub(1), f)),
+        }
     }
 
     fn exec(
         &mut self,
-        l: &Loaded,
+        l: &Running,
+        act: &mut Activation,
         store: &mut Store,
         pc_out: &mut usize,
         trace: &mut Tracer,
     ) -> Result<Outcome, Fault> {
-        let ops = &l.action.ops[..];
+        let ops = &l.block.ops[..];
         let (mut ref_cell, mut ref_bit) = (0u32, 0u8);
         // The program counter and budget live in locals (registers) and are
         // written back only when the run stops.
@@ -177,8 +279,18 @@ impl Vm {
                 Op::PushI { v } => self.push_i(v),
                 Op::PushR { v } => self.push_r(v),
                 Op::PushS { k } => {
-                    let s = l.obj.strings.get(k as usize).cloned().unwrap_or_default();
-                    self.strs.push(s);
+                    let s = l.linked.object().strings.get(k as usize).map(|b| b.0.clone()).unwrap_or_default();
+                    tri!(self.push_s(s));
+                }
+                Op::LoadRet { n } => {
+                    let v = act.retained.get(usize::from(n)).copied().unwrap_or(0);
+                    self.num.push(v);
+                }
+                Op::StoreRet { n } => {
+                    let v = self.pop();
+                    if let Some(slot) = act.retained.get_mut(usize::from(n)) {
+                        *slot = v;
+                    }
                 }
                 Op::LoadLoc { n } => {
                     let v = self.locals.get(usize::from(n)).copied().unwrap_or(0);
@@ -213,7 +325,7 @@ impl Vm {
                             .unwrap_or_default(),
                         _ => break Err(corrupt()),
                     };
-                    self.strs.push(s);
+                    tri!(self.push_s(s));
                 }
                 Op::LoadBit { sym, bit } => {
                     let v = tri!(load_bit(store, cell(l, sym), bit));
@@ -247,13 +359,13 @@ impl Vm {
                     self.push_i(v);
                 }
                 Op::StoreI { sym } | Op::StoreRefI { sym } => {
-                    let c = if matches!(op, Op::StoreI { .. }) { cell(l, sym) } else { ref_cell };
+                    let c = if matches!(op, Op::StoreI { .. }) { cell(l, sym) } else { tri!(writable(store, ref_cell)) };
                     let v = self.pop_i();
                     tri!(store_int(store, c, v));
                     note(trace, store, c);
                 }
                 Op::StoreR { sym } | Op::StoreRefR { sym } => {
-                    let c = if matches!(op, Op::StoreR { .. }) { cell(l, sym) } else { ref_cell };
+                    let c = if matches!(op, Op::StoreR { .. }) { cell(l, sym) } else { tri!(writable(store, ref_cell)) };
                     let v = self.pop_r();
                     if !v.is_finite() {
                         break Err(Fault::new("R0005", format!("the result is {v}, which can't be stored")));
@@ -265,7 +377,7 @@ impl Vm {
                     note(trace, store, c);
                 }
                 Op::StoreS { sym } | Op::StoreRefS { sym } => {
-                    let c = if matches!(op, Op::StoreS { .. }) { cell(l, sym) } else { ref_cell };
+                    let c = if matches!(op, Op::StoreS { .. }) { cell(l, sym) } else { tri!(writable(store, ref_cell)) };
                     let s = self.pop_s();
                     tri!(store_str(store, c, s));
                     note(trace, store, c);
@@ -278,6 +390,7 @@ impl Vm {
                 }
                 Op::StoreRefBit { .. } => {
                     let v = self.pop_i();
+                    tri!(writable(store, ref_cell));
                     tri!(store_bit(store, ref_cell, ref_bit, v));
                     note(trace, store, ref_cell);
                 }
@@ -351,7 +464,7 @@ impl Vm {
                 }
                 Op::Decode {} => {
                     let s = self.pop_s();
-                    self.strs.push(decode_dollar(&s));
+                    tri!(self.push_s(decode_dollar(&s)));
                 }
                 Op::Truth {} => {
                     let v = self.pop_i();
@@ -442,7 +555,7 @@ impl Vm {
                         pc = to as usize;
                     }
                 }
-                Op::Yield {} => break Ok(Outcome::Suspended { resume: pc }),
+                Op::Yield {} => break Ok(Outcome::Suspended),
                 Op::Ret {} => break Ok(Outcome::Done),
                 Op::Return { kind } => {
                     self.result = Some(match Kind::from_bits(u32::from(kind)) {
@@ -504,10 +617,10 @@ impl Vm {
             Kind::Int => self.push_i(v.as_int()),
             Kind::Real => self.push_r(v.as_real()),
             Kind::Bool => self.push_i(i32::from(v.as_bool())),
-            Kind::Bytes => self.strs.push(match v {
+            Kind::Bytes => self.push_s(match v {
                 Value::Bytes(b) => b,
                 _ => Vec::new(),
-            }),
+            })?,
         }
         Ok(())
     }
@@ -522,11 +635,11 @@ fn corrupt() -> Fault {
     Fault::new("R0099", "the object does not match the database (field of another type)")
 }
 
-fn target(l: &Loaded, sym: u16) -> Target {
-    l.targets.get(usize::from(sym)).copied().unwrap_or(Target { cell: u32::MAX, run_end: 0, alarm: 0 })
+fn target(l: &Running, sym: u16) -> Target {
+    l.prog.targets.get(usize::from(sym)).copied().unwrap_or(Target { cell: u32::MAX, run_end: 0, alarm: 0 })
 }
 
-fn cell(l: &Loaded, sym: u16) -> u32 {
+fn cell(l: &Running, sym: u16) -> u32 {
     target(l, sym).cell
 }
 
@@ -534,6 +647,15 @@ fn note(trace: &mut Tracer, store: &Store, cell: u32) {
     if let Some(t) = trace.as_mut() {
         t(store, cell);
     }
+}
+
+/// A cell reached through an offset may be a read-only field of the same
+/// run (PID's SP sits between PV and SL); direct writes are refused at link.
+fn writable(store: &Store, c: u32) -> Result<u32, Fault> {
+    if store.is_readonly(c) {
+        return Err(Fault::new("R0008", format!("{} is read-only; an offset led the write to it", store.describe(c))));
+    }
+    Ok(c)
 }
 
 fn load_int(store: &Store, c: u32) -> Result<i32, Fault> {
@@ -604,9 +726,10 @@ fn store_str(store: &mut Store, c: u32, s: Vec<u8>) -> Result<(), Fault> {
 /// Adds the action name and source position to a fault: the statement
 /// containing the failing instruction, or for the watchdog the innermost
 /// loop around it.
-fn locate(l: &Loaded, pc: usize, f: Fault) -> RuntimeError {
-    let a = l.action;
-    let stmt = a.lines.iter().take_while(|e| e.op as usize <= pc).last();
+fn locate(l: &Running, pc: usize, f: Fault) -> RuntimeError {
+    let a = l.code;
+    // The line table is sorted by instruction (the verifier proves it).
+    let stmt = a.lines[..a.lines.partition_point(|e| e.op as usize <= pc)].last();
     let mut at = stmt.map(|e| (e.line, e.col)).unwrap_or((0, 0));
     let mut message = f.message;
     if f.code == "R0006" {
@@ -617,5 +740,6 @@ fn locate(l: &Loaded, pc: usize, f: Fault) -> RuntimeError {
             message = format!("{message}; stopped in the loop at line {}", lp.line);
         }
     }
-    RuntimeError { code: f.code, message, action: a.name.clone(), file: a.file.clone(), line: at.0, col: at.1 }
+    let u = l.unit;
+    RuntimeError { code: f.code, message, action: u.name.clone(), file: u.file.clone(), line: at.0, col: at.1 }
 }

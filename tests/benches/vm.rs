@@ -9,8 +9,8 @@ use criterion::{criterion_group, Criterion};
 use linc_conformance::exec::compile;
 use linc_conformance::guide_db;
 use linc_runtime::store::{Cell, Store};
-use linc_runtime::vm::{Clock, Vm, DEFAULT_WATCHDOG};
-use linc_runtime::ObjectFile;
+use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
+use linc_runtime::{Linked, Program};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -88,19 +88,22 @@ const KERNELS: &[Kernel] = &[
 ];
 
 struct Ready {
-    obj: ObjectFile,
+    linked: Linked,
+    act: Activation,
     store: Store,
     vm: Vm,
 }
 
 fn ready(k: &Kernel) -> Ready {
-    let obj = linc_runtime::load(&compile(k.source, guide_db())).expect("kernel loads");
-    Ready { obj, store: Store::new(guide_db().clone()), vm: Vm::new(DEFAULT_WATCHDOG * 10, Clock::new(1, 0)) }
+    let verified = linc_runtime::load(&compile(k.source, guide_db())).expect("kernel loads");
+    let store = Store::new(guide_db().clone());
+    let linked = verified.link(&store, &[Program { unit: 0, own: None }]).expect("kernel links");
+    let act = Activation::new(&linked, 0, 0);
+    Ready { linked, act, store, vm: Vm::new(DEFAULT_WATCHDOG * 10, Clock::new(1, 0)) }
 }
 
 fn run_vm(r: &mut Ready) -> f64 {
-    let loaded = linc_runtime::prepare(&r.obj, 0, &r.store, None).expect("kernel links");
-    r.vm.run(&loaded, &mut r.store, 0, None).expect("kernel runs");
+    r.vm.run(&r.linked, &mut r.act, &mut r.store, None).expect("kernel runs");
     match r.store.cells.first() {
         Some(Cell::Real(x)) => f64::from(*x),
         _ => 0.0,
@@ -111,9 +114,7 @@ fn bench(c: &mut Criterion) {
     for k in KERNELS {
         let mut g = c.benchmark_group(k.name);
         let mut r = ready(k);
-        let obj = r.obj.clone();
-        let loaded = linc_runtime::prepare(&obj, 0, &r.store, None).expect("links");
-        g.bench_function("linc VM", |b| b.iter(|| r.vm.run(&loaded, &mut r.store, 0, None).map(|_| ())));
+        g.bench_function("linc VM", |b| b.iter(|| r.vm.run(&r.linked, &mut r.act, &mut r.store, None).map(|_| ())));
         g.bench_function("native Rust", |b| b.iter(k.native));
         g.finish();
     }

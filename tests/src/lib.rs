@@ -102,8 +102,8 @@ pub mod exec {
     use linc_compiler::check::Context;
     use linc_compiler::lower::{self, Lines};
     use linc_runtime::store::Store;
-    use linc_runtime::vm::{Clock, Outcome, Vm, DEFAULT_WATCHDOG};
-    use linc_runtime::{Database, ObjectFile, RuntimeError};
+    use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
+    use linc_runtime::{Database, Program, RuntimeError};
 
     /// Compiles `src` against `db` into object bytes; panics with the
     /// diagnostics if it does not compile (a test bug, not a finding).
@@ -150,17 +150,17 @@ pub mod exec {
     /// Runs the first action of `src` for `cycles` cycles of `period` seconds.
     pub fn run_in(db: &Database, src: &str, cycles: u32, period: f64) -> Run {
         let bytes = compile(src, db);
-        let obj: ObjectFile = linc_runtime::load(&bytes).unwrap_or_else(|e| panic!("load: {e}"));
+        let verified = linc_runtime::load(&bytes).unwrap_or_else(|e| panic!("load: {e}"));
         let mut store = Store::new(db.clone());
         store.now = 1_000_000.0;
-        let loaded = linc_runtime::prepare(&obj, 0, &store, None).unwrap_or_else(|e| panic!("link: {e}"));
+        let program = Program { unit: 0, own: None };
+        let linked = verified.link(&store, &[program]).unwrap_or_else(|e| panic!("link: {e}"));
         let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0));
+        let mut act = Activation::new(&linked, 0, 0);
         let mut error = None;
-        let mut resume = 0;
         for _ in 0..cycles {
-            match vm.run(&loaded, &mut store, resume, None) {
-                Ok(Outcome::Done) => resume = 0,
-                Ok(Outcome::Suspended { resume: r }) => resume = r,
+            match vm.run(&linked, &mut act, &mut store, None) {
+                Ok(_) => {}
                 Err(e) => {
                     error = Some(e);
                     break;

@@ -3,7 +3,8 @@
 use linc_conformance::exec::compile;
 use linc_conformance::guide_db;
 use linc_runtime::store::Store;
-use linc_runtime::vm::{Clock, Vm, DEFAULT_WATCHDOG};
+use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
+use linc_runtime::Program;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -30,14 +31,15 @@ static GLOBAL: Counting = Counting;
 fn numeric_actions_do_not_allocate() {
     let src = "FOR TC001 := 0 TO 6 DO\n  Block_5.Val1{TC001} := Block_5.Val1{TC001 + 1} * 1.5 + Recipe.A0;\nEND_FOR;\nIF Dig_A.Out.Bit3 AND Recipe.N0 MOD 2 = 0 THEN Dig_B.Out.Bit0 := NOT Dig_B.Out.Bit0; END_IF;\nRecipe.N0 := Recipe.N0 + ROUND(SQRT(Recipe.A1 + 4.0)) + MAX(1, Recipe.N1, 3);\nANIN_005.Alarms.HiLevel.Suppress := 10;\n";
     let bytes = compile(src, guide_db());
-    let obj = linc_runtime::load(&bytes).expect("loads");
+    let verified = linc_runtime::load(&bytes).expect("loads");
     let mut store = Store::new(guide_db().clone());
-    let loaded = linc_runtime::prepare(&obj, 0, &store, None).expect("links");
+    let linked = verified.link(&store, &[Program { unit: 0, own: None }]).expect("links");
+    let mut act = Activation::new(&linked, 0, 0);
     let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0));
-    vm.run(&loaded, &mut store, 0, None).expect("runs");
+    vm.run(&linked, &mut act, &mut store, None).expect("runs");
     let before = ALLOCATIONS.load(Ordering::Relaxed);
     for _ in 0..100 {
-        vm.run(&loaded, &mut store, 0, None).expect("runs");
+        vm.run(&linked, &mut act, &mut store, None).expect("runs");
     }
     assert_eq!(ALLOCATIONS.load(Ordering::Relaxed) - before, 0, "allocations in 100 runs");
 }

@@ -4,7 +4,8 @@ use linc_conformance::exec::compile;
 use linc_conformance::guide_db;
 use linc_runtime::object::crc32;
 use linc_runtime::store::Store;
-use linc_runtime::vm::{Clock, Vm};
+use linc_runtime::vm::{Activation, Clock, Vm};
+use linc_runtime::Program;
 
 const SOURCE: &str = "Counters.N0 := 0;\nFOR Counters.N1 := 0 TO 6 DO\n  Block_5.Val1{Counters.N1} := Block_5.Val1{Counters.N1 + 1} * 2.0;\n  IF Counters.N1 MOD 2 = 0 THEN Dig_A.Out.Bit0{Counters.N0} := 1; END_IF;\nEND_FOR;\nRAW_COM.Buffer1 := CONCAT('a$62', FORMAT('05I', Counters.N1));\nPIC_004.Mode := 'auto';\nANIN_005.Alarms.HiLevel.Suppress := 60;\nWHILE Counters.N0 < 3 DO Counters.N0 := Counters.N0 + 1; END_WHILE;\n";
 
@@ -14,14 +15,17 @@ fn small() -> Vec<u8> {
 
 /// Loads and, if accepted, runs; returns whether it was accepted.
 fn try_run(bytes: &[u8]) -> bool {
-    let Ok(obj) = linc_runtime::load(bytes) else {
+    let Ok(verified) = linc_runtime::load(bytes) else {
         return false;
     };
     let mut store = Store::new(guide_db().clone());
-    for i in 0..obj.actions.len() {
-        if let Ok(loaded) = linc_runtime::prepare(&obj, i, &store, None) {
-            let mut vm = Vm::new(100_000, Clock::new(7, 0));
-            let _ = vm.run(&loaded, &mut store, 0, None);
+    for unit in 0..verified.object().units.len() {
+        if let Ok(linked) = verified.clone().link(&store, &[Program { unit, own: None }]) {
+            for block in 0..linked.unit(0).map_or(0, |u| u.blocks.len()) {
+                let mut vm = Vm::new(100_000, Clock::new(7, 0));
+                let mut act = Activation::new(&linked, 0, block);
+                let _ = vm.run(&linked, &mut act, &mut store, None);
+            }
         }
     }
     true

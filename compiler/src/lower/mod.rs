@@ -12,7 +12,8 @@ use crate::diagnostic::Diagnostic;
 use crate::hir::{self, Place, Stmt, Target};
 use crate::span::Span;
 use linc_runtime::isa::Op;
-use linc_runtime::object::{ActionCode, Class, LineEntry, LoopEntry, ObjectFile, Sub, Symbol};
+use linc_runtime::object::{Class, CodeBlock, LineEntry, LoopEntry, ObjectFile, Sub, Symbol, Unit as ObjUnit, UnitKind};
+use linc_runtime::wire::{Bytes, Code};
 use linc_stdlib::Ty;
 use std::collections::HashMap;
 
@@ -149,27 +150,47 @@ impl<'a> Lowerer<'a> {
         }
     }
 
-    fn finish(self, source: &str, actions: Vec<ActionCode>) -> Result<ObjectFile, Vec<LowerError>> {
+    fn finish(self, source: &str, units: Vec<ObjUnit>) -> Result<ObjectFile, Vec<LowerError>> {
         if !self.errors.is_empty() {
             return Err(self.errors);
         }
-        Ok(ObjectFile { source: source.to_string(), symbols: self.symbols, strings: self.strings, actions })
+        let strings = self.strings.into_iter().map(Bytes).collect();
+        Ok(ObjectFile { source: source.to_string(), symbols: self.symbols, strings, units })
     }
 
-    fn take_action(&mut self, name: &str, block_type: &str) -> ActionCode {
+    /// Ends the code of an action: jumps, emitted with instruction indices,
+    /// name labels in the object (one label per distinct target).
+    fn take_action(&mut self, name: &str, block_type: &str) -> ObjUnit {
         self.ops.push(Op::Ret {});
-        ActionCode {
+        let mut ops = std::mem::take(&mut self.ops);
+        let mut labels: Vec<u32> = ops.iter().filter_map(Op::target).collect();
+        labels.sort_unstable();
+        labels.dedup();
+        for op in &mut ops {
+            if let Some(to) = op.target() {
+                let label = labels.partition_point(|&l| l < to) as u32;
+                *op = op.retarget(label);
+            }
+        }
+        let block = CodeBlock {
+            name: String::new(),
+            locals: self.locals,
+            ops: Code(ops),
+            labels,
+            lines: std::mem::take(&mut self.line_table),
+            loops: std::mem::take(&mut self.loops),
+        };
+        ObjUnit {
+            kind: UnitKind::Action,
             name: name.to_string(),
             file: self.file.clone(),
             block_type: block_type.to_string(),
-            locals: self.locals,
-            ops: std::mem::take(&mut self.ops),
-            lines: std::mem::take(&mut self.line_table),
-            loops: std::mem::take(&mut self.loops),
+            retained: 0,
+            blocks: vec![block],
         }
     }
 
-    fn action(&mut self, a: &hir::Action) -> ActionCode {
+    fn action(&mut self, a: &hir::Action) -> ObjUnit {
         self.locals = 0;
         self.stmts(&a.body);
         self.take_action(&a.name, a.block_type.as_deref().unwrap_or(""))

@@ -1,0 +1,181 @@
+//! Linking a verified object to a store: every program's symbols become
+//! cells, jumps become instruction indices, and writes to read-only fields
+//! are refused before anything runs.
+//!
+//! A *program* is one unit run by one block: the same unit may run on
+//! several blocks (two ACTION blocks naming one `ACTION a : ACTION` action),
+//! each with its own cells for the unit's own-block fields. Each program
+//! gets its own copy of the code with symbols renumbered into a small dense
+//! table, so the VM's look-ups stay O(1) whatever the size of the object.
+
+use crate::errors::LoadError;
+use crate::isa::Op;
+use crate::object::{ObjectFile, Sub, Symbol, Unit};
+use crate::store::{class_of, Cell, Store};
+use crate::verify::{Limits, Verified};
+use std::collections::HashMap;
+
+/// What to link: a unit, and the block that runs it (for the fields of an
+/// `ACTION name : TYPE` action).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Program {
+    pub unit: usize,
+    pub own: Option<usize>,
+}
+
+/// A symbol bound to the live database.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Target {
+    pub cell: u32,
+    /// Last cell of the run `cell` starts (for offsets).
+    pub run_end: u32,
+    /// Alarm index for alarm symbols; `u16::MAX` for the block-wide suppression.
+    pub alarm: u16,
+}
+
+/// One code block ready to run: jumps are instruction indices and symbols
+/// index the program's target table.
+#[derive(Clone, Debug)]
+pub struct LinkedBlock {
+    pub ops: Vec<Op>,
+    pub limits: Limits,
+}
+
+/// One linked program.
+#[derive(Clone, Debug)]
+pub struct LinkedProgram {
+    pub unit: usize,
+    pub own: Option<usize>,
+    pub targets: Vec<Target>,
+    pub blocks: Vec<LinkedBlock>,
+}
+
+/// A verified object linked to a store: what the VM runs.
+#[derive(Clone, Debug)]
+pub struct Linked {
+    verified: Verified,
+    programs: Vec<LinkedProgram>,
+}
+
+impl Linked {
+    pub fn object(&self) -> &ObjectFile {
+        self.verified.object()
+    }
+
+    pub fn programs(&self) -> &[LinkedProgram] {
+        &self.programs
+    }
+
+    pub fn program(&self, i: usize) -> Option<&LinkedProgram> {
+        self.programs.get(i)
+    }
+
+    /// The unit a program runs.
+    pub fn unit(&self, program: usize) -> Option<&Unit> {
+        self.programs.get(program).and_then(|p| self.object().units.get(p.unit))
+    }
+}
+
+impl Verified {
+    /// Links `programs` to `store`. The store's layout must not change
+    /// afterwards (it does not: blocks are fixed when it is made).
+    pub fn link(self, store: &Store, programs: &[Program]) -> Result<Linked, LoadError> {
+        let mut linked = Vec::with_capacity(programs.len());
+        for &p in programs {
+            let unit = self.object().units.get(p.unit).ok_or_else(|| LoadError::Malformed {
+                what: format!("no unit {} (the object has {})", p.unit, self.object().units.len()),
+            })?;
+            linked.push(link_program(&self, unit, p, store)?);
+        }
+        Ok(Linked { verified: self, programs: linked })
+    }
+}
+
+fn link_program(v: &Verified, unit: &Unit, p: Program, store: &Store) -> Result<LinkedProgram, LoadError> {
+    if let (Some(b), false) = (p.own, unit.block_type.is_empty()) {
+        let t = store.db.block_template(b);
+        if !t.name.eq_ignore_ascii_case(&unit.block_type) {
+            let name = &store.db.blocks[b].name;
+            return Err(LoadError::Link {
+                symbol: unit.name.clone(),
+                why: format!("the action runs on a {} block, but `{name}` is a {} block", unit.block_type, t.name),
+            });
+        }
+    }
+    let mut local: HashMap<u16, u16> = HashMap::new();
+    let mut targets = Vec::new();
+    let mut blocks = Vec::with_capacity(unit.blocks.len());
+    for (bi, b) in unit.blocks.iter().enumerate() {
+        let mut ops = Vec::with_capacity(b.ops.len());
+        for op in b.ops.iter() {
+            let mut op = match op.target() {
+                Some(label) => op.retarget(b.labels[label as usize]),
+                None => *op,
+            };
+            if let Some(s) = op.symbol() {
+                let next = targets.len() as u16;
+                let n = match local.get(&s) {
+                    Some(&n) => n,
+                    None => {
+                        let sym = &v.object().symbols[usize::from(s)];
+                        targets.push(bind(sym, unit, p.own, store)?);
+                        local.insert(s, next);
+                        next
+                    }
+                };
+                if op.writes() {
+                    check_writable(&v.object().symbols[usize::from(s)], targets[usize::from(n)], store)?;
+                }
+                op = op.with_symbol(n);
+            }
+            ops.push(op);
+        }
+        blocks.push(LinkedBlock { ops, limits: v.limits(p.unit, bi) });
+    }
+    Ok(LinkedProgram { unit: p.unit, own: p.own, targets, blocks })
+}
+
+/// A direct write to a read-only field is refused at link time; writes
+/// through offsets are checked when they happen.
+fn check_writable(sym: &Symbol, t: Target, store: &Store) -> Result<(), LoadError> {
+    if sym.sub == Sub::Field && store.is_readonly(t.cell) {
+        return Err(LoadError::Link {
+            symbol: sym.text(),
+            why: "the field is read-only in this database, and the program writes it".into(),
+        });
+    }
+    Ok(())
+}
+
+/// Binds one symbol to a cell of `store`.
+fn bind(sym: &Symbol, unit: &Unit, own: Option<usize>, store: &Store) -> Result<Target, LoadError> {
+    let fail = |why: String| LoadError::Link { symbol: sym.text(), why };
+    let block = if sym.block.is_empty() {
+        own.ok_or_else(|| {
+            fail(format!("action `{}` runs on a {} block; name one with --block", unit.name, unit.block_type))
+        })?
+    } else {
+        store.db.block(&sym.block).ok_or_else(|| fail("the database has no such block".into()))?
+    };
+    let t = store.db.block_template(block);
+    let fi = t.field(&sym.field).ok_or_else(|| fail(format!("block type {} has no such field", t.name)))?;
+    let class = class_of(&t.fields[fi].ty);
+    if class != sym.class {
+        return Err(fail(format!(
+            "the field is {class:?} in this database, but the program was compiled for {:?}",
+            sym.class
+        )));
+    }
+    let cell = store.first[block] + fi as u32;
+    let alarm = match (&sym.sub, store.cells.get(cell as usize)) {
+        (Sub::Field, _) | (Sub::Suppress(None), _) => u16::MAX,
+        (Sub::Alarm(name) | Sub::Suppress(Some(name)), Some(Cell::Alarms(al))) => al
+            .names
+            .iter()
+            .position(|n| n.eq_ignore_ascii_case(name))
+            .map(|i| i as u16)
+            .ok_or_else(|| fail("the block has no such alarm".into()))?,
+        _ => return Err(fail("not an alarm field".into())),
+    };
+    Ok(Target { cell, run_end: store.run_end[cell as usize], alarm })
+}
