@@ -2,9 +2,9 @@
 
 use linc_runtime::isa::Op;
 use linc_runtime::object::{CodeBlock, ObjectFile};
-use std::collections::HashMap;
 use linc_runtime::text::format_value;
 use linc_stdlib::{Value, SIGNATURES};
+use std::collections::HashMap;
 use std::fmt::Write;
 use std::path::Path;
 

@@ -74,13 +74,17 @@ codes! {
     "E0708" => "unbalanced stack or code that runs off its end",
     "E0709" => "object does not fit the database",
     "E0710" => "invalid function call or result kind",
-    "E0711" => "local variable out of range",
+    "E0711" => "local variable or retained slot out of range",
+    "E0712" => "line or loop table outside the code",
+    "E0713" => "reference register used before it is set",
     "R0001" => "division by zero",
     "R0002" => "MOD by zero",
     "R0003" => "offset outside its run of fields",
     "R0004" => "not a value of an ENUM field",
     "R0005" => "math domain error or non-finite result",
     "R0006" => "watchdog: too many instructions in one run",
+    "R0007" => "string too long, or too many string bytes in one run",
+    "R0008" => "write to a read-only field through an offset",
     "R0099" => "object and database disagree at run time",
     "E0800" => "database file is not valid JSON",
     "E0801" => "database file has the wrong shape",
@@ -113,6 +117,7 @@ mod tests {
             include_str!("../../runtime/src/errors.rs"),
             include_str!("../../runtime/src/verify.rs"),
             include_str!("../../runtime/src/vm.rs"),
+            include_str!("../../runtime/src/link.rs"),
         ];
         for src in sources {
             let starts = src.match_indices("\"E0").chain(src.match_indices("\"W0")).chain(src.match_indices("\"R0"));

@@ -269,7 +269,8 @@ fn verify_block(obj: &ObjectFile, u: &Unit, b: &CodeBlock) -> Result<Limits, Loa
                     work.push(t);
                 }
                 Some(d) if (d.num, d.strs) != (after.num, after.strs) => {
-                    let what = format!("stack depths {:?} and {:?} meet here", (d.num, d.strs), (after.num, after.strs));
+                    let what =
+                        format!("stack depths {:?} and {:?} meet here", (d.num, d.strs), (after.num, after.strs));
                     return Err(invalid("E0708", u, b, t, what));
                 }
                 Some(d) if d.ref_set && !after.ref_set => {

@@ -359,13 +359,15 @@ impl Vm {
                     self.push_i(v);
                 }
                 Op::StoreI { sym } | Op::StoreRefI { sym } => {
-                    let c = if matches!(op, Op::StoreI { .. }) { cell(l, sym) } else { tri!(writable(store, ref_cell)) };
+                    let c =
+                        if matches!(op, Op::StoreI { .. }) { cell(l, sym) } else { tri!(writable(store, ref_cell)) };
                     let v = self.pop_i();
                     tri!(store_int(store, c, v));
                     note(trace, store, c);
                 }
                 Op::StoreR { sym } | Op::StoreRefR { sym } => {
-                    let c = if matches!(op, Op::StoreR { .. }) { cell(l, sym) } else { tri!(writable(store, ref_cell)) };
+                    let c =
+                        if matches!(op, Op::StoreR { .. }) { cell(l, sym) } else { tri!(writable(store, ref_cell)) };
                     let v = self.pop_r();
                     if !v.is_finite() {
                         break Err(Fault::new("R0005", format!("the result is {v}, which can't be stored")));
@@ -377,7 +379,8 @@ impl Vm {
                     note(trace, store, c);
                 }
                 Op::StoreS { sym } | Op::StoreRefS { sym } => {
-                    let c = if matches!(op, Op::StoreS { .. }) { cell(l, sym) } else { tri!(writable(store, ref_cell)) };
+                    let c =
+                        if matches!(op, Op::StoreS { .. }) { cell(l, sym) } else { tri!(writable(store, ref_cell)) };
                     let s = self.pop_s();
                     tri!(store_str(store, c, s));
                     note(trace, store, c);
