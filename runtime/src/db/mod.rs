@@ -5,8 +5,10 @@
 //! and a file may add templates or override built-in ones by name. Names are
 //! case-insensitive everywhere, as in LIN.
 
+mod fields;
 mod json;
 mod schema;
+mod tree;
 
 pub use json::DbError;
 pub use schema::{Alias, Block, Database, FieldDef, FieldType, InitValue, Template};

@@ -123,7 +123,9 @@ pub struct Block {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Alias {
     pub name: String,
-    /// The path the alias stands for, split at dots.
+    /// The path the alias stands for, split at dots. An alias written in
+    /// terms of another alias is stored expanded, so the first part is
+    /// never an alias.
     pub target: Vec<String>,
 }
 
@@ -183,7 +185,12 @@ impl Database {
     }
 
     pub fn alias(&self, name: &str) -> Option<&Alias> {
-        self.alias_index.get(&name.to_ascii_uppercase()).map(|&i| &self.aliases[i])
+        self.alias_position(name).map(|i| &self.aliases[i])
+    }
+
+    /// Index of an alias in `aliases`.
+    pub(crate) fn alias_position(&self, name: &str) -> Option<usize> {
+        self.alias_index.get(&name.to_ascii_uppercase()).copied()
     }
 
     /// The template of a block.
