@@ -5,8 +5,9 @@
 //! at the first problem.
 
 use super::fields::{field_spec, init_values};
-use super::schema::{Alias, Block, Database, Template};
-use super::tree::{self, get, Member, Node, Span};
+use super::period::{check_period, time_constant};
+use super::schema::{Alias, Block, Database, Task, Template};
+use super::tree::{self, get, Json, Member, Node, Span};
 use std::collections::HashSet;
 use std::fmt;
 
@@ -21,6 +22,9 @@ pub mod code {
     pub const ALIAS_TARGET: &str = "E0805";
     pub const TWICE: &str = "E0806";
     pub const DUPLICATE_KEY: &str = "E0807";
+    pub const TASK_NUMBER: &str = "E0808";
+    pub const TASK_PERIOD: &str = "E0809";
+    pub const UNDEFINED_TASK: &str = "E0810";
     pub const EMPTY_NAME: &str = "E0811";
     pub const LONG_NAME: &str = "E0812";
     pub const ENUM_TOO_BIG: &str = "E0813";
@@ -126,7 +130,11 @@ impl<'a> Loader<'a> {
     fn load(&mut self, text: &str) -> Result<(), DbError> {
         let root = tree::parse(text)?;
         let members = object(&root, "the database")?;
-        only_keys(members, &["templates", "blocks", "aliases"], "the database")?;
+        only_keys(members, &["templates", "blocks", "aliases", "tasks"], "the database")?;
+        // Tasks first: blocks name them, wherever the key is in the file.
+        if let Some(m) = get(members, "tasks") {
+            self.tasks(&m.value)?;
+        }
         if let Some(m) = get(members, "templates") {
             for t in object(&m.value, "`templates`")? {
                 self.template(t)?;
@@ -143,6 +151,38 @@ impl<'a> Loader<'a> {
                 self.alias(a)?;
             }
             self.expand_aliases(aliases)?;
+        }
+        Ok(())
+    }
+
+    fn tasks(&mut self, node: &Node) -> Result<(), DbError> {
+        for m in object(node, "`tasks`")? {
+            let number = match m.key.as_str() {
+                "1" => 1,
+                "2" => 2,
+                "3" => 3,
+                "4" => 4,
+                _ => {
+                    let message = format!("`{}` is not a task number; LIN user tasks are \"1\" to \"4\"", m.key);
+                    return Err(DbError::at(code::TASK_NUMBER, message, m.key_span));
+                }
+            };
+            let what = format!("task {number}");
+            let spec = object(&m.value, &what)?;
+            only_keys(spec, &["period"], &what)?;
+            let p = get(spec, "period")
+                .ok_or_else(|| DbError::at(code::SHAPE, format!("{what} has no `period`"), m.key_span))?;
+            let period = match &p.value.v {
+                Json::Str(s) => time_constant(s),
+                Json::Num(x) => Ok(*x),
+                _ => Err(format!(
+                    "expected a time constant such as \"T#100ms\" or a number of seconds, not {}",
+                    p.value.kind()
+                )),
+            }
+            .and_then(check_period)
+            .map_err(|why| DbError::at(code::TASK_PERIOD, format!("period of {what}: {why}"), p.value.span))?;
+            self.db.put_task(Task { number, period });
         }
         Ok(())
     }
@@ -185,7 +225,7 @@ impl<'a> Loader<'a> {
         check_name("a block", name, m.key_span)?;
         let what = format!("block `{name}`");
         let spec = object(&m.value, &what)?;
-        only_keys(spec, &["type", "values"], &what)?;
+        only_keys(spec, &["type", "values", "task"], &what)?;
         let ty =
             get(spec, "type").ok_or_else(|| DbError::at(code::SHAPE, format!("{what} has no `type`"), m.key_span))?;
         let tname = ty.value.as_str().ok_or_else(|| {
@@ -194,15 +234,37 @@ impl<'a> Loader<'a> {
         let template = self.db.template(tname).ok_or_else(|| {
             DbError::at(code::UNKNOWN_TEMPLATE, format!("block `{name}` has unknown type `{tname}`"), ty.value.span)
         })?;
+        let task = match get(spec, "task") {
+            Some(t) => self.task_of(name, &t.value)?,
+            None => Task::DEFAULT.number,
+        };
         let values = match get(spec, "values") {
             Some(vs) => init_values(name, &self.db.templates[template], &vs.value)?,
             None => Vec::new(),
         };
-        if !self.db.add_block(Block { name: name.clone(), template, values }) {
+        if !self.db.add_block(Block { name: name.clone(), template, values, task }) {
             let message = format!("block `{name}` is declared twice (names ignore case)");
             return Err(DbError::at(code::TWICE, message, m.key_span));
         }
         Ok(())
+    }
+
+    /// A block's `"task": N`, which must be a task the database defines.
+    fn task_of(&self, block: &str, node: &Node) -> Result<u8, DbError> {
+        let number = match node.v {
+            Json::Num(x) if [1.0, 2.0, 3.0, 4.0].contains(&x) => x as u8,
+            _ => {
+                let message = format!("`task` of block `{block}` must be a LIN user task number 1 to 4");
+                return Err(DbError::at(code::TASK_NUMBER, message, node.span));
+            }
+        };
+        if self.db.task(number).is_none() {
+            let message = format!(
+                "block `{block}` runs in task {number}, which `tasks` does not define (only task 1 is implicit)"
+            );
+            return Err(DbError::at(code::UNDEFINED_TASK, message, node.span));
+        }
+        Ok(number)
     }
 
     fn alias(&mut self, m: &Member) -> Result<(), DbError> {
@@ -298,6 +360,7 @@ mod tests {
         for t in ["ACTION", "DIGACT", "SFC_CON", "RAW_COM", "PID", "AN_CONN", "DG_CONN"] {
             assert!(db.template(t).is_some(), "{t}");
         }
+        assert_eq!(db.tasks, [Task { number: 1, period: 0.1 }]);
     }
 
     #[test]
