@@ -93,6 +93,17 @@ codes! {
     "E0804" => "invalid initial value",
     "E0805" => "invalid alias target",
     "E0806" => "name declared twice",
+    "E0807" => "key repeated in a JSON object",
+    "E0808" => "not a user task number",
+    "E0809" => "invalid task period",
+    "E0810" => "block runs in a task that is not defined",
+    "E0811" => "empty name",
+    "E0812" => "name too long",
+    "E0813" => "too many ENUM values",
+    "E0814" => "`readonly` is not true or false",
+    "E0815" => "initial value out of range",
+    "E0816" => "aliases form a cycle",
+    "E0817" => "alias expansion too large",
     "E0900" => "file cannot be read or written",
 }
 

@@ -238,7 +238,9 @@ fn initial(ty: &FieldType, init: Option<&InitValue>) -> Cell {
     };
     match ty {
         FieldType::Real => Cell::Real(num as f32),
-        FieldType::Int => Cell::Int(linc_stdlib::value::round_to_i32(num as f32)),
+        // The loader only accepts whole numbers in the i32 range, which
+        // f64 holds exactly (going through f32 would round 16777217).
+        FieldType::Int => Cell::Int(num.round() as i32),
         FieldType::Bool => Cell::Bool(num != 0.0),
         FieldType::Bits { width, .. } => Cell::Bits { v: (num as i64) as u16, width: *width },
         FieldType::Enum(names) => {

@@ -1,11 +1,45 @@
-//! Loading a database from the JSON contract.
+//! Loading a database from the JSON contract (`docs/database.md`).
 //!
-//! Errors carry a code and a byte range into the JSON text so that the CLI
-//! can render them like any other diagnostic.
+//! Errors carry a code and the byte range of the key or value at fault so
+//! that the CLI can render them like any other diagnostic. The loader stops
+//! at the first problem.
 
-use super::schema::{Alias, Block, Database, FieldDef, FieldType, InitValue, Template};
-use serde_json::{Map, Value};
+use super::fields::{field_spec, init_values};
+use super::period::{check_period, time_constant};
+use super::schema::{Alias, Block, Database, Task, Template};
+use super::tree::{self, get, Json, Member, Node, Span};
+use std::collections::HashSet;
 use std::fmt;
+
+/// Every code the loader emits, in one place (the code registry's test
+/// reads this file to check that each one is registered).
+pub mod code {
+    pub const NOT_JSON: &str = "E0800";
+    pub const SHAPE: &str = "E0801";
+    pub const FIELD_TYPE: &str = "E0802";
+    pub const UNKNOWN_TEMPLATE: &str = "E0803";
+    pub const INIT_VALUE: &str = "E0804";
+    pub const ALIAS_TARGET: &str = "E0805";
+    pub const TWICE: &str = "E0806";
+    pub const DUPLICATE_KEY: &str = "E0807";
+    pub const TASK_NUMBER: &str = "E0808";
+    pub const TASK_PERIOD: &str = "E0809";
+    pub const UNDEFINED_TASK: &str = "E0810";
+    pub const EMPTY_NAME: &str = "E0811";
+    pub const LONG_NAME: &str = "E0812";
+    pub const ENUM_TOO_BIG: &str = "E0813";
+    pub const READONLY: &str = "E0814";
+    pub const OUT_OF_RANGE: &str = "E0815";
+    pub const ALIAS_CYCLE: &str = "E0816";
+    pub const ALIAS_TOO_BIG: &str = "E0817";
+}
+
+/// Longest name in bytes: the object file stores names with a u16 length.
+pub const MAX_NAME: usize = 65_535;
+
+/// Most text all alias expansions together may produce, so that aliases
+/// of aliases cannot multiply a small file into an exhausted memory.
+const MAX_EXPANDED: usize = 1 << 24;
 
 /// Something wrong with a database file.
 #[derive(Clone, Debug, PartialEq)]
@@ -14,6 +48,12 @@ pub struct DbError {
     pub message: String,
     /// Byte range in the database text, when it can be located.
     pub span: Option<(usize, usize)>,
+}
+
+impl DbError {
+    pub(super) fn at(code: &'static str, message: String, span: Span) -> DbError {
+        DbError { code, message, span: Some(span) }
+    }
 }
 
 impl fmt::Display for DbError {
@@ -32,247 +72,295 @@ impl Database {
         let mut db = Database::default();
         // The built-in library is tested to load; an empty library is the
         // only possible fallback and keeps this path free of panics.
-        let _ = Loader { text: BUILTIN, db: &mut db }.load();
+        let _ = Loader::new(&mut db).load(BUILTIN);
         db
     }
 
     /// Loads a database file over the built-in library.
     pub fn from_json(text: &str) -> Result<Database, DbError> {
         let mut db = Database::builtin();
-        Loader { text, db: &mut db }.load()?;
+        Loader::new(&mut db).load(text)?;
         Ok(db)
     }
 }
 
+/// The members of an object, or E0801 located at the value.
+pub(super) fn object<'n>(node: &'n Node, what: &str) -> Result<&'n [Member], DbError> {
+    node.as_object().ok_or_else(|| {
+        DbError::at(code::SHAPE, format!("{what} must be a JSON object, not {}", node.kind()), node.span)
+    })
+}
+
+/// E0801 for a key an object may not have.
+fn only_keys(members: &[Member], allowed: &[&str], what: &str) -> Result<(), DbError> {
+    match members.iter().find(|m| !allowed.contains(&m.key.as_str())) {
+        Some(m) => Err(DbError::at(
+            code::SHAPE,
+            format!("unknown key `{}` in {what} (expected {})", m.key, allowed.join(", ")),
+            m.key_span,
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Checks a declared name: not empty (E0811), at most 65,535 bytes (E0812).
+pub(super) fn check_name(what: &str, name: &str, span: Span) -> Result<(), DbError> {
+    if name.is_empty() {
+        return Err(DbError::at(code::EMPTY_NAME, format!("{what} name is empty"), span));
+    }
+    if name.len() > MAX_NAME {
+        let message = format!("{what} name is {} bytes long; names are at most {MAX_NAME} bytes", name.len());
+        return Err(DbError::at(code::LONG_NAME, message, span));
+    }
+    Ok(())
+}
+
 struct Loader<'a> {
-    text: &'a str,
     db: &'a mut Database,
+    /// Templates this file declares (upper case): a file may override a
+    /// built-in template, but not declare one twice.
+    declared: HashSet<String>,
 }
 
-impl Loader<'_> {
-    fn load(&mut self) -> Result<(), DbError> {
-        let root: Value = serde_json::from_str(self.text).map_err(|e| {
-            let at = offset_of(self.text, e.line(), e.column());
-            DbError { code: "E0800", message: format!("the database is not valid JSON: {e}"), span: Some((at, at)) }
-        })?;
-        let root = self.object(&root, "the database")?;
-        for key in root.keys() {
-            if !matches!(key.as_str(), "templates" | "blocks" | "aliases") {
-                return Err(self.err(
-                    "E0801",
-                    format!("unknown top-level key `{key}` (expected templates, blocks, aliases)"),
-                    key,
-                ));
+impl<'a> Loader<'a> {
+    fn new(db: &'a mut Database) -> Self {
+        Loader { db, declared: HashSet::new() }
+    }
+
+    fn load(&mut self, text: &str) -> Result<(), DbError> {
+        let root = tree::parse(text)?;
+        let members = object(&root, "the database")?;
+        only_keys(members, &["templates", "blocks", "aliases", "tasks"], "the database")?;
+        // Tasks first: blocks name them, wherever the key is in the file.
+        if let Some(m) = get(members, "tasks") {
+            self.tasks(&m.value)?;
+        }
+        if let Some(m) = get(members, "templates") {
+            for t in object(&m.value, "`templates`")? {
+                self.template(t)?;
             }
         }
-        if let Some(t) = root.get("templates") {
-            for (name, spec) in self.object(t, "`templates`")? {
-                self.template(name, spec)?;
+        if let Some(m) = get(members, "blocks") {
+            for b in object(&m.value, "`blocks`")? {
+                self.block(b)?;
             }
         }
-        if let Some(b) = root.get("blocks") {
-            for (name, spec) in self.object(b, "`blocks`")? {
-                self.block(name, spec)?;
+        if let Some(m) = get(members, "aliases") {
+            let aliases = object(&m.value, "`aliases`")?;
+            for a in aliases {
+                self.alias(a)?;
             }
-        }
-        if let Some(a) = root.get("aliases") {
-            for (name, target) in self.object(a, "`aliases`")? {
-                self.alias(name, target)?;
-            }
+            self.expand_aliases(aliases)?;
         }
         Ok(())
     }
 
-    fn err(&self, code: &'static str, message: String, near: &str) -> DbError {
-        DbError { code, message, span: locate(self.text, near) }
+    fn tasks(&mut self, node: &Node) -> Result<(), DbError> {
+        for m in object(node, "`tasks`")? {
+            let number = match m.key.as_str() {
+                "1" => 1,
+                "2" => 2,
+                "3" => 3,
+                "4" => 4,
+                _ => {
+                    let message = format!("`{}` is not a task number; LIN user tasks are \"1\" to \"4\"", m.key);
+                    return Err(DbError::at(code::TASK_NUMBER, message, m.key_span));
+                }
+            };
+            let what = format!("task {number}");
+            let spec = object(&m.value, &what)?;
+            only_keys(spec, &["period"], &what)?;
+            let p = get(spec, "period")
+                .ok_or_else(|| DbError::at(code::SHAPE, format!("{what} has no `period`"), m.key_span))?;
+            let period = match &p.value.v {
+                Json::Str(s) => time_constant(s),
+                Json::Num(x) => Ok(*x),
+                _ => Err(format!(
+                    "expected a time constant such as \"T#100ms\" or a number of seconds, not {}",
+                    p.value.kind()
+                )),
+            }
+            .and_then(check_period)
+            .map_err(|why| DbError::at(code::TASK_PERIOD, format!("period of {what}: {why}"), p.value.span))?;
+            self.db.put_task(Task { number, period });
+        }
+        Ok(())
     }
 
-    fn object<'v>(&self, v: &'v Value, what: &str) -> Result<&'v Map<String, Value>, DbError> {
-        v.as_object().ok_or_else(|| DbError {
-            code: "E0801",
-            message: format!("{what} must be a JSON object"),
-            span: None,
-        })
-    }
-
-    fn template(&mut self, name: &str, spec: &Value) -> Result<(), DbError> {
-        let spec = spec
-            .as_object()
-            .ok_or_else(|| self.err("E0801", format!("template `{name}` must be an object with `fields`"), name))?;
-        let doc = spec.get("doc").and_then(Value::as_str).unwrap_or_default().to_string();
+    fn template(&mut self, m: &Member) -> Result<(), DbError> {
+        let name = &m.key;
+        check_name("a template", name, m.key_span)?;
+        if !self.declared.insert(name.to_ascii_uppercase()) {
+            let message = format!("template `{name}` is declared twice in this file (names ignore case)");
+            return Err(DbError::at(code::TWICE, message, m.key_span));
+        }
+        let what = format!("template `{name}`");
+        let spec = object(&m.value, &what)?;
+        only_keys(spec, &["doc", "fields"], &what)?;
+        let doc =
+            match get(spec, "doc") {
+                None => String::new(),
+                Some(d) => d.value.as_str().map(str::to_string).ok_or_else(|| {
+                    DbError::at(code::SHAPE, format!("`doc` of {what} must be a string"), d.value.span)
+                })?,
+            };
         let mut fields = Vec::new();
-        if let Some(fs) = spec.get("fields") {
-            let fs = fs
-                .as_object()
-                .ok_or_else(|| self.err("E0801", format!("`fields` of template `{name}` must be an object"), name))?;
-            for (fname, fspec) in fs {
-                if fields.iter().any(|f: &FieldDef| f.name.eq_ignore_ascii_case(fname)) {
-                    return Err(self.err("E0806", format!("template `{name}` declares field `{fname}` twice"), fname));
+        if let Some(fs) = get(spec, "fields") {
+            let mut seen = HashSet::new();
+            for f in object(&fs.value, &format!("`fields` of {what}"))? {
+                check_name("a field", &f.key, f.key_span)?;
+                if !seen.insert(f.key.to_ascii_uppercase()) {
+                    let message = format!("template `{name}` declares field `{}` twice", f.key);
+                    return Err(DbError::at(code::TWICE, message, f.key_span));
                 }
-                let (ty, readonly) = self.field_spec(name, fname, fspec)?;
-                fields.push(FieldDef { name: fname.clone(), ty, readonly });
+                fields.push(field_spec(name, f)?);
             }
         }
-        self.db.put_template(Template::new(name.to_string(), doc, fields));
+        self.db.put_template(Template::new(name.clone(), doc, fields));
         Ok(())
     }
 
-    fn field_spec(&self, tname: &str, fname: &str, spec: &Value) -> Result<(FieldType, bool), DbError> {
-        let bad = || {
-            self.err(
-                "E0802",
-                format!("field `{tname}.{fname}` has an unknown type (expected REAL, INT, BOOL, BITS8, BITS16, STRING, DATE, TIME, BSEQ, WSTR, {{\"ENUM\": [...]}}, {{\"ALARMS\": [...]}} or {{\"type\": ..., \"readonly\": true}})"),
-                fname,
-            )
-        };
-        match spec {
-            Value::String(s) => {
-                let ty = match s.to_ascii_uppercase().as_str() {
-                    "REAL" => FieldType::Real,
-                    "INT" => FieldType::Int,
-                    "BOOL" => FieldType::Bool,
-                    "BITS8" => FieldType::Bits { width: 8, names: vec![] },
-                    "BITS16" => FieldType::Bits { width: 16, names: vec![] },
-                    "STRING" => FieldType::String,
-                    "DATE" => FieldType::Date,
-                    "TIME" => FieldType::Time,
-                    "BSEQ" => FieldType::Bseq,
-                    "WSTR" => FieldType::Wstr,
-                    _ => return Err(bad()),
-                };
-                Ok((ty, false))
-            }
-            Value::Object(m) if m.contains_key("type") => {
-                let (ty, _) = self.field_spec(tname, fname, &m["type"])?;
-                let readonly = m.get("readonly").and_then(Value::as_bool).unwrap_or(false);
-                Ok((ty, readonly))
-            }
-            Value::Object(m) if m.len() == 1 => {
-                let (kind, list) = m.iter().next().ok_or_else(bad)?;
-                let names: Vec<String> = list
-                    .as_array()
-                    .ok_or_else(bad)?
-                    .iter()
-                    .map(|v| v.as_str().map(str::to_string).ok_or_else(bad))
-                    .collect::<Result<_, _>>()?;
-                let ty = match kind.to_ascii_uppercase().as_str() {
-                    "ENUM" if !names.is_empty() => FieldType::Enum(names),
-                    "ALARMS" => FieldType::Alarms(names),
-                    "BITS8" if names.len() <= 8 => FieldType::Bits { width: 8, names },
-                    "BITS16" if names.len() <= 16 => FieldType::Bits { width: 16, names },
-                    _ => return Err(bad()),
-                };
-                Ok((ty, false))
-            }
-            _ => Err(bad()),
-        }
-    }
-
-    fn block(&mut self, name: &str, spec: &Value) -> Result<(), DbError> {
-        let spec = spec
-            .as_object()
-            .ok_or_else(|| self.err("E0801", format!("block `{name}` must be an object with `type`"), name))?;
-        let tname = spec
-            .get("type")
-            .and_then(Value::as_str)
-            .ok_or_else(|| self.err("E0801", format!("block `{name}` has no `type`"), name))?;
-        let template = self
-            .db
-            .template(tname)
-            .ok_or_else(|| self.err("E0803", format!("block `{name}` has unknown type `{tname}`"), tname))?;
-        let mut values = Vec::new();
-        if let Some(vs) = spec.get("values") {
-            let vs = vs
-                .as_object()
-                .ok_or_else(|| self.err("E0801", format!("`values` of block `{name}` must be an object"), name))?;
-            for (fname, v) in vs {
-                let t = &self.db.templates[template];
-                let fi = t.field(fname).ok_or_else(|| {
-                    self.err("E0804", format!("block `{name}` of type `{}` has no field `{fname}`", t.name), fname)
-                })?;
-                let value = init_value(&t.fields[fi].ty, v)
-                    .map_err(|why| self.err("E0804", format!("initial value of `{name}.{fname}`: {why}"), fname))?;
-                values.push((fi, value));
-            }
-        }
-        if !self.db.add_block(Block { name: name.to_string(), template, values }) {
-            return Err(self.err("E0806", format!("block `{name}` is declared twice (names ignore case)"), name));
-        }
-        Ok(())
-    }
-
-    fn alias(&mut self, name: &str, target: &Value) -> Result<(), DbError> {
-        let t = target.as_str().filter(|t| !t.is_empty() && t.split('.').all(|s| !s.is_empty())).ok_or_else(|| {
-            self.err("E0805", format!("alias `{name}` must name a reference like \"BLOCK.FIELD\""), name)
+    fn block(&mut self, m: &Member) -> Result<(), DbError> {
+        let name = &m.key;
+        check_name("a block", name, m.key_span)?;
+        let what = format!("block `{name}`");
+        let spec = object(&m.value, &what)?;
+        only_keys(spec, &["type", "values", "task"], &what)?;
+        let ty =
+            get(spec, "type").ok_or_else(|| DbError::at(code::SHAPE, format!("{what} has no `type`"), m.key_span))?;
+        let tname = ty.value.as_str().ok_or_else(|| {
+            DbError::at(code::SHAPE, format!("`type` of {what} must be a template name"), ty.value.span)
         })?;
-        let alias = Alias { name: name.to_string(), target: t.split('.').map(str::to_string).collect() };
-        if !self.db.add_alias(alias) {
-            return Err(self.err("E0806", format!("alias `{name}` is declared twice (names ignore case)"), name));
+        let template = self.db.template(tname).ok_or_else(|| {
+            DbError::at(code::UNKNOWN_TEMPLATE, format!("block `{name}` has unknown type `{tname}`"), ty.value.span)
+        })?;
+        let task = match get(spec, "task") {
+            Some(t) => self.task_of(name, &t.value)?,
+            None => Task::DEFAULT.number,
+        };
+        let values = match get(spec, "values") {
+            Some(vs) => init_values(name, &self.db.templates[template], &vs.value)?,
+            None => Vec::new(),
+        };
+        if !self.db.add_block(Block { name: name.clone(), template, values, task }) {
+            let message = format!("block `{name}` is declared twice (names ignore case)");
+            return Err(DbError::at(code::TWICE, message, m.key_span));
         }
         Ok(())
     }
-}
 
-/// Checks an initial value against its field type.
-fn init_value(ty: &FieldType, v: &Value) -> Result<InitValue, String> {
-    match (ty, v) {
-        (FieldType::Real | FieldType::Int | FieldType::Bits { .. }, Value::Number(n)) => {
-            let x = n.as_f64().ok_or("not a representable number")?;
-            Ok(InitValue::Num(x))
-        }
-        (FieldType::Bool, Value::Bool(b)) => Ok(InitValue::Bool(*b)),
-        (FieldType::Bool, Value::Number(n)) => Ok(InitValue::Bool(n.as_f64().unwrap_or(0.0) != 0.0)),
-        (FieldType::Enum(names), Value::String(s)) => {
-            if names.iter().any(|n| n.eq_ignore_ascii_case(s)) {
-                Ok(InitValue::Text(s.clone()))
-            } else {
-                Err(format!("`{s}` is not one of {}", names.join(", ")))
+    /// A block's `"task": N`, which must be a task the database defines.
+    fn task_of(&self, block: &str, node: &Node) -> Result<u8, DbError> {
+        let number = match node.v {
+            Json::Num(x) if [1.0, 2.0, 3.0, 4.0].contains(&x) => x as u8,
+            _ => {
+                let message = format!("`task` of block `{block}` must be a LIN user task number 1 to 4");
+                return Err(DbError::at(code::TASK_NUMBER, message, node.span));
             }
+        };
+        if self.db.task(number).is_none() {
+            let message = format!(
+                "block `{block}` runs in task {number}, which `tasks` does not define (only task 1 is implicit)"
+            );
+            return Err(DbError::at(code::UNDEFINED_TASK, message, node.span));
         }
-        (
-            FieldType::String | FieldType::Date | FieldType::Time | FieldType::Bseq | FieldType::Wstr,
-            Value::String(s),
-        ) => Ok(InitValue::Text(s.clone())),
-        (FieldType::Alarms(names), Value::Object(m)) => {
-            let mut active = Vec::new();
-            for (k, v) in m {
-                if !names.iter().any(|n| n.eq_ignore_ascii_case(k)) {
-                    return Err(format!("`{k}` is not one of the alarms {}", names.join(", ")));
-                }
-                if v.as_bool().ok_or("alarm states are true or false")? {
-                    active.push(k.clone());
-                }
-            }
-            Ok(InitValue::Active(active))
-        }
-        (ty, _) => Err(format!("expected a value for a {} field", ty.keyword())),
+        Ok(number)
     }
-}
 
-/// Byte offset of a 1-based line and column.
-fn offset_of(text: &str, line: usize, column: usize) -> usize {
-    let start: usize = text.split_inclusive('\n').take(line.saturating_sub(1)).map(str::len).sum();
-    (start + column.saturating_sub(1)).min(text.len())
-}
+    fn alias(&mut self, m: &Member) -> Result<(), DbError> {
+        let name = &m.key;
+        check_name("an alias", name, m.key_span)?;
+        let t = m.value.as_str().filter(|t| t.split('.').all(|s| !s.is_empty())).ok_or_else(|| {
+            let message = format!("alias `{name}` must name a reference like \"BLOCK.FIELD\"");
+            DbError::at(code::ALIAS_TARGET, message, m.value.span)
+        })?;
+        if let Some(b) = self.db.block(name) {
+            let message =
+                format!("alias `{name}` has the same name as block `{}` (names ignore case)", self.db.blocks[b].name);
+            return Err(DbError::at(code::TWICE, message, m.key_span));
+        }
+        let alias = Alias { name: name.clone(), target: t.split('.').map(str::to_string).collect() };
+        if !self.db.add_alias(alias) {
+            let message = format!("alias `{name}` is declared twice (names ignore case)");
+            return Err(DbError::at(code::TWICE, message, m.key_span));
+        }
+        Ok(())
+    }
 
-/// Finds the first occurrence of a quoted key, to point an error at it.
-fn locate(text: &str, key: &str) -> Option<(usize, usize)> {
-    let quoted = format!("\"{key}\"");
-    text.find(&quoted).map(|at| (at, at + quoted.len()))
+    /// Replaces each alias whose target starts with another alias by the
+    /// full path, so users of [`Database::alias`] see the final target. A
+    /// chain that comes back to itself is E0816. `members` are the file's
+    /// aliases, the last `members.len()` of `db.aliases`.
+    fn expand_aliases(&mut self, members: &[Member]) -> Result<(), DbError> {
+        #[derive(Clone, Copy, PartialEq)]
+        enum State {
+            Todo,
+            Walking,
+            Done,
+        }
+        let base = self.db.aliases.len() - members.len();
+        let next_of: Vec<Option<usize>> =
+            self.db.aliases.iter().map(|a| self.db.alias_position(&a.target[0])).collect();
+        let aliases = &mut self.db.aliases;
+        let mut state: Vec<State> =
+            (0..aliases.len()).map(|i| if i < base { State::Done } else { State::Todo }).collect();
+        let mut budget = MAX_EXPANDED;
+        for start in base..aliases.len() {
+            // Follow the chain of first parts until a non-alias or an
+            // alias already expanded; then expand the chain backwards.
+            let mut chain = Vec::new();
+            let mut i = start;
+            while state[i] == State::Todo {
+                state[i] = State::Walking;
+                chain.push(i);
+                match next_of[i] {
+                    Some(next) if state[next] == State::Walking => {
+                        let from = chain.iter().position(|&c| c == next).unwrap_or(0);
+                        let names: Vec<&str> = chain[from..].iter().map(|&c| aliases[c].name.as_str()).collect();
+                        let message = format!("aliases form a cycle: {} -> {}", names.join(" -> "), aliases[next].name);
+                        return Err(DbError::at(code::ALIAS_CYCLE, message, members[i - base].value.span));
+                    }
+                    Some(next) => i = next,
+                    None => {
+                        state[i] = State::Done;
+                        chain.pop();
+                    }
+                }
+            }
+            while let Some(k) = chain.pop() {
+                let Some(next) = next_of[k] else { continue };
+                let expanded: Vec<String> =
+                    aliases[next].target.iter().chain(&aliases[k].target[1..]).cloned().collect();
+                let size: usize = expanded.iter().map(|p| p.len() + 1).sum();
+                budget = budget.checked_sub(size).ok_or_else(|| {
+                    let message = format!(
+                        "alias `{}` expands to more text than all aliases together may ({MAX_EXPANDED} bytes)",
+                        aliases[k].name
+                    );
+                    DbError::at(code::ALIAS_TOO_BIG, message, members[k - base].value.span)
+                })?;
+                aliases[k].target = expanded;
+                state[k] = State::Done;
+            }
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::db::FieldType;
 
     #[test]
     fn builtin_library_loads() {
         let mut db = Database::default();
-        let r = Loader { text: BUILTIN, db: &mut db }.load();
+        let r = Loader::new(&mut db).load(BUILTIN);
         assert_eq!(r, Ok(()));
         for t in ["ACTION", "DIGACT", "SFC_CON", "RAW_COM", "PID", "AN_CONN", "DG_CONN"] {
             assert!(db.template(t).is_some(), "{t}");
         }
+        assert_eq!(db.tasks, [Task { number: 1, period: 0.1 }]);
     }
 
     #[test]

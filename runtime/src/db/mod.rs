@@ -5,8 +5,12 @@
 //! and a file may add templates or override built-in ones by name. Names are
 //! case-insensitive everywhere, as in LIN.
 
+mod fields;
 mod json;
+mod period;
 mod schema;
+mod tree;
 
 pub use json::DbError;
-pub use schema::{Alias, Block, Database, FieldDef, FieldType, InitValue, Template};
+pub use period::{time_constant, MAX_PERIOD, MIN_PERIOD};
+pub use schema::{Alias, Block, Database, FieldDef, FieldType, InitValue, Task, Template};

@@ -117,25 +117,60 @@ pub struct Block {
     pub name: String,
     pub template: usize,
     pub values: Vec<(usize, InitValue)>,
+    /// The user task (1–4) the block runs in; 1 unless the file says otherwise.
+    pub task: u8,
+}
+
+/// A LIN user task: blocks assigned to it run once every `period`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Task {
+    /// 1 to 4.
+    pub number: u8,
+    /// Seconds, from 1 ms to 1 day.
+    pub period: f64,
+}
+
+impl Task {
+    /// Task 1 at 100 ms: the task every block runs in unless told otherwise.
+    pub const DEFAULT: Task = Task { number: 1, period: 0.1 };
 }
 
 /// A tag-name alias for a database reference such as `REC1.A0`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Alias {
     pub name: String,
-    /// The path the alias stands for, split at dots.
+    /// The path the alias stands for, split at dots. An alias written in
+    /// terms of another alias is stored expanded, so the first part is
+    /// never an alias.
     pub target: Vec<String>,
 }
 
-/// Templates, blocks and aliases, with case-insensitive lookup.
-#[derive(Clone, Debug, Default)]
+/// Templates, blocks, aliases and tasks, with case-insensitive lookup.
+#[derive(Clone, Debug)]
 pub struct Database {
     pub templates: Vec<Template>,
     pub blocks: Vec<Block>,
     pub aliases: Vec<Alias>,
+    /// Sorted by number; always holds task 1 and every task a block uses.
+    pub tasks: Vec<Task>,
     template_index: HashMap<String, usize>,
     block_index: HashMap<String, usize>,
     alias_index: HashMap<String, usize>,
+}
+
+/// An empty database still has task 1, so every block has a task to run in.
+impl Default for Database {
+    fn default() -> Self {
+        Database {
+            templates: Vec::new(),
+            blocks: Vec::new(),
+            aliases: Vec::new(),
+            tasks: vec![Task::DEFAULT],
+            template_index: HashMap::new(),
+            block_index: HashMap::new(),
+            alias_index: HashMap::new(),
+        }
+    }
 }
 
 impl Database {
@@ -183,7 +218,25 @@ impl Database {
     }
 
     pub fn alias(&self, name: &str) -> Option<&Alias> {
-        self.alias_index.get(&name.to_ascii_uppercase()).map(|&i| &self.aliases[i])
+        self.alias_position(name).map(|i| &self.aliases[i])
+    }
+
+    /// Index of an alias in `aliases`.
+    pub(crate) fn alias_position(&self, name: &str) -> Option<usize> {
+        self.alias_index.get(&name.to_ascii_uppercase()).copied()
+    }
+
+    /// A user task by number.
+    pub fn task(&self, number: u8) -> Option<&Task> {
+        self.tasks.iter().find(|t| t.number == number)
+    }
+
+    /// Defines a task, replacing one of the same number, keeping `tasks` sorted.
+    pub fn put_task(&mut self, task: Task) {
+        match self.tasks.binary_search_by_key(&task.number, |t| t.number) {
+            Ok(i) => self.tasks[i] = task,
+            Err(i) => self.tasks.insert(i, task),
+        }
     }
 
     /// The template of a block.
