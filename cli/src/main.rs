@@ -10,6 +10,8 @@ mod eval_cmd;
 mod explain_cmd;
 mod files;
 mod run_cmd;
+mod runtime_report;
+mod strategy_cmd;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -70,11 +72,16 @@ enum Command {
         message_format: MessageFormat,
     },
     /// Run an action (source or .sto) against a database, once per cycle.
+    /// Run a strategy (PLANT.json --for DURATION) or one action (FILE --db DB.json).
     Run {
-        /// An action file (.st/.stx, compiled first) or an object file (.sto).
+        /// A strategy's database (.json), or an action file (.st/.stx, compiled first) or object file (.sto).
         file: PathBuf,
+        /// The database to run one action against (not with a strategy).
         #[arg(long)]
-        db: PathBuf,
+        db: Option<PathBuf>,
+        /// Run the strategy for this much simulated time: 10m, 1h30m, T#2.5s.
+        #[arg(long = "for", value_name = "DURATION")]
+        duration: Option<String>,
         /// The action to run (default: the first in the file).
         #[arg(long)]
         action: Option<String>,
@@ -92,9 +99,9 @@ enum Command {
         /// Print BLOCK.FIELD = VALUE after the run (repeatable).
         #[arg(long)]
         show: Vec<String>,
-        /// Print every field write as it happens.
-        #[arg(long)]
-        trace: bool,
+        /// Trace field writes: to FILE as JSON lines for a strategy, or printed as they happen.
+        #[arg(long, value_name = "FILE", num_args = 0..=1, default_missing_value = "-")]
+        trace: Option<PathBuf>,
         /// Write the database, with its values after the run, here (atomically).
         #[arg(long)]
         out: Option<PathBuf>,
@@ -107,6 +114,8 @@ enum Command {
         /// Instruction budget of one run before the watchdog stops it.
         #[arg(long, default_value_t = linc_runtime::vm::DEFAULT_WATCHDOG)]
         watchdog: u64,
+        #[arg(long, value_enum, default_value = "human")]
+        message_format: MessageFormat,
     },
     /// Evaluate one ST expression and print its value.
     Eval {
@@ -146,8 +155,36 @@ fn main() -> ExitCode {
         Command::Compile { files, out, db, message_format } => {
             compile_cmd::run(&files, &out, db.as_deref(), format(message_format))
         }
-        Command::Run { file, db, action, block, cycles, period, set, show, trace, out, now, seed, watchdog } => {
-            run_cmd::run(&run_cmd::Options {
+        Command::Run {
+            file,
+            db,
+            duration,
+            action,
+            block,
+            cycles,
+            period,
+            set,
+            show,
+            trace,
+            out,
+            now,
+            seed,
+            watchdog,
+            message_format,
+        } => match (db, duration) {
+            (None, Some(duration)) => strategy_cmd::run(&strategy_cmd::Options {
+                db: file,
+                duration,
+                set,
+                show,
+                trace,
+                out,
+                now,
+                seed,
+                watchdog,
+                format: format(message_format),
+            }),
+            (Some(db), None) => run_cmd::run(&run_cmd::Options {
                 file,
                 db,
                 action,
@@ -156,13 +193,21 @@ fn main() -> ExitCode {
                 period,
                 set,
                 show,
-                trace,
+                trace: trace.is_some(),
                 out,
                 now,
                 seed,
                 watchdog,
-            })
-        }
+            }),
+            (Some(_), Some(_)) => {
+                eprintln!("error: --for runs a strategy, which is its own database: give PLANT.json without --db");
+                2
+            }
+            (None, None) => {
+                eprintln!("error: give --for DURATION to run a strategy, or --db DB.json to run one action");
+                2
+            }
+        },
         Command::Eval { expr, db, now, seed } => eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed),
         Command::Disasm { file } => disasm_cmd::run(&file),
         Command::Check { files, db, message_format, tree, transition, sequence } => {

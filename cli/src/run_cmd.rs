@@ -66,7 +66,7 @@ pub fn address(store: &Store, path: &str) -> Result<Addr, String> {
     Ok(Addr { cell, bit })
 }
 
-fn show(store: &Store, a: Addr) -> String {
+pub fn show_value(store: &Store, a: Addr) -> String {
     match (a.bit, store.cells.get(a.cell as usize)) {
         (Some(b), Some(Cell::Bits { v, .. })) => if (v >> b) & 1 == 1 { "TRUE" } else { "FALSE" }.to_string(),
         _ => store.show(a.cell),
@@ -213,7 +213,7 @@ pub fn run(o: &Options) -> u8 {
         store.now += o.period;
     }
     for (path, a) in &shows {
-        println!("{path} = {}", show(&store, *a));
+        println!("{path} = {}", show_value(&store, *a));
     }
     if let Some(out) = &o.out {
         if let Err(msg) = write_db(out, &db_text, &store) {
@@ -254,7 +254,7 @@ fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result<Opt
 }
 
 /// Writes the database with the store's values, in the input's JSON shape.
-fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<(), String> {
+pub fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<(), String> {
     let mut root: serde_json::Value = serde_json::from_str(original).map_err(|e| e.to_string())?;
     let values = store.values_json();
     if let Some(blocks) = root.get_mut("blocks").and_then(|b| b.as_object_mut()) {

@@ -13,6 +13,7 @@ pub mod isa;
 pub mod link;
 pub mod object;
 pub mod store;
+pub mod strategy;
 pub mod text;
 pub mod verify;
 pub mod vm;

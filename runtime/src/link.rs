@@ -80,12 +80,18 @@ impl Verified {
     /// Links `programs` to `store`. The store's layout must not change
     /// afterwards (it does not: blocks are fixed when it is made).
     pub fn link(self, store: &Store, programs: &[Program]) -> Result<Linked, LoadError> {
+        self.link_each(store, programs).map_err(|(_, e)| e)
+    }
+
+    /// As [`Verified::link`], naming the program that failed to link.
+    pub fn link_each(self, store: &Store, programs: &[Program]) -> Result<Linked, (usize, LoadError)> {
         let mut linked = Vec::with_capacity(programs.len());
-        for &p in programs {
-            let unit = self.object().units.get(p.unit).ok_or_else(|| LoadError::Malformed {
-                what: format!("no unit {} (the object has {})", p.unit, self.object().units.len()),
+        for (i, &p) in programs.iter().enumerate() {
+            let unit = self.object().units.get(p.unit).ok_or_else(|| {
+                let what = format!("no unit {} (the object has {})", p.unit, self.object().units.len());
+                (i, LoadError::Malformed { what })
             })?;
-            linked.push(link_program(&self, unit, p, store)?);
+            linked.push(link_program(&self, unit, p, store).map_err(|e| (i, e))?);
         }
         Ok(Linked { verified: self, programs: linked })
     }

@@ -42,7 +42,7 @@ pub enum Outcome {
 /// One running instance of a program: where it resumes and the state that
 /// survives from one run to the next. The caller owns it (a strategy keeps
 /// one per block), so the VM itself holds no program state.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Activation {
     pub program: usize,
     pub block: usize,

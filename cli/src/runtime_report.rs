@@ -1,0 +1,27 @@
+//! Runtime errors through the one renderer: a `RuntimeError` knows its file,
+//! line and column, so it becomes a `Diagnostic` located in that file and
+//! prints in `human`, `short` or `json` like any front-end error.
+
+use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::{Diagnostic, Span};
+use linc_runtime::RuntimeError;
+
+/// Byte offset of a 1-based line and column in `text` (clamped).
+fn offset(text: &str, line: u32, col: u32) -> usize {
+    let start: usize = text.split_inclusive('\n').take((line as usize).saturating_sub(1)).map(str::len).sum();
+    (start + (col as usize).saturating_sub(1)).min(text.len())
+}
+
+/// Renders a runtime error. When its source can't be read (an object run
+/// without its source), the file is stood in for by empty lines so that
+/// line and column still print right.
+pub fn render(e: &RuntimeError, format: Format) -> String {
+    let text = std::fs::read_to_string(&e.file)
+        .unwrap_or_else(|_| "\n".repeat((e.line as usize).saturating_sub(1)) + &" ".repeat(e.col as usize));
+    let at = offset(&text, e.line, e.col);
+    let mut files = SourceFiles::new();
+    let id = files.add(e.file.clone(), text);
+    let message = if e.action.is_empty() { e.message.clone() } else { format!("in `{}`: {}", e.action, e.message) };
+    let d = Diagnostic::error(e.code, message, Span::new(at, at)).label("the program stopped here");
+    render::render(&files, id, &d, format)
+}

@@ -1,0 +1,156 @@
+//! `linc run PLANT.json --for DURATION`: run a whole strategy. The CLI
+//! reads, compiles and prints; the runtime's strategy engine runs.
+
+use crate::build::{compile, Failed};
+use crate::check_cmd::load_db;
+use crate::run_cmd::{address, set, show_value, start_time, write_db, Addr};
+use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::{Diagnostic, Span};
+use linc_runtime::strategy::{self, trace::Trace, Strategy, StrategyError, Want};
+use linc_runtime::vm::{Clock, Vm};
+use linc_runtime::{Database, Store, Verified};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+pub struct Options {
+    pub db: PathBuf,
+    pub duration: String,
+    pub set: Vec<String>,
+    pub show: Vec<String>,
+    pub trace: Option<PathBuf>,
+    pub out: Option<PathBuf>,
+    pub now: Option<String>,
+    pub seed: Option<u64>,
+    pub watchdog: u64,
+    pub format: Format,
+}
+
+/// A duration as an ST time constant, with or without `T#` (`10m`, `T#1h30m`).
+pub fn duration(text: &str) -> Result<u64, String> {
+    let t = text.trim();
+    let with_prefix = if t.len() > 2 && t[..2].eq_ignore_ascii_case("t#") { t.to_string() } else { format!("T#{t}") };
+    let secs = linc_runtime::db::time_constant(&with_prefix)
+        .map_err(|why| format!("--for `{text}` is not a duration like 10m, 1h30m or T#2.5s: {why}"))?;
+    if !secs.is_finite() || secs <= 0.0 || secs > 366.0 * 86_400.0 {
+        return Err(format!("--for `{text}`: the duration must be more than 0 and at most 366 days"));
+    }
+    Ok(strategy::micros(secs))
+}
+
+fn usage(msg: impl std::fmt::Display) -> u8 {
+    eprintln!("error: {msg}");
+    2
+}
+
+/// A strategy error, located at the block's key in the database text.
+fn report(files: &SourceFiles, db_id: usize, db_text: &str, e: &StrategyError, format: Format) {
+    let quoted = format!("\"{}\"", e.block);
+    let span = db_text.find(&quoted).map(|at| Span::new(at, at + quoted.len())).unwrap_or_default();
+    let d = Diagnostic::error(e.code, e.message.clone(), span).label("this block");
+    print!("{}", render::render(files, db_id, &d, format));
+}
+
+/// Compiles or loads each action file the strategy names, once each.
+/// The verified objects, and each wanted action with the index of its object.
+type Plan = (Vec<Verified>, Vec<(Want, usize)>);
+
+fn objects(o: &Options, db: &Database, wants: &[Want]) -> Result<Plan, u8> {
+    let dir = o.db.parent().map(Path::to_path_buf).unwrap_or_default();
+    let mut index: HashMap<String, usize> = HashMap::new();
+    let mut objects = Vec::new();
+    let mut pairs = Vec::with_capacity(wants.len());
+    for w in wants {
+        let i = match index.get(&w.file) {
+            Some(&i) => i,
+            None => {
+                let path = dir.join(&w.file);
+                objects.push(object(&path, db, o.format)?);
+                index.insert(w.file.clone(), objects.len() - 1);
+                objects.len() - 1
+            }
+        };
+        pairs.push((w.clone(), i));
+    }
+    Ok((objects, pairs))
+}
+
+fn object(path: &Path, db: &Database, format: Format) -> Result<Verified, u8> {
+    let is_object = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"));
+    if is_object {
+        let bytes =
+            std::fs::read(path).map_err(|e| usage(format_args!("[E0900] can't read `{}`: {e}", path.display())))?;
+        return linc_runtime::load(&bytes).map_err(|e| usage(format_args!("[{}] {}: {e}", e.code(), path.display())));
+    }
+    let obj = compile(&[path.to_path_buf()], Some(db), format, 2).map_err(|Failed(s)| s)?;
+    linc_runtime::verify::verify(obj).map_err(|e| usage(format_args!("[{}] {e}", e.code())))
+}
+
+pub fn run(o: &Options) -> u8 {
+    let duration = match duration(&o.duration) {
+        Ok(d) => d,
+        Err(msg) => return usage(msg),
+    };
+    let now = match start_time(o.now.as_deref()) {
+        Ok(s) => s,
+        Err(msg) => return usage(msg),
+    };
+    let mut files = SourceFiles::new();
+    let db = match load_db(Some(&o.db), &mut files, o.format) {
+        Ok(Some(db)) => db,
+        Ok(None) => return 2,
+        Err(status) => return status,
+    };
+    let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
+    let mut store = Store::new(db.clone());
+    for s in &o.set {
+        if let Err(msg) = set(&mut store, s) {
+            return usage(format_args!("--set {s}: {msg}"));
+        }
+    }
+    let shows: Vec<(String, Addr)> = match o.show.iter().map(|p| address(&store, p).map(|a| (p.clone(), a))).collect() {
+        Ok(v) => v,
+        Err(msg) => return usage(format_args!("--show: {msg}")),
+    };
+    let wants = strategy::wanted(&store);
+    let (objects, pairs) = match objects(o, &db, &wants) {
+        Ok(x) => x,
+        Err(status) => return status,
+    };
+    let seed = o.seed.unwrap_or(now as u64);
+    let vm = Vm::new(o.watchdog, Clock::new(seed, 0));
+    let mut s = match Strategy::build(store, objects, &pairs, vm, now as f64) {
+        Ok(s) => s,
+        Err(e) => {
+            report(&files, 0, &db_text, &e, o.format);
+            return 2;
+        }
+    };
+    let mut trace_bytes = Vec::new();
+    let mut trace = o.trace.as_ref().map(|_| Trace::new(&mut trace_bytes, &s.store));
+    let failures = s.run_for(duration, trace.as_mut());
+    if let Some(t) = trace {
+        let _ = t.finish();
+    }
+    for e in &failures {
+        print!("{}", crate::runtime_report::render(e, o.format));
+    }
+    for (path, a) in &shows {
+        println!("{path} = {}", show_value(&s.store, *a));
+    }
+    if let Some(path) = o.trace.as_ref().filter(|p| p.as_os_str() == "-") {
+        let _ = path;
+        print!("{}", String::from_utf8_lossy(&trace_bytes));
+    } else if let Some(path) = &o.trace {
+        if let Err(e) = crate::files::write_atomic(path, &trace_bytes) {
+            eprintln!("error[E0900]: can't write `{}`: {e}", path.display());
+            return 2;
+        }
+    }
+    if let Some(out) = &o.out {
+        if let Err(msg) = write_db(out, &db_text, &s.store) {
+            eprintln!("error[E0900]: can't write `{}`: {msg}", out.display());
+            return 2;
+        }
+    }
+    u8::from(!failures.is_empty())
+}
