@@ -134,7 +134,8 @@ fn values_at_the_edges_are_kept_exactly() {
     let c = cells(r#"{ "blocks": { "D": { "type": "DIGIN", "values": { "Out": 255 } } } }"#);
     assert_eq!(c[1], Cell::Bits { v: 255, width: 8 });
     let c = cells(r#"{ "blocks": { "D": { "type": "DIGACT", "values": { "In": -32768, "Out": 65535 } } } }"#);
-    assert_eq!(c[5..7], [Cell::Bits { v: 0x8000, width: 16 }, Cell::Bits { v: 0xFFFF, width: 16 }]);
+    // DIGACT: Mode, Alarms, FileName, ActName, Trigger, Qualifier, QualTime, Active, Status, In, Out.
+    assert_eq!(c[9..11], [Cell::Bits { v: 0x8000, width: 16 }, Cell::Bits { v: 0xFFFF, width: 16 }]);
 }
 
 #[test]
