@@ -8,7 +8,7 @@ use std::fmt::Write;
 use std::path::Path;
 
 pub fn run(path: &Path) -> u8 {
-    let bytes = match std::fs::read(path) {
+    let bytes = match crate::files::read_input(path) {
         Ok(b) => b,
         Err(e) => {
             eprintln!("error[E0900]: can't read `{}`: {e}", path.display());
@@ -43,8 +43,11 @@ pub fn listing(obj: &ObjectFile) -> String {
         }
     }
     for a in &obj.actions {
-        let source: Vec<String> =
-            std::fs::read_to_string(&a.file).map(|t| t.lines().map(str::to_string).collect()).unwrap_or_default();
+        // The object names its source; it is read under the input rules, so
+        // a name that is now a FIFO or a device can't hang the listing.
+        let source: Vec<String> = crate::files::read_input_text(std::path::Path::new(&a.file))
+            .map(|t| t.lines().map(str::to_string).collect())
+            .unwrap_or_default();
         let kind = if a.block_type.is_empty() { String::new() } else { format!(" : {}", a.block_type) };
         let _ = writeln!(
             out,

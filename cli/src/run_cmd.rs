@@ -141,8 +141,8 @@ fn object(o: &Options, db: &Database) -> Result<ObjectFile, u8> {
     if !is_object {
         return compile(std::slice::from_ref(&o.file), Some(db), Format::Human, 2).map_err(|Failed(s)| s);
     }
-    let bytes =
-        std::fs::read(&o.file).map_err(|e| usage(format_args!("[E0900] can't read `{}`: {e}", o.file.display())))?;
+    let bytes = crate::files::read_input(&o.file)
+        .map_err(|e| usage(format_args!("[E0900] can't read `{}`: {e}", o.file.display())))?;
     linc_runtime::load(&bytes).map_err(|e| usage(format_args!("[{}] {}: {e}", e.code(), o.file.display())))
 }
 
