@@ -1,9 +1,10 @@
 //! Every file `linc` reads or writes goes through here, so that one set of
 //! rules protects them all: inputs are regular files of bounded size (a
 //! device or a FIFO given by mistake must not hang the command or exhaust
-//! memory), and outputs are written so that an interrupted run never
-//! leaves a torn one.
+//! memory), and outputs replace a regular file atomically or not at all
+//! (never a link, a device, a FIFO or one of the inputs).
 
+use std::fmt;
 use std::fs::{self, Metadata};
 use std::io::{self, Read, Write};
 use std::path::Path;
@@ -89,22 +90,124 @@ fn read_limited(path: &Path, limit: u64) -> io::Result<Vec<u8>> {
     Ok(bytes)
 }
 
-/// Writes `bytes` to a temporary file beside `path`, then renames it over
-/// `path` (atomic on one file system).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+/// An output file `linc` will not write, or could not write: printed as
+/// `error[CODE]: message`, exit status 2.
+#[derive(Debug)]
+pub struct Refused {
+    pub code: &'static str,
+    pub message: String,
+}
+
+impl fmt::Display for Refused {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "error[{}]: {}", self.code, self.message)
+    }
+}
+
+fn cant_write(path: &Path, e: impl fmt::Display) -> Refused {
+    Refused { code: "E0900", message: format!("can't write `{}`: {e}", path.display()) }
+}
+
+/// The existing file at `path` (not following a symlink), if any; E0901 if
+/// it is not a regular file. Replacing a symlink, device or FIFO would
+/// destroy something that is not ours.
+fn existing_output(path: &Path) -> Result<Option<Metadata>, Refused> {
+    match fs::symlink_metadata(path) {
+        Ok(meta) => match kind(&meta) {
+            None => Ok(Some(meta)),
+            Some(what) => Err(Refused {
+                code: "E0901",
+                message: format!("won't write `{}`: it is {what}, not a regular file", path.display()),
+            }),
+        },
+        Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(None),
+        Err(e) => Err(cant_write(path, e)),
+    }
+}
+
+/// Whether two metadata describe the same file (hard links included).
+fn same_file(a: &Metadata, b: &Metadata) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        a.dev() == b.dev() && a.ino() == b.ino()
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (a, b);
+        false
+    }
+}
+
+/// Checks, before any work is done, that `out` may be written: E0901 if it
+/// exists and is not a regular file, E0902 if it is one of `inputs` under
+/// any spelling, hard link or symlink (writing it would destroy the input).
+pub fn check_output(out: &Path, inputs: &[&Path]) -> Result<(), Refused> {
+    let Ok(target) = fs::metadata(out) else {
+        // Nothing there (or a dangling link): no input can be overwritten.
+        return existing_output(out).map(|_| ());
+    };
+    let canonical = fs::canonicalize(out).ok();
+    for input in inputs {
+        let same = fs::metadata(input).is_ok_and(|m| same_file(&m, &target))
+            || (canonical.is_some() && fs::canonicalize(input).ok() == canonical);
+        if same {
+            return Err(Refused {
+                code: "E0902",
+                message: format!("won't write `{}`: it is the input `{}`", out.display(), input.display()),
+            });
+        }
+    }
+    existing_output(out).map(|_| ())
+}
+
+/// Writes `bytes` to `path` atomically: into a new temporary file beside it
+/// (created exclusively, with an unpredictable name, so a link planted in
+/// the directory can't redirect the write), then renamed over `path`. An
+/// existing `path` must be a regular file (E0901) and keeps its permission
+/// bits (and, where allowed, its owner and group); a new one gets 0666 less
+/// the umask, like any created file. On failure `path` is untouched and the
+/// temporary file removed.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Refused> {
+    let existing = existing_output(path)?;
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("out");
-    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
+    let prefix = format!(".{name}.");
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp").rand_bytes(12);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(fs::Permissions::from_mode(0o666));
     }
-    result
+    let mut tmp = builder.tempfile_in(dir).map_err(|e| cant_write(path, e))?;
+    tmp.write_all(bytes).map_err(|e| cant_write(path, e))?;
+    if let Some(meta) = &existing {
+        keep_attributes(tmp.as_file(), meta).map_err(|e| cant_write(path, e))?;
+    }
+    tmp.as_file().sync_all().map_err(|e| cant_write(path, e))?;
+    tmp.persist(path).map_err(|e| cant_write(path, e.error))?;
+    Ok(())
+}
+
+/// Gives the new file the replaced file's permission bits (not set-id or
+/// sticky bits, which a rewritten data file should not gain), then its
+/// owner and group where the system allows it (root; or the group, for a
+/// member), so that a shared file stays readable to the same people.
+fn keep_attributes(file: &fs::File, old: &Metadata) -> io::Result<()> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::{MetadataExt, PermissionsExt};
+        file.set_permissions(fs::Permissions::from_mode(old.mode() & 0o777))?;
+        if std::os::unix::fs::fchown(file, Some(old.uid()), Some(old.gid())).is_err() {
+            let _ = std::os::unix::fs::fchown(file, None, Some(old.gid()));
+        }
+        Ok(())
+    }
+    #[cfg(not(unix))]
+    {
+        file.set_permissions(old.permissions())
+    }
 }
 
 #[cfg(test)]
@@ -140,9 +243,23 @@ mod tests {
     }
 
     #[test]
-    fn directories_are_not_inputs() {
+    fn directories_are_not_inputs_or_outputs() {
         let dir = scratch("dirs");
         let e = read_input(&dir).expect_err("a directory");
         assert_eq!(e.to_string(), "it is a directory, not a regular file");
+        assert_eq!(write_atomic(&dir, b"x").expect_err("a directory").code, "E0901");
+    }
+
+    #[test]
+    fn a_failed_write_leaves_no_temporary_file() {
+        let dir = scratch("failed");
+        let out = dir.join("no-such-dir").join("out.sto");
+        assert_eq!(write_atomic(&out, b"x").expect_err("no directory").code, "E0900");
+        let good = dir.join("out.sto");
+        write_atomic(&good, b"one").expect("write");
+        write_atomic(&good, b"two").expect("rewrite");
+        assert_eq!(fs::read(&good).expect("read"), b"two");
+        let names: Vec<_> = fs::read_dir(&dir).expect("list").filter_map(|e| e.ok()).map(|e| e.file_name()).collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("out.sto")]);
     }
 }

@@ -147,6 +147,14 @@ fn object(o: &Options, db: &Database) -> Result<ObjectFile, u8> {
 }
 
 pub fn run(o: &Options) -> u8 {
+    // `--out` may not replace an input or anything but a regular file;
+    // checked before the run, so a refused run changes nothing.
+    if let Some(out) = &o.out {
+        if let Err(e) = crate::files::check_output(out, &[&o.file, &o.db]) {
+            eprintln!("{e}");
+            return 2;
+        }
+    }
     let mut dbfiles = SourceFiles::new();
     let db = match load_db(Some(&o.db), &mut dbfiles, Format::Human) {
         Ok(Some(db)) => db,
@@ -215,8 +223,8 @@ pub fn run(o: &Options) -> u8 {
         println!("{path} = {}", show(&store, *a));
     }
     if let Some(out) = &o.out {
-        if let Err(msg) = write_db(out, &db_text, &store) {
-            eprintln!("error[E0900]: can't write `{}`: {msg}", out.display());
+        if let Err(e) = write_db(out, &db_text, &store) {
+            eprintln!("{e}");
             return 2;
         }
     }
@@ -253,8 +261,12 @@ fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result<Opt
 }
 
 /// Writes the database with the store's values, in the input's JSON shape.
-fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<(), String> {
-    let mut root: serde_json::Value = serde_json::from_str(original).map_err(|e| e.to_string())?;
+fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<(), crate::files::Refused> {
+    let json_error = |e: serde_json::Error| crate::files::Refused {
+        code: "E0900",
+        message: format!("can't write `{}`: {e}", out.display()),
+    };
+    let mut root: serde_json::Value = serde_json::from_str(original).map_err(json_error)?;
     let values = store.values_json();
     if let Some(blocks) = root.get_mut("blocks").and_then(|b| b.as_object_mut()) {
         for (name, block) in blocks.iter_mut() {
@@ -263,6 +275,6 @@ fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<(), 
             }
         }
     }
-    let text = serde_json::to_string_pretty(&root).map_err(|e| e.to_string())? + "\n";
-    crate::files::write_atomic(out, text.as_bytes()).map_err(|e| e.to_string())
+    let text = serde_json::to_string_pretty(&root).map_err(json_error)? + "\n";
+    crate::files::write_atomic(out, text.as_bytes())
 }

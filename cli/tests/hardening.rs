@@ -1,9 +1,10 @@
 //! The command line against hostile or mistaken file names and option values:
-//! inputs that never end or are too large.
+//! output files that are links, devices or inputs, inputs that never end.
 #![cfg(unix)]
 
 use std::fs;
 use std::io::Read;
+use std::os::unix::fs::{FileTypeExt, MetadataExt, PermissionsExt};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
@@ -84,6 +85,158 @@ fn assert_refused(o: &Output, code: &str) {
     assert!(text.contains(code), "expected {code}: {text}");
 }
 
+// ---- output files ----
+
+#[test]
+fn output_symlink_is_refused_and_left_alone() {
+    let dir = scratch("out-symlink");
+    let victim = dir.join("victim.txt");
+    fs::write(&victim, "precious").expect("victim");
+    let link = dir.join("out.sto");
+    std::os::unix::fs::symlink(&victim, &link).expect("symlink");
+    let o = linc(&["compile", SRC, "--db", DB, "-o", s(&link)]);
+    assert_refused(&o, "E0901");
+    assert!(stderr(&o).contains("symbolic link"), "{}", stderr(&o));
+    let json = dir.join("out.json");
+    std::os::unix::fs::symlink(&victim, &json).expect("symlink");
+    assert_refused(&linc(&["run", SRC, "--db", DB, "--out", s(&json)]), "E0901");
+    for l in [&link, &json] {
+        assert!(fs::symlink_metadata(l).expect("link").file_type().is_symlink(), "{} replaced", l.display());
+        assert_eq!(fs::read_link(l).expect("read link"), victim);
+    }
+    assert_eq!(fs::read_to_string(&victim).expect("victim"), "precious");
+}
+
+#[test]
+fn output_fifo_device_or_directory_is_refused() {
+    let dir = scratch("out-special");
+    let fifo = dir.join("pipe.sto");
+    mkfifo(&fifo);
+    let o = linc_within(20, &["compile", SRC, "--db", DB, "-o", s(&fifo)]);
+    assert_refused(&o, "E0901");
+    assert!(stderr(&o).contains("FIFO"), "{}", stderr(&o));
+    assert!(fs::symlink_metadata(&fifo).expect("fifo").file_type().is_fifo(), "the FIFO was replaced");
+    assert_refused(&linc_within(20, &["run", SRC, "--db", DB, "--out", s(&fifo)]), "E0901");
+    assert!(fs::symlink_metadata(&fifo).expect("fifo").file_type().is_fifo(), "the FIFO was replaced");
+
+    let sub = dir.join("sub");
+    fs::create_dir(&sub).expect("dir");
+    assert_refused(&linc(&["compile", SRC, "--db", DB, "-o", s(&sub)]), "E0901");
+    assert!(sub.is_dir());
+
+    // A character device: a private copy of /dev/null when we may create
+    // one (root), otherwise /dev/null itself (which a non-root user can't
+    // replace, so the old behaviour could not harm it either).
+    let dev = dir.join("null");
+    let made = Command::new("mknod").arg(&dev).args(["c", "1", "3"]).status().is_ok_and(|st| st.success());
+    let dev = if made {
+        dev
+    } else if fs::metadata(&dir).expect("dir").uid() != 0 {
+        PathBuf::from("/dev/null")
+    } else {
+        eprintln!("skipping the device case: can't create a device node");
+        return;
+    };
+    let o = linc(&["compile", SRC, "--db", DB, "-o", s(&dev)]);
+    assert_refused(&o, "E0901");
+    assert!(stderr(&o).contains("character device"), "{}", stderr(&o));
+    assert!(fs::symlink_metadata(&dev).expect("device").file_type().is_char_device(), "the device was replaced");
+}
+
+#[test]
+fn rewritten_output_keeps_its_permissions() {
+    let dir = scratch("out-mode");
+    let sto = dir.join("a.sto");
+    fs::write(&sto, "old").expect("old object");
+    fs::set_permissions(&sto, fs::Permissions::from_mode(0o640)).expect("chmod");
+    let o = linc(&["compile", SRC, "--db", DB, "-o", s(&sto)]);
+    assert_eq!(status(&o).0, Some(0), "{}", status(&o).1);
+    assert_eq!(fs::metadata(&sto).expect("object").permissions().mode() & 0o7777, 0o640);
+    assert_ne!(fs::read(&sto).expect("object"), b"old", "rewritten");
+
+    let json = dir.join("a.json");
+    fs::write(&json, "{}").expect("old db");
+    fs::set_permissions(&json, fs::Permissions::from_mode(0o600)).expect("chmod");
+    let o = linc(&["run", SRC, "--db", DB, "--out", s(&json)]);
+    assert_eq!(status(&o).0, Some(0), "{}", status(&o).1);
+    assert_eq!(fs::metadata(&json).expect("db").permissions().mode() & 0o7777, 0o600);
+
+    // A new file gets the usual mode (0666 less the umask), like any file
+    // this process creates, not the private mode of a temporary file.
+    let fresh = dir.join("fresh.sto");
+    let o = linc(&["compile", SRC, "--db", DB, "-o", s(&fresh)]);
+    assert_eq!(status(&o).0, Some(0), "{}", status(&o).1);
+    let reference = dir.join("reference");
+    fs::write(&reference, "").expect("reference");
+    let mode = |p: &Path| fs::metadata(p).expect("mode").permissions().mode() & 0o777;
+    assert_eq!(mode(&fresh), mode(&reference));
+}
+
+/// A symlink planted where a predictable temporary file would go (the old
+/// `.NAME.tmp-PID`) must not redirect the write.
+#[test]
+fn planted_temporary_file_links_are_not_followed() {
+    let Some(last) = fs::read_to_string("/proc/sys/kernel/ns_last_pid").ok().and_then(|t| t.trim().parse::<u32>().ok())
+    else {
+        eprintln!("skipping: no /proc/sys/kernel/ns_last_pid");
+        return;
+    };
+    let dir = scratch("out-planted");
+    let victim = dir.join("victim.txt");
+    fs::write(&victim, "precious").expect("victim");
+    for pid in last + 1..=last + 2000 {
+        std::os::unix::fs::symlink(&victim, dir.join(format!(".out.sto.tmp-{pid}"))).expect("plant");
+    }
+    let out = dir.join("out.sto");
+    let o = linc(&["compile", SRC, "--db", DB, "-o", s(&out)]);
+    assert_eq!(status(&o).0, Some(0), "{}", status(&o).1);
+    assert_eq!(fs::read_to_string(&victim).expect("victim"), "precious");
+    assert!(fs::symlink_metadata(&out).expect("out").file_type().is_file());
+    assert_eq!(linc(&["disasm", s(&out)]).status.code(), Some(0));
+    let left: Vec<String> = fs::read_dir(&dir)
+        .expect("list")
+        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+        .filter(|n| !n.starts_with(".out.sto.tmp-") && n != "victim.txt" && n != "out.sto")
+        .collect();
+    assert!(left.is_empty(), "temporary files left behind: {left:?}");
+    let _ = fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn output_that_is_an_input_is_refused() {
+    let dir = scratch("out-input");
+    let src = dir.join("a.st");
+    let text = "Counters.N0 := Counters.N0 + 1;\n";
+    fs::write(&src, text).expect("source");
+    let other = dir.join("hard.st");
+    fs::hard_link(&src, &other).expect("hard link");
+    let respelled = format!("{}/../{}/./a.st", s(&dir), dir.file_name().and_then(|n| n.to_str()).expect("name"));
+    for out in [s(&src), respelled.as_str(), s(&other)] {
+        let o = linc(&["compile", s(&src), "--db", DB, "-o", out]);
+        assert_refused(&o, "E0902");
+        assert_eq!(fs::read_to_string(&src).expect("source"), text, "-o {out} changed the input");
+    }
+    let link = dir.join("link.st");
+    std::os::unix::fs::symlink(&src, &link).expect("symlink");
+    assert_eq!(linc(&["compile", s(&src), "--db", DB, "-o", s(&link)]).status.code(), Some(2));
+    assert!(fs::symlink_metadata(&link).expect("link").file_type().is_symlink());
+    assert_refused(&linc(&["compile", s(&link), "--db", DB, "-o", s(&src)]), "E0902");
+    assert_eq!(fs::read_to_string(&src).expect("source"), text);
+
+    // The database is an input too, for compile and for run.
+    let db = dir.join("db.json");
+    fs::copy(Path::new(ROOT).join(DB), &db).expect("copy db");
+    let before = fs::read(&db).expect("db");
+    assert_refused(&linc(&["compile", s(&src), "--db", s(&db), "-o", s(&db)]), "E0902");
+    assert_refused(&linc(&["run", s(&src), "--db", s(&db), "--out", s(&db)]), "E0902");
+    let sto = dir.join("a.sto");
+    assert_eq!(linc(&["compile", s(&src), "--db", DB, "-o", s(&sto)]).status.code(), Some(0));
+    let sto_before = fs::read(&sto).expect("object");
+    assert_refused(&linc(&["run", s(&sto), "--db", s(&db), "--out", s(&sto)]), "E0902");
+    assert_eq!(fs::read(&db).expect("db"), before);
+    assert_eq!(fs::read(&sto).expect("object"), sto_before);
+}
+
 // ---- input files ----
 
 #[test]
@@ -157,4 +310,22 @@ fn disasm_does_not_hang_on_a_source_that_became_a_fifo() {
     let o = linc_within(20, &["disasm", s(&sto)]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(String::from_utf8_lossy(&o.stdout).contains("action a"));
+}
+
+// ---- codes ----
+
+/// Every E09xx code the command line prints has an explanation page.
+#[test]
+fn every_cli_code_is_registered() {
+    let src = Path::new(ROOT).join("cli/src");
+    let mut seen = 0;
+    for entry in fs::read_dir(src).expect("cli/src") {
+        let text = fs::read_to_string(entry.expect("entry").path()).expect("source");
+        for (i, _) in text.match_indices("E09") {
+            let code = &text[i..i + 5];
+            assert!(linc_compiler::codes::lookup(code).is_some(), "{code} is printed but not registered");
+            seen += 1;
+        }
+    }
+    assert!(seen >= 5);
 }

@@ -90,6 +90,8 @@ codes! {
     "E0805" => "invalid alias target",
     "E0806" => "name declared twice",
     "E0900" => "file cannot be read or written",
+    "E0901" => "output path is not a regular file",
+    "E0902" => "output file is one of the inputs",
 }
 
 /// Looks a code up, ignoring case (`e0001` works too).
