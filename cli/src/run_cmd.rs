@@ -234,7 +234,8 @@ pub fn run(o: &Options) -> u8 {
 /// The clock's start in POSIX seconds: `--now`, or the system time.
 pub fn start_time(now: Option<&str>) -> Result<i64, String> {
     match now {
-        Some(t) => text::parse_timestamp(t).ok_or_else(|| format!("--now `{t}` is not YYYY-MM-DDTHH:MM:SS")),
+        Some(t) => text::parse_timestamp(t)
+            .ok_or_else(|| format!("[E0903] --now `{t}` is not a real date and time YYYY-MM-DDTHH:MM:SS")),
         None => Ok(std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
             .map(|d| d.as_secs() as i64)

@@ -1,5 +1,6 @@
 //! The command line against hostile or mistaken file names and option values:
-//! output files that are links, devices or inputs, inputs that never end.
+//! output files that are links, devices or inputs, inputs that never end,
+//! and option values out of range (impossible dates, a zero period).
 #![cfg(unix)]
 
 use std::fs;
@@ -310,6 +311,55 @@ fn disasm_does_not_hang_on_a_source_that_became_a_fifo() {
     let o = linc_within(20, &["disasm", s(&sto)]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(String::from_utf8_lossy(&o.stdout).contains("action a"));
+}
+
+// ---- option values ----
+
+fn run_with(extra: &[&str]) -> Output {
+    let mut args = vec!["run", SRC, "--db", DB];
+    args.extend_from_slice(extra);
+    linc(&args)
+}
+
+#[test]
+fn period_must_be_positive_and_finite() {
+    for bad in ["0", "-1", "nan", "inf", "-inf", "1e999", "x"] {
+        let o = run_with(&["--period", bad]);
+        assert_refused(&o, "E0903");
+        assert!(stderr(&o).contains("--period") && stderr(&o).contains("positive"), "{bad}: {}", stderr(&o));
+    }
+    assert_eq!(status(&run_with(&["--period", "0.5"])).0, Some(0));
+}
+
+#[test]
+fn now_must_be_a_real_date_and_time() {
+    for bad in ["2023-02-29T00:00:00", "2024-04-31T00:00:00", "2024-01-01T24:00:00", "2024-1-01T00:00:00", "soon"] {
+        for cmd in [&["run", SRC, "--db", DB][..], &["eval", "1"][..]] {
+            let mut args = cmd.to_vec();
+            args.extend_from_slice(&["--now", bad]);
+            let o = linc(&args);
+            assert_refused(&o, "E0903");
+            assert!(stderr(&o).contains("YYYY-MM-DDTHH:MM:SS"), "{bad}: {}", stderr(&o));
+        }
+    }
+    let o = linc(&["eval", "DATEANDTIMENOW(1)", "--now", "2024-02-29T00:00:00"]);
+    assert_eq!(status(&o), (Some(0), "'29/02/2024 00:00:00'\n".to_string()));
+}
+
+#[test]
+fn cycles_and_watchdog_values_are_checked() {
+    let o = run_with(&["--cycles", "-1"]);
+    assert_refused(&o, "E0903");
+    assert!(stderr(&o).contains("--cycles"), "{}", stderr(&o));
+    for bad in ["0", "-1", "many"] {
+        let o = run_with(&["--watchdog", bad]);
+        assert_refused(&o, "E0903");
+        assert!(stderr(&o).contains("--watchdog") && stderr(&o).contains("at least 1"), "{bad}: {}", stderr(&o));
+    }
+    // Zero cycles: the action is linked and --set/--show/--out work, nothing runs.
+    let o = run_with(&["--cycles", "0", "--set", "Block_5.Val1=7", "--show", "Block_5.Val1"]);
+    assert_eq!(status(&o).0, Some(0), "{}", status(&o).1);
+    assert_eq!(String::from_utf8_lossy(&o.stdout), "Block_5.Val1 = 7.0\n");
 }
 
 // ---- codes ----

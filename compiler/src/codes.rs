@@ -92,6 +92,7 @@ codes! {
     "E0900" => "file cannot be read or written",
     "E0901" => "output path is not a regular file",
     "E0902" => "output file is one of the inputs",
+    "E0903" => "invalid command-line value",
 }
 
 /// Looks a code up, ignoring case (`e0001` works too).
