@@ -243,16 +243,25 @@ pub fn start_time(now: Option<&str>) -> Result<i64, String> {
     }
 }
 
-/// Picks the block that runs an `ACTION name : TYPE` action.
+/// Picks the block that runs an `ACTION name : TYPE` action. A block named
+/// with `--block` must be of that type: the action's lone field names would
+/// otherwise link to whatever same-named fields another type happens to have.
 fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result<Option<usize>, String> {
+    let t = store.db.template(block_type);
     if let Some(n) = named {
         let b = store.db.block(n).ok_or_else(|| format!("--block: the database has no block `{n}`"))?;
+        let actual = store.db.blocks[b].template;
+        if !block_type.is_empty() && Some(actual) != t {
+            let name = &store.db.templates[actual].name;
+            return Err(format!(
+                "[E0904] --block {n} has type {name}, but the action runs on a block of type {block_type}"
+            ));
+        }
         return Ok(Some(b));
     }
     if block_type.is_empty() {
         return Ok(None);
     }
-    let t = store.db.template(block_type);
     let of_type: Vec<usize> = (0..store.db.blocks.len()).filter(|&b| Some(store.db.blocks[b].template) == t).collect();
     match of_type.as_slice() {
         [b] => Ok(Some(*b)),

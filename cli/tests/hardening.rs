@@ -1,6 +1,7 @@
 //! The command line against hostile or mistaken file names and option values:
 //! output files that are links, devices or inputs, inputs that never end,
-//! and option values out of range (impossible dates, a zero period).
+//! option values out of range (impossible dates, a zero period) and a
+//! `--block` of the wrong type.
 #![cfg(unix)]
 
 use std::fs;
@@ -360,6 +361,22 @@ fn cycles_and_watchdog_values_are_checked() {
     let o = run_with(&["--cycles", "0", "--set", "Block_5.Val1=7", "--show", "Block_5.Val1"]);
     assert_eq!(status(&o).0, Some(0), "{}", status(&o).1);
     assert_eq!(String::from_utf8_lossy(&o.stdout), "Block_5.Val1 = 7.0\n");
+}
+
+// ---- --block ----
+
+#[test]
+fn block_of_another_type_is_refused() {
+    let dir = scratch("block-type");
+    let src = dir.join("m.st");
+    fs::write(&src, "ACTION m : PID\n    HR := PV + 1;\nEND_ACTION\n").expect("source");
+    let o = linc(&["run", s(&src), "--db", DB, "--block", "ANIN_004", "--show", "ANIN_004.HR"]);
+    assert_refused(&o, "E0904");
+    let err = stderr(&o);
+    assert!(err.contains("--block ANIN_004 has type ANIN") && err.contains("block of type PID"), "{err}");
+    assert!(o.stdout.is_empty(), "nothing ran");
+    let o = linc(&["run", s(&src), "--db", DB, "--block", "pid1", "--show", "pid1.HR"]);
+    assert_eq!(status(&o).0, Some(0), "{}", status(&o).1);
 }
 
 // ---- codes ----

@@ -93,6 +93,7 @@ codes! {
     "E0901" => "output path is not a regular file",
     "E0902" => "output file is one of the inputs",
     "E0903" => "invalid command-line value",
+    "E0904" => "--block names a block of another type",
 }
 
 /// Looks a code up, ignoring case (`e0001` works too).
