@@ -32,7 +32,7 @@ pub fn compile(
     let mut checked: Vec<(usize, hir::Program, String, Lines)> = Vec::new();
     let mut failed = false;
     for path in paths {
-        let text = std::fs::read_to_string(path).map_err(|e| {
+        let text = crate::files::read_input_text(path).map_err(|e| {
             io_error(path, &e, format);
             Failed(2)
         })?;

@@ -30,7 +30,7 @@ pub fn io_error(path: &Path, e: &std::io::Error, format: Format) {
 /// Loads `--db`, printing its diagnostics. `Err` carries the exit status.
 pub fn load_db(path: Option<&Path>, files: &mut SourceFiles, format: Format) -> Result<Option<Database>, u8> {
     let Some(path) = path else { return Ok(None) };
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let text = crate::files::read_input_text(path).map_err(|e| {
         io_error(path, &e, format);
         2u8
     })?;
@@ -57,7 +57,7 @@ pub fn run(o: &Options) -> u8 {
     let ctx = Context { db: &db, resolve_blocks, steps };
     let (mut errors, mut warnings, mut status) = (0usize, 0usize, 0u8);
     for path in &o.files {
-        let text = match std::fs::read_to_string(path) {
+        let text = match crate::files::read_input_text(path) {
             Ok(t) => t,
             Err(e) => {
                 io_error(path, &e, o.format);

@@ -6,6 +6,11 @@ use linc_compiler::render::{Format, SourceFiles};
 use std::path::{Path, PathBuf};
 
 pub fn run(files: &[PathBuf], out: &Path, db: Option<&Path>, format: Format) -> u8 {
+    let inputs: Vec<&Path> = files.iter().map(PathBuf::as_path).chain(db).collect();
+    if let Err(e) = crate::files::check_output(out, &inputs) {
+        eprintln!("{e}");
+        return 2;
+    }
     let mut dbfiles = SourceFiles::new();
     let db = match load_db(db, &mut dbfiles, format) {
         Ok(db) => db,
@@ -19,7 +24,7 @@ pub fn run(files: &[PathBuf], out: &Path, db: Option<&Path>, format: Format) -> 
     match crate::files::write_atomic(out, &bytes) {
         Ok(()) => 0,
         Err(e) => {
-            eprintln!("error[E0900]: can't write `{}`: {e}", out.display());
+            eprintln!("{e}");
             2
         }
     }

@@ -9,7 +9,7 @@ use std::fmt::Write;
 use std::path::Path;
 
 pub fn run(path: &Path) -> u8 {
-    let bytes = match std::fs::read(path) {
+    let bytes = match crate::files::read_input(path) {
         Ok(b) => b,
         Err(e) => {
             eprintln!("error[E0900]: can't read `{}`: {e}", path.display());
@@ -47,8 +47,12 @@ pub fn listing(obj: &ObjectFile) -> String {
     }
     let mut sources: HashMap<&str, Vec<String>> = HashMap::new();
     for u in &obj.units {
+        // The object names its source; it is read under the input rules, so
+        // a name that is now a FIFO or a device can't hang the listing.
         let source = sources.entry(u.file.as_str()).or_insert_with(|| {
-            std::fs::read_to_string(&u.file).map(|t| t.lines().map(str::to_string).collect()).unwrap_or_default()
+            crate::files::read_input_text(std::path::Path::new(&u.file))
+                .map(|t| t.lines().map(str::to_string).collect())
+                .unwrap_or_default()
         });
         let kind = if u.block_type.is_empty() { String::new() } else { format!(" : {}", u.block_type) };
         let _ = writeln!(

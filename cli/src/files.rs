@@ -1,22 +1,265 @@
-//! Writing output files so that an interrupted run never leaves a torn one.
+//! Every file `linc` reads or writes goes through here, so that one set of
+//! rules protects them all: inputs are regular files of bounded size (a
+//! device or a FIFO given by mistake must not hang the command or exhaust
+//! memory), and outputs replace a regular file atomically or not at all
+//! (never a link, a device, a FIFO or one of the inputs).
 
-use std::io::Write;
+use std::fmt;
+use std::fs::{self, Metadata};
+use std::io::{self, Read, Write};
 use std::path::Path;
 
-/// Writes `bytes` to a temporary file beside `path`, then renames it over
-/// `path` (atomic on one file system).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+/// The largest input file `linc` reads: far above any real action file or
+/// database (the guide's largest are kilobytes; 50 MB of generated source
+/// is accepted), far below what would exhaust a build machine's memory.
+pub const MAX_INPUT_BYTES: u64 = 256 << 20;
+
+/// What a file is, in words, when it is not a regular file.
+fn kind(meta: &Metadata) -> Option<&'static str> {
+    let t = meta.file_type();
+    if t.is_file() {
+        return None;
+    }
+    if t.is_symlink() {
+        return Some("a symbolic link");
+    }
+    if t.is_dir() {
+        return Some("a directory");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_char_device() {
+            return Some("a character device");
+        }
+        if t.is_block_device() {
+            return Some("a block device");
+        }
+        if t.is_fifo() {
+            return Some("a FIFO (named pipe)");
+        }
+        if t.is_socket() {
+            return Some("a socket");
+        }
+    }
+    Some("not a regular file")
+}
+
+fn not_regular(what: &str) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidInput, format!("it is {what}, not a regular file"))
+}
+
+fn too_large(limit: u64) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidInput, format!("the file is larger than the {} MiB input limit", limit >> 20))
+}
+
+/// Reads an input file: a regular file (symlinks to one are followed) of at
+/// most [`MAX_INPUT_BYTES`]. Anything else is an error the callers print as
+/// E0900 (file cannot be read), so `linc check /dev/zero` fails at once.
+pub fn read_input(path: &Path) -> io::Result<Vec<u8>> {
+    read_limited(path, MAX_INPUT_BYTES)
+}
+
+/// [`read_input`] for text: the bytes must be UTF-8.
+pub fn read_input_text(path: &Path) -> io::Result<String> {
+    String::from_utf8(read_input(path)?)
+        .map_err(|_| io::Error::new(io::ErrorKind::InvalidData, "stream did not contain valid UTF-8"))
+}
+
+fn read_limited(path: &Path, limit: u64) -> io::Result<Vec<u8>> {
+    // Checked before opening: opening a FIFO would block until a writer came.
+    if let Some(what) = kind(&fs::metadata(path)?) {
+        return Err(not_regular(what));
+    }
+    let file = fs::File::open(path)?;
+    // Checked again on the open file, in case the name changed in between.
+    let meta = file.metadata()?;
+    if let Some(what) = kind(&meta) {
+        return Err(not_regular(what));
+    }
+    if meta.len() > limit {
+        return Err(too_large(limit));
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    // The length can grow while reading (or lie, as in /proc): read one
+    // byte more than the limit to notice.
+    file.take(limit + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large(limit));
+    }
+    Ok(bytes)
+}
+
+/// An output file `linc` will not write, or could not write: printed as
+/// `error[CODE]: message`, exit status 2.
+#[derive(Debug)]
+pub struct Refused {
+    pub code: &'static str,
+    pub message: String,
+}
+
+impl fmt::Display for Refused {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "error[{}]: {}", self.code, self.message)
+    }
+}
+
+fn cant_write(path: &Path, e: impl fmt::Display) -> Refused {
+    Refused { code: "E0900", message: format!("can't write `{}`: {e}", path.display()) }
+}
+
+/// The existing file at `path` (not following a symlink), if any; E0901 if
+/// it is not a regular file. Replacing a symlink, device or FIFO would
+/// destroy something that is not ours.
+fn existing_output(path: &Path) -> Result<Option<Metadata>, Refused> {
+    match fs::symlink_metadata(path) {
+        Ok(meta) => match kind(&meta) {
+            None => Ok(Some(meta)),
+            Some(what) => Err(Refused {
+                code: "E0901",
+                message: format!("won't write `{}`: it is {what}, not a regular file", path.display()),
+            }),
+        },
+        Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(None),
+        Err(e) => Err(cant_write(path, e)),
+    }
+}
+
+/// Whether two metadata describe the same file (hard links included).
+fn same_file(a: &Metadata, b: &Metadata) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        a.dev() == b.dev() && a.ino() == b.ino()
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (a, b);
+        false
+    }
+}
+
+/// Checks, before any work is done, that `out` may be written: E0901 if it
+/// exists and is not a regular file, E0902 if it is one of `inputs` under
+/// any spelling, hard link or symlink (writing it would destroy the input).
+pub fn check_output(out: &Path, inputs: &[&Path]) -> Result<(), Refused> {
+    let Ok(target) = fs::metadata(out) else {
+        // Nothing there (or a dangling link): no input can be overwritten.
+        return existing_output(out).map(|_| ());
+    };
+    let canonical = fs::canonicalize(out).ok();
+    for input in inputs {
+        let same = fs::metadata(input).is_ok_and(|m| same_file(&m, &target))
+            || (canonical.is_some() && fs::canonicalize(input).ok() == canonical);
+        if same {
+            return Err(Refused {
+                code: "E0902",
+                message: format!("won't write `{}`: it is the input `{}`", out.display(), input.display()),
+            });
+        }
+    }
+    existing_output(out).map(|_| ())
+}
+
+/// Writes `bytes` to `path` atomically: into a new temporary file beside it
+/// (created exclusively, with an unpredictable name, so a link planted in
+/// the directory can't redirect the write), then renamed over `path`. An
+/// existing `path` must be a regular file (E0901) and keeps its permission
+/// bits (and, where allowed, its owner and group); a new one gets 0666 less
+/// the umask, like any created file. On failure `path` is untouched and the
+/// temporary file removed.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Refused> {
+    let existing = existing_output(path)?;
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("out");
-    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
+    let prefix = format!(".{name}.");
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp").rand_bytes(12);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(fs::Permissions::from_mode(0o666));
     }
-    result
+    let mut tmp = builder.tempfile_in(dir).map_err(|e| cant_write(path, e))?;
+    tmp.write_all(bytes).map_err(|e| cant_write(path, e))?;
+    if let Some(meta) = &existing {
+        keep_attributes(tmp.as_file(), meta).map_err(|e| cant_write(path, e))?;
+    }
+    tmp.as_file().sync_all().map_err(|e| cant_write(path, e))?;
+    tmp.persist(path).map_err(|e| cant_write(path, e.error))?;
+    Ok(())
+}
+
+/// Gives the new file the replaced file's permission bits (not set-id or
+/// sticky bits, which a rewritten data file should not gain), then its
+/// owner and group where the system allows it (root; or the group, for a
+/// member), so that a shared file stays readable to the same people.
+fn keep_attributes(file: &fs::File, old: &Metadata) -> io::Result<()> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::{MetadataExt, PermissionsExt};
+        file.set_permissions(fs::Permissions::from_mode(old.mode() & 0o777))?;
+        if std::os::unix::fs::fchown(file, Some(old.uid()), Some(old.gid())).is_err() {
+            let _ = std::os::unix::fs::fchown(file, None, Some(old.gid()));
+        }
+        Ok(())
+    }
+    #[cfg(not(unix))]
+    {
+        file.set_permissions(old.permissions())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("linc-files-{}-{name}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).expect("scratch");
+        dir
+    }
+
+    #[test]
+    fn inputs_up_to_the_limit_are_read_and_larger_ones_refused() {
+        let dir = scratch("limit");
+        let p = dir.join("f");
+        fs::write(&p, [7u8; 100]).expect("write");
+        assert_eq!(read_limited(&p, 100).expect("at the limit").len(), 100);
+        let e = read_limited(&p, 99).expect_err("over the limit");
+        assert_eq!(e.kind(), io::ErrorKind::InvalidInput);
+        assert_eq!(MAX_INPUT_BYTES, 256 * 1024 * 1024);
+        assert!(too_large(MAX_INPUT_BYTES).to_string().contains("256 MiB"));
+    }
+
+    #[test]
+    fn text_inputs_must_be_utf8() {
+        let dir = scratch("utf8");
+        let p = dir.join("f");
+        fs::write(&p, b"ok \xff").expect("write");
+        assert_eq!(read_input_text(&p).expect_err("not UTF-8").kind(), io::ErrorKind::InvalidData);
+        assert_eq!(read_input(&p).expect("bytes"), b"ok \xff");
+    }
+
+    #[test]
+    fn directories_are_not_inputs_or_outputs() {
+        let dir = scratch("dirs");
+        let e = read_input(&dir).expect_err("a directory");
+        assert_eq!(e.to_string(), "it is a directory, not a regular file");
+        assert_eq!(write_atomic(&dir, b"x").expect_err("a directory").code, "E0901");
+    }
+
+    #[test]
+    fn a_failed_write_leaves_no_temporary_file() {
+        let dir = scratch("failed");
+        let out = dir.join("no-such-dir").join("out.sto");
+        assert_eq!(write_atomic(&out, b"x").expect_err("no directory").code, "E0900");
+        let good = dir.join("out.sto");
+        write_atomic(&good, b"one").expect("write");
+        write_atomic(&good, b"two").expect("rewrite");
+        assert_eq!(fs::read(&good).expect("read"), b"two");
+        let names: Vec<_> = fs::read_dir(&dir).expect("list").filter_map(|e| e.ok()).map(|e| e.file_name()).collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("out.sto")]);
+    }
 }

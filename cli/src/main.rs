@@ -88,10 +88,11 @@ enum Command {
         /// The block running an `ACTION name : TYPE` action (default: the only block of that type).
         #[arg(long)]
         block: Option<String>,
-        #[arg(long, default_value_t = 1)]
+        /// Cycles to run; 0 links the action and applies --set, --show and --out without running it.
+        #[arg(long, default_value_t = 1, value_name = "N", allow_negative_numbers = true, value_parser = cycles)]
         cycles: u32,
-        /// Seconds of simulated time per cycle (suppression timers, clock).
-        #[arg(long, default_value_t = 1.0)]
+        /// Seconds of simulated time per cycle (suppression timers, clock); positive and finite.
+        #[arg(long, default_value_t = 1.0, value_name = "SECS", allow_hyphen_values = true, value_parser = period)]
         period: f64,
         /// Set a field before the run: BLOCK.FIELD=VALUE (repeatable).
         #[arg(long)]
@@ -106,13 +107,19 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
         /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
-        #[arg(long)]
+        #[arg(long, value_name = "YYYY-MM-DDTHH:MM:SS", value_parser = now)]
         now: Option<String>,
         /// Seed of RANDOM, for repeatable runs.
         #[arg(long)]
         seed: Option<u64>,
-        /// Instruction budget of one run before the watchdog stops it.
-        #[arg(long, default_value_t = linc_runtime::vm::DEFAULT_WATCHDOG)]
+        /// Instruction budget of one run before the watchdog stops it (at least 1).
+        #[arg(
+            long,
+            default_value_t = linc_runtime::vm::DEFAULT_WATCHDOG,
+            value_name = "N",
+            allow_negative_numbers = true,
+            value_parser = watchdog
+        )]
         watchdog: u64,
         #[arg(long, value_enum, default_value = "human")]
         message_format: MessageFormat,
@@ -124,7 +131,8 @@ enum Command {
         expr: String,
         #[arg(long)]
         db: Option<PathBuf>,
-        #[arg(long)]
+        /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
+        #[arg(long, value_name = "YYYY-MM-DDTHH:MM:SS", value_parser = now)]
         now: Option<String>,
         #[arg(long)]
         seed: Option<u64>,
@@ -139,6 +147,45 @@ enum Command {
         #[arg(long)]
         list: bool,
     },
+}
+
+// Value parsers: a bad option value is a usage error (exit 2) whose message
+// says what is accepted, before any file is read. Clap prints them as
+// `error: invalid value 'V' for '--OPTION <NAME>': [E0903] ...`.
+
+/// `--period`: simulated seconds per cycle. Zero or less would stop or
+/// reverse the clock, and NaN or infinity would poison every timer.
+fn period(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        _ => Err("[E0903] the period must be a positive, finite number of seconds, such as 0.5 or 10".into()),
+    }
+}
+
+/// `--cycles`: 0 is allowed (link, --set, --show and --out without a run).
+fn cycles(s: &str) -> Result<u32, String> {
+    s.trim()
+        .parse::<u32>()
+        .map_err(|_| format!("[E0903] the number of cycles must be a whole number from 0 to {}", u32::MAX))
+}
+
+/// `--watchdog`: a budget of 0 instructions would stop every action before
+/// its first instruction.
+fn watchdog(s: &str) -> Result<u64, String> {
+    match s.trim().parse::<u64>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err("[E0903] the watchdog budget must be a whole number of instructions, at least 1".into()),
+    }
+}
+
+/// `--now`: a real date and time (no 29 February 2023, no 24:00:00).
+fn now(s: &str) -> Result<String, String> {
+    match linc_runtime::text::parse_timestamp(s) {
+        Some(_) => Ok(s.to_string()),
+        None => {
+            Err("[E0903] not a real date and time; write YYYY-MM-DDTHH:MM:SS (UTC), such as 2024-02-29T13:45:07".into())
+        }
+    }
 }
 
 fn format(m: MessageFormat) -> linc_compiler::render::Format {

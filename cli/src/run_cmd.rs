@@ -142,12 +142,20 @@ fn object(o: &Options, db: &Database) -> Result<Verified, u8> {
         let obj = compile(std::slice::from_ref(&o.file), Some(db), Format::Human, 2).map_err(|Failed(s)| s)?;
         return linc_runtime::verify::verify(obj).map_err(|e| usage(format_args!("[{}] {e}", e.code())));
     }
-    let bytes =
-        std::fs::read(&o.file).map_err(|e| usage(format_args!("[E0900] can't read `{}`: {e}", o.file.display())))?;
+    let bytes = crate::files::read_input(&o.file)
+        .map_err(|e| usage(format_args!("[E0900] can't read `{}`: {e}", o.file.display())))?;
     linc_runtime::load(&bytes).map_err(|e| usage(format_args!("[{}] {}: {e}", e.code(), o.file.display())))
 }
 
 pub fn run(o: &Options) -> u8 {
+    // `--out` may not replace an input or anything but a regular file;
+    // checked before the run, so a refused run changes nothing.
+    if let Some(out) = &o.out {
+        if let Err(e) = crate::files::check_output(out, &[&o.file, &o.db]) {
+            eprintln!("{e}");
+            return 2;
+        }
+    }
     let mut dbfiles = SourceFiles::new();
     let db = match load_db(Some(&o.db), &mut dbfiles, Format::Human) {
         Ok(Some(db)) => db,
@@ -216,8 +224,8 @@ pub fn run(o: &Options) -> u8 {
         println!("{path} = {}", show_value(&store, *a));
     }
     if let Some(out) = &o.out {
-        if let Err(msg) = write_db(out, &db_text, &store) {
-            eprintln!("error[E0900]: can't write `{}`: {msg}", out.display());
+        if let Err(e) = write_db(out, &db_text, &store) {
+            eprintln!("{e}");
             return 2;
         }
     }
@@ -227,7 +235,8 @@ pub fn run(o: &Options) -> u8 {
 /// The clock's start in POSIX seconds: `--now`, or the system time.
 pub fn start_time(now: Option<&str>) -> Result<i64, String> {
     match now {
-        Some(t) => text::parse_timestamp(t).ok_or_else(|| format!("--now `{t}` is not YYYY-MM-DDTHH:MM:SS")),
+        Some(t) => text::parse_timestamp(t)
+            .ok_or_else(|| format!("[E0903] --now `{t}` is not a real date and time YYYY-MM-DDTHH:MM:SS")),
         None => Ok(std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
             .map(|d| d.as_secs() as i64)
@@ -235,16 +244,25 @@ pub fn start_time(now: Option<&str>) -> Result<i64, String> {
     }
 }
 
-/// Picks the block that runs an `ACTION name : TYPE` action.
+/// Picks the block that runs an `ACTION name : TYPE` action. A block named
+/// with `--block` must be of that type: the action's lone field names would
+/// otherwise link to whatever same-named fields another type happens to have.
 fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result<Option<usize>, String> {
+    let t = store.db.template(block_type);
     if let Some(n) = named {
         let b = store.db.block(n).ok_or_else(|| format!("--block: the database has no block `{n}`"))?;
+        let actual = store.db.blocks[b].template;
+        if !block_type.is_empty() && Some(actual) != t {
+            let name = &store.db.templates[actual].name;
+            return Err(format!(
+                "[E0904] --block {n} has type {name}, but the action runs on a block of type {block_type}"
+            ));
+        }
         return Ok(Some(b));
     }
     if block_type.is_empty() {
         return Ok(None);
     }
-    let t = store.db.template(block_type);
     let of_type: Vec<usize> = (0..store.db.blocks.len()).filter(|&b| Some(store.db.blocks[b].template) == t).collect();
     match of_type.as_slice() {
         [b] => Ok(Some(*b)),
@@ -254,8 +272,12 @@ fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result<Opt
 }
 
 /// Writes the database with the store's values, in the input's JSON shape.
-pub fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<(), String> {
-    let mut root: serde_json::Value = serde_json::from_str(original).map_err(|e| e.to_string())?;
+pub fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<(), crate::files::Refused> {
+    let json_error = |e: serde_json::Error| crate::files::Refused {
+        code: "E0900",
+        message: format!("can't write `{}`: {e}", out.display()),
+    };
+    let mut root: serde_json::Value = serde_json::from_str(original).map_err(json_error)?;
     let values = store.values_json();
     if let Some(blocks) = root.get_mut("blocks").and_then(|b| b.as_object_mut()) {
         for (name, block) in blocks.iter_mut() {
@@ -264,6 +286,6 @@ pub fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<
             }
         }
     }
-    let text = serde_json::to_string_pretty(&root).map_err(|e| e.to_string())? + "\n";
-    crate::files::write_atomic(out, text.as_bytes()).map_err(|e| e.to_string())
+    let text = serde_json::to_string_pretty(&root).map_err(json_error)? + "\n";
+    crate::files::write_atomic(out, text.as_bytes())
 }

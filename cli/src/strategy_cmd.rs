@@ -77,8 +77,8 @@ fn objects(o: &Options, db: &Database, wants: &[Want]) -> Result<Plan, u8> {
 fn object(path: &Path, db: &Database, format: Format) -> Result<Verified, u8> {
     let is_object = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"));
     if is_object {
-        let bytes =
-            std::fs::read(path).map_err(|e| usage(format_args!("[E0900] can't read `{}`: {e}", path.display())))?;
+        let bytes = crate::files::read_input(path)
+            .map_err(|e| usage(format_args!("[E0900] can't read `{}`: {e}", path.display())))?;
         return linc_runtime::load(&bytes).map_err(|e| usage(format_args!("[{}] {}: {e}", e.code(), path.display())));
     }
     let obj = compile(&[path.to_path_buf()], Some(db), format, 2).map_err(|Failed(s)| s)?;
@@ -116,6 +116,17 @@ pub fn run(o: &Options) -> u8 {
         Ok(x) => x,
         Err(status) => return status,
     };
+    // Outputs may not replace an input or anything but a regular file;
+    // checked before the run, so a refused run changes nothing.
+    let dir = o.db.parent().map(Path::to_path_buf).unwrap_or_default();
+    let inputs: Vec<PathBuf> = std::iter::once(o.db.clone()).chain(wants.iter().map(|w| dir.join(&w.file))).collect();
+    let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    for out in [&o.out, &o.trace].into_iter().flatten().filter(|p| p.as_os_str() != "-") {
+        if let Err(e) = crate::files::check_output(out, &input_refs) {
+            eprintln!("{e}");
+            return 2;
+        }
+    }
     let seed = o.seed.unwrap_or(now as u64);
     let vm = Vm::new(o.watchdog, Clock::new(seed, 0));
     let mut s = match Strategy::build(store, objects, &pairs, vm, now as f64) {
@@ -147,8 +158,8 @@ pub fn run(o: &Options) -> u8 {
         }
     }
     if let Some(out) = &o.out {
-        if let Err(msg) = write_db(out, &db_text, &s.store) {
-            eprintln!("error[E0900]: can't write `{}`: {msg}", out.display());
+        if let Err(e) = write_db(out, &db_text, &s.store) {
+            eprintln!("{e}");
             return 2;
         }
     }

@@ -105,6 +105,10 @@ codes! {
     "E0816" => "aliases form a cycle",
     "E0817" => "alias expansion too large",
     "E0900" => "file cannot be read or written",
+    "E0901" => "output path is not a regular file",
+    "E0902" => "output file is one of the inputs",
+    "E0903" => "invalid command-line value",
+    "E0904" => "--block names a block of another type",
 }
 
 /// Looks a code up, ignoring case (`e0001` works too).

@@ -82,21 +82,33 @@ pub fn days_from_civil(y: i64, m: i64, d: i64) -> i64 {
     era * 146_097 + doe - 719_468
 }
 
-/// Parses `YYYY-MM-DDTHH:MM:SS` into POSIX seconds.
+/// Parses `YYYY-MM-DDTHH:MM:SS` (a space may replace the `T`) into POSIX
+/// seconds. Only a real date and time is accepted: exactly four digits of
+/// year and two of everything else, a day that exists in that month (29
+/// February only in leap years), hours 00 to 23, no leap second. Anything
+/// else is `None`, so a mistyped `--now` is refused rather than rolled over
+/// into another day.
 pub fn parse_timestamp(s: &str) -> Option<i64> {
-    let (date, time) = s.split_once(['T', ' '])?;
-    let mut d = date.split('-').map(|p| p.parse::<i64>().ok());
-    let (y, mo, da) = (d.next()??, d.next()??, d.next()??);
-    let mut t = time.split(':').map(|p| p.parse::<i64>().ok());
-    let (h, mi, se) = (t.next()??, t.next()??, t.next()??);
-    if d.next().is_some() || t.next().is_some() {
+    let b = s.as_bytes();
+    if b.len() != 19 || b[4] != b'-' || b[7] != b'-' || !matches!(b[10], b'T' | b' ') || b[13] != b':' || b[16] != b':'
+    {
         return None;
     }
-    let valid = (1..=12).contains(&mo)
-        && (1..=31).contains(&da)
-        && (0..24).contains(&h)
-        && (0..60).contains(&mi)
-        && (0..60).contains(&se);
+    let num = |from: usize, to: usize| -> Option<i64> {
+        let digits = b.get(from..to)?;
+        digits.iter().all(u8::is_ascii_digit).then(|| digits.iter().fold(0, |n, d| n * 10 + i64::from(d - b'0')))
+    };
+    let (y, mo, da) = (num(0, 4)?, num(5, 7)?, num(8, 10)?);
+    let (h, mi, se) = (num(11, 13)?, num(14, 16)?, num(17, 19)?);
+    let leap = y % 4 == 0 && (y % 100 != 0 || y % 400 == 0);
+    let month_days = match mo {
+        1 | 3 | 5 | 7 | 8 | 10 | 12 => 31,
+        4 | 6 | 9 | 11 => 30,
+        2 if leap => 29,
+        2 => 28,
+        _ => return None,
+    };
+    let valid = (1..=month_days).contains(&da) && h < 24 && mi < 60 && se < 60;
     valid.then(|| days_from_civil(y, mo, da) * 86_400 + h * 3600 + mi * 60 + se)
 }
 
@@ -109,7 +121,37 @@ mod time_tests {
         assert_eq!(parse_timestamp("1970-01-01T00:00:00"), Some(0));
         assert_eq!(parse_timestamp("1970-01-05T00:00:00"), Some(345_600));
         assert_eq!(parse_timestamp("2026-11-23T08:30:15"), Some(1_795_422_615));
+        assert_eq!(parse_timestamp("2026-11-23 08:30:15"), Some(1_795_422_615));
         assert_eq!(parse_timestamp("2026-13-01T00:00:00"), None);
         assert_eq!(parse_timestamp("yesterday"), None);
+    }
+
+    #[test]
+    fn only_real_dates_and_times() {
+        assert_eq!(parse_timestamp("2024-02-29T00:00:00"), Some(1_709_164_800));
+        assert_eq!(parse_timestamp("2000-02-29T00:00:00"), Some(951_782_400));
+        assert_eq!(parse_timestamp("2023-12-31T23:59:59"), Some(1_704_067_199));
+        for bad in [
+            "2023-02-29T00:00:00", // not a leap year
+            "1900-02-29T00:00:00", // a century that is not a leap year
+            "2024-02-30T00:00:00",
+            "2024-04-31T00:00:00",
+            "2024-00-10T00:00:00",
+            "2024-01-00T00:00:00",
+            "2024-01-01T24:00:00",
+            "2024-01-01T00:60:00",
+            "2024-01-01T00:00:60",
+            "2024-1-01T00:00:00",
+            "2024-01-01T0:00:00",
+            "+024-01-01T00:00:00",
+            "2024-01-01T00:00:0 ",
+            "2024-01-01T00:00:00Z",
+            "2024-01-01X00:00:00",
+            "2024-01-01T00:00:+0",
+            "2024-01-01T-1:00:00",
+            "",
+        ] {
+            assert_eq!(parse_timestamp(bad), None, "{bad}");
+        }
     }
 }
