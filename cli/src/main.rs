@@ -245,6 +245,7 @@ fn main() -> ExitCode {
                 now,
                 seed,
                 watchdog,
+                format: format(message_format),
             }),
             (Some(_), Some(_)) => {
                 eprintln!("error: --for runs a strategy, which is its own database: give PLANT.json without --db");

@@ -23,6 +23,7 @@ pub struct Options {
     pub now: Option<String>,
     pub seed: Option<u64>,
     pub watchdog: u64,
+    pub format: Format,
 }
 
 /// A usage problem: printed, exit status 2.
@@ -213,7 +214,7 @@ pub fn run(o: &Options) -> u8 {
         match vm.run(&linked, &mut act, &mut store, trace) {
             Ok(_) => {}
             Err(e) => {
-                eprintln!("{e}");
+                eprint!("{}", crate::runtime_report::render(&e, o.format));
                 status = 1;
                 break;
             }

@@ -143,7 +143,7 @@ pub fn run(o: &Options) -> u8 {
         let _ = t.finish();
     }
     for e in &failures {
-        print!("{}", crate::runtime_report::render(e, o.format));
+        eprint!("{}", crate::runtime_report::render(e, o.format));
     }
     for (path, a) in &shows {
         println!("{path} = {}", show_value(&s.store, *a));

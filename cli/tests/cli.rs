@@ -202,7 +202,7 @@ fn runtime_error_keeps_earlier_writes_in_out() {
     let o = linc(&["run", &f, "--db", DB, "--out", &out]);
     assert_eq!(o.status.code(), Some(1));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("fault.st:2:1: runtime error[R0001] in action `fault`: division by zero"), "{err}");
+    assert!(err.contains("error[R0001]: in `fault`: division by zero") && err.contains("fault.st:2:1"), "{err}");
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&out).expect("out written")).expect("json");
     assert_eq!(v["blocks"]["Counters"]["values"]["N0"], 5);
@@ -217,7 +217,7 @@ fn watchdog_names_the_loop_line() {
     let o = linc(&["run", &f, "--db", DB, "--watchdog", "1000"]);
     assert_eq!(o.status.code(), Some(1));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("loop.st:2:1: runtime error[R0006]") && err.contains("line 2"), "{err}");
+    assert!(err.contains("error[R0006]") && err.contains("loop.st:2:1") && err.contains("line 2"), "{err}");
 }
 
 #[test]

@@ -104,6 +104,8 @@ codes! {
     "E0815" => "initial value out of range",
     "E0816" => "aliases form a cycle",
     "E0817" => "alias expansion too large",
+    "E0831" => "action-type block names an action its file does not have",
+    "E0832" => "error program is not an action-type block",
     "E0900" => "file cannot be read or written",
     "E0901" => "output path is not a regular file",
     "E0902" => "output file is one of the inputs",
@@ -132,6 +134,8 @@ mod tests {
             include_str!("../../runtime/src/errors.rs"),
             include_str!("../../runtime/src/verify.rs"),
             include_str!("../../runtime/src/vm.rs"),
+            include_str!("../../runtime/src/strategy/mod.rs"),
+            include_str!("../../runtime/src/strategy/errors.rs"),
             include_str!("../../runtime/src/link.rs"),
         ];
         for src in sources {

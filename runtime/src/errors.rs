@@ -95,7 +95,7 @@ impl fmt::Display for RuntimeError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "{}:{}:{}: runtime error[{}] in action `{}`: {}",
+            "{}:{}:{}: error[{}]: in `{}`: {}",
             self.file, self.line, self.col, self.code, self.action, self.message
         )
     }

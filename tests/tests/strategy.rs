@@ -128,10 +128,12 @@ ACTION OnErr\n  R.N4 := R.N4 + 1;\n  R.N5 := SYS.ErrNum;\n  SYS.Clear := R.N4 >=
 
 #[test]
 fn the_first_error_is_kept_and_only_its_program_stops() {
-    let mut s = strategy(&FAULTS.replace("%ERRPROG%", ""), FAULT_ACTIONS);
+    // No error program, and ONERR's trigger off: nothing clears the error.
+    let db = FAULTS.replace("%ERRPROG%", "").replace(r#""OnErr", "Trigger": true"#, r#""OnErr", "Trigger": false"#);
+    let mut s = strategy(&db, FAULT_ACTIONS);
     let failures = s.run_for(micros(10.0), None);
-    // BAD fails in its third run (t = 2 s, line 3), LATE in its fifth (t = 4 s).
-    assert_eq!(failures.iter().map(|e| (e.code, e.line)).collect::<Vec<_>>(), [("R0001", 3), ("R0005", 3)]);
+    // BAD fails in its third run (t = 2 s, line 3), LATE in its fifth (t = 4 s, line 10).
+    assert_eq!(failures.iter().map(|e| (e.code, e.line)).collect::<Vec<_>>(), [("R0001", 3), ("R0005", 10)]);
     let st = s.error().expect("error status");
     assert_eq!((st.error.code, st.block.as_str(), st.at_us), ("R0001", "BAD", 2_000_000));
     assert_eq!(get(&s, "R.N0"), "3", "BAD stopped after its third run");
@@ -141,7 +143,10 @@ fn the_first_error_is_kept_and_only_its_program_stops() {
         ["ErrNum", "ErrCode", "ErrBlock", "ErrLine", "Double"].map(|f| get(&s, &format!("SYS.{f}"))),
         ["1", "'R0001'", "'BAD'", "3", "FALSE"]
     );
-    assert_eq!([get(&s, "BAD.Status"), get(&s, "BAD.Active"), get(&s, "BAD.Alarms")], ["'ERROR'", "FALSE", "[Software]"]);
+    assert_eq!(
+        [get(&s, "BAD.Status"), get(&s, "BAD.Active"), get(&s, "BAD.Alarms")],
+        ["'ERROR'", "FALSE", "[Software]"]
+    );
     assert_eq!(get(&s, "GOOD.Status"), "'OK'");
     // Clearing: the engine resets Clear; stopped programs stay stopped.
     set(&mut s, "SYS.Clear", true);
@@ -152,13 +157,18 @@ fn the_first_error_is_kept_and_only_its_program_stops() {
 
 #[test]
 fn the_error_program_runs_when_an_error_is_entered_and_may_clear_it() {
+    // First an error program that does not clear: LATE's error is not entered.
     let mut s = strategy(&FAULTS.replace("%ERRPROG%", "ONERR"), FAULT_ACTIONS);
     s.run_for(micros(10.0), None);
-    // ONERR ran at 2 s (BAD) and at 4 s (LATE: entered, since the first
-    // was cleared at its second run? No: it clears from its second run on).
-    assert_eq!(get(&s, "R.N4"), "2", "not run by its task, once per entered error");
-    assert_eq!(get(&s, "R.N5"), "5", "it saw the error number (R0005 of LATE)");
-    assert!(s.error().is_none(), "its second run cleared the error");
+    assert_eq!([get(&s, "R.N4"), get(&s, "R.N5")], ["1", "1"], "not run by its task; once, for BAD's R0001");
+    assert_eq!(s.error().map(|e| e.block.as_str()), Some("BAD"));
+    // Then one that clears: each error is entered and handled.
+    let clears = FAULT_ACTIONS.replace("SYS.Clear := R.N4 >= 2;", "SYS.Clear := TRUE;");
+    let mut s = strategy(&FAULTS.replace("%ERRPROG%", "ONERR"), &clears);
+    s.run_for(micros(10.0), None);
+    assert_eq!([get(&s, "R.N4"), get(&s, "R.N5")], ["2", "5"], "ran for BAD (R0001) and LATE (R0005)");
+    assert!(s.error().is_none(), "it cleared the error");
+    assert_eq!(get(&s, "R.N2"), "10", "GOOD went on");
     assert!(!s.halted());
 }
 
@@ -172,7 +182,7 @@ fn an_error_in_the_error_program_is_a_double_error_and_stops_everything() {
     let st = s.error().expect("status");
     assert!(st.double && st.error.code == "R0001" && st.block == "BAD", "{st:?}");
     assert_eq!(get(&s, "SYS.Double"), "TRUE");
-    assert_eq!(get(&s, "R.N2"), "3", "GOOD ran at 0, 1 and 2 s, then everything stopped");
+    assert_eq!(get(&s, "R.N2"), "2", "GOOD ran at 0 and 1 s; at 2 s BAD (before it) failed and everything stopped");
 }
 
 #[test]
@@ -189,12 +199,17 @@ fn the_same_run_gives_the_same_bytes() {
     assert_eq!(a, b);
     let trace = String::from_utf8(a.0).unwrap();
     assert_eq!(trace.lines().count(), 30 + 3 + 3 + 12 + 3, "one line per change");
-    assert!(trace.starts_with(r#"{"time":0.0,"task":1,"program":"FAST","field":"FAST.Active","old":"FALSE","new":"TRUE"}"#));
+    assert!(
+        trace.starts_with(r#"{"time":0.0,"task":1,"program":"FAST","field":"FAST.Active","old":"FALSE","new":"TRUE"}"#)
+    );
 }
 
 #[test]
 fn a_missing_action_is_located_at_its_block() {
-    let db = Database::from_json(&QUALIFIED.replace("\"ActName\": \"Count\", \"Qualifier\": \"F\"", "\"ActName\": \"Nope\"")).unwrap();
+    let db = Database::from_json(
+        &QUALIFIED.replace("\"ActName\": \"Count\", \"Qualifier\": \"F\"", "\"ActName\": \"Nope\""),
+    )
+    .unwrap();
     let object = linc_runtime::load(&compile(COUNT, &db)).expect("loads");
     let store = Store::new(db);
     let wants: Vec<_> = wanted(&store).into_iter().map(|w| (w, 0)).collect();
