@@ -140,7 +140,7 @@ pub fn set(store: &mut Store, assignment: &str) -> Result<(), String> {
 fn object(o: &Options, db: &Database) -> Result<Verified, u8> {
     let is_object = o.file.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"));
     if !is_object {
-        let obj = compile(std::slice::from_ref(&o.file), Some(db), Format::Human, 2).map_err(|Failed(s)| s)?;
+        let obj = compile(std::slice::from_ref(&o.file), Some(db), o.format, 2).map_err(|Failed(s)| s)?;
         return linc_runtime::verify::verify(obj).map_err(|e| usage(format_args!("[{}] {e}", e.code())));
     }
     let bytes = crate::files::read_input(&o.file)

@@ -38,8 +38,14 @@ impl Const {
 
 /// The value of a constant numeric expression, folded as the VM would
 /// compute it; `None` if it is not constant or would fault at run time
-/// (division by zero, `**` outside its domain), which is left to the VM.
+/// (division by zero, `**` outside its domain, a REAL that overflows to
+/// infinity and would be stored or converted), which is left to the VM so
+/// that it raises its located runtime error.
 pub fn constant(e: &Expr) -> Option<Const> {
+    folded(e).filter(|c| !matches!(c, Const::R(r) if !r.is_finite()))
+}
+
+fn folded(e: &Expr) -> Option<Const> {
     match &e.kind {
         ExprKind::Int(i) => Some(Const::I(*i)),
         ExprKind::Real(r) => Some(Const::R(*r)),
