@@ -1,5 +1,6 @@
 //! `linc disasm OUT.sto`: a readable listing of an object file.
 
+use linc_compiler::render::Format;
 use linc_runtime::isa::Op;
 use linc_runtime::object::{CodeBlock, ObjectFile};
 use linc_runtime::text::format_value;
@@ -8,21 +9,18 @@ use std::collections::HashMap;
 use std::fmt::Write;
 use std::path::Path;
 
-pub fn run(path: &Path) -> u8 {
-    let bytes = match crate::files::read_input(path) {
-        Ok(b) => b,
-        Err(e) => {
-            eprintln!("error[E0900]: can't read `{}`: {e}", path.display());
-            return 2;
-        }
-    };
-    match linc_runtime::load(&bytes) {
+pub fn run(path: &Path, format: Format) -> u8 {
+    let name = path.display().to_string();
+    let loaded = crate::files::read_input(path)
+        .map_err(|e| ("E0900", format!("can't read `{name}`: {e}")))
+        .and_then(|bytes| linc_runtime::load(&bytes).map_err(|e| (e.code(), e.to_string())));
+    match loaded {
         Ok(obj) => {
             print!("{}", listing(obj.object()));
             0
         }
-        Err(e) => {
-            eprintln!("error[{}]: {}: {e}", e.code(), path.display());
+        Err((code, message)) => {
+            eprint!("{}", crate::report::file_error(&name, code, message, format));
             2
         }
     }

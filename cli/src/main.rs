@@ -9,8 +9,8 @@ mod disasm_cmd;
 mod eval_cmd;
 mod explain_cmd;
 mod files;
+mod report;
 mod run_cmd;
-mod runtime_report;
 mod strategy_cmd;
 
 use clap::{Parser, Subcommand, ValueEnum};
@@ -138,7 +138,11 @@ enum Command {
         seed: Option<u64>,
     },
     /// Print a readable listing of an object file.
-    Disasm { file: PathBuf },
+    Disasm {
+        file: PathBuf,
+        #[arg(long, value_enum, default_value = "human")]
+        message_format: MessageFormat,
+    },
     /// Explain a diagnostic code, e.g. `linc explain E0104`.
     Explain {
         /// The code; omit it (or use --list) to list all codes.
@@ -257,7 +261,7 @@ fn main() -> ExitCode {
             }
         },
         Command::Eval { expr, db, now, seed } => eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed),
-        Command::Disasm { file } => disasm_cmd::run(&file),
+        Command::Disasm { file, message_format } => disasm_cmd::run(&file, format(message_format)),
         Command::Check { files, db, message_format, tree, transition, sequence } => {
             check_cmd::run(&check_cmd::Options {
                 files,

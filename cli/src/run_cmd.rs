@@ -7,7 +7,7 @@ use linc_runtime::store::{Cell, Store};
 use linc_runtime::vm::{Activation, Clock, Vm};
 use linc_runtime::{text, Database, Program, Verified};
 use linc_stdlib::value::decode_dollar;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 pub struct Options {
     pub file: PathBuf,
@@ -136,16 +136,21 @@ pub fn set(store: &mut Store, assignment: &str) -> Result<(), String> {
     Ok(())
 }
 
-/// Loads the object: a `.sto` file as is, anything else compiled.
-fn object(o: &Options, db: &Database) -> Result<Verified, u8> {
-    let is_object = o.file.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"));
+/// Loads a program file: a `.sto` object as is (verified), anything else
+/// compiled against `db`. Errors are printed; `Err` carries the exit status.
+pub fn program_object(path: &Path, db: &Database, format: Format) -> Result<Verified, u8> {
+    let name = path.display().to_string();
+    let fail = |code: &'static str, message: String| {
+        eprint!("{}", crate::report::file_error(&name, code, message, format));
+        2
+    };
+    let is_object = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"));
     if !is_object {
-        let obj = compile(std::slice::from_ref(&o.file), Some(db), o.format, 2).map_err(|Failed(s)| s)?;
-        return linc_runtime::verify::verify(obj).map_err(|e| usage(format_args!("[{}] {e}", e.code())));
+        let obj = compile(&[path.to_path_buf()], Some(db), format, 2).map_err(|Failed(s)| s)?;
+        return linc_runtime::verify::verify(obj).map_err(|e| fail(e.code(), e.to_string()));
     }
-    let bytes = crate::files::read_input(&o.file)
-        .map_err(|e| usage(format_args!("[E0900] can't read `{}`: {e}", o.file.display())))?;
-    linc_runtime::load(&bytes).map_err(|e| usage(format_args!("[{}] {}: {e}", e.code(), o.file.display())))
+    let bytes = crate::files::read_input(path).map_err(|e| fail("E0900", format!("can't read `{name}`: {e}")))?;
+    linc_runtime::load(&bytes).map_err(|e| fail(e.code(), e.to_string()))
 }
 
 pub fn run(o: &Options) -> u8 {
@@ -164,7 +169,7 @@ pub fn run(o: &Options) -> u8 {
         Err(status) => return status,
     };
     let db_text = dbfiles.get(0).map(|f| f.source().clone()).unwrap_or_default();
-    let obj = match object(o, &db) {
+    let obj = match program_object(&o.file, &db, o.format) {
         Ok(obj) => obj,
         Err(status) => return status,
     };
@@ -202,7 +207,10 @@ pub fn run(o: &Options) -> u8 {
     store.now = now as f64;
     let linked = match obj.link(&store, &[Program { unit: index, own }]) {
         Ok(l) => l,
-        Err(e) => return usage(format_args!("[{}] {e}", e.code())),
+        Err(e) => {
+            eprint!("{}", crate::report::file_error(&o.file.display().to_string(), e.code(), e.to_string(), o.format));
+            return 2;
+        }
     };
     let mut act = Activation::new(&linked, 0, 0);
     let seed = o.seed.unwrap_or_else(|| now as u64 ^ u64::from(std::process::id()));
@@ -214,7 +222,7 @@ pub fn run(o: &Options) -> u8 {
         match vm.run(&linked, &mut act, &mut store, trace) {
             Ok(_) => {}
             Err(e) => {
-                eprint!("{}", crate::runtime_report::render(&e, o.format));
+                eprint!("{}", crate::report::runtime(&e, o.format));
                 status = 1;
                 break;
             }

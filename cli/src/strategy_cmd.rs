@@ -1,9 +1,8 @@
 //! `linc run PLANT.json --for DURATION`: run a whole strategy. The CLI
 //! reads, compiles and prints; the runtime's strategy engine runs.
 
-use crate::build::{compile, Failed};
 use crate::check_cmd::load_db;
-use crate::run_cmd::{address, set, show_value, start_time, write_db, Addr};
+use crate::run_cmd::{address, program_object, set, show_value, start_time, write_db, Addr};
 use linc_compiler::render::{self, Format, SourceFiles};
 use linc_compiler::{Diagnostic, Span};
 use linc_runtime::strategy::{self, trace::Trace, Strategy, StrategyError, Want};
@@ -64,7 +63,7 @@ fn objects(o: &Options, db: &Database, wants: &[Want]) -> Result<Plan, u8> {
             Some(&i) => i,
             None => {
                 let path = dir.join(&w.file);
-                objects.push(object(&path, db, o.format)?);
+                objects.push(program_object(&path, db, o.format)?);
                 index.insert(w.file.clone(), objects.len() - 1);
                 objects.len() - 1
             }
@@ -72,17 +71,6 @@ fn objects(o: &Options, db: &Database, wants: &[Want]) -> Result<Plan, u8> {
         pairs.push((w.clone(), i));
     }
     Ok((objects, pairs))
-}
-
-fn object(path: &Path, db: &Database, format: Format) -> Result<Verified, u8> {
-    let is_object = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"));
-    if is_object {
-        let bytes = crate::files::read_input(path)
-            .map_err(|e| usage(format_args!("[E0900] can't read `{}`: {e}", path.display())))?;
-        return linc_runtime::load(&bytes).map_err(|e| usage(format_args!("[{}] {}: {e}", e.code(), path.display())));
-    }
-    let obj = compile(&[path.to_path_buf()], Some(db), format, 2).map_err(|Failed(s)| s)?;
-    linc_runtime::verify::verify(obj).map_err(|e| usage(format_args!("[{}] {e}", e.code())))
 }
 
 pub fn run(o: &Options) -> u8 {
@@ -143,7 +131,7 @@ pub fn run(o: &Options) -> u8 {
         let _ = t.finish();
     }
     for e in &failures {
-        eprint!("{}", crate::runtime_report::render(e, o.format));
+        eprint!("{}", crate::report::runtime(e, o.format));
     }
     for (path, a) in &shows {
         println!("{path} = {}", show_value(&s.store, *a));

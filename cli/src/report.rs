@@ -1,6 +1,8 @@
-//! Runtime errors through the one renderer: a `RuntimeError` knows its file,
-//! line and column, so it becomes a `Diagnostic` located in that file and
-//! prints in `human`, `short` or `json` like any front-end error.
+//! Errors of every stage through the one renderer (`linc_compiler::render`):
+//! a `RuntimeError` knows its file, line and column, so it becomes a
+//! `Diagnostic` located in that file; loader, linker and I/O errors belong
+//! to a whole file and are shown at its start. All print in `human`,
+//! `short` or `json` like any front-end error.
 
 use linc_compiler::render::{self, Format, SourceFiles};
 use linc_compiler::{Diagnostic, Span};
@@ -15,7 +17,7 @@ fn offset(text: &str, line: u32, col: u32) -> usize {
 /// Renders a runtime error. When its source can't be read (an object run
 /// without its source), the file is stood in for by empty lines so that
 /// line and column still print right.
-pub fn render(e: &RuntimeError, format: Format) -> String {
+pub fn runtime(e: &RuntimeError, format: Format) -> String {
     let text = std::fs::read_to_string(&e.file)
         .unwrap_or_else(|_| "\n".repeat((e.line as usize).saturating_sub(1)) + &" ".repeat(e.col as usize));
     let at = offset(&text, e.line, e.col);
@@ -24,4 +26,12 @@ pub fn render(e: &RuntimeError, format: Format) -> String {
     let message = if e.action.is_empty() { e.message.clone() } else { format!("in `{}`: {}", e.action, e.message) };
     let d = Diagnostic::error(e.code, message, Span::new(at, at)).label("the program stopped here");
     render::render(&files, id, &d, format)
+}
+
+/// Renders an error that belongs to a whole file (a damaged object, a link
+/// failure, an unreadable input), without reading the file again.
+pub fn file_error(file: &str, code: &'static str, message: impl Into<String>, format: Format) -> String {
+    let mut files = SourceFiles::new();
+    let id = files.add(file.to_string(), String::new());
+    render::render(&files, id, &Diagnostic::error(code, message, Span::new(0, 0)), format)
 }

@@ -1,0 +1,43 @@
+//! `linc disasm` is linear in the object's size (it walked the whole line
+//! table once per instruction: 194k statements took 45 s).
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+fn linc(args: &[&str]) -> (bool, Duration) {
+    let t = Instant::now();
+    let o = Command::new(env!("CARGO_BIN_EXE_linc"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .output()
+        .expect("run linc");
+    (o.status.success(), t.elapsed())
+}
+
+/// Compiles `n` statements into an object and times its listing.
+fn disasm_time(n: usize) -> Duration {
+    let dir = std::env::temp_dir().join(format!("linc-disasm-{}-{n}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let src = dir.join("big.st");
+    let sto = dir.join("big.sto");
+    std::fs::write(&src, "Recipe.N0 := Recipe.N0 + 1;\nRecipe.A0 := Recipe.A0 * 0.5;\n".repeat(n / 2)).expect("write");
+    let (src, sto) = (src.to_string_lossy().into_owned(), sto.to_string_lossy().into_owned());
+    assert!(linc(&["compile", &src, "-o", &sto, "--db", "examples/guide/plant.db.json"]).0);
+    // The best of three, to keep a busy machine from deciding the ratio.
+    (0..3)
+        .map(|_| {
+            let (ok, t) = linc(&["disasm", &sto]);
+            assert!(ok);
+            t
+        })
+        .min()
+        .unwrap_or_default()
+}
+
+#[test]
+fn disasm_time_grows_linearly() {
+    let small = disasm_time(12_000);
+    let large = disasm_time(48_000);
+    // Four times the statements: linear is about 4x, the old quadratic walk 16x.
+    let ratio = large.as_secs_f64() / small.as_secs_f64().max(1e-3);
+    assert!(ratio < 8.0, "12k statements {small:?}, 48k {large:?}: ratio {ratio:.1}");
+}
