@@ -83,6 +83,19 @@ fn unquote(s: &str) -> &str {
     }
 }
 
+/// Applies every `--set` and resolves every `--show` (printing the first
+/// problem; `Err` is the exit status).
+pub fn set_and_show(store: &mut Store, sets: &[String], shows: &[String]) -> Result<Vec<(String, Addr)>, u8> {
+    for s in sets {
+        set(store, s).map_err(|msg| usage(format_args!("--set {s}: {msg}")))?;
+    }
+    shows
+        .iter()
+        .map(|p| address(store, p).map(|a| (p.clone(), a)))
+        .collect::<Result<_, _>>()
+        .map_err(|msg| usage(format_args!("--show: {msg}")))
+}
+
 /// Applies `BLOCK.FIELD=VALUE`.
 pub fn set(store: &mut Store, assignment: &str) -> Result<(), String> {
     let (path, value) = assignment.split_once('=').ok_or_else(|| format!("`{assignment}` is not BLOCK.FIELD=VALUE"))?;
@@ -191,14 +204,9 @@ pub fn run(o: &Options) -> u8 {
         Ok(b) => b,
         Err(msg) => return usage(msg),
     };
-    for s in &o.set {
-        if let Err(msg) = set(&mut store, s) {
-            return usage(format_args!("--set {s}: {msg}"));
-        }
-    }
-    let shows: Vec<(String, Addr)> = match o.show.iter().map(|p| address(&store, p).map(|a| (p.clone(), a))).collect() {
+    let shows = match set_and_show(&mut store, &o.set, &o.show) {
         Ok(v) => v,
-        Err(msg) => return usage(format_args!("--show: {msg}")),
+        Err(status) => return status,
     };
     let now = match start_time(o.now.as_deref()) {
         Ok(s) => s,

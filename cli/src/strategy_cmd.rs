@@ -2,7 +2,7 @@
 //! reads, compiles and prints; the runtime's strategy engine runs.
 
 use crate::check_cmd::load_db;
-use crate::run_cmd::{address, program_object, set, show_value, start_time, write_db, Addr};
+use crate::run_cmd::{program_object, set_and_show, show_value, start_time, write_db};
 use linc_compiler::render::{self, Format, SourceFiles};
 use linc_compiler::{Diagnostic, Span};
 use linc_runtime::strategy::{self, trace::Trace, Strategy, StrategyError, Want};
@@ -90,14 +90,9 @@ pub fn run(o: &Options) -> u8 {
     };
     let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
     let mut store = Store::new(db.clone());
-    for s in &o.set {
-        if let Err(msg) = set(&mut store, s) {
-            return usage(format_args!("--set {s}: {msg}"));
-        }
-    }
-    let shows: Vec<(String, Addr)> = match o.show.iter().map(|p| address(&store, p).map(|a| (p.clone(), a))).collect() {
+    let shows = match set_and_show(&mut store, &o.set, &o.show) {
         Ok(v) => v,
-        Err(msg) => return usage(format_args!("--show: {msg}")),
+        Err(status) => return status,
     };
     let wants = strategy::wanted(&store);
     let (objects, pairs) = match objects(o, &db, &wants) {
