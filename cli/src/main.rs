@@ -244,7 +244,7 @@ fn main() -> ExitCode {
                 period,
                 set,
                 show,
-                trace: trace.is_some(),
+                trace,
                 out,
                 now,
                 seed,

@@ -18,7 +18,8 @@ pub struct Options {
     pub period: f64,
     pub set: Vec<String>,
     pub show: Vec<String>,
-    pub trace: bool,
+    /// `-` prints each write as it happens; a path collects them into that file.
+    pub trace: Option<PathBuf>,
     pub out: Option<PathBuf>,
     pub now: Option<String>,
     pub seed: Option<u64>,
@@ -167,16 +168,16 @@ pub fn program_object(path: &Path, db: &Database, format: Format) -> Result<Veri
 }
 
 pub fn run(o: &Options) -> u8 {
-    // `--out` may not replace an input or anything but a regular file;
-    // checked before the run, so a refused run changes nothing.
-    if let Some(out) = &o.out {
+    // `--out` and `--trace FILE` may not replace an input or anything but a
+    // regular file; checked before the run, so a refused run changes nothing.
+    for out in [&o.out, &o.trace].into_iter().flatten().filter(|p| p.as_os_str() != "-") {
         if let Err(e) = crate::files::check_output(out, &[&o.file, &o.db]) {
             eprintln!("{e}");
             return 2;
         }
     }
     let mut dbfiles = SourceFiles::new();
-    let db = match load_db(Some(&o.db), &mut dbfiles, Format::Human) {
+    let db = match load_db(Some(&o.db), &mut dbfiles, o.format) {
         Ok(Some(db)) => db,
         Ok(None) => return 2,
         Err(status) => return status,
@@ -224,9 +225,18 @@ pub fn run(o: &Options) -> u8 {
     let seed = o.seed.unwrap_or_else(|| now as u64 ^ u64::from(std::process::id()));
     let mut vm = Vm::new(o.watchdog, Clock::new(seed, 0));
     let mut status = 0;
+    let to_stdout = o.trace.as_ref().is_some_and(|p| p.as_os_str() == "-");
+    let mut traced = String::new();
     for cycle in 1..=o.cycles {
-        let mut tracer = |s: &Store, cell: u32| println!("cycle {cycle}: {} = {}", s.describe(cell), s.show(cell));
-        let trace: linc_runtime::vm::Tracer = if o.trace { Some(&mut tracer) } else { None };
+        let mut tracer = |s: &Store, cell: u32| {
+            let line = format!("cycle {cycle}: {} = {}\n", s.describe(cell), s.show(cell));
+            if to_stdout {
+                print!("{line}");
+            } else {
+                traced.push_str(&line);
+            }
+        };
+        let trace: linc_runtime::vm::Tracer = if o.trace.is_some() { Some(&mut tracer) } else { None };
         match vm.run(&linked, &mut act, &mut store, trace) {
             Ok(_) => {}
             Err(e) => {
@@ -239,6 +249,12 @@ pub fn run(o: &Options) -> u8 {
     }
     for (path, a) in &shows {
         println!("{path} = {}", show_value(&store, *a));
+    }
+    if let Some(path) = o.trace.as_ref().filter(|_| !to_stdout) {
+        if let Err(e) = crate::files::write_atomic(path, traced.as_bytes()) {
+            eprintln!("{e}");
+            return 2;
+        }
     }
     if let Some(out) = &o.out {
         if let Err(e) = write_db(out, &db_text, &store) {
