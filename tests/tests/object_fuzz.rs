@@ -13,7 +13,7 @@
 use linc_conformance::exec::compile;
 use linc_conformance::guide_db;
 use linc_runtime::isa::{Op, OPCODES};
-use linc_runtime::object::{crc32, Class, LineEntry, LoopEntry, ObjectFile, Sub};
+use linc_runtime::object::{crc32, Class, CodeBlock, LineEntry, LoopEntry, ObjectFile, Sub};
 use linc_runtime::store::Store;
 use linc_runtime::vm::{Activation, Clock, Outcome, Vm};
 use linc_runtime::wire::Bytes;
@@ -108,15 +108,14 @@ impl Rng {
         }
     }
     fn one_in(&mut self, n: u64) -> bool {
-        self.next() % n == 0
+        self.below(n as usize) == 0
     }
     fn byte(&mut self) -> u8 {
         self.next() as u8
     }
     /// Mostly small numbers, sometimes boundary values, sometimes anything.
     fn number(&mut self) -> u32 {
-        const EDGES: [u32; 12] =
-            [0, 1, 2, 7, 8, 0x7F, 0x80, 0xFF, 0xFFFF, 0x1_0000, 0x7FFF_FFFF, 0xFFFF_FFFF];
+        const EDGES: [u32; 12] = [0, 1, 2, 7, 8, 0x7F, 0x80, 0xFF, 0xFFFF, 0x1_0000, 0x7FFF_FFFF, 0xFFFF_FFFF];
         match self.below(4) {
             0 | 1 => self.below(16) as u32,
             2 => EDGES[self.below(EDGES.len())],
@@ -299,51 +298,78 @@ fn pick_block(rng: &mut Rng, obj: &ObjectFile) -> Option<(usize, usize)> {
     obj.units[u].blocks.get(b).map(|_| (u, b))
 }
 
-/// A mutation of one code block's instructions or tables.
+/// Inserts `ops` before instruction `at`, moving the labels, line and loop
+/// entries after it, so the tables stay consistent and the verifier looks
+/// at the new code itself.
+fn insert_ops(block: &mut CodeBlock, at: usize, ops: &[Op]) {
+    let (at32, k) = (at as u32, ops.len() as u32);
+    block.ops.0.splice(at..at, ops.iter().copied());
+    block.labels.iter_mut().filter(|l| **l > at32).for_each(|l| *l += k);
+    block.lines.iter_mut().filter(|e| e.op > at32).for_each(|e| e.op += k);
+    for lp in &mut block.loops {
+        lp.start += k * u32::from(lp.start > at32);
+        lp.end += k * u32::from(lp.end >= at32);
+    }
+}
+
+/// A random instruction with the given stack effect, if one turns up soon.
+fn op_with_effect(rng: &mut Rng, obj: &ObjectFile, labels: usize, want: [u32; 4]) -> Option<Op> {
+    (0..64).map(|_| random_op(rng, obj, labels)).find(|op| {
+        let e = op.effect();
+        [e.num_pop, e.num_push, e.str_pop, e.str_push] == want
+    })
+}
+
+/// Instructions that keep the stacks balanced when inserted at the start of
+/// a statement: a suspension, or a push followed by a pop of the same stack.
+fn balanced(rng: &mut Rng, obj: &ObjectFile, labels: usize) -> Vec<Op> {
+    let (push, pop) = if rng.one_in(2) { ([0, 1, 0, 0], [1, 0, 0, 0]) } else { ([0, 0, 0, 1], [0, 0, 1, 0]) };
+    match rng.below(3) {
+        0 => vec![Op::Yield {}],
+        _ => op_with_effect(rng, obj, labels, push).into_iter().chain(op_with_effect(rng, obj, labels, pop)).collect(),
+    }
+}
+
+/// A mutation of one code block's instructions.
 fn mutate_code(rng: &mut Rng, obj: &mut ObjectFile) -> &'static str {
     let Some((u, b)) = pick_block(rng, obj) else { return "no block" };
     let block = &obj.units[u].blocks[b];
     let (n, labels) = (block.ops.len(), block.labels.len());
     let at = rng.below(n);
-    let (name, ops) = match rng.below(7) {
-        0 if n > 0 => {
-            let mut ops = block.ops.0.clone();
+    let mut ops = block.ops.0.clone();
+    let name = match rng.below(8) {
+        0 | 1 if n > 0 => {
             ops[at] = tweak(rng, ops[at], obj, labels);
-            ("operand", ops)
-        }
-        1 if n > 0 => {
-            let mut ops = block.ops.0.clone();
-            ops[at] = random_op(rng, obj, labels);
-            ("replace op", ops)
+            "operand"
         }
         2 if n > 0 => {
-            let mut ops = block.ops.0.clone();
-            ops.swap(at, rng.below(n));
-            ("swap ops", ops)
+            ops[at] = random_op(rng, obj, labels);
+            "replace op"
         }
-        3 => {
-            let mut ops = block.ops.0.clone();
-            ops.insert(at, random_op(rng, obj, labels));
-            ("insert op", ops)
+        3 if n > 0 => {
+            ops.swap(at, rng.below(n));
+            "swap ops"
         }
         4 if n > 0 => {
-            let mut ops = block.ops.0.clone();
             ops.remove(at);
-            ("delete op", ops)
+            "delete op"
         }
         5 if n > 0 => {
-            let mut ops = block.ops.0.clone();
             ops.insert(at, ops[rng.below(n)]);
-            ("duplicate op", ops)
+            "duplicate op"
+        }
+        6 => {
+            // At the start of a statement, where both stacks are empty.
+            let starts: Vec<usize> = block.lines.iter().map(|e| e.op as usize).collect();
+            let at = starts.get(rng.below(starts.len())).copied().unwrap_or(0).min(n);
+            let new = balanced(rng, obj, labels);
+            insert_ops(&mut obj.units[u].blocks[b], at, &new);
+            return "insert balanced ops";
         }
         _ => {
-            let k = 1 + rng.below(4);
-            let mut ops = block.ops.0.clone();
-            for _ in 0..k {
-                let op = random_op(rng, obj, labels);
-                ops.insert(rng.below(ops.len() + 1), op);
-            }
-            ("insert ops", ops)
+            let new: Vec<Op> = (0..1 + rng.below(3)).map(|_| random_op(rng, obj, labels)).collect();
+            insert_ops(&mut obj.units[u].blocks[b], at, &new);
+            return "insert ops";
         }
     };
     obj.units[u].blocks[b].ops.0 = ops;
@@ -560,13 +586,13 @@ fn make_case(case: u64, corpus: &[Seed]) -> (Vec<u8>, Vec<&'static str>) {
     let a = &corpus[rng.below(corpus.len())];
     let b = &corpus[rng.below(corpus.len())];
     let mut names = Vec::new();
-    let mut bytes = if rng.below(10) < 6 {
+    let mut bytes = if rng.below(10) < 7 {
         let mut obj = a.obj.clone();
         for _ in 0..1 + rng.below(3) {
             names.push(mutate_object(&mut rng, &mut obj, &b.obj));
         }
         let bytes = obj.to_bytes();
-        if !rng.one_in(4) {
+        if !rng.one_in(6) {
             return (bytes, names);
         }
         bytes
@@ -709,7 +735,12 @@ fn mutated_objects_never_panic_and_stay_within_memory() {
     if cases.len() >= 1000 {
         // Not vacuous: most damage reaches the verifier, some of it is
         // accepted and runs (some to a clean end, some to a runtime error).
-        assert!(t.undecoded() * 2 < t.cases, "only {} of {} cases reached the verifier", t.cases - t.undecoded(), t.cases);
+        assert!(
+            t.undecoded() * 2 < t.cases,
+            "only {} of {} cases reached the verifier",
+            t.cases - t.undecoded(),
+            t.cases
+        );
         assert!(t.accepted * 10 > t.cases && t.rejected_total() * 10 > t.cases, "{t:?}");
         assert!(t.done > 0 && t.faults.values().sum::<u64>() > 0 && t.link_failed > 0, "{t:?}");
     }
