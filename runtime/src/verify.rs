@@ -7,7 +7,8 @@
 //! arguments; both stacks are balanced on every path (never popped below
 //! empty, equal where paths meet, empty at `Ret` and `Yield`, so the state at
 //! every resume point is known); the reference register is set on every path
-//! before it is used; and line and loop tables stay inside the code.
+//! before it is used, from the symbol the using instruction names; and line
+//! and loop tables stay inside the code.
 //!
 //! Only [`verify`] makes a [`Verified`] object, and linking takes one, so an
 //! object is verified exactly once on its way to the VM (ADR 0005).
@@ -183,13 +184,14 @@ fn symbol_fits(op: &Op, sym: &Symbol) -> bool {
     }
 }
 
-/// What the verifier knows at an instruction: both stack depths and whether
-/// the reference register is set on every path to it.
+/// What the verifier knows at an instruction: both stack depths and which
+/// symbol's run the reference register points into on every path to it
+/// (`None`: unset, or different symbols on different paths).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct State {
     num: u32,
     strs: u32,
-    ref_set: bool,
+    ref_sym: Option<u16>,
 }
 
 fn uses_ref(op: &Op) -> bool {
@@ -208,28 +210,40 @@ fn uses_ref(op: &Op) -> bool {
     )
 }
 
-/// The state after one instruction, or why it is not allowed there.
-fn step(u: &Unit, b: &CodeBlock, pc: usize, s: State) -> Result<State, LoadError> {
+/// The state after one instruction, or why it is not allowed there. An
+/// instruction that uses the reference register must name the symbol the
+/// register was set from (the compiler always does), so its class is the
+/// one `symbol_fits` checked and the VM never meets a cell of another type.
+fn step(obj: &ObjectFile, u: &Unit, b: &CodeBlock, pc: usize, s: State) -> Result<State, LoadError> {
     let op = &b.ops[pc];
     let e = op.effect();
     if s.num < e.num_pop || s.strs < e.str_pop {
         return Err(invalid("E0708", u, b, pc, format!("{} pops an empty stack", op.name())));
     }
-    if uses_ref(op) && !s.ref_set {
-        return Err(invalid("E0713", u, b, pc, format!("{} uses the reference register before it is set", op.name())));
+    if uses_ref(op) {
+        let Some(held) = s.ref_sym else {
+            let what = format!("{} uses the reference register before it is set", op.name());
+            return Err(invalid("E0713", u, b, pc, what));
+        };
+        let bits_ok = !matches!(op, Op::RefBit { .. } | Op::RefBitOff { .. })
+            || obj.symbols.get(usize::from(held)).is_some_and(|sym| sym.class.bits().is_some());
+        if op.symbol().is_some_and(|named| named != held) || !bits_ok {
+            let what = format!("{} does not fit the field the reference register points at", op.name());
+            return Err(invalid("E0713", u, b, pc, what));
+        }
     }
     let num = s.num - e.num_pop + e.num_push;
     let strs = s.strs - e.str_pop + e.str_push;
     if matches!(op, Op::Ret {} | Op::Yield {} | Op::Return { .. }) && (num, strs) != (0, 0) {
         return Err(invalid("E0708", u, b, pc, format!("{} with values left on the stack", op.name())));
     }
-    let ref_set = match op {
-        Op::Ref { .. } | Op::RefOff { .. } => true,
+    let ref_sym = match *op {
+        Op::Ref { sym } | Op::RefOff { sym } => Some(sym),
         // The register does not survive a suspension.
-        Op::Yield {} => false,
-        _ => s.ref_set,
+        Op::Yield {} => None,
+        _ => s.ref_sym,
     };
-    Ok(State { num, strs, ref_set })
+    Ok(State { num, strs, ref_sym })
 }
 
 /// Verifies one code block; returns the stack sizes it needs.
@@ -240,15 +254,15 @@ fn verify_block(obj: &ObjectFile, u: &Unit, b: &CodeBlock) -> Result<Limits, Loa
     }
     let n = b.ops.len();
     // Abstract interpretation: depths must agree where paths meet; the
-    // reference flag only falls from set to unset, so each instruction is
-    // visited at most twice and the walk is linear.
+    // reference symbol only falls from known to unknown, so each
+    // instruction is visited at most twice and the walk is linear.
     let mut state: Vec<Option<State>> = vec![None; n];
     let mut work = vec![0usize];
-    state[0] = Some(State { num: 0, strs: 0, ref_set: false });
+    state[0] = Some(State { num: 0, strs: 0, ref_sym: None });
     let mut limits = Limits::default();
     while let Some(pc) = work.pop() {
         let Some(s) = state[pc] else { continue };
-        let after = step(u, b, pc, s)?;
+        let after = step(obj, u, b, pc, s)?;
         limits.max_num = limits.max_num.max(after.num as usize);
         limits.max_str = limits.max_str.max(after.strs as usize);
         let op = &b.ops[pc];
@@ -273,8 +287,8 @@ fn verify_block(obj: &ObjectFile, u: &Unit, b: &CodeBlock) -> Result<Limits, Loa
                         format!("stack depths {:?} and {:?} meet here", (d.num, d.strs), (after.num, after.strs));
                     return Err(invalid("E0708", u, b, t, what));
                 }
-                Some(d) if d.ref_set && !after.ref_set => {
-                    state[t] = Some(State { ref_set: false, ..d });
+                Some(d) if d.ref_sym.is_some() && d.ref_sym != after.ref_sym => {
+                    state[t] = Some(State { ref_sym: None, ..d });
                     work.push(t);
                 }
                 Some(_) => {}

@@ -97,6 +97,39 @@ fn the_verifier_proves_the_reference_register_is_set() {
 }
 
 #[test]
+fn the_reference_register_is_used_with_the_symbol_it_was_set_from() {
+    use Op::*;
+    // Found by the object fuzz test: the register set from an INT field, then
+    // read as a bit of another (BITS8) symbol; the VM met an INT cell (R0099).
+    let mut obj = object(
+        vec![Ref { sym: 0 }, PushI { v: 0 }, RefBitOff { bit: 0 }, LoadRefBit { sym: 1 }, StoreI { sym: 0 }, Ret {}],
+        vec![],
+        0,
+        0,
+    );
+    obj.symbols.push(Symbol { block: "Dig_A".into(), field: "Out".into(), sub: Sub::Field, class: Class::Bits8 });
+    assert_eq!(verify::verify(obj.clone()).err().map(|e| e.code()), Some("E0713"));
+    // Set from the bitfield itself, it verifies.
+    obj.units[0].blocks[0].ops.0[0] = Ref { sym: 1 };
+    obj.units[0].blocks[0].ops.0[4] = StoreI { sym: 0 };
+    assert!(verify::verify(obj.clone()).is_ok());
+    // Paths that set it from different symbols meet: unknown, refused.
+    let meet = vec![
+        LoadI { sym: 0 },
+        JumpIfFalse { to: 0 },
+        Ref { sym: 0 },
+        Jump { to: 1 },
+        Ref { sym: 1 },
+        LoadRefI { sym: 0 },
+        StoreI { sym: 0 },
+        Ret {},
+    ];
+    let mut obj = object(meet, vec![4, 5], 0, 0);
+    obj.symbols.push(Symbol { block: "Dig_A".into(), field: "Out".into(), sub: Sub::Field, class: Class::Bits8 });
+    assert_eq!(verify::verify(obj).err().map(|e| e.code()), Some("E0713"));
+}
+
+#[test]
 fn labels_retained_slots_and_tables_are_checked() {
     use Op::*;
     assert_eq!(verify_code(vec![Jump { to: 1 }, Ret {}], vec![1]), Some("E0705"), "label id out of range");

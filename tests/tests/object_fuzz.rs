@@ -732,6 +732,9 @@ fn mutated_objects_never_panic_and_stay_within_memory() {
     }
     // A hang guard: the watchdog bounds each run, so no case may take long.
     assert!(t.slowest < Duration::from_secs(5), "a case took {:?}", t.slowest);
+    // The verifier proves every cell an instruction reaches has the type it
+    // expects, so "object and database disagree" can't happen at run time.
+    assert_eq!(t.faults.get("R0099"), None, "{:?}", t.faults);
     if cases.len() >= 1000 {
         // Not vacuous: most damage reaches the verifier, some of it is
         // accepted and runs (some to a clean end, some to a runtime error).
