@@ -225,8 +225,11 @@ fn step(obj: &ObjectFile, u: &Unit, b: &CodeBlock, pc: usize, s: State) -> Resul
             let what = format!("{} uses the reference register before it is set", op.name());
             return Err(invalid("E0713", u, b, pc, what));
         };
-        let bits_ok = !matches!(op, Op::RefBit { .. } | Op::RefBitOff { .. })
-            || obj.symbols.get(usize::from(held)).is_some_and(|sym| sym.class.bits().is_some());
+        let width = obj.symbols.get(usize::from(held)).and_then(|sym| sym.class.bits());
+        let bits_ok = match *op {
+            Op::RefBit { bit } | Op::RefBitOff { bit } => width.is_some_and(|w| bit < w),
+            _ => true,
+        };
         if op.symbol().is_some_and(|named| named != held) || !bits_ok {
             let what = format!("{} does not fit the field the reference register points at", op.name());
             return Err(invalid("E0713", u, b, pc, what));

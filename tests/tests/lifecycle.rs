@@ -113,6 +113,10 @@ fn the_reference_register_is_used_with_the_symbol_it_was_set_from() {
     obj.units[0].blocks[0].ops.0[0] = Ref { sym: 1 };
     obj.units[0].blocks[0].ops.0[4] = StoreI { sym: 0 };
     assert!(verify::verify(obj.clone()).is_ok());
+    // A bit beyond the held bitfield's width (found by the fuzz test too).
+    let mut wide = obj.clone();
+    wide.units[0].blocks[0].ops.0[2] = RefBitOff { bit: 8 };
+    assert_eq!(verify::verify(wide).err().map(|e| e.code()), Some("E0713"));
     // Paths that set it from different symbols meet: unknown, refused.
     let meet = vec![
         LoadI { sym: 0 },
