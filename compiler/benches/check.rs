@@ -25,17 +25,25 @@ use std::hint::black_box;
 
 const TARGET_BYTES: usize = 5 * 1024 * 1024;
 
-/// Realistic statements over the guide database, varied by a counter.
+/// Realistic statements over the guide database, varied by a counter, in
+/// actions of 100 blocks (an action has at most 254 FOR loops).
 fn generate() -> String {
     let mut out = String::with_capacity(TARGET_BYTES + 4096);
     let mut i = 0u32;
     while out.len() < TARGET_BYTES {
         let n = i % 7;
+        if i % 100 == 0 {
+            if i > 0 {
+                out.push_str("END_ACTION\n");
+            }
+            out.push_str(&format!("ACTION B{}\n", i / 100));
+        }
         out.push_str(&format!(
             "(* block {i} *)\nIF PIC_004.PV < {i}.5 AND Dig_A.Out.Bit{n} THEN\n    TIC_100.SL := REC1.A{n} * 1.5 + (Block_5.PV - {i}) / Const.A7;\n    Dig_B.Out.Bit{n} := NOT Dig_A.Out.Bit{n} OR (PIC_005.PV > 30);\nELSIF Recipe.N{n} MOD 3 = 0 THEN\n    Raw1.I2 := CRC(Raw1.Tx_Value, 1, 16#8005, 16#FFFF);\nELSE\n    PIC_004.Mode := \"AUTO\";\nEND_IF;\nFOR Counters.N0 := 0 TO 6 DO\n    Block_5.Val1{{Counters.N0}} := Block_5.Val1{{Counters.N0 + 1}} + T#1m30s;\nEND_FOR;\n"
         ));
         i += 1;
     }
+    out.push_str("END_ACTION\n");
     out
 }
 

@@ -123,7 +123,9 @@ fn json(files: &SourceFiles, d: &Diagnostic) -> String {
 }
 
 fn human(files: &SourceFiles, d: &Diagnostic) -> String {
-    let mut labels = vec![(d.file, d.span, d.label.as_str(), true)];
+    // A file with no text (an object file given as source) has no snippet.
+    let empty = files.file(d.file).is_some_and(|f| f.text().is_empty());
+    let mut labels = if empty { Vec::new() } else { vec![(d.file, d.span, d.label.as_str(), true)] };
     labels.extend(d.secondary.iter().map(|l| (l.file.unwrap_or(d.file), l.span, l.text.as_str(), false)));
     let (view, ranges) = View::build(files, &labels);
     let cs_labels: Vec<cs::Label<usize>> = labels
