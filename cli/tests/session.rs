@@ -88,16 +88,21 @@ fn deep_nesting_is_a_located_error_in_every_command() {
 }
 
 #[test]
-fn a_ten_megabyte_line_is_checked() {
+fn a_ten_megabyte_line_is_checked_and_compiled() {
     // One line: 10 MB of `NOT NOT ...` and a REAL constant out of range at its end.
     let line = format!("Recipe.N0 := {}1; Recipe.A0 := 1E39;", "NOT ".repeat(10 << 18));
     let f = temp("long", "line.st", line.as_bytes());
-    let o = linc(&["check", &f, "--db", DB]);
-    assert_eq!(o.status.code(), Some(1));
-    let text = stdout(&o);
-    assert_eq!(text.matches("error[").count(), 2, "{}", &text[..text.len().min(2000)]);
-    assert!(text.contains("error[E0022]") && text.contains("error[E0019]"), "{text}");
-    assert!(text.len() < 4_000, "long lines are cut around the label: {} bytes", text.len());
+    let out = temp("long", "out.sto", b"");
+    for args in [vec!["check"], vec!["check", "--tree"], vec!["compile", "-o", &out]] {
+        let mut full = args.clone();
+        full.extend([f.as_str(), "--db", DB]);
+        let o = linc(&full);
+        assert_eq!(o.status.code(), Some(1), "{args:?}");
+        let text = stdout(&o);
+        assert_eq!(text.matches("error[").count(), 2, "{args:?}: {}", &text[..text.len().min(2000)]);
+        assert!(text.contains("error[E0022]") && text.contains("error[E0019]"), "{text}");
+        assert!(text.len() < 4_000, "long lines are cut around the label: {} bytes", text.len());
+    }
 }
 
 #[test]
