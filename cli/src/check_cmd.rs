@@ -1,8 +1,9 @@
-//! `linc check`: lex, parse and check files, printing diagnostics.
+//! `linc check`: check files in one session, printing diagnostics.
 
 use linc_compiler::check::Context;
-use linc_compiler::render::{self, Format, SourceFiles};
-use linc_compiler::{pretty, Diagnostic};
+use linc_compiler::render::{self, escape, Format, SourceFiles};
+use linc_compiler::session::{CheckOptions, Input, Session};
+use linc_compiler::Diagnostic;
 use linc_runtime::Database;
 use std::path::{Path, PathBuf};
 
@@ -23,7 +24,7 @@ pub fn io_error(path: &Path, e: &std::io::Error, format: Format) {
             "{}",
             serde_json::json!({ "file": path.display().to_string(), "severity": "error", "code": "E0900", "message": msg })
         ),
-        _ => eprintln!("error[E0900]: {msg}"),
+        _ => eprintln!("error[E0900]: {}", escape(&msg)),
     }
 }
 
@@ -38,15 +39,15 @@ pub fn load_db(path: Option<&Path>, files: &mut SourceFiles, format: Format) -> 
     let id = files.add(path.display().to_string(), text);
     loaded.map(Some).map_err(|e| {
         let span = e.span.map(|(s, e)| linc_compiler::Span::new(s, e)).unwrap_or_default();
-        let d = Diagnostic::error(e.code, e.message, span).label("here");
-        print!("{}", render::render(files, id, &d, format));
+        let d = Diagnostic::error(e.code, e.message, span).label("here").in_file(id);
+        print!("{}", render::render(files, &d, format));
         2u8
     })
 }
 
 pub fn run(o: &Options) -> u8 {
-    let mut files = SourceFiles::new();
-    let db = match load_db(o.db.as_deref(), &mut files, o.format) {
+    let mut dbfiles = SourceFiles::new();
+    let db = match load_db(o.db.as_deref(), &mut dbfiles, o.format) {
         Ok(db) => db,
         Err(status) => return status,
     };
@@ -54,39 +55,30 @@ pub fn run(o: &Options) -> u8 {
     let db = db.unwrap_or_else(Database::builtin);
     let any_step: &[String] = &[];
     let steps = (o.sequence || o.transition).then_some(any_step);
-    let ctx = Context { db: &db, resolve_blocks, steps };
+    let mut session = Session::new(Context { db: &db, resolve_blocks, steps });
+    let input = if o.transition { Input::Transition } else { Input::Actions };
     let (mut errors, mut warnings, mut status) = (0usize, 0usize, 0u8);
     for path in &o.files {
-        let text = match crate::files::read_input_text(path) {
-            Ok(t) => t,
+        let bytes = match crate::files::read_input(path) {
+            Ok(b) => b,
             Err(e) => {
                 io_error(path, &e, o.format);
                 status = 2;
                 continue;
             }
         };
-        let name = path.display().to_string();
-        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("action").to_string();
-        let (diagnostics, tree) = if o.transition {
-            let r = linc_compiler::check_transition(&text, ctx);
-            (r.diagnostics, r.tree.map(|e| pretty::expr(&e) + "\n"))
-        } else {
-            let r = linc_compiler::check_source(&text, &stem, ctx);
-            (r.diagnostics, r.tree.map(|t| pretty::file(&t)))
-        };
-        let id = files.add(name, text);
-        if o.tree {
-            if let Some(t) = tree {
-                print!("{t}");
-            }
+        let id = session.add(path.display().to_string(), bytes);
+        let checked = session.check(id, CheckOptions { input, tree: o.tree });
+        if let Some(t) = &checked.tree {
+            print!("{}", t.pretty());
         }
-        for d in &diagnostics {
+        for d in &checked.diagnostics {
             if d.is_error() {
                 errors += 1;
             } else {
                 warnings += 1;
             }
-            print!("{}", render::render(&files, id, d, o.format));
+            print!("{}", render::render(session.files(), d, o.format));
         }
     }
     if o.format == Format::Human && (errors > 0 || warnings > 0) {

@@ -4,6 +4,7 @@ use crate::check_cmd::load_db;
 use linc_compiler::check::Context;
 use linc_compiler::lower::{self, Lines};
 use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::session::{CheckOptions, Input, Session};
 use linc_runtime::store::Store;
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{text, Database};
@@ -11,19 +12,20 @@ use linc_stdlib::value::decode_dollar;
 use std::path::Path;
 
 pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) -> u8 {
-    let mut files = SourceFiles::new();
-    let db = match load_db(db, &mut files, Format::Human) {
+    let mut dbfiles = SourceFiles::new();
+    let db = match load_db(db, &mut dbfiles, Format::Human) {
         Ok(db) => db,
         Err(status) => return status,
     };
     let resolve_blocks = db.is_some();
     let db = db.unwrap_or_else(Database::builtin);
-    let id = files.add("<expr>".to_string(), expr.to_string());
-    let report = linc_compiler::check_expression(expr, Context { db: &db, resolve_blocks, steps: None });
-    for d in &report.diagnostics {
-        eprint!("{}", render::render(&files, id, d, Format::Human));
+    let mut session = Session::new(Context { db: &db, resolve_blocks, steps: None });
+    let id = session.add("<expr>", expr.as_bytes().to_vec());
+    let checked = session.check(id, CheckOptions { input: Input::Expression, tree: false });
+    for d in &checked.diagnostics {
+        eprint!("{}", render::render(session.files(), d, Format::Human));
     }
-    let Some(program) = report.program else {
+    let Some(program) = checked.expr else {
         return 2;
     };
     let is_text = program.ty == linc_stdlib::Ty::Text;
@@ -31,7 +33,7 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) 
         Ok(o) => o,
         Err(errors) => {
             for e in errors {
-                eprint!("{}", render::render(&files, id, &e.to_diagnostic(), Format::Human));
+                eprint!("{}", render::render(session.files(), &e.to_diagnostic().in_file(id), Format::Human));
             }
             return 2;
         }

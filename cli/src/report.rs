@@ -24,8 +24,8 @@ pub fn runtime(e: &RuntimeError, format: Format) -> String {
     let mut files = SourceFiles::new();
     let id = files.add(e.file.clone(), text);
     let message = if e.action.is_empty() { e.message.clone() } else { format!("in `{}`: {}", e.action, e.message) };
-    let d = Diagnostic::error(e.code, message, Span::new(at, at)).label("the program stopped here");
-    render::render(&files, id, &d, format)
+    let d = Diagnostic::error(e.code, message, Span::new(at, at)).label("the program stopped here").in_file(id);
+    render::render(&files, &d, format)
 }
 
 /// Renders an error that belongs to a whole file (a damaged object, a link
@@ -33,5 +33,5 @@ pub fn runtime(e: &RuntimeError, format: Format) -> String {
 pub fn file_error(file: &str, code: &'static str, message: impl Into<String>, format: Format) -> String {
     let mut files = SourceFiles::new();
     let id = files.add(file.to_string(), String::new());
-    render::render(&files, id, &Diagnostic::error(code, message, Span::new(0, 0)), format)
+    render::render(&files, &Diagnostic::error(code, message, Span::new(0, 0)).in_file(id), format)
 }

@@ -4,6 +4,7 @@
 use crate::check_cmd::load_db;
 use crate::run_cmd::{program_object, set_and_show, show_value, start_time, write_db};
 use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::span::FileId;
 use linc_compiler::{Diagnostic, Span};
 use linc_runtime::strategy::{self, trace::Trace, Strategy, StrategyError, Want};
 use linc_runtime::vm::{Clock, Vm};
@@ -42,11 +43,11 @@ fn usage(msg: impl std::fmt::Display) -> u8 {
 }
 
 /// A strategy error, located at the block's key in the database text.
-fn report(files: &SourceFiles, db_id: usize, db_text: &str, e: &StrategyError, format: Format) {
+fn report(files: &SourceFiles, db_id: FileId, db_text: &str, e: &StrategyError, format: Format) {
     let quoted = format!("\"{}\"", e.block);
     let span = db_text.find(&quoted).map(|at| Span::new(at, at + quoted.len())).unwrap_or_default();
-    let d = Diagnostic::error(e.code, e.message.clone(), span).label("this block");
-    print!("{}", render::render(files, db_id, &d, format));
+    let d = Diagnostic::error(e.code, e.message.clone(), span).label("this block").in_file(db_id);
+    print!("{}", render::render(files, &d, format));
 }
 
 /// Compiles or loads each action file the strategy names, once each.
@@ -115,7 +116,7 @@ pub fn run(o: &Options) -> u8 {
     let mut s = match Strategy::build(store, objects, &pairs, vm, now as f64) {
         Ok(s) => s,
         Err(e) => {
-            report(&files, 0, &db_text, &e, o.format);
+            report(&files, FileId(0), &db_text, &e, o.format);
             return 2;
         }
     };

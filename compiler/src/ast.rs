@@ -30,11 +30,14 @@ pub struct Ident {
     pub span: Span,
 }
 
+/// A statement. Expressions and the FOR loop variable are boxed so that a
+/// statement is small: the parser moves statements on its stack, and lists
+/// of simple statements are the bulk of a file.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Stmt {
     Assign {
         target: Var,
-        value: Expr,
+        value: Box<Expr>,
         span: Span,
     },
     If {
@@ -43,21 +46,21 @@ pub enum Stmt {
         span: Span,
     },
     For {
-        var: Var,
-        from: Expr,
-        to: Expr,
-        by: Option<Expr>,
+        var: Box<Var>,
+        from: Box<Expr>,
+        to: Box<Expr>,
+        by: Option<Box<Expr>>,
         body: Vec<Stmt>,
         span: Span,
     },
     While {
-        cond: Expr,
+        cond: Box<Expr>,
         body: Vec<Stmt>,
         span: Span,
     },
     Repeat {
         body: Vec<Stmt>,
-        until: Expr,
+        until: Box<Expr>,
         span: Span,
     },
     Exit {

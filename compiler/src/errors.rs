@@ -37,6 +37,16 @@ pub enum LexError {
     UnclosedBracket {
         span: Span,
     },
+    /// A REAL constant beyond the range of a 32-bit REAL.
+    RealOutOfRange {
+        span: Span,
+        text: String,
+    },
+    /// A time constant longer than [`crate::lexer::MAX_TIME_SECONDS`].
+    TimeOutOfRange {
+        span: Span,
+        text: String,
+    },
 }
 
 impl LexError {
@@ -84,6 +94,16 @@ impl LexError {
                 .help("names that are not valid identifiers can be written in square brackets, e.g. [6366.MN]"),
             LexError::UnclosedBracket { span } => Diagnostic::error("E0013", "`[` is not closed", *span)
                 .label("this bracketed name has no `]` on its line"),
+            LexError::RealOutOfRange { span, text } => {
+                Diagnostic::error("E0019", format!("`{text}` is out of the range of a REAL"), *span)
+                    .label("does not fit a 32-bit REAL")
+                    .help("a REAL is at most 3.4028235E38 in magnitude")
+            }
+            LexError::TimeOutOfRange { span, text } => {
+                Diagnostic::error("E0020", format!("`{text}` is too long a time"), *span)
+                    .label("more than 2147483647 seconds")
+                    .help("a time constant is at most 2147483647 s (about 68 years), the largest INT number of seconds")
+            }
         }
     }
 }
@@ -126,6 +146,15 @@ pub enum SyntaxError {
     },
     /// The last statement of an action has no `;` (accepted, with a warning).
     MissingFinalSemicolon {
+        span: Span,
+    },
+    /// Statements nested deeper than [`crate::parse_support::MAX_NESTING`].
+    NestedTooDeep {
+        span: Span,
+        keyword: &'static str,
+    },
+    /// An expression deeper than [`crate::parse_support::MAX_EXPR_DEPTH`].
+    ExprTooDeep {
         span: Span,
     },
 }
@@ -179,6 +208,20 @@ impl SyntaxError {
                     .label("`;` expected here")
                     .help("statements must be terminated by a semicolon (§12.4); it is accepted at the end of an action")
             }
+            SyntaxError::NestedTooDeep { span, keyword } => Diagnostic::error(
+                "E0021",
+                format!("statements nested more than {} deep", crate::parse_support::MAX_NESTING),
+                *span,
+            )
+            .label(format!("this {keyword} holds statements nested {} deep", crate::parse_support::MAX_NESTING))
+            .help("move the inner part into a separate action, or test conditions in sequence instead of nesting"),
+            SyntaxError::ExprTooDeep { span } => Diagnostic::error(
+                "E0022",
+                format!("expression nested more than {} deep", crate::parse_support::MAX_EXPR_DEPTH),
+                *span,
+            )
+            .label("this part is too deep")
+            .help("compute the expression in parts, storing each part in a field, then combine the parts"),
         }
     }
 }

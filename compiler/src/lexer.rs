@@ -10,6 +10,7 @@ use crate::errors::LexError;
 use crate::span::Span;
 use crate::token::Raw;
 use logos::Logos;
+use std::collections::VecDeque;
 
 /// A token as the grammar sees it.
 #[derive(Clone, Debug, PartialEq)]
@@ -168,10 +169,252 @@ pub type Spanned<'s> = (usize, Tok<'s>, usize);
 
 /// Lexes `src` completely, returning tokens and every lexical error.
 pub fn lex(src: &str) -> (Vec<Spanned<'_>>, Vec<LexError>) {
-    let mut out = Vec::with_capacity(src.len() / 4);
-    let mut errors = Vec::new();
-    lex_into(src, 0, src.len(), &mut out, &mut errors);
-    (out, errors)
+    let mut lexer = Lexer::new(src);
+    let tokens = lexer.by_ref().collect();
+    (tokens, lexer.errors)
+}
+
+/// The cooking lexer, as an iterator the parser pulls from: tokens are never
+/// all held at once. The last token made stays queued until the next raw
+/// token is seen, because an illegal space may join the two.
+pub struct Lexer<'s> {
+    src: &'s str,
+    raw: logos::Lexer<'s, Raw>,
+    pending: Option<(Raw, std::ops::Range<usize>)>,
+    queue: VecDeque<Spanned<'s>>,
+    done: bool,
+    /// The token handed out last, for [`glued_word_operator`].
+    last: Option<Tok<'s>>,
+    pub errors: Vec<LexError>,
+    /// Names that start with a word operator and follow an operand (`A ANDB`),
+    /// by start offset: if the parser stops there, the error says why.
+    pub glued: Vec<(usize, &'static str)>,
+}
+
+impl<'s> Lexer<'s> {
+    pub fn new(src: &'s str) -> Lexer<'s> {
+        let mut raw = Raw::lexer(src);
+        // A byte order mark is not part of the text (it stays in the file,
+        // so offsets are those of the file).
+        if src.starts_with(crate::files::BOM) {
+            raw.bump(crate::files::BOM.len_utf8());
+        }
+        Lexer {
+            src,
+            raw,
+            pending: None,
+            queue: VecDeque::new(),
+            done: false,
+            last: None,
+            errors: Vec::new(),
+            glued: Vec::new(),
+        }
+    }
+}
+
+impl<'s> Iterator for Lexer<'s> {
+    type Item = Spanned<'s>;
+
+    fn next(&mut self) -> Option<Spanned<'s>> {
+        while self.queue.len() < 2 && !self.done {
+            let mut cook = Cook { src: self.src, out: &mut self.queue, errors: &mut self.errors };
+            if !cook.step(&mut self.raw, &mut self.pending) {
+                self.done = true;
+            }
+        }
+        let t = self.queue.pop_front()?;
+        if let Some(op) = glued_word_operator(self.last.as_ref(), &t.1) {
+            self.glued.push((t.0, op));
+        }
+        self.last = Some(t.1.clone());
+        Some(t)
+    }
+}
+
+/// One cooking step's view of the lexer state.
+struct Cook<'s, 'q> {
+    src: &'s str,
+    out: &'q mut VecDeque<Spanned<'s>>,
+    errors: &'q mut Vec<LexError>,
+}
+
+impl<'s> Cook<'s, '_> {
+    /// Cooks one raw token (or a pending one); false at the end of input.
+    fn step(&mut self, raw: &mut logos::Lexer<'s, Raw>, pending: &mut Option<(Raw, std::ops::Range<usize>)>) -> bool {
+        let src = self.src;
+        let (tok, range) = match pending.take() {
+            Some(p) => p,
+            None => match raw.next() {
+                None => return false,
+                Some(Ok(t)) => (t, raw.span()),
+                Some(Err(())) => {
+                    let span = raw.span();
+                    let ch = src[span.start..].chars().next().unwrap_or('?');
+                    self.errors.push(LexError::UnexpectedChar { span: Span::new(span.start, span.end), ch });
+                    return true;
+                }
+            },
+        };
+        let (s, e) = (range.start, range.end);
+        let text = &src[s..e];
+        let prev_adjacent = self.out.back().map(|p| p.2 == s).unwrap_or(false);
+        if let Some(t) = simple(tok) {
+            // A two-character operator split by a space.
+            if let Some(prev) = self.out.back_mut() {
+                if prev.2 < s && src[prev.2..s].trim().is_empty() {
+                    if let Some(joined) = split_operator(&prev.1, tok) {
+                        self.errors.push(LexError::IllegalSpace {
+                            span: Span::new(prev.2, s),
+                            what: "an operator",
+                            fixed: keyword_text(&joined),
+                        });
+                        prev.1 = joined;
+                        prev.2 = e;
+                        return true;
+                    }
+                }
+            }
+            self.out.push_back((s, t, e));
+            return true;
+        }
+        match tok {
+            Raw::Name | Raw::BadName => self.out.push_back((s, Tok::Name(text), e)),
+            Raw::Int => {
+                let v = text.bytes().fold(0i64, |a, b| (a * 10 + i64::from(b - b'0')).min(1 << 40));
+                self.out.push_back((s, Tok::Int(v), e));
+            }
+            Raw::Based => self.out.push_back((s, Tok::Int(based(text)), e)),
+            Raw::BadBased => {
+                self.errors.push(LexError::BadNumber { span: Span::new(s, e), text: text.to_string() });
+                self.out.push_back((s, Tok::Int(0), e));
+            }
+            Raw::Real => self.real(text.parse().unwrap_or(0.0), s, e),
+            Raw::Time => {
+                let secs = time_seconds(&text[2..]);
+                if secs > MAX_TIME_SECONDS {
+                    self.errors.push(LexError::TimeOutOfRange { span: Span::new(s, e), text: text.to_string() });
+                }
+                self.out.push_back((s, Tok::Time(secs), e));
+            }
+            Raw::BadTime => {
+                self.errors.push(LexError::BadTime { span: Span::new(s, e), text: text.to_string() });
+                self.out.push_back((s, Tok::Time(0.0), e));
+            }
+            Raw::Str => self.out.push_back((s, Tok::Str(&text[1..text.len() - 1]), e)),
+            Raw::UnclosedStr => {
+                self.errors.push(LexError::UnclosedString { span: Span::new(s, e) });
+                self.out.push_back((s, Tok::Str(&text[1..]), e));
+            }
+            Raw::CurlyStr => {
+                let ch = text.chars().next().unwrap_or('"');
+                self.errors.push(LexError::UnexpectedChar { span: Span::new(s, s + ch.len_utf8()), ch });
+                let close = text.chars().last().map(char::len_utf8).unwrap_or(0);
+                self.out.push_back((s, Tok::Str(&text[ch.len_utf8()..text.len() - close]), e));
+            }
+            Raw::UnclosedComment => {
+                self.errors.push(LexError::UnclosedComment { span: Span::new(s, e) });
+                return false;
+            }
+            Raw::Bracketed if prev_adjacent && ends_name(self.out.back()) => {
+                // `f[e]` right after a name: an offset written with brackets.
+                // The inside holds no `]`, so this goes one level deep at most.
+                self.out.push_back((s, Tok::LBrace, s + 1));
+                let mut inner = Raw::lexer(&src[..e - 1]);
+                inner.bump(s + 1);
+                let mut inner_pending = None;
+                while self.step(&mut inner, &mut inner_pending) {}
+                self.out.push_back((e - 1, Tok::RBrace, e));
+            }
+            Raw::Bracketed => self.out.push_back((s, Tok::Bracketed(&text[1..text.len() - 1]), e)),
+            Raw::UnclosedBracket => {
+                self.errors.push(LexError::UnclosedBracket { span: Span::new(s, e) });
+                self.out.push_back((s, Tok::Bracketed(&text[1..]), e));
+            }
+            Raw::DotName => self.dot_name(text, s, e),
+            Raw::Dot => self.dot(raw, pending, s, e),
+            _ => {}
+        }
+        true
+    }
+
+    /// A REAL constant, which must fit a 32-bit REAL.
+    fn real(&mut self, x: f64, s: usize, e: usize) {
+        if !(x as f32).is_finite() {
+            self.errors.push(LexError::RealOutOfRange { span: Span::new(s, e), text: self.src[s..e].to_string() });
+        }
+        self.out.push_back((s, Tok::Real(x), e));
+    }
+
+    /// `.Name` after `}` or `]` continues a name; after a name it is an
+    /// illegal space inside it.
+    fn dot_name(&mut self, text: &'s str, s: usize, e: usize) {
+        match self.out.back().map(|p| (p.0, p.1.clone(), p.2)) {
+            Some((_, Tok::RBrace | Tok::Bracketed(_), pe)) => {
+                if pe != s {
+                    self.errors.push(LexError::IllegalSpace {
+                        span: Span::new(pe, s),
+                        what: "a database name",
+                        fixed: "",
+                    });
+                }
+                self.out.push_back((s, Tok::DotName(&text[1..]), e));
+            }
+            Some((ps, Tok::Name(_), pe)) => {
+                self.errors.push(LexError::IllegalSpace { span: Span::new(pe, s), what: "a database name", fixed: "" });
+                self.out.pop_back();
+                self.out.push_back((ps, Tok::Name(&self.src[ps..e]), e));
+            }
+            _ => self.errors.push(LexError::StrayDot { span: Span::new(s, e) }),
+        }
+    }
+
+    /// A lone `.`: `A. B` and `3. 5` are names and constants with an illegal
+    /// space; anything else is a stray dot.
+    fn dot(
+        &mut self,
+        raw: &mut logos::Lexer<'s, Raw>,
+        pending: &mut Option<(Raw, std::ops::Range<usize>)>,
+        s: usize,
+        e: usize,
+    ) {
+        let src = self.src;
+        let next = raw.next();
+        let next_span = raw.span();
+        let next_tok = match next {
+            Some(Ok(t)) => Some(t),
+            _ => None,
+        };
+        let joined = match (self.out.back(), next_tok) {
+            (Some((ps, Tok::Name(_), pe)), Some(Raw::Name | Raw::Int | Raw::BadName)) if *pe == s => {
+                Some((*ps, Tok::Name(&src[*ps..next_span.end])))
+            }
+            (Some((ps, Tok::Int(_), pe)), Some(Raw::Int)) if *pe == s => {
+                let digits: String = src[*ps..next_span.end].chars().filter(|c| !c.is_whitespace()).collect();
+                Some((*ps, Tok::Real(digits.parse().unwrap_or(0.0))))
+            }
+            _ => None,
+        };
+        match joined {
+            Some((start, tok)) => {
+                let what = if matches!(tok, Tok::Real(_)) { "a constant" } else { "a database name" };
+                self.errors.push(LexError::IllegalSpace { span: Span::new(e, next_span.start), what, fixed: "" });
+                self.out.pop_back();
+                match tok {
+                    Tok::Real(x) => self.real(x, start, next_span.end),
+                    tok => self.out.push_back((start, tok, next_span.end)),
+                }
+            }
+            None => {
+                self.errors.push(LexError::StrayDot { span: Span::new(s, e) });
+                if let Some(t) = next_tok {
+                    *pending = Some((t, next_span));
+                } else if let Some(Err(())) = next {
+                    let ch = src[next_span.start..].chars().next().unwrap_or('?');
+                    self.errors.push(LexError::UnexpectedChar { span: Span::new(next_span.start, next_span.end), ch });
+                }
+            }
+        }
+    }
 }
 
 fn simple(raw: Raw) -> Option<Tok<'static>> {
@@ -236,152 +479,13 @@ fn split_operator(first: &Tok, second: Raw) -> Option<Tok<'static>> {
     })
 }
 
-fn lex_into<'s>(src: &'s str, from: usize, to: usize, out: &mut Vec<Spanned<'s>>, errors: &mut Vec<LexError>) {
-    let mut raw = Raw::lexer(&src[..to]);
-    raw.bump(from);
-    let mut pending: Option<(Raw, std::ops::Range<usize>)> = None;
-    loop {
-        let (tok, range) = match pending.take() {
-            Some(p) => p,
-            None => match raw.next() {
-                None => break,
-                Some(Ok(t)) => (t, raw.span()),
-                Some(Err(())) => {
-                    let span = raw.span();
-                    let ch = src[span.start..].chars().next().unwrap_or('?');
-                    errors.push(LexError::UnexpectedChar { span: Span::new(span.start, span.end), ch });
-                    continue;
-                }
-            },
-        };
-        let (s, e) = (range.start, range.end);
-        let text = &src[s..e];
-        let prev_adjacent = out.last().map(|p| p.2 == s).unwrap_or(false);
-        if let Some(t) = simple(tok) {
-            // A two-character operator split by a space.
-            if let Some(prev) = out.last_mut() {
-                if prev.2 < s && src[prev.2..s].trim().is_empty() {
-                    if let Some(joined) = split_operator(&prev.1, tok) {
-                        errors.push(LexError::IllegalSpace {
-                            span: Span::new(prev.2, s),
-                            what: "an operator",
-                            fixed: keyword_text(&joined),
-                        });
-                        prev.1 = joined;
-                        prev.2 = e;
-                        continue;
-                    }
-                }
-            }
-            out.push((s, t, e));
-            continue;
-        }
-        match tok {
-            Raw::Name | Raw::BadName => out.push((s, Tok::Name(text), e)),
-            Raw::Int => {
-                let v = text.bytes().fold(0i64, |a, b| (a * 10 + i64::from(b - b'0')).min(1 << 40));
-                out.push((s, Tok::Int(v), e));
-            }
-            Raw::Based => out.push((s, Tok::Int(based(text)), e)),
-            Raw::BadBased => {
-                errors.push(LexError::BadNumber { span: Span::new(s, e), text: text.to_string() });
-                out.push((s, Tok::Int(0), e));
-            }
-            Raw::Real => out.push((s, Tok::Real(text.parse().unwrap_or(0.0)), e)),
-            Raw::Time => out.push((s, Tok::Time(time_seconds(&text[2..])), e)),
-            Raw::BadTime => {
-                errors.push(LexError::BadTime { span: Span::new(s, e), text: text.to_string() });
-                out.push((s, Tok::Time(0.0), e));
-            }
-            Raw::Str => out.push((s, Tok::Str(&text[1..text.len() - 1]), e)),
-            Raw::UnclosedStr => {
-                errors.push(LexError::UnclosedString { span: Span::new(s, e) });
-                out.push((s, Tok::Str(&text[1..]), e));
-            }
-            Raw::CurlyStr => {
-                let ch = text.chars().next().unwrap_or('"');
-                errors.push(LexError::UnexpectedChar { span: Span::new(s, s + ch.len_utf8()), ch });
-                let close = text.chars().last().map(char::len_utf8).unwrap_or(0);
-                out.push((s, Tok::Str(&text[ch.len_utf8()..text.len() - close]), e));
-            }
-            Raw::UnclosedComment => {
-                errors.push(LexError::UnclosedComment { span: Span::new(s, e) });
-                break;
-            }
-            Raw::Bracketed if prev_adjacent && ends_name(out) => {
-                // `f[e]` right after a name: an offset written with brackets.
-                out.push((s, Tok::LBrace, s + 1));
-                lex_into(src, s + 1, e - 1, out, errors);
-                out.push((e - 1, Tok::RBrace, e));
-            }
-            Raw::Bracketed => out.push((s, Tok::Bracketed(&text[1..text.len() - 1]), e)),
-            Raw::UnclosedBracket => {
-                errors.push(LexError::UnclosedBracket { span: Span::new(s, e) });
-                out.push((s, Tok::Bracketed(&text[1..]), e));
-            }
-            Raw::DotName => match out.last().map(|p| (p.0, p.1.clone(), p.2)) {
-                Some((_, Tok::RBrace | Tok::Bracketed(_), pe)) => {
-                    if pe != s {
-                        errors.push(LexError::IllegalSpace {
-                            span: Span::new(pe, s),
-                            what: "a database name",
-                            fixed: "",
-                        });
-                    }
-                    out.push((s, Tok::DotName(&text[1..]), e));
-                }
-                Some((ps, Tok::Name(_), pe)) => {
-                    errors.push(LexError::IllegalSpace { span: Span::new(pe, s), what: "a database name", fixed: "" });
-                    out.pop();
-                    out.push((ps, Tok::Name(&src[ps..e]), e));
-                }
-                _ => errors.push(LexError::StrayDot { span: Span::new(s, e) }),
-            },
-            Raw::Dot => {
-                let next = raw.next();
-                let next_span = raw.span();
-                let next_tok = match next {
-                    Some(Ok(t)) => Some(t),
-                    _ => None,
-                };
-                let joined = match (out.last(), next_tok) {
-                    (Some((ps, Tok::Name(_), pe)), Some(Raw::Name | Raw::Int | Raw::BadName)) if *pe == s => {
-                        Some((*ps, Tok::Name(&src[*ps..next_span.end])))
-                    }
-                    (Some((ps, Tok::Int(_), pe)), Some(Raw::Int)) if *pe == s => {
-                        let digits: String = src[*ps..next_span.end].chars().filter(|c| !c.is_whitespace()).collect();
-                        Some((*ps, Tok::Real(digits.parse().unwrap_or(0.0))))
-                    }
-                    _ => None,
-                };
-                match joined {
-                    Some((start, tok)) => {
-                        let what = if matches!(tok, Tok::Real(_)) { "a constant" } else { "a database name" };
-                        errors.push(LexError::IllegalSpace { span: Span::new(e, next_span.start), what, fixed: "" });
-                        out.pop();
-                        out.push((start, tok, next_span.end));
-                    }
-                    None => {
-                        errors.push(LexError::StrayDot { span: Span::new(s, e) });
-                        if let Some(t) = next_tok {
-                            pending = Some((t, next_span));
-                        } else if let Some(Err(())) = next {
-                            pending = None;
-                            let ch = src[next_span.start..].chars().next().unwrap_or('?');
-                            errors
-                                .push(LexError::UnexpectedChar { span: Span::new(next_span.start, next_span.end), ch });
-                        }
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
-}
+/// The longest time constant, in seconds: the largest INT, so that a time
+/// means the same stored in an INT field (a suppression time) as in a REAL.
+pub const MAX_TIME_SECONDS: f64 = 2_147_483_647.0;
 
 /// Whether the last token can carry an offset (`name`, `}` or `[name]`).
-fn ends_name(out: &[Spanned]) -> bool {
-    matches!(out.last(), Some((_, Tok::Name(_) | Tok::DotName(_) | Tok::RBrace | Tok::Bracketed(_), _)))
+fn ends_name(last: Option<&Spanned>) -> bool {
+    matches!(last, Some((_, Tok::Name(_) | Tok::DotName(_) | Tok::RBrace | Tok::Bracketed(_), _)))
 }
 
 /// Value of `16#FF`, `8#17` or `2#1010`, saturating well above 32 bits.

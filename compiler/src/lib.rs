@@ -1,15 +1,18 @@
 //! The linc compiler front end for LIN Structured Text.
 //!
-//! Data flows one way: source → [`lexer`] tokens → [`parser`] syntax tree
-//! ([`ast`]) → [`check`]ed against a [`linc_runtime::Database`]. Every stage
-//! reports plain-data errors that become [`Diagnostic`]s, rendered in one
-//! place ([`render`]).
+//! Data flows one way: bytes → [`files`] text → [`lexer`] tokens →
+//! [`parser`] syntax tree ([`ast`]), one action at a time → [`check`]ed
+//! against a [`linc_runtime::Database`] into the checked program ([`hir`]) →
+//! [`lower`]ed to an object file. A [`session::Session`] drives this for the
+//! files of one run. Every stage reports plain-data errors that become
+//! [`Diagnostic`]s, rendered in one place ([`render`]).
 
 pub mod ast;
 pub mod check;
 pub mod codes;
 pub mod diagnostic;
 pub mod errors;
+pub mod files;
 pub mod hir;
 pub mod lexer;
 pub mod lower;
@@ -17,17 +20,19 @@ pub mod parse_support;
 pub mod parser;
 pub mod pretty;
 pub mod render;
+pub mod session;
 pub mod span;
 pub mod token;
 
 pub use diagnostic::{Diagnostic, Severity};
-pub use span::Span;
+pub use span::{FileId, Span};
 
 use check::Context;
+use session::{CheckOptions, Input, Session, Tree};
 
 /// The result of checking one text: the tree (if the parser could build
 /// one), the checked program (only when there are no errors) and every
-/// diagnostic, ordered by position.
+/// diagnostic, ordered by position, all in file 0.
 #[derive(Debug)]
 pub struct Report<T, P> {
     pub tree: Option<T>,
@@ -41,54 +46,36 @@ impl<T, P> Report<T, P> {
     }
 }
 
-fn collect(errors: parser::ParseErrors, checked: &[check::CheckError]) -> Vec<Diagnostic> {
-    let mut out: Vec<Diagnostic> = errors.lex.iter().map(errors::LexError::to_diagnostic).collect();
-    out.extend(errors.syntax.iter().map(errors::SyntaxError::to_diagnostic));
-    out.extend(checked.iter().map(check::CheckError::to_diagnostic));
-    out.sort_by_key(|d| (d.span.start, d.span.end));
-    out
-}
-
-/// Lexes, parses and checks an action file. `stem` names a file's only
+/// Checks an action file as a one-file session. `stem` names a file's only
 /// action when it has no `ACTION` header.
 pub fn check_source(src: &str, stem: &str, ctx: Context) -> Report<ast::SourceFile, hir::Program> {
-    let (tree, errors) = parser::parse_file(src, stem);
-    let (checked, program) = match &tree {
-        Some(t) => {
-            let (e, p) = check::check_file(t, ctx);
-            (e, Some(p))
-        }
-        None => (Vec::new(), None),
+    let mut s = Session::compiling(ctx);
+    let id = s.add(format!("{stem}.st"), src.as_bytes().to_vec());
+    let c = s.check(id, CheckOptions { input: Input::Actions, tree: true });
+    let tree = match c.tree {
+        Some(Tree::Actions(t)) => Some(t),
+        _ => None,
     };
-    let diagnostics = collect(errors, &checked);
-    let program = program.filter(|_| !diagnostics.iter().any(Diagnostic::is_error));
-    Report { tree, program, diagnostics }
+    Report { tree, program: s.take_program(id), diagnostics: c.diagnostics }
 }
 
 /// Lexes, parses and checks a transition expression (§12.11).
 pub fn check_transition(src: &str, ctx: Context) -> Report<ast::Expr, hir::Expr> {
-    expression(src, ctx, check::check_transition)
+    expression(src, ctx, Input::Transition)
 }
 
 /// Lexes, parses and checks an expression of any type (`linc eval`).
 pub fn check_expression(src: &str, ctx: Context) -> Report<ast::Expr, hir::Expr> {
-    expression(src, ctx, check::check_expression)
+    expression(src, ctx, Input::Expression)
 }
 
-fn expression(
-    src: &str,
-    ctx: Context,
-    check: fn(&ast::Expr, Context) -> (Vec<check::CheckError>, hir::Expr),
-) -> Report<ast::Expr, hir::Expr> {
-    let (tree, errors) = parser::parse_expr(src);
-    let (checked, program) = match &tree {
-        Some(t) => {
-            let (e, p) = check(t, ctx);
-            (e, Some(p))
-        }
-        None => (Vec::new(), None),
+fn expression(src: &str, ctx: Context, input: Input) -> Report<ast::Expr, hir::Expr> {
+    let mut s = Session::new(ctx);
+    let id = s.add("<expr>", src.as_bytes().to_vec());
+    let c = s.check(id, CheckOptions { input, tree: true });
+    let tree = match c.tree {
+        Some(Tree::Expr(e)) => Some(e),
+        _ => None,
     };
-    let diagnostics = collect(errors, &checked);
-    let program = program.filter(|_| !diagnostics.iter().any(Diagnostic::is_error));
-    Report { tree, program, diagnostics }
+    Report { tree, program: c.expr, diagnostics: c.diagnostics }
 }

@@ -12,22 +12,69 @@ use crate::span::Span;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Never {}
 
-/// What the grammar's start rule produced.
+/// What the grammar's start rule produced. Actions with headers are not
+/// here: the grammar hands each to the parser's sink as soon as it is read.
 #[derive(Debug)]
 pub enum Parsed {
-    /// Statements before any `ACTION` header, then the actions.
-    File(Vec<Stmt>, Vec<RawAction>),
+    /// Statements before any `ACTION` header.
+    File(Vec<Stmt>),
     Expr(Expr),
 }
 
-/// An action as parsed, before the file's stem names a header-less one.
+/// How deep statements may nest: IF, FOR, WHILE and REPEAT inside one
+/// another. Every later stage walks the tree recursively, so the limit keeps
+/// them (and dropping the tree) inside a thread's stack; see ADR 0005.
+pub const MAX_NESTING: u16 = 100;
+
+/// How deep an expression may be: operators, calls and offsets inside one
+/// another. `1+1+...+1` is as deep as it has terms (operators associate to
+/// the left); brackets alone add nothing.
+pub const MAX_EXPR_DEPTH: u16 = 200;
+
+/// Depth of a part that was too deep: it is already reported and cut off,
+/// and every part around it is cut off silently.
+const CUT: u16 = u16::MAX;
+
+/// An expression with its depth, as the grammar builds it.
 #[derive(Debug)]
-pub struct RawAction(pub Action);
+pub struct Node {
+    pub e: Box<Expr>,
+    pub depth: u16,
+}
+
+/// A statement with its nesting depth (0 for a simple statement).
+#[derive(Debug)]
+pub struct SNode {
+    pub s: Stmt,
+    pub depth: u16,
+}
+
+/// A statement list with the deepest nesting in it.
+#[derive(Debug, Default)]
+pub struct Block {
+    pub stmts: Vec<Stmt>,
+    pub depth: u16,
+}
+
+impl Block {
+    pub fn push(mut self, s: SNode) -> Block {
+        self.depth = self.depth.max(s.depth);
+        self.stmts.push(s.s);
+        self
+    }
+}
+
+/// A variable with the depth of its offsets.
+#[derive(Debug)]
+pub struct VarNode {
+    pub v: Var,
+    pub depth: u16,
+}
 
 /// A part after a variable's first name: `{offset}` or `.Name`.
 #[derive(Debug)]
 pub enum Suffix {
-    Offset(Box<Expr>, Span),
+    Offset(Node, Span),
     Field(String, Span),
 }
 
@@ -37,38 +84,98 @@ pub fn clip(v: i64) -> i64 {
     v.min(1 << 31)
 }
 
-pub fn leaf(kind: ExprKind, l: usize, r: usize) -> Box<Expr> {
-    Box::new(Expr { kind, span: Span::new(l, r) })
+fn cut(span: Span) -> Node {
+    Node { e: Box::new(Expr { kind: ExprKind::Error, span }), depth: CUT }
 }
 
-pub fn binary(op: BinOp, a: Box<Expr>, b: Box<Expr>) -> Box<Expr> {
-    let span = a.span.to(b.span);
-    Box::new(Expr { kind: ExprKind::Binary(op, a, b), span })
+/// `Some(cut node)` when a node over children as deep as `deepest` would be
+/// too deep; the first such node is reported. The children are dropped
+/// here, and they are within the limit, so dropping them is bounded.
+fn too_deep(syntax: &mut Vec<SyntaxError>, deepest: u16, span: Span) -> Option<Node> {
+    if deepest == CUT {
+        return Some(cut(span));
+    }
+    if deepest >= MAX_EXPR_DEPTH {
+        syntax.push(SyntaxError::ExprTooDeep { span });
+        return Some(cut(span));
+    }
+    None
 }
 
-pub fn unary(op: UnOp, e: Box<Expr>, span: Span) -> Box<Expr> {
-    Box::new(Expr { kind: ExprKind::Unary(op, e), span })
+pub fn leaf(kind: ExprKind, l: usize, r: usize) -> Node {
+    Node { e: Box::new(Expr { kind, span: Span::new(l, r) }), depth: 1 }
+}
+
+pub fn binary(syntax: &mut Vec<SyntaxError>, op: BinOp, a: Node, b: Node) -> Node {
+    let span = a.e.span.to(b.e.span);
+    let deepest = a.depth.max(b.depth);
+    if let Some(c) = too_deep(syntax, deepest, span) {
+        return c;
+    }
+    Node { e: Box::new(Expr { kind: ExprKind::Binary(op, a.e, b.e), span }), depth: deepest + 1 }
+}
+
+pub fn unary(syntax: &mut Vec<SyntaxError>, op: UnOp, e: Node, span: Span) -> Node {
+    if let Some(c) = too_deep(syntax, e.depth, span) {
+        return c;
+    }
+    Node { e: Box::new(Expr { kind: ExprKind::Unary(op, e.e), span }), depth: e.depth + 1 }
 }
 
 /// Unary minus; a negated numeric constant is folded so that `-12345` and
 /// `BY -2` are constants, and `-2147483648` fits.
-pub fn negate(e: Box<Expr>, span: Span) -> Box<Expr> {
-    match e.kind {
-        ExprKind::Int(v) if e.span.start == span.start + 1 => Box::new(Expr { kind: ExprKind::Int(-v), span }),
-        ExprKind::Real(x) if e.span.start == span.start + 1 => Box::new(Expr { kind: ExprKind::Real(-x), span }),
-        _ => unary(UnOp::Neg, e, span),
+pub fn negate(syntax: &mut Vec<SyntaxError>, e: Node, span: Span) -> Node {
+    let folded = e.e.span.start == span.start + 1;
+    match e.e.kind {
+        ExprKind::Int(v) if folded => Node { e: Box::new(Expr { kind: ExprKind::Int(-v), span }), depth: 1 },
+        ExprKind::Real(x) if folded => Node { e: Box::new(Expr { kind: ExprKind::Real(-x), span }), depth: 1 },
+        _ => unary(syntax, UnOp::Neg, e, span),
     }
 }
 
 /// Parentheses only widen the span.
-pub fn paren(mut e: Box<Expr>, span: Span) -> Box<Expr> {
-    e.span = span;
+pub fn paren(mut e: Node, span: Span) -> Node {
+    e.e.span = span;
     e
 }
 
-pub fn call(name: &str, l: usize, nr: usize, args: Vec<Box<Expr>>, span: Span) -> Box<Expr> {
+pub fn call(syntax: &mut Vec<SyntaxError>, name: &str, l: usize, nr: usize, args: Vec<Node>, span: Span) -> Node {
+    let deepest = args.iter().map(|a| a.depth).max().unwrap_or(0);
+    if let Some(c) = too_deep(syntax, deepest, span) {
+        return c;
+    }
     let name = Ident { text: name.to_string(), span: Span::new(l, nr) };
-    Box::new(Expr { kind: ExprKind::Call { name, args: args.into_iter().map(|a| *a).collect() }, span })
+    let args = args.into_iter().map(|a| *a.e).collect();
+    Node { e: Box::new(Expr { kind: ExprKind::Call { name, args }, span }), depth: deepest + 1 }
+}
+
+/// A variable as an operand.
+pub fn var_leaf(v: VarNode, l: usize, r: usize) -> Node {
+    Node { e: Box::new(Expr { kind: ExprKind::Var(v.v), span: Span::new(l, r) }), depth: v.depth }
+}
+
+/// A statement that holds statement lists as deep as `deepest` (IF, FOR,
+/// WHILE, REPEAT), or a cut-off error statement if that is too deep.
+pub fn compound(
+    syntax: &mut Vec<SyntaxError>,
+    keyword: (&'static str, Span),
+    deepest: u16,
+    span: Span,
+    make: impl FnOnce() -> Stmt,
+) -> SNode {
+    if deepest == CUT {
+        return SNode { s: Stmt::Error { span }, depth: CUT };
+    }
+    if deepest >= MAX_NESTING {
+        syntax.push(SyntaxError::NestedTooDeep { span: keyword.1, keyword: keyword.0 });
+        return SNode { s: Stmt::Error { span }, depth: CUT };
+    }
+    SNode { s: make(), depth: deepest + 1 }
+}
+
+/// A simple statement (assignment, EXIT, error).
+pub fn simple(s: Stmt) -> SNode {
+    SNode { s, depth: 0 }
 }
 
 /// Checks one identifier against §12.8.
@@ -129,20 +236,22 @@ pub fn var(
     (l, r): (usize, usize),
     bracketed: bool,
     suffixes: Vec<Suffix>,
-) -> Var {
+) -> VarNode {
     let first = if bracketed { l + 1 } else { l };
     let before = syntax.len();
     let mut segs = split(syntax, text, first, bracketed);
     let mut end = r;
+    let mut deepest = 0;
     for s in suffixes {
         match s {
             Suffix::Offset(e, span) => {
                 end = span.end;
+                deepest = deepest.max(e.depth);
                 if let Some(last) = segs.last_mut() {
                     if last.offset.is_some() {
                         syntax.push(SyntaxError::DoubleOffset { span });
                     }
-                    last.offset = Some(e);
+                    last.offset = Some(e.e);
                 }
             }
             Suffix::Field(name, span) => {
@@ -153,7 +262,20 @@ pub fn var(
             }
         }
     }
-    Var { segs, bracketed, span: Span::new(l, end), malformed: syntax.len() > before }
+    let span = Span::new(l, end);
+    let mut depth = deepest.saturating_add(1);
+    if deepest == CUT || deepest >= MAX_EXPR_DEPTH {
+        if deepest != CUT {
+            syntax.push(SyntaxError::ExprTooDeep { span });
+        }
+        for seg in &mut segs {
+            if let Some(o) = &mut seg.offset {
+                **o = Expr { kind: ExprKind::Error, span: o.span };
+            }
+        }
+        depth = CUT;
+    }
+    VarNode { v: Var { segs, bracketed, span, malformed: syntax.len() > before || depth == CUT }, depth }
 }
 
 /// Validates an action header (§10.2.1) and builds the action.
@@ -164,17 +286,11 @@ pub fn action(
     body: Vec<Stmt>,
     header: Span,
     span: Span,
-) -> RawAction {
+) -> Action {
     let name_span = Span::new(nl, nr);
     if name.contains('.') || name.len() > 8 || name.starts_with(|c: char| c.is_ascii_digit()) {
         syntax.push(SyntaxError::BadActionName { span: name_span, name: name.to_string() });
     }
     let block_type = block_type.map(|(l, t, r)| Ident { text: t.to_string(), span: Span::new(l, r) });
-    RawAction(Action {
-        name: Ident { text: name.to_string(), span: name_span },
-        block_type,
-        body,
-        header: Some(header),
-        span,
-    })
+    Action { name: Ident { text: name.to_string(), span: name_span }, block_type, body, header: Some(header), span }
 }

@@ -3,7 +3,7 @@
 
 use crate::ast::{Action, Expr, Ident, SourceFile};
 use crate::errors::{LexError, SyntaxError};
-use crate::lexer::{self, Spanned, Tok};
+use crate::lexer::{Lexer, Spanned, Tok};
 use crate::parse_support::{Never, Parsed};
 use crate::span::Span;
 use lalrpop_util::{lalrpop_mod, ErrorRecovery, ParseError};
@@ -20,25 +20,43 @@ pub struct ParseErrors {
     pub syntax: Vec<SyntaxError>,
 }
 
-/// Parses an action file. `stem` names the action of a file without
-/// `ACTION` headers. Returns `None` only when the parser could not recover.
-pub fn parse_file(src: &str, stem: &str) -> (Option<SourceFile>, ParseErrors) {
-    let (parsed, mut errors) = run(src, Tok::StartFile);
-    let file = parsed.and_then(|p| match p {
-        Parsed::File(body, actions) => {
-            if let (Some(first), false) = (body.first(), actions.is_empty()) {
-                errors.syntax.push(SyntaxError::StatementOutsideAction { span: first.span() });
-            }
-            Some(file_from(src, stem, body, actions.into_iter().map(|a| a.0).collect()))
-        }
-        Parsed::Expr(_) => None,
+/// Parses an action file, handing each action to `sink` as soon as it is
+/// read (a file without `ACTION` headers is one action named `stem`, handed
+/// over at the end). Returns false if the parser could not recover; the
+/// actions read before that point have been handed over.
+pub fn parse_actions(src: &str, stem: &str, sink: &mut dyn FnMut(Action)) -> (bool, ParseErrors) {
+    let mut count = 0usize;
+    let (parsed, mut errors) = run(src, Tok::StartFile, &mut |a| {
+        count += 1;
+        sink(a)
     });
-    (file, errors)
+    match parsed {
+        Some(Parsed::File(body)) => {
+            if count == 0 {
+                let span = Span::new(0, src.len());
+                let name = Ident { text: stem.to_string(), span: Span::new(0, 0) };
+                sink(Action { name, block_type: None, body, header: None, span });
+            } else if let Some(first) = body.first() {
+                errors.syntax.push(SyntaxError::StatementOutsideAction { span: first.span() });
+                errors.syntax.sort_by_key(|e| syntax_span(e).start);
+            }
+            (true, errors)
+        }
+        _ => (false, errors),
+    }
+}
+
+/// Parses an action file into one tree. `None` only when the parser could
+/// not recover.
+pub fn parse_file(src: &str, stem: &str) -> (Option<SourceFile>, ParseErrors) {
+    let mut actions = Vec::new();
+    let (ok, errors) = parse_actions(src, stem, &mut |a| actions.push(a));
+    (ok.then_some(SourceFile { actions }), errors)
 }
 
 /// Parses one expression, as a transition is (§12.11).
 pub fn parse_expr(src: &str) -> (Option<Expr>, ParseErrors) {
-    let (parsed, errors) = run(src, Tok::StartExpr);
+    let (parsed, errors) = run(src, Tok::StartExpr, &mut |_| {});
     let expr = parsed.and_then(|p| match p {
         Parsed::Expr(e) => Some(e),
         Parsed::File(..) => None,
@@ -46,30 +64,21 @@ pub fn parse_expr(src: &str) -> (Option<Expr>, ParseErrors) {
     (expr, errors)
 }
 
-fn file_from(src: &str, stem: &str, body: Vec<crate::ast::Stmt>, actions: Vec<Action>) -> SourceFile {
-    if actions.is_empty() {
-        let span = Span::new(0, src.len());
-        let name = Ident { text: stem.to_string(), span: Span::new(0, 0) };
-        return SourceFile { actions: vec![Action { name, block_type: None, body, header: None, span }] };
-    }
-    SourceFile { actions }
-}
-
-fn run(src: &str, start: Tok<'static>) -> (Option<Parsed>, ParseErrors) {
-    let (mut tokens, lex) = lexer::lex(src);
-    tokens.insert(0, (0, start, 0));
+fn run(src: &str, start: Tok<'static>, sink: &mut dyn FnMut(Action)) -> (Option<Parsed>, ParseErrors) {
+    let mut lexer = Lexer::new(src);
     let mut recovered: Vec<ErrorRecovery<usize, Tok, Never>> = Vec::new();
     let mut syntax = Vec::new();
     let parser = grammar::StartParser::new();
-    let result = parser.parse(&mut recovered, &mut syntax, tokens.iter().cloned().map(Ok::<Spanned, Never>));
+    let tokens = std::iter::once((0, start, 0)).chain(lexer.by_ref()).map(Ok::<Spanned, Never>);
+    let result = parser.parse(&mut recovered, &mut syntax, sink, tokens);
     let mut found: Vec<SyntaxError> = Vec::new();
     for r in recovered {
-        found.push(convert(&tokens, r.error, src.len()));
+        found.push(convert(&lexer.glued, r.error, src.len()));
     }
     let parsed = match result {
         Ok(p) => Some(p),
         Err(e) => {
-            found.push(convert(&tokens, e, src.len()));
+            found.push(convert(&lexer.glued, e, src.len()));
             None
         }
     };
@@ -78,7 +87,7 @@ fn run(src: &str, start: Tok<'static>) -> (Option<Parsed>, ParseErrors) {
     found.extend(syntax);
     found.sort_by_key(|e| syntax_span(e).start);
     found.dedup_by(|b, a| syntax_span(a) == syntax_span(b));
-    (parsed, ParseErrors { lex, syntax: found })
+    (parsed, ParseErrors { lex: lexer.errors, syntax: found })
 }
 
 /// The primary span of a syntax error.
@@ -92,17 +101,17 @@ pub fn syntax_span(e: &SyntaxError) -> Span {
         | SyntaxError::BadActionName { span, .. }
         | SyntaxError::DoubleOffset { span }
         | SyntaxError::StatementOutsideAction { span }
-        | SyntaxError::MissingFinalSemicolon { span } => *span,
+        | SyntaxError::MissingFinalSemicolon { span }
+        | SyntaxError::NestedTooDeep { span, .. }
+        | SyntaxError::ExprTooDeep { span } => *span,
     }
 }
 
-fn convert(tokens: &[Spanned], e: ParseError<usize, Tok, Never>, len: usize) -> SyntaxError {
+fn convert(glued: &[(usize, &'static str)], e: ParseError<usize, Tok, Never>, len: usize) -> SyntaxError {
     match e {
         ParseError::UnrecognizedToken { token: (l, tok, r), expected } => {
             let span = Span::new(l, r);
-            let at = tokens.partition_point(|t| t.0 < l);
-            let prev = at.checked_sub(1).and_then(|i| tokens.get(i)).map(|t| &t.1);
-            if let Some(op) = lexer::glued_word_operator(prev, &tok) {
+            if let Some(&(_, op)) = glued.iter().find(|g| g.0 == l) {
                 return SyntaxError::GluedWordOperator { span, op, name: tok.describe_name() };
             }
             SyntaxError::Unexpected { span, found: tok.describe(), expected: readable(&expected) }

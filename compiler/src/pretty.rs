@@ -2,8 +2,11 @@
 //!
 //! Conformance snapshots and `linc check --tree` use it: it shows exactly how
 //! a text was grouped (precedence, offsets, ELSIF arms) without spans.
+//! Control characters in strings and bracketed names are escaped (`\u{1b}`),
+//! as in diagnostics, so the tree is safe to print to a terminal.
 
 use crate::ast::{Action, Expr, ExprKind, SourceFile, Stmt, UnOp, Var};
+use crate::render::escape;
 use std::fmt::Write;
 
 pub fn file(f: &SourceFile) -> String {
@@ -15,7 +18,7 @@ pub fn file(f: &SourceFile) -> String {
 }
 
 fn action(out: &mut String, a: &Action) {
-    let _ = write!(out, "(action {}", a.name.text);
+    let _ = write!(out, "(action {}", escape(&a.name.text));
     if let Some(t) = &a.block_type {
         let _ = write!(out, " : {}", t.text);
     }
@@ -95,7 +98,7 @@ pub fn expr(e: &Expr) -> String {
         ExprKind::Real(x) => format!("{x:?}"),
         ExprKind::Time(x) => format!("(time {x:?}s)"),
         ExprKind::Bool(b) => if *b { "TRUE" } else { "FALSE" }.to_string(),
-        ExprKind::Str(s) => format!("'{s}'"),
+        ExprKind::Str(s) => format!("'{}'", escape(s)),
         ExprKind::Var(v) => var(v),
         ExprKind::Unary(op, a) => {
             let name = match op {
@@ -127,7 +130,7 @@ fn var(v: &Var) -> String {
         if i > 0 {
             s.push('.');
         }
-        s.push_str(&seg.name.text);
+        s.push_str(&escape(&seg.name.text));
         if let Some(o) = &seg.offset {
             let _ = write!(s, "{{{}}}", expr(o));
         }

@@ -3,15 +3,25 @@
 //! Three formats: `human` (codespan-reporting with source snippets, labels
 //! and help notes), `short` (`FILE:LINE:COL: error[E0001]: message`, one line
 //! each, for editors and grep) and `json` (one object per diagnostic per
-//! line, for tools).
+//! line, for tools). Each diagnostic is shown against its own file.
+//!
+//! Source text never reaches the terminal raw: `human` shows each source line
+//! through a view in which control characters and invisible direction marks
+//! are escaped (`\u{1b}`), bytes that were not UTF-8 are shown as `\xB0`, a
+//! leading byte order mark is dropped and very long lines are cut to windows
+//! around the labels; messages and file names are escaped the same way in
+//! `human` and `short`. `json` escapes through JSON itself.
 
 use crate::diagnostic::{Diagnostic, Severity};
+pub use crate::files::SourceFiles;
+use crate::files::{SourceFile, BOM, SUBSTITUTE};
+use crate::span::{FileId, Span};
 use codespan_reporting::diagnostic as cs;
-use codespan_reporting::files::{Files, SimpleFiles};
+use codespan_reporting::files::{Error as FilesError, Files, Location};
 use codespan_reporting::term;
-
-/// The files diagnostics can point into (sources and database files).
-pub type SourceFiles = SimpleFiles<String, String>;
+use std::borrow::Cow;
+use std::fmt::Write;
+use std::ops::Range;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
@@ -20,56 +30,46 @@ pub enum Format {
     Json,
 }
 
-/// Renders one diagnostic located in file `id`.
-pub fn render(files: &SourceFiles, id: usize, d: &Diagnostic, format: Format) -> String {
+/// Renders one diagnostic against the file it names.
+pub fn render(files: &SourceFiles, d: &Diagnostic, format: Format) -> String {
     match format {
-        Format::Human => human(files, id, d),
-        Format::Short => short(files, id, d),
-        Format::Json => json(files, id, d),
+        Format::Human => human(files, d),
+        Format::Short => short(files, d),
+        Format::Json => json(files, d),
     }
 }
 
-fn clamp(files: &SourceFiles, id: usize, at: usize) -> usize {
-    let len = files.source(id).map(|s| s.len()).unwrap_or(0);
-    let mut at = at.min(len);
-    if let Ok(src) = files.source(id) {
-        while at > 0 && !src.is_char_boundary(at) {
-            at -= 1;
+/// Whether a character must not be written to a terminal as it is: control
+/// characters (but tab), and marks that reorder or hide text.
+fn needs_escape(c: char) -> bool {
+    (c.is_control() && c != '\t')
+        || matches!(c, '\u{200E}' | '\u{200F}' | '\u{061C}' | '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}')
+        || matches!(c, '\u{2028}' | '\u{2029}' | BOM)
+}
+
+/// `s` with every character that must not reach a terminal written as `\u{..}`.
+pub fn escape(s: &str) -> Cow<'_, str> {
+    if !s.chars().any(needs_escape) {
+        return Cow::Borrowed(s);
+    }
+    let mut out = String::with_capacity(s.len() + 8);
+    for c in s.chars() {
+        if needs_escape(c) {
+            let _ = write!(out, "\\u{{{:x}}}", c as u32);
+        } else {
+            out.push(c);
         }
     }
-    at
+    Cow::Owned(out)
 }
 
-fn range(files: &SourceFiles, id: usize, span: crate::Span) -> std::ops::Range<usize> {
-    let s = clamp(files, id, span.start);
-    let e = clamp(files, id, span.end).max(s);
-    s..e
+fn file_name(files: &SourceFiles, id: FileId) -> &str {
+    files.file(id).map(SourceFile::name).unwrap_or("<unknown>")
 }
 
-fn human(files: &SourceFiles, id: usize, d: &Diagnostic) -> String {
-    let base = match d.severity {
-        Severity::Error => cs::Diagnostic::error(),
-        Severity::Warning => cs::Diagnostic::warning(),
-    };
-    let mut labels = vec![cs::Label::primary(id, range(files, id, d.span)).with_message(d.label.clone())];
-    for (span, text) in &d.secondary {
-        labels.push(cs::Label::secondary(id, range(files, id, *span)).with_message(text.clone()));
-    }
-    let diag = base
-        .with_code(d.code)
-        .with_message(d.message.clone())
-        .with_labels(labels)
-        .with_notes(d.help.iter().map(|h| format!("help: {h}")).collect());
-    let config = term::Config::default();
-    term::emit_into_string(&config, files, &diag).unwrap_or_else(|_| short(files, id, d))
-}
-
-/// `(line, column)`, both 1-based.
-pub fn line_col(files: &SourceFiles, id: usize, at: usize) -> (usize, usize) {
-    match files.location(id, clamp(files, id, at)) {
-        Ok(l) => (l.line_number, l.column_number),
-        Err(_) => (1, 1),
-    }
+/// `(line, column)`, both 1-based, of byte `at` of file `id`.
+pub fn line_col(files: &SourceFiles, id: FileId, at: usize) -> (usize, usize) {
+    files.file(id).map(|f| f.line_col(at)).unwrap_or((1, 1))
 }
 
 fn severity_word(s: Severity) -> &'static str {
@@ -79,26 +79,33 @@ fn severity_word(s: Severity) -> &'static str {
     }
 }
 
-fn short(files: &SourceFiles, id: usize, d: &Diagnostic) -> String {
-    let (line, col) = line_col(files, id, d.span.start);
-    let name = files.name(id).map(|n| n.to_string()).unwrap_or_default();
-    format!("{name}:{line}:{col}: {}[{}]: {}\n", severity_word(d.severity), d.code, d.message)
+fn short(files: &SourceFiles, d: &Diagnostic) -> String {
+    let (line, col) = line_col(files, d.file, d.span.start);
+    let name = escape(file_name(files, d.file));
+    format!("{name}:{line}:{col}: {}[{}]: {}\n", severity_word(d.severity), d.code, escape(&d.message))
 }
 
-fn json(files: &SourceFiles, id: usize, d: &Diagnostic) -> String {
-    let (line, column) = line_col(files, id, d.span.start);
-    let (end_line, end_column) = line_col(files, id, d.span.end);
-    let name = files.name(id).map(|n| n.to_string()).unwrap_or_default();
+fn json(files: &SourceFiles, d: &Diagnostic) -> String {
+    let (line, column) = line_col(files, d.file, d.span.start);
+    let (end_line, end_column) = line_col(files, d.file, d.span.end);
     let labels: Vec<serde_json::Value> = d
         .secondary
         .iter()
-        .map(|(span, text)| {
-            let (l, c) = line_col(files, id, span.start);
-            serde_json::json!({ "line": l, "column": c, "start": span.start, "end": span.end, "message": text })
+        .map(|l| {
+            let file = l.file.unwrap_or(d.file);
+            let (line, column) = line_col(files, file, l.span.start);
+            serde_json::json!({
+                "file": file_name(files, file),
+                "line": line,
+                "column": column,
+                "start": l.span.start,
+                "end": l.span.end,
+                "message": l.text,
+            })
         })
         .collect();
     let v = serde_json::json!({
-        "file": name,
+        "file": file_name(files, d.file),
         "line": line,
         "column": column,
         "end_line": end_line,
@@ -113,4 +120,274 @@ fn json(files: &SourceFiles, id: usize, d: &Diagnostic) -> String {
         "help": d.help,
     });
     format!("{v}\n")
+}
+
+fn human(files: &SourceFiles, d: &Diagnostic) -> String {
+    // A file with no text (an object file given as source) has no snippet.
+    let empty = files.file(d.file).is_some_and(|f| f.text().is_empty());
+    let mut labels = if empty { Vec::new() } else { vec![(d.file, d.span, d.label.as_str(), true)] };
+    labels.extend(d.secondary.iter().map(|l| (l.file.unwrap_or(d.file), l.span, l.text.as_str(), false)));
+    let (view, ranges) = View::build(files, &labels);
+    let cs_labels: Vec<cs::Label<usize>> = labels
+        .iter()
+        .zip(ranges)
+        .filter_map(|((_, _, text, primary), at)| {
+            let (file, range) = at?;
+            let label = if *primary { cs::Label::primary(file, range) } else { cs::Label::secondary(file, range) };
+            Some(label.with_message(escape(text)))
+        })
+        .collect();
+    let base = match d.severity {
+        Severity::Error => cs::Diagnostic::error(),
+        Severity::Warning => cs::Diagnostic::warning(),
+    };
+    let diag = base
+        .with_code(d.code)
+        .with_message(escape(&d.message))
+        .with_labels(cs_labels)
+        .with_notes(d.help.iter().map(|h| format!("help: {}", escape(h))).collect());
+    let config = term::Config::default();
+    term::emit_into_string(&config, &view, &diag).unwrap_or_else(|_| short(files, d))
+}
+
+/// Lines longer than this (in bytes) are shown in windows around labels.
+const LONG_LINE: usize = 240;
+/// How much of a long line is kept on each side of a labelled position.
+const CONTEXT: usize = 60;
+
+/// The lines of one file that one diagnostic shows, made safe to print.
+struct FileView {
+    name: String,
+    text: String,
+    /// Sorted by line: the real 0-based line and its bytes in `text`
+    /// (terminator included, as codespan expects).
+    lines: Vec<(usize, Range<usize>)>,
+    /// Real locations of the view offsets where labels start.
+    locations: Vec<(usize, Location)>,
+}
+
+/// What codespan renders from: only the lines a diagnostic needs.
+struct View {
+    files: Vec<FileView>,
+}
+
+type LabelAt<'a> = (FileId, Span, &'a str, bool);
+
+/// Where a label landed: the view file and the range in it.
+type Placed = Option<(usize, Range<usize>)>;
+
+impl View {
+    /// Builds the view of `labels` and returns, per label, its view file
+    /// and range (`None` for a label in an unknown file).
+    fn build(files: &SourceFiles, labels: &[LabelAt]) -> (View, Vec<Placed>) {
+        let mut ids: Vec<FileId> = Vec::new();
+        for l in labels {
+            if files.file(l.0).is_some() && !ids.contains(&l.0) {
+                ids.push(l.0);
+            }
+        }
+        let mut view = View { files: Vec::new() };
+        let mut out = vec![None; labels.len()];
+        for id in ids {
+            let Some(f) = files.file(id) else { continue };
+            let mine: Vec<usize> = (0..labels.len()).filter(|&i| labels[i].0 == id).collect();
+            let spans: Vec<Range<usize>> = mine
+                .iter()
+                .map(|&i| {
+                    let s = f.clamp(labels[i].1.start);
+                    s..f.clamp(labels[i].1.end).max(s)
+                })
+                .collect();
+            let (fv, ranges) = file_view(f, &spans);
+            let k = view.files.len();
+            view.files.push(fv);
+            for (i, r) in mine.into_iter().zip(ranges) {
+                out[i] = Some((k, r));
+            }
+        }
+        (view, out)
+    }
+
+    fn file(&self, id: usize) -> Result<&FileView, FilesError> {
+        self.files.get(id).ok_or(FilesError::FileMissing)
+    }
+}
+
+/// The view of one file for label ranges `spans` (original offsets), and
+/// the ranges mapped into the view.
+fn file_view(f: &SourceFile, spans: &[Range<usize>]) -> (FileView, Vec<Range<usize>>) {
+    // Every line a label touches, and the line between two shown lines
+    // that are one apart (codespan prints it rather than a break).
+    let mut wanted: Vec<usize> = Vec::new();
+    for s in spans {
+        wanted.extend(f.line_index(s.start)..=f.line_index(s.end));
+    }
+    wanted.sort_unstable();
+    wanted.dedup();
+    let gaps: Vec<usize> = wanted.windows(2).filter(|w| w[1] == w[0] + 2).map(|w| w[0] + 1).collect();
+    wanted.extend(gaps);
+    wanted.sort_unstable();
+    let mut points: Vec<usize> = spans.iter().flat_map(|s| [s.start, s.end]).collect();
+    points.sort_unstable();
+    points.dedup();
+    let mut mapped: Vec<(usize, usize)> = Vec::with_capacity(points.len());
+    let mut fv =
+        FileView { name: escape(f.name()).into_owned(), text: String::new(), lines: Vec::new(), locations: Vec::new() };
+    for line in wanted {
+        let range = f.line_range(line);
+        let start = fv.text.len();
+        let here: Vec<usize> = points.iter().copied().filter(|&p| f.line_index(p) == line).collect();
+        let (shown, at) = display_line(f, range, &here);
+        fv.text.push_str(&shown);
+        fv.text.push('\n');
+        fv.lines.push((line, start..fv.text.len()));
+        mapped.extend(here.into_iter().zip(at.into_iter().map(|a| start + a)));
+    }
+    let find = |p: usize| mapped.iter().find(|m| m.0 == p).map(|m| m.1).unwrap_or(0);
+    let ranges: Vec<Range<usize>> = spans.iter().map(|s| find(s.start)..find(s.end).max(find(s.start))).collect();
+    for (s, r) in spans.iter().zip(&ranges) {
+        let (line_number, column_number) = f.line_col(s.start);
+        fv.locations.push((r.start, Location { line_number, column_number }));
+    }
+    (fv, ranges)
+}
+
+/// One line made safe to print, cut to windows around `points` if long;
+/// returns the text and where each point (sorted, on this line) lands in it.
+fn display_line(f: &SourceFile, line: Range<usize>, points: &[usize]) -> (String, Vec<usize>) {
+    let text = f.text();
+    let kept: Vec<Range<usize>> = if line.len() <= LONG_LINE {
+        vec![line.clone()]
+    } else {
+        let mut windows: Vec<Range<usize>> = Vec::new();
+        let centres: Vec<usize> = if points.is_empty() { vec![line.start + CONTEXT] } else { points.to_vec() };
+        for p in centres {
+            let s = f.clamp(p.saturating_sub(CONTEXT).max(line.start));
+            let e = f.clamp((p + CONTEXT).min(line.end)).max(s);
+            match windows.last_mut() {
+                Some(w) if s <= w.end => w.end = w.end.max(e),
+                _ => windows.push(s..e),
+            }
+        }
+        windows
+    };
+    let mut out = String::new();
+    let mut at = Vec::with_capacity(points.len());
+    let mut next = 0;
+    let mut prev_end = line.start;
+    for r in &kept {
+        if r.start > prev_end {
+            out.push('…');
+        }
+        for (i, c) in text[r.clone()].char_indices() {
+            let pos = r.start + i;
+            while next < points.len() && points[next] <= pos {
+                at.push(out.len());
+                next += 1;
+            }
+            push_shown(&mut out, f, pos, c);
+        }
+        while next < points.len() && points[next] <= r.end {
+            at.push(out.len());
+            next += 1;
+        }
+        prev_end = r.end;
+    }
+    if prev_end < line.end {
+        out.push('…');
+    }
+    while next < points.len() {
+        at.push(out.len());
+        next += 1;
+    }
+    (out, at)
+}
+
+fn push_shown(out: &mut String, f: &SourceFile, pos: usize, c: char) {
+    if c == BOM && pos == 0 {
+        return;
+    }
+    if c == SUBSTITUTE {
+        if let Some(b) = f.invalid_byte_at(pos) {
+            let _ = write!(out, "\\x{b:02X}");
+            return;
+        }
+    }
+    if needs_escape(c) {
+        let _ = write!(out, "\\u{{{:x}}}", c as u32);
+    } else {
+        out.push(c);
+    }
+}
+
+impl<'a> Files<'a> for View {
+    type FileId = usize;
+    type Name = &'a str;
+    type Source = &'a str;
+
+    fn name(&'a self, id: usize) -> Result<&'a str, FilesError> {
+        Ok(&self.file(id)?.name)
+    }
+
+    fn source(&'a self, id: usize) -> Result<&'a str, FilesError> {
+        Ok(&self.file(id)?.text)
+    }
+
+    fn line_index(&'a self, id: usize, byte_index: usize) -> Result<usize, FilesError> {
+        let f = self.file(id)?;
+        let k = f.lines.partition_point(|l| l.1.start <= byte_index).saturating_sub(1);
+        f.lines.get(k).map(|l| l.0).ok_or(FilesError::IndexTooLarge { given: byte_index, max: f.text.len() })
+    }
+
+    fn line_range(&'a self, id: usize, line_index: usize) -> Result<Range<usize>, FilesError> {
+        let f = self.file(id)?;
+        match f.lines.binary_search_by_key(&line_index, |l| l.0) {
+            Ok(k) => Ok(f.lines[k].1.clone()),
+            Err(_) => {
+                Err(FilesError::LineTooLarge { given: line_index, max: f.lines.last().map(|l| l.0).unwrap_or(0) })
+            }
+        }
+    }
+
+    fn location(&'a self, id: usize, byte_index: usize) -> Result<Location, FilesError> {
+        let f = self.file(id)?;
+        if let Some((_, l)) = f.locations.iter().find(|(at, _)| *at == byte_index) {
+            return Ok(*l);
+        }
+        let line = self.line_index(id, byte_index)?;
+        let start = self.line_range(id, line)?.start;
+        let column_number = f.text.get(start..byte_index).map(|s| s.chars().count()).unwrap_or(0) + 1;
+        Ok(Location { line_number: line + 1, column_number })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn one(src: &str, span: Span, format: Format) -> String {
+        let mut files = SourceFiles::new();
+        let id = files.add("a.st".into(), src.into());
+        render(&files, &Diagnostic::error("E0001", "bad \u{1b}[31m", span).in_file(id).label("here"), format)
+    }
+
+    #[test]
+    fn control_characters_are_escaped_in_snippets_and_messages() {
+        let out = one("x := '\u{1b}[31m';\n", Span::new(6, 7), Format::Human);
+        assert!(!out.contains('\u{1b}'), "{out}");
+        assert!(out.contains("x := '\\u{1b}[31m';"), "{out}");
+        assert!(out.contains("bad \\u{1b}[31m"), "{out}");
+        let short = one("x := '\u{1b}';\n", Span::new(6, 7), Format::Short);
+        assert_eq!(short, "a.st:1:7: error[E0001]: bad \\u{1b}[31m\n");
+    }
+
+    #[test]
+    fn long_lines_are_cut_around_the_label() {
+        let src = format!("x := {};\n", "1+".repeat(100_000) + "1");
+        let at = src.len() / 2;
+        let out = one(&src, Span::new(at, at + 1), Format::Human);
+        assert!(out.len() < 1_000, "{}", out.len());
+        assert!(out.contains(&format!("a.st:1:{}", at + 1)), "{out}");
+        assert!(out.contains("…+1+1"), "{out}");
+    }
 }

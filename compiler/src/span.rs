@@ -1,6 +1,10 @@
-//! Byte ranges into one source file.
+//! Byte ranges into one source file, and the ids of files in a session.
 
-/// A half-open byte range `start..end` into the file being compiled.
+/// A half-open byte range `start..end` into one file.
+///
+/// Spans are file-local: every stage but the session works on one file at a
+/// time, so the file is carried once per diagnostic ([`crate::Diagnostic::file`])
+/// instead of once per span (ADR 0005).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Span {
     pub start: usize,
@@ -15,5 +19,16 @@ impl Span {
     /// The smallest span covering both.
     pub fn to(self, other: Span) -> Span {
         Span { start: self.start.min(other.start), end: self.end.max(other.end) }
+    }
+}
+
+/// A file of a [`crate::session::Session`] or of a [`crate::render::SourceFiles`]
+/// map: an index in the order files were added.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct FileId(pub u32);
+
+impl FileId {
+    pub fn index(self) -> usize {
+        self.0 as usize
     }
 }

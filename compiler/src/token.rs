@@ -123,7 +123,8 @@ pub enum Raw {
     Based,
     #[regex(r"[0-9]+#[0-9A-Za-z_]*", priority = 1)]
     BadBased,
-    #[regex(r"[0-9]+\.[0-9]+([eE][+-]?[0-9]+)?", priority = 10)]
+    /// `3.6`, `1.5E3`; also `1E3` (an exponent without a point, decision 20).
+    #[regex(r"[0-9]+\.[0-9]+([eE][+-]?[0-9]+)?|[0-9]+[eE][+-]?[0-9]+", priority = 10)]
     Real,
     /// `T#4m13.0s`; units d h m s in either case (§12.9).
     /// A `.` or `_` may follow a unit (`T#1d.12.2h`, §18.3).

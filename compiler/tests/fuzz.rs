@@ -1,5 +1,6 @@
-//! Robustness: random and mutated inputs through lexer, parser, checker and
-//! every renderer must never panic.
+//! Robustness: random and mutated inputs (bytes, so not always UTF-8)
+//! through lexer, parser, checker, lowering and every renderer must never
+//! panic, and `check` must reject exactly what `compile` rejects.
 //!
 //! Deterministic (a fixed-seed xorshift generator), so a failure reproduces.
 //! `cargo test` runs a reduced number of inputs; set `LINC_FUZZ_CASES` for a
@@ -7,6 +8,7 @@
 
 use linc_compiler::check::Context;
 use linc_compiler::render::{render, Format, SourceFiles};
+use linc_compiler::session::{CheckOptions, Session};
 use linc_runtime::Database;
 
 struct Rng(u64);
@@ -123,7 +125,7 @@ const VOCAB: &[&str] = &[
     "STEP1.X",
 ];
 
-fn mutate(rng: &mut Rng, input: &str) -> String {
+fn mutate(rng: &mut Rng, input: &str) -> Vec<u8> {
     let mut bytes = input.as_bytes().to_vec();
     for _ in 0..=rng.below(4) {
         let len = bytes.len();
@@ -157,26 +159,54 @@ fn mutate(rng: &mut Rng, input: &str) -> String {
             }
         }
     }
-    String::from_utf8_lossy(&bytes).into_owned()
+    bytes
 }
 
 fn random_tokens(rng: &mut Rng) -> String {
     (0..rng.below(40)).map(|_| VOCAB[rng.below(VOCAB.len())]).collect()
 }
 
-fn exercise(db: &Database, src: &str) {
+/// The error codes of checking `bytes`, and of checking and lowering them,
+/// each in its own session against `db`; every diagnostic is rendered in
+/// every format on the way.
+fn check_and_compile(db: &Database, bytes: &[u8]) -> (Vec<&'static str>, Vec<&'static str>) {
+    let ctx = Context { db, resolve_blocks: true, steps: None };
+    let mut codes = Vec::new();
+    for compiling in [false, true] {
+        let mut s = if compiling { Session::compiling(ctx) } else { Session::new(ctx) };
+        let id = s.add("fuzz.st", bytes.to_vec());
+        let mut diagnostics = s.check(id, CheckOptions::default()).diagnostics;
+        if compiling {
+            diagnostics.extend(s.compile().err().unwrap_or_default());
+        }
+        for d in &diagnostics {
+            assert!(d.span.start <= d.span.end && d.span.end <= bytes.len(), "span out of range: {d:?} in {bytes:?}");
+            for f in [Format::Human, Format::Short, Format::Json] {
+                let _ = render(s.files(), d, f);
+            }
+        }
+        codes.push(diagnostics.iter().filter(|d| d.is_error()).map(|d| d.code).collect());
+    }
+    let compiled = codes.pop().unwrap_or_default();
+    (codes.pop().unwrap_or_default(), compiled)
+}
+
+fn exercise(db: &Database, bytes: &[u8]) {
+    let (checked, compiled) = check_and_compile(db, bytes);
+    assert_eq!(checked, compiled, "check and compile disagree on {bytes:?}");
+    let src = String::from_utf8_lossy(bytes);
     let steps: &[String] = &[];
     for ctx in
         [Context { db, resolve_blocks: true, steps: None }, Context { db, resolve_blocks: false, steps: Some(steps) }]
     {
-        let report = linc_compiler::check_source(src, "fuzz", ctx);
-        let expr = linc_compiler::check_transition(src, ctx);
+        let report = linc_compiler::check_source(&src, "fuzz", ctx);
+        let expr = linc_compiler::check_transition(&src, ctx);
         let mut files = SourceFiles::new();
         let id = files.add("fuzz.st".into(), src.to_string());
         for d in report.diagnostics.iter().chain(&expr.diagnostics) {
             assert!(d.span.start <= d.span.end && d.span.end <= src.len(), "span out of range: {d:?} in {src:?}");
             for f in [Format::Human, Format::Short, Format::Json] {
-                let _ = render(&files, id, d, f);
+                let _ = render(&files, &d.clone().in_file(id), f);
             }
         }
         if let Some(t) = report.tree {
@@ -192,7 +222,7 @@ fn random_and_mutated_inputs_never_panic() {
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
     for i in 0..cases {
         let src = if i % 4 == 0 {
-            random_tokens(&mut rng)
+            random_tokens(&mut rng).into_bytes()
         } else {
             let seed = CORPUS[rng.below(CORPUS.len())];
             mutate(&mut rng, seed)
@@ -205,6 +235,6 @@ fn random_and_mutated_inputs_never_panic() {
 fn corpus_checks_without_panicking() {
     let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
     for src in CORPUS {
-        exercise(&db, src);
+        exercise(&db, src.as_bytes());
     }
 }

@@ -39,7 +39,34 @@ pub struct Outcome {
     pub snapshot: String,
 }
 
+/// The error codes `linc check` and `linc compile` give for `src` against
+/// the guide database: each in its own session, as the CLI runs them.
+pub fn check_and_compile(src: &str) -> (Vec<&'static str>, Vec<&'static str>) {
+    use linc_compiler::session::{CheckOptions, Session};
+    let ctx = Context { db: guide_db(), resolve_blocks: true, steps: None };
+    let errors = |d: &[Diagnostic]| d.iter().filter(|d| d.is_error()).map(|d| d.code).collect::<Vec<_>>();
+    let mut check = Session::new(ctx);
+    let id = check.add("case.st", src.as_bytes().to_vec());
+    let checked = errors(&check.check(id, CheckOptions::default()).diagnostics);
+    let mut compile = Session::compiling(ctx);
+    let id = compile.add("case.st", src.as_bytes().to_vec());
+    let mut compiled = errors(&compile.check(id, CheckOptions::default()).diagnostics);
+    if let Err(lowering) = compile.compile() {
+        compiled.extend(errors(&lowering));
+    }
+    (checked, compiled)
+}
+
+/// Asserts that `linc check` rejects exactly what `linc compile` rejects.
+pub fn assert_check_agrees_with_compile(src: &str) {
+    let (checked, compiled) = check_and_compile(src);
+    assert_eq!(checked, compiled, "check and compile disagree on {src:?}");
+}
+
 pub fn run(section: &str, src: &str, mode: Mode) -> Outcome {
+    // Every case, whatever its mode, is also checked and compiled as an
+    // action file against the guide database: the two must agree.
+    assert_check_agrees_with_compile(src);
     let builtin;
     let (db, resolve_blocks) = if mode == Mode::NoDb {
         builtin = Database::builtin();
@@ -66,7 +93,7 @@ pub fn run(section: &str, src: &str, mode: Mode) -> Outcome {
         snapshot.push_str("(none)\n");
     }
     for d in &diagnostics {
-        snapshot.push_str(&render::render(&files, id, d, Format::Human));
+        snapshot.push_str(&render::render(&files, &d.clone().in_file(id), Format::Human));
     }
     Outcome { codes: diagnostics.iter().map(|d| d.code).collect(), snapshot }
 }

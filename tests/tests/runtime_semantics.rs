@@ -221,7 +221,8 @@ fn watchdog_stops_an_endless_loop_within_a_second_naming_its_line() {
     assert!(start.elapsed() < std::time::Duration::from_secs(1), "took {:?}", start.elapsed());
     assert_eq!((e.code, e.line, e.col), ("R0006", 2, 1));
     assert!(e.message.contains("line 2"), "{}", e.message);
-    let r = run("REPEAT\n  FOR Counters.N0 := 1 TO 10 BY 0 DO\n  END_FOR;\nUNTIL FALSE END_REPEAT;\n");
+    // A FOR whose body resets its index never ends (a step of 0 is E0121).
+    let r = run("REPEAT\n  FOR Counters.N0 := 1 TO 10 DO Counters.N0 := 1;\n  END_FOR;\nUNTIL FALSE END_REPEAT;\n");
     assert_eq!(r.error.map(|e| (e.code, e.line)), Some(("R0006", 2)));
 }
 

@@ -8,6 +8,8 @@ pub enum CheckError {
     UnknownName {
         span: Span,
         name: String,
+        /// A block or alias with a close name.
+        suggestion: Option<String>,
     },
     UnknownField {
         span: Span,
@@ -92,10 +94,16 @@ pub enum CheckError {
         span: Span,
         name: String,
     },
-    DuplicateAction {
+    /// Over a limit of the object format (see `limits.rs`).
+    TooMany {
         span: Span,
-        first: Span,
-        name: String,
+        what: &'static str,
+        limit: &'static str,
+    },
+    /// `BY 0`, or a REAL step that is 0 in the loop variable's type.
+    ForStepZero {
+        span: Span,
+        rounded: bool,
     },
     OffsetNotNumber {
         span: Span,
@@ -114,9 +122,16 @@ pub enum CheckError {
 impl CheckError {
     pub fn to_diagnostic(&self) -> Diagnostic {
         match self {
-            CheckError::UnknownName { span, name } => Diagnostic::error("E0100", format!("can't find `{name}`"), *span)
-                .label("not a block, alias or field of this action's block")
-                .help("names ignore case; check the spelling, or pass the database that defines it with --db"),
+            CheckError::UnknownName { span, name, suggestion } => {
+                let d = Diagnostic::error("E0100", format!("can't find `{name}`"), *span)
+                    .label("not a block, alias or field of this action's block");
+                match suggestion {
+                    Some(s) => d.help(format!("did you mean `{s}`?")),
+                    None => {
+                        d.help("names ignore case; check the spelling, or pass the database that defines it with --db")
+                    }
+                }
+            }
             CheckError::UnknownField { span, field, owner, template, known } => {
                 let d = Diagnostic::error("E0101", format!("`{owner}` has no field `{field}`"), *span)
                     .label(format!("not a field of block type {template}"));
@@ -211,11 +226,17 @@ impl CheckError {
                 Diagnostic::error("E0116", format!("unknown block type `{name}`"), *span)
                     .label("not a built-in template nor one in the database")
             }
-            CheckError::DuplicateAction { span, first, name } => {
-                Diagnostic::error("E0117", format!("action `{name}` is defined twice"), *span)
-                    .label("second definition")
-                    .with(*first, "first defined here")
-                    .help("action names ignore case")
+            CheckError::TooMany { span, what, limit } => {
+                Diagnostic::error("E0132", format!("too many {what}"), *span).label("limit reached here").help(*limit)
+            }
+            CheckError::ForStepZero { span, rounded } => {
+                let d = Diagnostic::error("E0121", "the step of this FOR loop is 0", *span);
+                let d = if *rounded {
+                    d.label("this is 0 once converted to the loop variable's type")
+                } else {
+                    d.label("a step of 0 never reaches the limit")
+                };
+                d.help("the step is added to the loop variable after each pass (§12.4.3); use a step of at least 1 for an INT loop")
             }
             CheckError::OffsetNotNumber { span, found } => {
                 Diagnostic::error("E0118", format!("an offset must be a number, found {found}"), *span)

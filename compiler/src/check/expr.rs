@@ -9,6 +9,10 @@ use linc_stdlib::{Param, Ty, SIGNATURES};
 
 impl Checker<'_> {
     /// Types an expression; errors are reported and give `Any`.
+    ///
+    /// The walk recurses through `expr` and `binary`/`unary`/`load`/`call`
+    /// only; what happens after the recursion (typing, errors) is in other
+    /// functions, so the frames on the recursion path stay small.
     pub(super) fn expr(&mut self, e: &Expr) -> hir::Expr {
         let (ty, kind) = match &e.kind {
             ExprKind::Int(_) => (Ty::Int, hir::ExprKind::Int(e.int_value().unwrap_or_default())),
@@ -17,44 +21,65 @@ impl Checker<'_> {
             ExprKind::Bool(b) => (Ty::Bool, hir::ExprKind::Bool(*b)),
             ExprKind::Str(s) => (Ty::Text, hir::ExprKind::Str(s.as_bytes().to_vec())),
             ExprKind::Error => (Ty::Any, hir::ExprKind::Error),
-            ExprKind::Var(v) => match self.resolve(v) {
-                Some(r) => (r.ty(), hir::ExprKind::Load(Box::new(r.place))),
-                None => (Ty::Any, hir::ExprKind::Error),
-            },
-            ExprKind::Unary(op, a) => {
-                let a = self.expr(a);
-                let t = a.ty;
-                match op {
-                    UnOp::Neg if t.is_numeric() => {
-                        let ty = if t == Ty::Bool { Ty::Int } else { t };
-                        (ty, hir::ExprKind::Neg(Box::new(a)))
-                    }
-                    UnOp::Not if t.is_integral() => (Ty::Bool, hir::ExprKind::Not(Box::new(a))),
-                    _ => {
-                        let (op, help) = match op {
-                            UnOp::Neg => ("-", "only numbers can be negated"),
-                            UnOp::Not => ("NOT", "NOT applies to BOOL or INT values"),
-                        };
-                        self.errors.push(CheckError::OperandTypes {
-                            span: e.span,
-                            op: op.into(),
-                            left: t.name().into(),
-                            right: None,
-                            help,
-                        });
-                        (Ty::Any, hir::ExprKind::Error)
-                    }
-                }
-            }
+            ExprKind::Var(v) => self.load(v),
+            ExprKind::Unary(op, a) => self.unary(*op, a, e.span),
             ExprKind::Binary(op, a, b) => self.binary(*op, a, b, e),
             ExprKind::Call { name, args } => self.call(&name.text, name.span, args, e),
         };
         hir::Expr { ty, kind, span: e.span }
     }
 
+    fn load(&mut self, v: &crate::ast::Var) -> (Ty, hir::ExprKind) {
+        let checked = self.offsets(v);
+        self.load_checked(v, checked)
+    }
+
+    fn load_checked(&mut self, v: &crate::ast::Var, checked: Vec<Option<hir::Expr>>) -> (Ty, hir::ExprKind) {
+        match self.resolve_checked(v, checked) {
+            Some(r) => (r.ty(), hir::ExprKind::Load(Box::new(r.place))),
+            None => (Ty::Any, hir::ExprKind::Error),
+        }
+    }
+
+    fn unary(&mut self, op: UnOp, a: &Expr, span: crate::Span) -> (Ty, hir::ExprKind) {
+        let a = self.expr(a);
+        self.unary_node(op, a, span)
+    }
+
+    fn unary_node(&mut self, op: UnOp, a: hir::Expr, span: crate::Span) -> (Ty, hir::ExprKind) {
+        let t = a.ty;
+        match op {
+            UnOp::Neg if t.is_numeric() => {
+                let ty = if t == Ty::Bool { Ty::Int } else { t };
+                (ty, hir::ExprKind::Neg(Box::new(a)))
+            }
+            UnOp::Not if t.is_integral() => (Ty::Bool, hir::ExprKind::Not(Box::new(a))),
+            _ => {
+                let (op, help) = match op {
+                    UnOp::Neg => ("-", "only numbers can be negated"),
+                    UnOp::Not => ("NOT", "NOT applies to BOOL or INT values"),
+                };
+                let left = t.name().into();
+                self.errors.push(CheckError::OperandTypes { span, op: op.into(), left, right: None, help });
+                (Ty::Any, hir::ExprKind::Error)
+            }
+        }
+    }
+
     fn binary(&mut self, op: BinOp, a: &Expr, b: &Expr, whole: &Expr) -> (Ty, hir::ExprKind) {
         let ha = self.expr(a);
         let hb = self.expr(b);
+        self.binary_node(op, ha, hb, (a.span, b.span, whole.span))
+    }
+
+    /// Types `a op b` once both sides are checked.
+    fn binary_node(
+        &mut self,
+        op: BinOp,
+        ha: hir::Expr,
+        hb: hir::Expr,
+        (a_span, b_span, whole): (crate::Span, crate::Span, crate::Span),
+    ) -> (Ty, hir::ExprKind) {
         let (ta, tb) = (ha.ty, hb.ty);
         let node = |ha, hb| hir::ExprKind::Binary(op, Box::new(ha), Box::new(hb));
         if ta == Ty::Any && tb == Ty::Any {
@@ -62,7 +87,7 @@ impl Checker<'_> {
             return (ty, node(ha, hb));
         }
         let mismatch = |help: &'static str| CheckError::OperandTypes {
-            span: whole.span,
+            span: whole,
             op: op.symbol().into(),
             left: ta.name().into(),
             right: Some(tb.name().into()),
@@ -88,9 +113,9 @@ impl Checker<'_> {
                 }
             }
             BinOp::Mod => {
-                for (t, e) in [(ta, a), (tb, b)] {
+                for (t, span) in [(ta, a_span), (tb, b_span)] {
                     if !t.is_integral() {
-                        self.errors.push(CheckError::ModNotInteger { span: e.span, found: t.name().into() });
+                        self.errors.push(CheckError::ModNotInteger { span, found: t.name().into() });
                         return (Ty::Any, hir::ExprKind::Error);
                     }
                 }
@@ -133,7 +158,22 @@ impl Checker<'_> {
     }
 
     fn call(&mut self, name: &str, name_span: crate::Span, args: &[Expr], whole: &Expr) -> (Ty, hir::ExprKind) {
-        let hargs: Vec<hir::Expr> = args.iter().map(|a| self.expr(a)).collect();
+        let mut hargs: Vec<hir::Expr> = Vec::with_capacity(args.len());
+        for a in args {
+            hargs.push(self.expr(a));
+        }
+        self.call_node(name, name_span, args, hargs, whole)
+    }
+
+    /// Types a call once its arguments are checked.
+    fn call_node(
+        &mut self,
+        name: &str,
+        name_span: crate::Span,
+        args: &[Expr],
+        hargs: Vec<hir::Expr>,
+        whole: &Expr,
+    ) -> (Ty, hir::ExprKind) {
         let types: Vec<Ty> = hargs.iter().map(|a| a.ty).collect();
         let Some(index) = index_of(name) else {
             let suggestion = suggest(name);
@@ -148,6 +188,11 @@ impl Checker<'_> {
                 found: args.len(),
                 signature: sig.to_string(),
             });
+            return (sig.result(&types, None), hir::ExprKind::Error);
+        }
+        if args.len() > super::MAX_CALL_ARGS {
+            let span = args[super::MAX_CALL_ARGS].span.to(args[args.len() - 1].span);
+            self.count_call_args(args.len(), span);
             return (sig.result(&types, None), hir::ExprKind::Error);
         }
         let mut ok = true;
@@ -199,7 +244,7 @@ fn suggest(name: &str) -> Option<String> {
 }
 
 /// Levenshtein distance over bytes.
-fn distance(a: &str, b: &str) -> usize {
+pub(super) fn distance(a: &str, b: &str) -> usize {
     let b = b.as_bytes();
     let mut row: Vec<usize> = (0..=b.len()).collect();
     for (i, ca) in a.bytes().enumerate() {

@@ -4,15 +4,19 @@
 
 mod errors;
 mod expr;
+mod limits;
 mod resolve;
 
 pub use errors::CheckError;
+pub use limits::{FastHash, Limits, MAX_CALL_ARGS, MAX_FOR_LOOPS, MAX_REFERENCES};
 pub use resolve::Resolved;
 
-use crate::ast::{Action, Expr, ExprKind, SourceFile, Stmt};
+use crate::ast::{Action, Expr, ExprKind, Stmt};
 use crate::hir;
+use limits::ActionLimits;
 use linc_runtime::Database;
 use linc_stdlib::Ty;
+use std::collections::HashMap;
 
 /// What names are checked against.
 #[derive(Clone, Copy, Debug)]
@@ -27,49 +31,75 @@ pub struct Context<'a> {
     pub steps: Option<&'a [String]>,
 }
 
-pub(crate) struct Checker<'a> {
+/// Checks actions one at a time, keeping what spans actions: the limits of
+/// one object file and the errors found so far.
+pub struct Checker<'a> {
     ctx: Context<'a>,
     errors: Vec<CheckError>,
     loop_depth: usize,
     /// Template of the action's own block (`ACTION a : PID`).
     self_template: Option<usize>,
-}
-
-/// Checks every action of a file and builds the checked program. The
-/// program is complete only when there are no errors.
-pub fn check_file(file: &SourceFile, ctx: Context) -> (Vec<CheckError>, hir::Program) {
-    let mut c = Checker { ctx, errors: Vec::new(), loop_depth: 0, self_template: None };
-    let mut actions = Vec::new();
-    for (i, a) in file.actions.iter().enumerate() {
-        if let Some(first) = file.actions[..i].iter().find(|b| b.name.text.eq_ignore_ascii_case(&a.name.text)) {
-            c.errors.push(CheckError::DuplicateAction {
-                span: a.name.span,
-                first: first.name.span,
-                name: a.name.text.clone(),
-            });
-        }
-        actions.push(c.action(a));
-    }
-    (c.errors, hir::Program { actions })
+    limits: Limits,
+    action_limits: ActionLimits,
+    /// "Did you mean" answers for unknown names, by name.
+    suggestions: HashMap<String, Option<String>>,
 }
 
 /// Checks a transition: an expression that must be a truth value (§12.11).
 pub fn check_transition(e: &Expr, ctx: Context) -> (Vec<CheckError>, hir::Expr) {
-    let mut c = Checker { ctx, errors: Vec::new(), loop_depth: 0, self_template: None };
-    let h = c.condition(e);
-    (c.errors, h)
+    let mut c = Checker::new(ctx, Limits::default());
+    let h = c.transition(e);
+    (c.take_errors(), h)
 }
 
 /// Checks a value expression of any type (for `linc eval`).
 pub fn check_expression(e: &Expr, ctx: Context) -> (Vec<CheckError>, hir::Expr) {
-    let mut c = Checker { ctx, errors: Vec::new(), loop_depth: 0, self_template: None };
-    let h = c.expr(e);
-    (c.errors, h)
+    let mut c = Checker::new(ctx, Limits::default());
+    let h = c.expression(e);
+    (c.take_errors(), h)
 }
 
-impl Checker<'_> {
-    fn action(&mut self, a: &Action) -> hir::Action {
+impl<'a> Checker<'a> {
+    /// A checker that counts database references into `limits`, which the
+    /// session carries from file to file.
+    pub fn new(ctx: Context<'a>, limits: Limits) -> Checker<'a> {
+        Checker {
+            ctx,
+            errors: Vec::new(),
+            loop_depth: 0,
+            self_template: None,
+            limits,
+            action_limits: ActionLimits::default(),
+            suggestions: HashMap::new(),
+        }
+    }
+
+    /// The errors found since the last call.
+    pub fn take_errors(&mut self) -> Vec<CheckError> {
+        std::mem::take(&mut self.errors)
+    }
+
+    /// Gives back the limits, to be handed to the next file's checker.
+    pub fn into_limits(self) -> Limits {
+        self.limits
+    }
+
+    /// Checks a transition expression, which must be a truth value.
+    pub fn transition(&mut self, e: &Expr) -> hir::Expr {
+        self.action_limits = ActionLimits::default();
+        self.condition(e)
+    }
+
+    /// Checks an expression of any type.
+    pub fn expression(&mut self, e: &Expr) -> hir::Expr {
+        self.action_limits = ActionLimits::default();
+        self.expr(e)
+    }
+
+    /// Checks one action.
+    pub fn action(&mut self, a: &Action) -> hir::Action {
         self.self_template = None;
+        self.action_limits = ActionLimits::default();
         if let Some(t) = &a.block_type {
             match self.ctx.db.template(&t.text) {
                 Some(i) => self.self_template = Some(i),
@@ -83,46 +113,26 @@ impl Checker<'_> {
         hir::Action { name: a.name.text.clone(), block_type, body, span: a.span }
     }
 
+    // The statement and expression walks recurse as deep as the tree (at
+    // most the parser's nesting limits). They are written with plain loops
+    // and small dispatching frames, so that the deepest accepted tree fits a
+    // test thread's stack even in a debug build (tests/deep.rs).
+
     fn stmts(&mut self, list: &[Stmt]) -> Vec<hir::Stmt> {
-        list.iter().map(|s| self.stmt(s)).collect()
+        let mut out = Vec::with_capacity(list.len());
+        for s in list {
+            out.push(self.stmt(s));
+        }
+        out
     }
 
     fn stmt(&mut self, s: &Stmt) -> hir::Stmt {
         match s {
-            Stmt::Assign { target, value, span } => {
-                let value = self.expr(value);
-                let Some(r) = self.resolve(target) else {
-                    return hir::Stmt::Error { span: *span };
-                };
-                if !r.writable {
-                    self.errors.push(CheckError::NotWritable {
-                        span: target.span,
-                        what: target.path(),
-                        why: r.why_readonly,
-                    });
-                    return hir::Stmt::Error { span: *span };
-                }
-                if !self.store(&r, &value, target) {
-                    return hir::Stmt::Error { span: *span };
-                }
-                hir::Stmt::Assign { place: r.place, value, span: *span }
-            }
-            Stmt::If { arms, otherwise, span } => {
-                let arms = arms.iter().map(|(cond, body)| (self.condition(cond), self.stmts(body))).collect();
-                let otherwise = otherwise.as_ref().map(|b| self.stmts(b)).unwrap_or_default();
-                hir::Stmt::If { arms, otherwise, span: *span }
-            }
-            Stmt::For { var, from, to, by, body, span } => self.for_loop(var, from, to, by.as_ref(), body, *span),
-            Stmt::While { cond, body, span } => {
-                let cond = self.condition(cond);
-                let body = self.in_loop(body);
-                hir::Stmt::While { cond, body, span: *span }
-            }
-            Stmt::Repeat { body, until, span } => {
-                let body = self.in_loop(body);
-                let until = self.condition(until);
-                hir::Stmt::Repeat { body, until, span: *span }
-            }
+            Stmt::Assign { target, value, span } => self.assign(target, value, *span),
+            Stmt::If { arms, otherwise, span } => self.if_stmt(arms, otherwise.as_deref(), *span),
+            Stmt::For { var, from, to, by, body, span } => self.for_loop(var, from, to, by.as_deref(), body, *span),
+            Stmt::While { cond, body, span } => self.while_loop(cond, body, *span),
+            Stmt::Repeat { body, until, span } => self.repeat_loop(body, until, *span),
             Stmt::Exit { span } => {
                 if self.loop_depth == 0 {
                     self.errors.push(CheckError::ExitOutsideLoop { span: *span });
@@ -131,6 +141,46 @@ impl Checker<'_> {
             }
             Stmt::Error { span } => hir::Stmt::Error { span: *span },
         }
+    }
+
+    fn assign(&mut self, target: &crate::ast::Var, value: &Expr, span: crate::Span) -> hir::Stmt {
+        let value = self.expr(value);
+        let Some(r) = self.resolve(target) else {
+            return hir::Stmt::Error { span };
+        };
+        if !r.writable {
+            self.errors.push(CheckError::NotWritable { span: target.span, what: target.path(), why: r.why_readonly });
+            return hir::Stmt::Error { span };
+        }
+        if !self.store(&r, &value, target) {
+            return hir::Stmt::Error { span };
+        }
+        hir::Stmt::Assign { place: r.place, value, span }
+    }
+
+    fn if_stmt(&mut self, arms: &[(Expr, Vec<Stmt>)], otherwise: Option<&[Stmt]>, span: crate::Span) -> hir::Stmt {
+        let mut checked = Vec::with_capacity(arms.len());
+        for (cond, body) in arms {
+            let c = self.condition(cond);
+            checked.push((c, self.stmts(body)));
+        }
+        let otherwise = match otherwise {
+            Some(b) => self.stmts(b),
+            None => Vec::new(),
+        };
+        hir::Stmt::If { arms: checked, otherwise, span }
+    }
+
+    fn while_loop(&mut self, cond: &Expr, body: &[Stmt], span: crate::Span) -> hir::Stmt {
+        let cond = self.condition(cond);
+        let body = self.in_loop(body);
+        hir::Stmt::While { cond, body, span }
+    }
+
+    fn repeat_loop(&mut self, body: &[Stmt], until: &Expr, span: crate::Span) -> hir::Stmt {
+        let body = self.in_loop(body);
+        let until = self.condition(until);
+        hir::Stmt::Repeat { body, until, span }
     }
 
     fn for_loop(
@@ -142,6 +192,7 @@ impl Checker<'_> {
         body: &[Stmt],
         span: crate::Span,
     ) -> hir::Stmt {
+        self.count_for_loop(span);
         let place = match self.resolve(var) {
             Some(r) if !r.writable => {
                 self.errors.push(CheckError::NotWritable { span: var.span, what: var.path(), why: r.why_readonly });
@@ -174,15 +225,33 @@ impl Checker<'_> {
             bounds.push(h);
         }
         if let Some(b) = by {
-            if !matches!(b.kind, ExprKind::Int(_) | ExprKind::Real(_)) {
-                self.errors.push(CheckError::ForByNotLiteral { span: b.span });
-            }
+            self.for_step(b, place.as_ref().map(|p| p.ty).unwrap_or(Ty::Any));
         }
         let body = self.in_loop(body);
         let mut bounds = bounds.into_iter();
         match (place, bounds.next(), bounds.next()) {
             (Some(place), Some(from), Some(to)) => hir::Stmt::For { place, from, to, by: bounds.next(), body, span },
             _ => hir::Stmt::Error { span },
+        }
+    }
+
+    /// The step after `BY`: a constant (§12.4.3) that is not zero once
+    /// converted to the loop variable's type, or the loop would never end.
+    fn for_step(&mut self, by: &Expr, index: Ty) {
+        let zero = match by.kind {
+            ExprKind::Int(v) => v == 0,
+            ExprKind::Real(x) => {
+                let x = x as f32;
+                x == 0.0 || (matches!(index, Ty::Int | Ty::Bool) && linc_stdlib::value::round_to_i32(x) == 0)
+            }
+            _ => {
+                self.errors.push(CheckError::ForByNotLiteral { span: by.span });
+                return;
+            }
+        };
+        if zero {
+            let rounded = !matches!(by.kind, ExprKind::Int(0)) && (by.kind != ExprKind::Real(0.0));
+            self.errors.push(CheckError::ForStepZero { span: by.span, rounded });
         }
     }
 

@@ -5,10 +5,12 @@
 //! a step variable. Names ignore case throughout.
 
 use super::errors::CheckError;
+use super::limits::SymbolKey;
 use super::Checker;
 use crate::ast::{Expr, Var};
 use crate::hir::{self, Place, Target};
 use crate::span::Span;
+use linc_runtime::object::Class;
 use linc_runtime::store::class_of;
 use linc_runtime::{FieldType, Template};
 use linc_stdlib::Ty;
@@ -20,12 +22,22 @@ pub struct Resolved {
     pub writable: bool,
     /// Why it is not writable, for the diagnostic.
     pub why_readonly: &'static str,
+    /// The object file symbol this becomes, for counting (see `limits.rs`).
+    symbol: Option<SymbolKey>,
 }
 
 impl Resolved {
     fn new(v: &Var, ty: Ty, target: Target) -> Resolved {
         let place = Place { ty, class: None, target, enum_values: None, path: v.path(), span: v.span };
-        Resolved { place, writable: true, why_readonly: "" }
+        Resolved { place, writable: true, why_readonly: "", symbol: None }
+    }
+
+    /// Sets the storage class and the symbol: `block` and `field` are
+    /// indices, `sub` tells a field from its alarms and suppression.
+    fn stored(mut self, class: Class, (block, field, sub): (u32, usize, u32)) -> Resolved {
+        self.place.class = Some(class);
+        self.symbol = Some((block, field as u32, sub, class as u8));
+        self
     }
 
     fn read_only(mut self, why: &'static str) -> Resolved {
@@ -52,20 +64,46 @@ impl Checker<'_> {
     /// Resolves a variable, reporting what is wrong with it. `None` means an
     /// error was reported and the caller should treat the value as `Any`.
     pub(super) fn resolve(&mut self, v: &Var) -> Option<Resolved> {
-        let mut checked: Vec<Option<hir::Expr>> = Vec::with_capacity(v.segs.len());
-        for seg in &v.segs {
-            let c = seg.offset.as_ref().map(|o| {
-                let e = self.expr(o);
-                if !e.ty.is_numeric() {
-                    self.errors.push(CheckError::OffsetNotNumber { span: o.span, found: e.ty.name().into() });
-                }
-                e
-            });
-            checked.push(c);
-        }
+        let checked = self.offsets(v);
+        self.resolve_checked(v, checked)
+    }
+
+    /// Resolves a variable whose offsets are checked.
+    pub(super) fn resolve_checked(&mut self, v: &Var, checked: Vec<Option<hir::Expr>>) -> Option<Resolved> {
         if v.malformed {
             return None;
         }
+        let r = self.resolve_parts(v, checked)?;
+        if let Some(key) = r.symbol {
+            self.count_reference(key, v.span);
+        }
+        Some(r)
+    }
+
+    /// Checks the offsets of every part (this is where the walk recurses).
+    pub(super) fn offsets(&mut self, v: &Var) -> Vec<Option<hir::Expr>> {
+        let mut checked: Vec<Option<hir::Expr>> = Vec::with_capacity(v.segs.len());
+        for seg in &v.segs {
+            match &seg.offset {
+                Some(o) => {
+                    let e = self.expr(o);
+                    if !e.ty.is_numeric() {
+                        self.offset_not_number(o.span, e.ty);
+                    }
+                    checked.push(Some(e));
+                }
+                None => checked.push(None),
+            }
+        }
+        checked
+    }
+
+    #[cold]
+    fn offset_not_number(&mut self, span: Span, found: Ty) {
+        self.errors.push(CheckError::OffsetNotNumber { span, found: found.name().into() });
+    }
+
+    fn resolve_parts(&mut self, v: &Var, checked: Vec<Option<hir::Expr>>) -> Option<Resolved> {
         let db = self.ctx.db;
         let mut checked = checked.into_iter();
         let first = &v.segs[0];
@@ -103,12 +141,12 @@ impl Checker<'_> {
                 return None;
             }
             let block = db.blocks[b].name.clone();
-            return self.field_path(db.block_template(b), &block, &mut parts[1..], v);
+            return self.field_path(db.block_template(b), (&block, b as u32 + 1), &mut parts[1..], v);
         }
         if let Some(t) = self.self_template {
             let tpl = &db.templates[t];
             if tpl.field(parts[0].name).is_some() {
-                return self.field_path(tpl, "", &mut parts, v);
+                return self.field_path(tpl, ("", 0), &mut parts, v);
             }
         }
         let step_like =
@@ -122,11 +160,32 @@ impl Checker<'_> {
         if !self.ctx.resolve_blocks && !lone_field {
             return Some(Resolved::new(v, Ty::Any, Target::Unknown));
         }
-        if step_like {
+        // `PIC_04.T` is more likely a misspelt block than a step variable
+        // when a block of a close name exists.
+        let suggestion = self.suggest_block(parts[0].name);
+        if step_like && suggestion.is_none() {
             return self.step_variable(&parts, v);
         }
-        self.errors.push(CheckError::UnknownName { span: parts[0].span, name: parts[0].name.to_string() });
+        self.errors.push(CheckError::UnknownName { span: parts[0].span, name: parts[0].name.to_string(), suggestion });
         None
+    }
+
+    /// The block or alias whose name is closest to `name`, if close enough.
+    fn suggest_block(&mut self, name: &str) -> Option<String> {
+        if let Some(s) = self.suggestions.get(name) {
+            return s.clone();
+        }
+        let db = self.ctx.db;
+        let upper = name.to_ascii_uppercase();
+        let names = db.blocks.iter().map(|b| b.name.as_str()).chain(db.aliases.iter().map(|a| a.name.as_str()));
+        let best = names
+            .filter(|n| n.len().abs_diff(upper.len()) <= 2)
+            .map(|n| (super::expr::distance(&upper, &n.to_ascii_uppercase()), n))
+            .filter(|(d, n)| *d <= 2.min(n.len() / 3).max(1))
+            .min_by_key(|(d, _)| *d)
+            .map(|(_, n)| n.to_string());
+        self.suggestions.insert(name.to_string(), best.clone());
+        best
     }
 
     fn step_variable(&mut self, parts: &[Part], v: &Var) -> Option<Resolved> {
@@ -146,7 +205,8 @@ impl Checker<'_> {
 
     /// Resolves `field[.sub[.sub]]` within a template. `block` is the block's
     /// name, or empty for the block that runs the action.
-    fn field_path(&mut self, tpl: &Template, block: &str, parts: &mut [Part], v: &Var) -> Option<Resolved> {
+    fn field_path(&mut self, tpl: &Template, block: (&str, u32), parts: &mut [Part], v: &Var) -> Option<Resolved> {
+        let (block, block_id) = block;
         let fpart = &parts[0];
         let Some(fi) = tpl.field(fpart.name) else {
             let known =
@@ -190,8 +250,8 @@ impl Checker<'_> {
             }
             (ty, []) => {
                 let (t, enum_values) = value_type(ty);
-                let mut r = Resolved::new(v, t, Target::Field { block: b, field: f, offset });
-                r.place.class = Some(class);
+                let mut r =
+                    Resolved::new(v, t, Target::Field { block: b, field: f, offset }).stored(class, (block_id, fi, 0));
                 r.place.enum_values = enum_values;
                 Some(readonly(r))
             }
@@ -216,19 +276,16 @@ impl Checker<'_> {
                 }
                 let bit_offset = bit.checked.take().map(Box::new);
                 let target = Target::Bit { block: b, field: f, offset, bit: n, bit_offset };
-                let mut r = Resolved::new(v, Ty::Bool, target);
-                r.place.class = Some(class);
+                let r = Resolved::new(v, Ty::Bool, target).stored(class, (block_id, fi, 0));
                 Some(readonly(r))
             }
             (FieldType::Alarms(names), [sub, more @ ..]) => {
-                let suppress = |alarm: Option<String>| {
-                    let mut r =
-                        Resolved::new(v, Ty::Int, Target::Suppress { block: b.clone(), field: f.clone(), alarm });
-                    r.place.class = Some(class);
-                    r
+                let suppress = |alarm: Option<String>, sub: u32| {
+                    Resolved::new(v, Ty::Int, Target::Suppress { block: b.clone(), field: f.clone(), alarm })
+                        .stored(class, (block_id, fi, sub))
                 };
                 if sub.name.eq_ignore_ascii_case("Suppress") && more.is_empty() {
-                    return Some(suppress(None));
+                    return Some(suppress(None, 1));
                 }
                 let Some(ai) = names.iter().position(|n| n.eq_ignore_ascii_case(sub.name)) else {
                     return self.no_sub(sub, &field.name, &field.ty);
@@ -236,12 +293,11 @@ impl Checker<'_> {
                 let alarm = names[ai].clone();
                 match more {
                     [] => {
-                        let mut r =
-                            Resolved::new(v, Ty::Bool, Target::Alarm { block: b.clone(), field: f.clone(), alarm });
-                        r.place.class = Some(class);
+                        let r = Resolved::new(v, Ty::Bool, Target::Alarm { block: b.clone(), field: f.clone(), alarm })
+                            .stored(class, (block_id, fi, 2 + 2 * ai as u32));
                         Some(r.read_only("an alarm's state is set by its block; write its .Suppress instead"))
                     }
-                    [s] if s.name.eq_ignore_ascii_case("Suppress") => Some(suppress(Some(alarm))),
+                    [s] if s.name.eq_ignore_ascii_case("Suppress") => Some(suppress(Some(alarm), 3 + 2 * ai as u32)),
                     [s, ..] => {
                         let s = Part { name: s.name, span: s.span, offset: None, checked: None };
                         self.no_sub(&s, &alarm, &FieldType::Bool)

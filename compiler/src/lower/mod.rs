@@ -102,26 +102,29 @@ pub struct Unit<'a> {
     pub lines: &'a Lines,
 }
 
-/// Lowers checked files into one object file.
-pub fn lower_units(units: &[Unit]) -> Result<ObjectFile, Vec<LowerError>> {
+/// Lowers checked files into one object file. Each error comes with the
+/// index of the unit it belongs to.
+pub fn lower_units(units: &[Unit]) -> Result<ObjectFile, Vec<(usize, LowerError)>> {
     let Some(first) = units.first() else {
         return Ok(ObjectFile::default());
     };
     let mut l = Lowerer::new(first.lines);
     let mut actions = Vec::new();
-    for u in units {
+    let mut owners = Vec::new();
+    for (k, u) in units.iter().enumerate() {
         l.lines = u.lines;
         l.file = u.file.to_string();
         for a in &u.program.actions {
             actions.push(l.action(a));
         }
+        owners.resize(l.errors.len(), k);
     }
-    l.finish(first.file, actions)
+    l.finish(first.file, actions).map_err(|errors| owners.into_iter().zip(errors).collect())
 }
 
 /// Lowers a whole checked file.
 pub fn lower_program(p: &hir::Program, source: &str, lines: &Lines) -> Result<ObjectFile, Vec<LowerError>> {
-    lower_units(&[Unit { program: p, file: source, lines }])
+    lower_units(&[Unit { program: p, file: source, lines }]).map_err(|e| e.into_iter().map(|(_, e)| e).collect())
 }
 
 /// Lowers one expression into an action named `eval` that returns its value.

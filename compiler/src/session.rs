@@ -1,0 +1,315 @@
+//! One compile session: the files of one `linc check` or `linc compile`.
+//!
+//! The session owns the file map, decodes each file's bytes, checks its
+//! actions one at a time as the parser reads them (a file is never held as
+//! one big tree unless its tree is asked for), finds action names defined
+//! twice across all files with one hashed look-up each, counts the limits of
+//! the object file across files, and lowers the checked files into one
+//! object, naming the right file in every diagnostic. `check` and `compile`
+//! run the same checks, so they reject the same files (ADR 0005).
+
+use crate::ast;
+use crate::check::{CheckError, Checker, Context, FastHash, Limits};
+use crate::diagnostic::Diagnostic;
+use crate::errors::LexError;
+use crate::files::{self, SourceFiles, SUBSTITUTE};
+use crate::hir;
+use crate::lower::{self, Lines, Unit};
+use crate::parser::{self, ParseErrors};
+use crate::span::{FileId, Span};
+use linc_runtime::ObjectFile;
+use std::collections::hash_map::Entry;
+use std::collections::HashMap;
+
+/// What a file holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Input {
+    /// Actions, with or without `ACTION` headers.
+    #[default]
+    Actions,
+    /// One transition expression, which must be a truth value (§12.11).
+    Transition,
+    /// One expression of any type (`linc eval`).
+    Expression,
+}
+
+/// How to check one file.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CheckOptions {
+    pub input: Input,
+    /// Keep the syntax tree, for `--tree` and the conformance snapshots.
+    pub tree: bool,
+}
+
+/// A syntax tree kept for printing.
+#[derive(Debug)]
+pub enum Tree {
+    Actions(ast::SourceFile),
+    Expr(ast::Expr),
+}
+
+impl Tree {
+    /// The S-expression view of [`crate::pretty`].
+    pub fn pretty(&self) -> String {
+        match self {
+            Tree::Actions(f) => crate::pretty::file(f),
+            Tree::Expr(e) => crate::pretty::expr(e) + "\n",
+        }
+    }
+}
+
+/// What checking one file gave.
+#[derive(Debug)]
+pub struct Checked {
+    pub file: FileId,
+    /// In source order.
+    pub diagnostics: Vec<Diagnostic>,
+    /// The tree, if asked for and the parser could build one.
+    pub tree: Option<Tree>,
+    /// The checked expression of a transition or expression input, when the
+    /// file has no errors.
+    pub expr: Option<hir::Expr>,
+}
+
+impl Checked {
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics.iter().any(Diagnostic::is_error)
+    }
+}
+
+/// Errors that only the session can see: across files, or about a file as
+/// a whole.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SessionError {
+    DuplicateAction { span: Span, name: String, first: (FileId, Span), by_file: bool },
+    NotUtf8 { span: Span, byte: u8, more: usize },
+    ObjectFile { name: String },
+}
+
+impl SessionError {
+    pub fn to_diagnostic(&self) -> Diagnostic {
+        match self {
+            SessionError::DuplicateAction { span, name, first, by_file } => {
+                let d = Diagnostic::error("E0117", format!("action `{name}` is defined twice"), *span)
+                    .label(if *by_file {
+                        "this file has no ACTION header, so its action is named after the file"
+                    } else {
+                        "second definition"
+                    })
+                    .with_in(first.0, first.1, "first defined here")
+                    .help("action names ignore case, and are unique among the files compiled together");
+                if *by_file {
+                    d.help("rename one of the files, or give the actions ACTION headers with different names")
+                } else {
+                    d
+                }
+            }
+            SessionError::NotUtf8 { span, byte, more } => {
+                let d = Diagnostic::error("E0017", format!("byte 0x{byte:02X} is not UTF-8"), *span)
+                    .label("not valid UTF-8")
+                    .help("linc reads source files as UTF-8; save the file as UTF-8 (in Latin-1, a degree sign is the byte 0xB0)");
+                if *more > 0 {
+                    d.help(format!(
+                        "{more} more byte{} in this file {} not UTF-8",
+                        plural(*more),
+                        if *more == 1 { "is" } else { "are" }
+                    ))
+                } else {
+                    d
+                }
+            }
+            SessionError::ObjectFile { name } => {
+                Diagnostic::error("E0018", format!("`{name}` is a linc object file, not ST source"), Span::default())
+                    .label("compiled object")
+                    .help(format!(
+                        "to list its instructions, run `linc disasm {name}`; to run it, `linc run {name} --db DB`"
+                    ))
+            }
+        }
+    }
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 {
+        ""
+    } else {
+        "s"
+    }
+}
+
+/// The files of one run and what is known across them.
+pub struct Session<'a> {
+    ctx: Context<'a>,
+    files: SourceFiles,
+    objects: Vec<bool>,
+    /// Action names seen so far, in upper case, with where each was first defined.
+    actions: HashMap<String, (FileId, Span), FastHash>,
+    limits: Option<Limits>,
+    /// Checked programs kept for lowering (only when compiling).
+    programs: Option<Vec<(FileId, hir::Program)>>,
+    failed: bool,
+}
+
+impl<'a> Session<'a> {
+    /// A session that checks only.
+    pub fn new(ctx: Context<'a>) -> Session<'a> {
+        Session {
+            ctx,
+            files: SourceFiles::new(),
+            objects: Vec::new(),
+            actions: HashMap::default(),
+            limits: Some(Limits::default()),
+            programs: None,
+            failed: false,
+        }
+    }
+
+    /// A session that keeps what it checks, to [`Session::compile`] it.
+    pub fn compiling(ctx: Context<'a>) -> Session<'a> {
+        Session { programs: Some(Vec::new()), ..Session::new(ctx) }
+    }
+
+    /// The files, for rendering diagnostics.
+    pub fn files(&self) -> &SourceFiles {
+        &self.files
+    }
+
+    /// True once any file had an error.
+    pub fn has_errors(&self) -> bool {
+        self.failed
+    }
+
+    /// Adds a file from its bytes. An object file is kept without its text;
+    /// bytes that are not UTF-8 are replaced one for one and reported when
+    /// the file is checked.
+    pub fn add(&mut self, name: impl Into<String>, bytes: Vec<u8>) -> FileId {
+        let object = bytes.starts_with(linc_runtime::object::MAGIC);
+        let (text, invalid) = if object { (String::new(), Vec::new()) } else { files::decode(bytes) };
+        self.objects.push(object);
+        self.files.add_decoded(name.into(), text, invalid)
+    }
+
+    /// Checks one file.
+    pub fn check(&mut self, file: FileId, options: CheckOptions) -> Checked {
+        let mut checked = Checked { file, diagnostics: Vec::new(), tree: None, expr: None };
+        let Some(source) = self.files.file(file) else { return checked };
+        if self.objects.get(file.index()).copied().unwrap_or(false) {
+            let name = source.name().to_string();
+            checked.diagnostics.push(SessionError::ObjectFile { name }.to_diagnostic().in_file(file));
+            self.failed = true;
+            return checked;
+        }
+        let mut session_errors = Vec::new();
+        if let Some(&(at, byte)) = source.invalid_bytes().first() {
+            let more = source.invalid_bytes().len() - 1;
+            session_errors.push(SessionError::NotUtf8 { span: Span::new(at, at + 1), byte, more });
+        }
+        let mut checker = Checker::new(self.ctx, self.limits.take().unwrap_or_default());
+        let (parse_errors, program) = match options.input {
+            Input::Actions => {
+                let stem = std::path::Path::new(source.name()).file_stem().and_then(|s| s.to_str()).unwrap_or("action");
+                let mut actions = Vec::new();
+                let mut tree = Vec::new();
+                let (ok, errors) = parser::parse_actions(source.text(), stem, &mut |a| {
+                    let key = a.name.text.to_ascii_uppercase();
+                    match self.actions.entry(key) {
+                        Entry::Occupied(e) => session_errors.push(SessionError::DuplicateAction {
+                            span: a.name.span,
+                            name: a.name.text.clone(),
+                            first: *e.get(),
+                            by_file: a.header.is_none(),
+                        }),
+                        Entry::Vacant(e) => {
+                            e.insert((file, a.name.span));
+                        }
+                    }
+                    let h = checker.action(&a);
+                    if self.programs.is_some() {
+                        actions.push(h);
+                    }
+                    if options.tree {
+                        tree.push(a);
+                    }
+                });
+                if options.tree && ok {
+                    checked.tree = Some(Tree::Actions(ast::SourceFile { actions: tree }));
+                }
+                (errors, Some(hir::Program { actions }))
+            }
+            Input::Transition | Input::Expression => {
+                let (expr, errors) = parser::parse_expr(source.text());
+                if let Some(e) = &expr {
+                    checked.expr = Some(if options.input == Input::Transition {
+                        checker.transition(e)
+                    } else {
+                        checker.expression(e)
+                    });
+                }
+                checked.tree = expr.filter(|_| options.tree).map(Tree::Expr);
+                (errors, None)
+            }
+        };
+        let check_errors = checker.take_errors();
+        self.limits = Some(checker.into_limits());
+        checked.diagnostics = collect(source, parse_errors, &check_errors, &session_errors, file);
+        if checked.has_errors() {
+            self.failed = true;
+            checked.expr = None;
+        } else if let (Some(programs), Some(p)) = (&mut self.programs, program) {
+            programs.push((file, p));
+        }
+        checked
+    }
+
+    /// Takes the checked program of `file` (for the API's one-file helpers).
+    pub fn take_program(&mut self, file: FileId) -> Option<hir::Program> {
+        let programs = self.programs.as_mut()?;
+        let i = programs.iter().position(|p| p.0 == file)?;
+        Some(programs.remove(i).1)
+    }
+
+    /// Lowers every checked file into one object. `Err` holds the lowering
+    /// errors, each in its own file; it is empty when a file already had
+    /// errors (they were reported when it was checked) or nothing was kept.
+    /// The programs are handed over: a second call gives an empty `Err`.
+    pub fn compile(&mut self) -> Result<ObjectFile, Vec<Diagnostic>> {
+        let Some(programs) = self.programs.take().filter(|_| !self.failed) else {
+            return Err(Vec::new());
+        };
+        let names: Vec<(&str, Lines)> = programs
+            .iter()
+            .map(|(id, _)| {
+                let f = self.files.file(*id);
+                (f.map(|f| f.name()).unwrap_or(""), Lines::new(f.map(|f| f.text()).unwrap_or("")))
+            })
+            .collect();
+        let units: Vec<Unit> =
+            programs.iter().zip(&names).map(|((_, program), (file, lines))| Unit { program, file, lines }).collect();
+        lower::lower_units(&units)
+            .map_err(|errors| errors.into_iter().map(|(unit, e)| e.to_diagnostic().in_file(programs[unit].0)).collect())
+    }
+}
+
+/// Every diagnostic of one file, in source order. Lexer errors at bytes
+/// that were not UTF-8 are dropped: E0017 already points there.
+fn collect(
+    source: &files::SourceFile,
+    errors: ParseErrors,
+    checked: &[CheckError],
+    session: &[SessionError],
+    file: FileId,
+) -> Vec<Diagnostic> {
+    let substituted = |e: &LexError| match e {
+        LexError::UnexpectedChar { span, ch: SUBSTITUTE } => source.invalid_byte_at(span.start).is_some(),
+        _ => false,
+    };
+    let mut out: Vec<Diagnostic> = errors.lex.iter().filter(|e| !substituted(e)).map(LexError::to_diagnostic).collect();
+    out.extend(errors.syntax.iter().map(crate::errors::SyntaxError::to_diagnostic));
+    out.extend(checked.iter().map(CheckError::to_diagnostic));
+    out.extend(session.iter().map(SessionError::to_diagnostic));
+    for d in &mut out {
+        d.file = file;
+    }
+    out.sort_by_key(|d| (d.span.start, d.span.end));
+    out
+}

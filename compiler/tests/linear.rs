@@ -1,0 +1,49 @@
+//! `linc check` time grows linearly with the size of the input (the
+//! benchmark `benches/check.rs` measures the figures; this guards the shape
+//! in a debug build, with a bound generous enough for a shared machine: a
+//! quadratic step, such as comparing every action name with every other,
+//! would give a ratio near 16).
+
+mod workload;
+
+use linc_compiler::check::Context;
+use linc_compiler::session::{CheckOptions, Session};
+use linc_runtime::Database;
+use std::time::{Duration, Instant};
+
+fn check(db: &Database, src: &str) -> Duration {
+    let start = Instant::now();
+    let mut s = Session::new(Context { db, resolve_blocks: true, steps: None });
+    let id = s.add("workload.st", src.as_bytes().to_vec());
+    let c = s.check(id, CheckOptions::default());
+    assert!(c.diagnostics.is_empty(), "the workload checks clean: {:?}", c.diagnostics.first());
+    start.elapsed()
+}
+
+/// Many one-line actions: what makes a per-action step that looks at every
+/// earlier action show.
+fn small_actions(bytes: usize) -> String {
+    let mut out = String::with_capacity(bytes + 64);
+    let mut i = 0;
+    while out.len() < bytes {
+        out.push_str(&format!("ACTION A{i} Recipe.N{} := {i}; END_ACTION\n", i % 8));
+        i += 1;
+    }
+    out
+}
+
+/// The ratio of the best of three times of checking `large` and `small`.
+fn ratio(db: &Database, small: &str, large: &str) -> f64 {
+    let best = |src: &str| (0..3).map(|_| check(db, src)).min().unwrap_or_default();
+    let (t1, t4) = (best(small), best(large));
+    t4.as_secs_f64() / t1.as_secs_f64().max(1e-9)
+}
+
+#[test]
+fn check_time_is_linear_in_size() {
+    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
+    let r = ratio(&db, &workload::actions(200_000), &workload::actions(800_000));
+    assert!(r < 7.0, "4x the realistic input took {r:.1}x the time");
+    let r = ratio(&db, &small_actions(150_000), &small_actions(600_000));
+    assert!(r < 7.0, "4x the actions took {r:.1}x the time");
+}
