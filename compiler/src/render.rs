@@ -141,11 +141,10 @@ fn human(files: &SourceFiles, d: &Diagnostic) -> String {
         Severity::Error => cs::Diagnostic::error(),
         Severity::Warning => cs::Diagnostic::warning(),
     };
-    let diag = base
-        .with_code(d.code)
-        .with_message(escape(&d.message))
-        .with_labels(cs_labels)
-        .with_notes(d.help.iter().map(|h| format!("help: {}", escape(h))).collect());
+    // Without a snippet, a note still names the file the error belongs to.
+    let whole_file = empty.then(|| format!("in {}", escape(file_name(files, d.file))));
+    let notes = whole_file.into_iter().chain(d.help.iter().map(|h| format!("help: {}", escape(h)))).collect();
+    let diag = base.with_code(d.code).with_message(escape(&d.message)).with_labels(cs_labels).with_notes(notes);
     let config = term::Config::default();
     term::emit_into_string(&config, &view, &diag).unwrap_or_else(|_| short(files, d))
 }

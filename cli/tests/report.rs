@@ -1,0 +1,28 @@
+//! Loader and I/O errors go through the one renderer, in every format.
+use std::process::Command;
+
+fn linc(args: &[&str]) -> (Option<i32>, String) {
+    let o = Command::new(env!("CARGO_BIN_EXE_linc"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .output()
+        .expect("run linc");
+    (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned())
+}
+
+#[test]
+fn a_damaged_object_is_a_file_level_diagnostic() {
+    let dir = std::env::temp_dir().join(format!("linc-report-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let bad = dir.join("bad.sto");
+    std::fs::write(&bad, b"LINCSTO\x1a\x02\x00").expect("write");
+    let bad = bad.to_string_lossy().into_owned();
+    let (code, err) = linc(&["disasm", &bad]);
+    assert_eq!(code, Some(2));
+    assert_eq!(err, format!("error[E0703]: the object file is truncated in its header\n = in {bad}\n\n"));
+    let (_, err) = linc(&["disasm", &bad, "--message-format", "short"]);
+    assert_eq!(err, format!("{bad}:1:1: error[E0703]: the object file is truncated in its header\n"));
+    let (_, err) = linc(&["run", &bad, "--db", "examples/guide/plant.db.json", "--message-format", "json"]);
+    let v: serde_json::Value = serde_json::from_str(err.trim()).expect("one JSON object");
+    assert_eq!((v["code"].as_str(), v["file"].as_str()), (Some("E0703"), Some(bad.as_str())));
+}
