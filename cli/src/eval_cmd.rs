@@ -11,9 +11,9 @@ use linc_runtime::{text, Database};
 use linc_stdlib::value::decode_dollar;
 use std::path::Path;
 
-pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) -> u8 {
+pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>, format: Format) -> u8 {
     let mut dbfiles = SourceFiles::new();
-    let db = match load_db(db, &mut dbfiles, Format::Human) {
+    let db = match load_db(db, &mut dbfiles, format) {
         Ok(db) => db,
         Err(status) => return status,
     };
@@ -23,7 +23,7 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) 
     let id = session.add("<expr>", expr.as_bytes().to_vec());
     let checked = session.check(id, CheckOptions { input: Input::Expression, tree: false });
     for d in &checked.diagnostics {
-        eprint!("{}", render::render(session.files(), d, Format::Human));
+        eprint!("{}", render::render(session.files(), d, format));
     }
     let Some(program) = checked.expr else {
         return 2;
@@ -33,7 +33,7 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) 
         Ok(o) => o,
         Err(errors) => {
             for e in errors {
-                eprint!("{}", render::render(session.files(), &e.to_diagnostic().in_file(id), Format::Human));
+                eprint!("{}", render::render(session.files(), &e.to_diagnostic().in_file(id), format));
             }
             return 2;
         }
@@ -66,11 +66,11 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>) 
         }
         Ok(Ok(None)) => 2,
         Ok(Err(e)) => {
-            eprintln!("{e}");
+            eprint!("{}", crate::report::runtime_in("<expr>", expr.to_string(), &e, format));
             1
         }
         Err(e) => {
-            eprintln!("error[{}]: {e}", e.code());
+            eprint!("{}", crate::report::file_error("<expr>", e.code(), e.to_string(), format));
             2
         }
     }

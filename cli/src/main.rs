@@ -136,6 +136,8 @@ enum Command {
         now: Option<String>,
         #[arg(long)]
         seed: Option<u64>,
+        #[arg(long, value_enum, default_value = "human")]
+        message_format: MessageFormat,
     },
     /// Print a readable listing of an object file.
     Disasm {
@@ -260,7 +262,9 @@ fn main() -> ExitCode {
                 2
             }
         },
-        Command::Eval { expr, db, now, seed } => eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed),
+        Command::Eval { expr, db, now, seed, message_format } => {
+            eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed, format(message_format))
+        }
         Command::Disasm { file, message_format } => disasm_cmd::run(&file, format(message_format)),
         Command::Check { files, db, message_format, tree, transition, sequence } => {
             check_cmd::run(&check_cmd::Options {

@@ -18,11 +18,17 @@ fn offset(text: &str, line: u32, col: u32) -> usize {
 /// without its source), the file is stood in for by empty lines so that
 /// line and column still print right.
 pub fn runtime(e: &RuntimeError, format: Format) -> String {
-    let text = std::fs::read_to_string(&e.file)
+    let text = crate::files::read_input_text(std::path::Path::new(&e.file))
         .unwrap_or_else(|_| "\n".repeat((e.line as usize).saturating_sub(1)) + &" ".repeat(e.col as usize));
+    runtime_in(&e.file, text, e, format)
+}
+
+/// Renders a runtime error of a program whose source is `text` (an
+/// expression of `linc eval` has no file to read back).
+pub fn runtime_in(name: &str, text: String, e: &RuntimeError, format: Format) -> String {
     let at = offset(&text, e.line, e.col);
     let mut files = SourceFiles::new();
-    let id = files.add(e.file.clone(), text);
+    let id = files.add(name.to_string(), text);
     let message = if e.action.is_empty() { e.message.clone() } else { format!("in `{}`: {}", e.action, e.message) };
     let d = Diagnostic::error(e.code, message, Span::new(at, at)).label("the program stopped here").in_file(id);
     render::render(&files, &d, format)

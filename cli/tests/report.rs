@@ -26,3 +26,12 @@ fn a_damaged_object_is_a_file_level_diagnostic() {
     let v: serde_json::Value = serde_json::from_str(err.trim()).expect("one JSON object");
     assert_eq!((v["code"].as_str(), v["file"].as_str()), (Some("E0703"), Some(bad.as_str())));
 }
+
+#[test]
+fn eval_reports_runtime_errors_in_the_chosen_format() {
+    let (code, err) = linc(&["eval", "1 / (1 - 1)", "--message-format", "short"]);
+    assert_eq!((code, err.as_str()), (Some(1), "<expr>:1:1: error[R0001]: in `eval`: division by zero\n"));
+    let (code, err) = linc(&["eval", "1 +", "--message-format", "short"]);
+    assert_eq!(code, Some(2));
+    assert!(err.starts_with("<expr>:1:4: error[E0011]"), "{err}");
+}
