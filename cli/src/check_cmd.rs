@@ -1,7 +1,7 @@
 //! `linc check`: check files in one session, printing diagnostics.
 
 use linc_compiler::check::Context;
-use linc_compiler::render::{self, escape, Format, SourceFiles};
+use linc_compiler::render::{self, Format, SourceFiles};
 use linc_compiler::session::{CheckOptions, Input, Session};
 use linc_compiler::Diagnostic;
 use linc_runtime::Database;
@@ -18,13 +18,12 @@ pub struct Options {
 
 /// Prints one diagnostic that has no source location (I/O problems).
 pub fn io_error(path: &Path, e: &std::io::Error, format: Format) {
-    let msg = format!("can't read `{}`: {e}", path.display());
+    let name = path.display().to_string();
+    let text = crate::report::file_error(&name, "E0900", format!("can't read `{name}`: {e}"), format);
     match format {
-        Format::Json => println!(
-            "{}",
-            serde_json::json!({ "file": path.display().to_string(), "severity": "error", "code": "E0900", "message": msg })
-        ),
-        _ => eprintln!("error[E0900]: {}", escape(&msg)),
+        // JSON diagnostics all go to standard output, one per line.
+        Format::Json => print!("{text}"),
+        _ => eprint!("{text}"),
     }
 }
 

@@ -41,3 +41,16 @@ pub fn file_error(file: &str, code: &'static str, message: impl Into<String>, fo
     let id = files.add(file.to_string(), String::new());
     render::render(&files, &Diagnostic::error(code, message, Span::new(0, 0)).in_file(id), format)
 }
+
+/// Prints a usage problem (exit status 2) in the one shape: a message that
+/// starts with its code in brackets (`[E0903] --now …`) becomes
+/// `error[E0903]: --now …`; others are `error: …`.
+pub fn usage(msg: impl std::fmt::Display) -> u8 {
+    let msg = msg.to_string();
+    let coded = msg.strip_prefix('[').and_then(|m| m.split_once("] "));
+    match coded {
+        Some((code, rest)) if code.len() == 5 => eprintln!("error[{code}]: {}", render::escape(rest)),
+        _ => eprintln!("error: {}", render::escape(&msg)),
+    }
+    2
+}

@@ -2,6 +2,7 @@
 
 use crate::build::{compile, Failed};
 use crate::check_cmd::load_db;
+use crate::report::usage;
 use linc_compiler::render::{Format, SourceFiles};
 use linc_runtime::store::{Cell, Store};
 use linc_runtime::vm::{Activation, Clock, Vm};
@@ -25,12 +26,6 @@ pub struct Options {
     pub seed: Option<u64>,
     pub watchdog: u64,
     pub format: Format,
-}
-
-/// A usage problem: printed, exit status 2.
-fn usage(msg: impl std::fmt::Display) -> u8 {
-    eprintln!("error: {msg}");
-    2
 }
 
 /// Where `--set` and `--show` point: a cell and maybe a bit.

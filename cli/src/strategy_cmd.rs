@@ -2,6 +2,7 @@
 //! reads, compiles and prints; the runtime's strategy engine runs.
 
 use crate::check_cmd::load_db;
+use crate::report::usage;
 use crate::run_cmd::{program_object, set_and_show, show_value, start_time, write_db};
 use linc_compiler::render::{self, Format, SourceFiles};
 use linc_compiler::span::FileId;
@@ -35,11 +36,6 @@ pub fn duration(text: &str) -> Result<u64, String> {
         return Err(format!("--for `{text}`: the duration must be more than 0 and at most 366 days"));
     }
     Ok(strategy::micros(secs))
-}
-
-fn usage(msg: impl std::fmt::Display) -> u8 {
-    eprintln!("error: {msg}");
-    2
 }
 
 /// A strategy error, located at the block's key in the database text.
