@@ -146,3 +146,18 @@ fn an_object_file_is_named_as_such() {
     assert!(text.contains("error[E0018]: `") && text.contains("is a linc object file, not ST source"), "{text}");
     assert!(text.contains(&format!("run `linc disasm {out}`")), "{text}");
 }
+
+#[test]
+fn junk_gives_few_errors() {
+    let at = temp("junk", "at.st", &[b'@'; 2 << 20]);
+    let o = linc(&["check", &at, "--message-format", "short"]);
+    assert_eq!(stdout(&o), format!("{at}:1:1: error[E0001]: unexpected characters, from `@` on\n"));
+    let many = temp("junk", "many.st", "xx := 1; ".repeat(1_500).as_bytes());
+    let o = linc(&["check", &many, "--db", DB, "--message-format", "short"]);
+    let text = stdout(&o);
+    assert_eq!(text.lines().count(), 1_001, "{}", &text[text.len().saturating_sub(300)..]);
+    assert!(
+        text.ends_with(&format!("{many}:1:9001: error[E0023]: 500 more errors in this file not shown\n")),
+        "{text}"
+    );
+}

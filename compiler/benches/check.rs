@@ -32,7 +32,7 @@ fn generate() -> String {
     let mut i = 0u32;
     while out.len() < TARGET_BYTES {
         let n = i % 7;
-        if i % 100 == 0 {
+        if i.is_multiple_of(100) {
             if i > 0 {
                 out.push_str("END_ACTION\n");
             }

@@ -44,6 +44,7 @@ codes! {
     "E0020" => "time constant out of range",
     "E0021" => "statements nested too deeply",
     "E0022" => "expression nested too deeply",
+    "E0023" => "more errors in a file than are shown",
     "W0001" => "last statement without a semicolon",
     "E0100" => "unknown name",
     "E0101" => "unknown field",

@@ -87,3 +87,73 @@ impl Diagnostic {
         self.severity == Severity::Error
     }
 }
+
+/// How many errors of one kind (lexical, syntax, checking, across files)
+/// one file keeps. A file of junk must not become millions of diagnostics
+/// held in memory; what is over is counted and reported once (E0023).
+pub const MAX_ERRORS: usize = 1_000;
+
+/// A list of errors that keeps the first [`MAX_ERRORS`] and counts the rest,
+/// remembering the first one it did not keep (for where to point).
+#[derive(Debug)]
+pub struct Capped<T> {
+    items: Vec<T>,
+    dropped: usize,
+    first_dropped: Option<T>,
+}
+
+impl<T> Default for Capped<T> {
+    fn default() -> Self {
+        Capped { items: Vec::new(), dropped: 0, first_dropped: None }
+    }
+}
+
+impl<T> Capped<T> {
+    pub fn push(&mut self, item: T) {
+        if self.items.len() < MAX_ERRORS {
+            self.items.push(item);
+        } else {
+            self.dropped += 1;
+            if self.first_dropped.is_none() {
+                self.first_dropped = Some(item);
+            }
+        }
+    }
+
+    /// How many were pushed, kept or not.
+    pub fn total(&self) -> usize {
+        self.items.len() + self.dropped
+    }
+
+    /// The last one kept, while nothing has been dropped (so that a run of
+    /// bad characters can grow the error before it).
+    pub fn last_mut(&mut self) -> Option<&mut T> {
+        if self.dropped == 0 {
+            self.items.last_mut()
+        } else {
+            None
+        }
+    }
+
+    /// The kept items, how many were not kept, and the first of those.
+    pub fn into_parts(self) -> (Vec<T>, usize, Option<T>) {
+        (self.items, self.dropped, self.first_dropped)
+    }
+}
+
+/// Errors a file had beyond those kept: how many, and where the first was.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Omitted {
+    pub count: usize,
+    pub first: Option<Span>,
+}
+
+impl Omitted {
+    pub fn add(&mut self, count: usize, first: Option<Span>) {
+        self.count += count;
+        self.first = match (self.first, first) {
+            (Some(a), Some(b)) => Some(if b.start < a.start { b } else { a }),
+            (a, b) => a.or(b),
+        };
+    }
+}

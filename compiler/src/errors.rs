@@ -7,6 +7,7 @@ use crate::span::Span;
 /// one error.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LexError {
+    /// One character, or a run of them, that starts no token; `ch` is the first.
     UnexpectedChar {
         span: Span,
         ch: char,
@@ -53,8 +54,13 @@ impl LexError {
     pub fn to_diagnostic(&self) -> Diagnostic {
         match self {
             LexError::UnexpectedChar { span, ch } => {
-                let d = Diagnostic::error("E0001", format!("unexpected character `{ch}`"), *span)
-                    .label("not part of any ST token");
+                // A run of such characters is one error, named by its first.
+                let message = if span.end - span.start > ch.len_utf8() {
+                    format!("unexpected characters, from `{ch}` on")
+                } else {
+                    format!("unexpected character `{ch}`")
+                };
+                let d = Diagnostic::error("E0001", message, *span).label("not part of any ST token");
                 match ch {
                     '\u{2018}' | '\u{2019}' | '\u{201C}' | '\u{201D}' => {
                         d.help("typographic quotes are not ST quotes: write strings in ' or \"")

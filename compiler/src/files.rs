@@ -20,6 +20,10 @@ pub struct SourceFile {
     text: String,
     invalid: Vec<(usize, u8)>,
     line_starts: OnceCell<Vec<usize>>,
+    /// Each character of more than one byte: its offset, and how many bytes
+    /// beyond one all such characters up to it have. Columns are counted in
+    /// characters, and this counts them without walking the line.
+    wide: OnceCell<Vec<(usize, usize)>>,
 }
 
 impl SourceFile {
@@ -73,6 +77,25 @@ impl SourceFile {
         start..end
     }
 
+    /// Bytes beyond the first of every character that starts before `at`.
+    fn extra_bytes_before(&self, at: usize) -> usize {
+        let wide = self.wide.get_or_init(|| {
+            let mut total = 0;
+            let mut out = Vec::new();
+            for (i, c) in self.text.char_indices().filter(|(_, c)| !c.is_ascii()) {
+                total += c.len_utf8() - 1;
+                out.push((i, total));
+            }
+            out
+        });
+        let k = wide.partition_point(|w| w.0 < at);
+        if k == 0 {
+            0
+        } else {
+            wide[k - 1].1
+        }
+    }
+
     /// `at` moved into the text and back to a character boundary.
     pub fn clamp(&self, at: usize) -> usize {
         let mut at = at.min(self.text.len());
@@ -88,7 +111,7 @@ impl SourceFile {
         let at = self.clamp(at);
         let line = self.line_index(at);
         let start = self.line_starts()[line];
-        let mut col = self.text[start..at].chars().count() + 1;
+        let mut col = at - start - (self.extra_bytes_before(at) - self.extra_bytes_before(start)) + 1;
         if start == 0 && at > 0 && self.text.starts_with(BOM) {
             col -= 1;
         }
@@ -115,7 +138,7 @@ impl SourceFiles {
     /// Adds a decoded text with the offsets and values of the bytes that
     /// were replaced by [`SUBSTITUTE`].
     pub fn add_decoded(&mut self, name: String, text: String, invalid: Vec<(usize, u8)>) -> FileId {
-        self.files.push(SourceFile { name, text, invalid, line_starts: OnceCell::new() });
+        self.files.push(SourceFile { name, text, invalid, line_starts: OnceCell::new(), wide: OnceCell::new() });
         FileId((self.files.len() - 1) as u32)
     }
 
@@ -188,5 +211,8 @@ mod tests {
         assert_eq!(f.line_col(4), (1, 2));
         assert_eq!(f.line_col(7), (2, 1));
         assert_eq!(f.line_range(0), 0..5);
+        let id = files.add("b.st".into(), "é°x\nü x".into());
+        let f = files.file(id).unwrap();
+        assert_eq!((f.line_col(4), f.line_col(5), f.line_col(9)), ((1, 3), (1, 4), (2, 3)));
     }
 }

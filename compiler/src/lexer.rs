@@ -6,6 +6,7 @@
 //! one error instead of many, and turns `name[expr]` directly after a name
 //! into an offset (the guide's FOR example writes `f[PIC_004.PV]`).
 
+use crate::diagnostic::Capped;
 use crate::errors::LexError;
 use crate::span::Span;
 use crate::token::Raw;
@@ -171,7 +172,7 @@ pub type Spanned<'s> = (usize, Tok<'s>, usize);
 pub fn lex(src: &str) -> (Vec<Spanned<'_>>, Vec<LexError>) {
     let mut lexer = Lexer::new(src);
     let tokens = lexer.by_ref().collect();
-    (tokens, lexer.errors)
+    (tokens, lexer.errors.into_parts().0)
 }
 
 /// The cooking lexer, as an iterator the parser pulls from: tokens are never
@@ -185,7 +186,7 @@ pub struct Lexer<'s> {
     done: bool,
     /// The token handed out last, for [`glued_word_operator`].
     last: Option<Tok<'s>>,
-    pub errors: Vec<LexError>,
+    pub errors: Capped<LexError>,
     /// Names that start with a word operator and follow an operand (`A ANDB`),
     /// by start offset: if the parser stops there, the error says why.
     pub glued: Vec<(usize, &'static str)>,
@@ -206,7 +207,7 @@ impl<'s> Lexer<'s> {
             queue: VecDeque::new(),
             done: false,
             last: None,
-            errors: Vec::new(),
+            errors: Capped::default(),
             glued: Vec::new(),
         }
     }
@@ -235,7 +236,7 @@ impl<'s> Iterator for Lexer<'s> {
 struct Cook<'s, 'q> {
     src: &'s str,
     out: &'q mut VecDeque<Spanned<'s>>,
-    errors: &'q mut Vec<LexError>,
+    errors: &'q mut Capped<LexError>,
 }
 
 impl<'s> Cook<'s, '_> {
@@ -248,9 +249,7 @@ impl<'s> Cook<'s, '_> {
                 None => return false,
                 Some(Ok(t)) => (t, raw.span()),
                 Some(Err(())) => {
-                    let span = raw.span();
-                    let ch = src[span.start..].chars().next().unwrap_or('?');
-                    self.errors.push(LexError::UnexpectedChar { span: Span::new(span.start, span.end), ch });
+                    self.unexpected(raw.span());
                     return true;
                 }
             },
@@ -337,6 +336,18 @@ impl<'s> Cook<'s, '_> {
         true
     }
 
+    /// A character that starts no token; a run of them is one error.
+    fn unexpected(&mut self, span: std::ops::Range<usize>) {
+        if let Some(LexError::UnexpectedChar { span: last, .. }) = self.errors.last_mut() {
+            if last.end == span.start {
+                last.end = span.end;
+                return;
+            }
+        }
+        let ch = self.src[span.start..].chars().next().unwrap_or('?');
+        self.errors.push(LexError::UnexpectedChar { span: Span::new(span.start, span.end), ch });
+    }
+
     /// A REAL constant, which must fit a 32-bit REAL.
     fn real(&mut self, x: f64, s: usize, e: usize) {
         if !(x as f32).is_finite() {
@@ -409,8 +420,7 @@ impl<'s> Cook<'s, '_> {
                 if let Some(t) = next_tok {
                     *pending = Some((t, next_span));
                 } else if let Some(Err(())) = next {
-                    let ch = src[next_span.start..].chars().next().unwrap_or('?');
-                    self.errors.push(LexError::UnexpectedChar { span: Span::new(next_span.start, next_span.end), ch });
+                    self.unexpected(next_span);
                 }
             }
         }

@@ -4,6 +4,7 @@
 //! (§12.8: at most 8 characters, no leading digit) live in plain Rust.
 
 use crate::ast::{Action, BinOp, Expr, ExprKind, Ident, Seg, Stmt, UnOp, Var};
+use crate::diagnostic::Capped;
 use crate::errors::SyntaxError;
 use crate::span::Span;
 
@@ -12,13 +13,21 @@ use crate::span::Span;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Never {}
 
-/// What the grammar's start rule produced. Actions with headers are not
-/// here: the grammar hands each to the parser's sink as soon as it is read.
+/// What the grammar's start rule produced. An action file is not here: the
+/// grammar hands its parts to the parser's sink as soon as each is read.
 #[derive(Debug)]
 pub enum Parsed {
-    /// Statements before any `ACTION` header.
-    File(Vec<Stmt>),
+    File,
     Expr(Expr),
+}
+
+/// A part of an action file, as the grammar hands it over.
+#[derive(Debug)]
+pub enum Item {
+    /// A statement before any `ACTION` header: the body of a file without
+    /// headers, or a statement outside an action (E0016).
+    Stmt(Stmt),
+    Action(Action),
 }
 
 /// How deep statements may nest: IF, FOR, WHILE and REPEAT inside one
@@ -91,7 +100,7 @@ fn cut(span: Span) -> Node {
 /// `Some(cut node)` when a node over children as deep as `deepest` would be
 /// too deep; the first such node is reported. The children are dropped
 /// here, and they are within the limit, so dropping them is bounded.
-fn too_deep(syntax: &mut Vec<SyntaxError>, deepest: u16, span: Span) -> Option<Node> {
+fn too_deep(syntax: &mut Capped<SyntaxError>, deepest: u16, span: Span) -> Option<Node> {
     if deepest == CUT {
         return Some(cut(span));
     }
@@ -106,7 +115,7 @@ pub fn leaf(kind: ExprKind, l: usize, r: usize) -> Node {
     Node { e: Box::new(Expr { kind, span: Span::new(l, r) }), depth: 1 }
 }
 
-pub fn binary(syntax: &mut Vec<SyntaxError>, op: BinOp, a: Node, b: Node) -> Node {
+pub fn binary(syntax: &mut Capped<SyntaxError>, op: BinOp, a: Node, b: Node) -> Node {
     let span = a.e.span.to(b.e.span);
     let deepest = a.depth.max(b.depth);
     if let Some(c) = too_deep(syntax, deepest, span) {
@@ -115,7 +124,7 @@ pub fn binary(syntax: &mut Vec<SyntaxError>, op: BinOp, a: Node, b: Node) -> Nod
     Node { e: Box::new(Expr { kind: ExprKind::Binary(op, a.e, b.e), span }), depth: deepest + 1 }
 }
 
-pub fn unary(syntax: &mut Vec<SyntaxError>, op: UnOp, e: Node, span: Span) -> Node {
+pub fn unary(syntax: &mut Capped<SyntaxError>, op: UnOp, e: Node, span: Span) -> Node {
     if let Some(c) = too_deep(syntax, e.depth, span) {
         return c;
     }
@@ -124,7 +133,7 @@ pub fn unary(syntax: &mut Vec<SyntaxError>, op: UnOp, e: Node, span: Span) -> No
 
 /// Unary minus; a negated numeric constant is folded so that `-12345` and
 /// `BY -2` are constants, and `-2147483648` fits.
-pub fn negate(syntax: &mut Vec<SyntaxError>, e: Node, span: Span) -> Node {
+pub fn negate(syntax: &mut Capped<SyntaxError>, e: Node, span: Span) -> Node {
     let folded = e.e.span.start == span.start + 1;
     match e.e.kind {
         ExprKind::Int(v) if folded => Node { e: Box::new(Expr { kind: ExprKind::Int(-v), span }), depth: 1 },
@@ -139,7 +148,7 @@ pub fn paren(mut e: Node, span: Span) -> Node {
     e
 }
 
-pub fn call(syntax: &mut Vec<SyntaxError>, name: &str, l: usize, nr: usize, args: Vec<Node>, span: Span) -> Node {
+pub fn call(syntax: &mut Capped<SyntaxError>, name: &str, l: usize, nr: usize, args: Vec<Node>, span: Span) -> Node {
     let deepest = args.iter().map(|a| a.depth).max().unwrap_or(0);
     if let Some(c) = too_deep(syntax, deepest, span) {
         return c;
@@ -157,7 +166,7 @@ pub fn var_leaf(v: VarNode, l: usize, r: usize) -> Node {
 /// A statement that holds statement lists as deep as `deepest` (IF, FOR,
 /// WHILE, REPEAT), or a cut-off error statement if that is too deep.
 pub fn compound(
-    syntax: &mut Vec<SyntaxError>,
+    syntax: &mut Capped<SyntaxError>,
     keyword: (&'static str, Span),
     deepest: u16,
     span: Span,
@@ -179,7 +188,7 @@ pub fn simple(s: Stmt) -> SNode {
 }
 
 /// Checks one identifier against §12.8.
-fn check_ident(syntax: &mut Vec<SyntaxError>, text: &str, span: Span) {
+fn check_ident(syntax: &mut Capped<SyntaxError>, text: &str, span: Span) {
     let first = text.chars().next();
     if first.map(|c| c.is_ascii_digit()).unwrap_or(true) {
         let why = if text.is_empty() { "empty name part" } else { "starts with a digit" };
@@ -212,7 +221,7 @@ fn strip_spaces(mut part: &str) -> &str {
 }
 
 /// Splits `text` (starting at byte `at`) at dots into identifiers with spans.
-fn split(syntax: &mut Vec<SyntaxError>, text: &str, at: usize, bracketed: bool) -> Vec<Seg> {
+fn split(syntax: &mut Capped<SyntaxError>, text: &str, at: usize, bracketed: bool) -> Vec<Seg> {
     let mut segs = Vec::new();
     let mut start = at;
     for part in text.split('.') {
@@ -231,14 +240,14 @@ fn split(syntax: &mut Vec<SyntaxError>, text: &str, at: usize, bracketed: bool) 
 
 /// Builds a variable from its first token and suffixes.
 pub fn var(
-    syntax: &mut Vec<SyntaxError>,
+    syntax: &mut Capped<SyntaxError>,
     text: &str,
     (l, r): (usize, usize),
     bracketed: bool,
     suffixes: Vec<Suffix>,
 ) -> VarNode {
     let first = if bracketed { l + 1 } else { l };
-    let before = syntax.len();
+    let before = syntax.total();
     let mut segs = split(syntax, text, first, bracketed);
     let mut end = r;
     let mut deepest = 0;
@@ -275,12 +284,12 @@ pub fn var(
         }
         depth = CUT;
     }
-    VarNode { v: Var { segs, bracketed, span, malformed: syntax.len() > before || depth == CUT }, depth }
+    VarNode { v: Var { segs, bracketed, span, malformed: syntax.total() > before || depth == CUT }, depth }
 }
 
 /// Validates an action header (§10.2.1) and builds the action.
 pub fn action(
-    syntax: &mut Vec<SyntaxError>,
+    syntax: &mut Capped<SyntaxError>,
     (nl, name, nr): (usize, &str, usize),
     block_type: Option<(usize, &str, usize)>,
     body: Vec<Stmt>,

@@ -1,10 +1,11 @@
 //! Drives the lalrpop parser over the cooked tokens and turns its errors
 //! (recovered or fatal) into [`SyntaxError`]s.
 
-use crate::ast::{Action, Expr, Ident, SourceFile};
+use crate::ast::{Action, Expr, Ident, SourceFile, Stmt};
+use crate::diagnostic::{Capped, Omitted};
 use crate::errors::{LexError, SyntaxError};
 use crate::lexer::{Lexer, Spanned, Tok};
-use crate::parse_support::{Never, Parsed};
+use crate::parse_support::{Item, Never, Parsed};
 use crate::span::Span;
 use lalrpop_util::{lalrpop_mod, ErrorRecovery, ParseError};
 
@@ -18,39 +19,51 @@ lalrpop_mod!(
 pub struct ParseErrors {
     pub lex: Vec<LexError>,
     pub syntax: Vec<SyntaxError>,
+    /// Errors over [`crate::diagnostic::MAX_ERRORS`] of one kind, not kept.
+    pub omitted: Omitted,
 }
 
-/// Parses an action file, handing each action to `sink` as soon as it is
-/// read (a file without `ACTION` headers is one action named `stem`, handed
-/// over at the end). Returns false if the parser could not recover; the
-/// actions read before that point have been handed over.
-pub fn parse_actions(src: &str, stem: &str, sink: &mut dyn FnMut(Action)) -> (bool, ParseErrors) {
-    let mut count = 0usize;
-    let (parsed, mut errors) = run(src, Tok::StartFile, &mut |a| {
-        count += 1;
-        sink(a)
-    });
-    match parsed {
-        Some(Parsed::File(body)) => {
-            if count == 0 {
-                let span = Span::new(0, src.len());
-                let name = Ident { text: stem.to_string(), span: Span::new(0, 0) };
-                sink(Action { name, block_type: None, body, header: None, span });
-            } else if let Some(first) = body.first() {
-                errors.syntax.push(SyntaxError::StatementOutsideAction { span: first.span() });
-                errors.syntax.sort_by_key(|e| syntax_span(e).start);
+/// Parses an action file, handing each statement before the first `ACTION`
+/// header and each action to `sink` as soon as it is read. Statements before
+/// a header are an error (E0016) if the file has headers; in a file without
+/// any, they are its one action, named after the file. Returns false if the
+/// parser could not recover (what was read before that has been handed over).
+pub fn parse_actions(src: &str, sink: &mut dyn FnMut(Item)) -> (bool, ParseErrors) {
+    let (mut first_stmt, mut actions) = (None, 0usize);
+    let (parsed, mut errors) = run(src, Tok::StartFile, &mut |item| {
+        match &item {
+            Item::Stmt(s) => {
+                first_stmt.get_or_insert(s.span());
             }
-            (true, errors)
+            Item::Action(_) => actions += 1,
         }
-        _ => (false, errors),
+        sink(item)
+    });
+    if let (Some(span), 1..) = (first_stmt, actions) {
+        errors.syntax.push(SyntaxError::StatementOutsideAction { span });
+        errors.syntax.sort_by_key(|e| syntax_span(e).start);
     }
+    (matches!(parsed, Some(Parsed::File)), errors)
+}
+
+/// The one action of a file without `ACTION` headers: named `stem`,
+/// spanning the whole text.
+pub fn headerless(src: &str, stem: &str, body: Vec<Stmt>) -> Action {
+    let name = Ident { text: stem.to_string(), span: Span::new(0, 0) };
+    Action { name, block_type: None, body, header: None, span: Span::new(0, src.len()) }
 }
 
 /// Parses an action file into one tree. `None` only when the parser could
 /// not recover.
 pub fn parse_file(src: &str, stem: &str) -> (Option<SourceFile>, ParseErrors) {
-    let mut actions = Vec::new();
-    let (ok, errors) = parse_actions(src, stem, &mut |a| actions.push(a));
+    let (mut body, mut actions) = (Vec::new(), Vec::new());
+    let (ok, errors) = parse_actions(src, &mut |item| match item {
+        Item::Stmt(s) => body.push(s),
+        Item::Action(a) => actions.push(a),
+    });
+    if actions.is_empty() {
+        actions.push(headerless(src, stem, body));
+    }
     (ok.then_some(SourceFile { actions }), errors)
 }
 
@@ -59,22 +72,23 @@ pub fn parse_expr(src: &str) -> (Option<Expr>, ParseErrors) {
     let (parsed, errors) = run(src, Tok::StartExpr, &mut |_| {});
     let expr = parsed.and_then(|p| match p {
         Parsed::Expr(e) => Some(e),
-        Parsed::File(..) => None,
+        Parsed::File => None,
     });
     (expr, errors)
 }
 
-fn run(src: &str, start: Tok<'static>, sink: &mut dyn FnMut(Action)) -> (Option<Parsed>, ParseErrors) {
+fn run(src: &str, start: Tok<'static>, sink: &mut dyn FnMut(Item)) -> (Option<Parsed>, ParseErrors) {
     let mut lexer = Lexer::new(src);
-    let mut recovered: Vec<ErrorRecovery<usize, Tok, Never>> = Vec::new();
-    let mut syntax = Vec::new();
+    let mut recovered: Capped<ErrorRecovery<usize, Tok, Never>> = Capped::default();
+    let mut syntax = Capped::default();
     let parser = grammar::StartParser::new();
     let tokens = std::iter::once((0, start, 0)).chain(lexer.by_ref()).map(Ok::<Spanned, Never>);
     let result = parser.parse(&mut recovered, &mut syntax, sink, tokens);
-    let mut found: Vec<SyntaxError> = Vec::new();
-    for r in recovered {
-        found.push(convert(&lexer.glued, r.error, src.len()));
-    }
+    let mut omitted = Omitted::default();
+    let (recovered, n, first) = recovered.into_parts();
+    omitted.add(n, first.map(|r| syntax_span(&convert(&lexer.glued, r.error, src.len()))));
+    let mut found: Vec<SyntaxError> =
+        recovered.into_iter().map(|r| convert(&lexer.glued, r.error, src.len())).collect();
     let parsed = match result {
         Ok(p) => Some(p),
         Err(e) => {
@@ -84,10 +98,14 @@ fn run(src: &str, start: Tok<'static>, sink: &mut dyn FnMut(Action)) -> (Option<
     };
     // Merge grammar-reported name errors with parse errors in source order,
     // dropping a parse error that repeats one already at the same place.
+    let (syntax, n, first) = syntax.into_parts();
+    omitted.add(n, first.as_ref().map(syntax_span));
     found.extend(syntax);
     found.sort_by_key(|e| syntax_span(e).start);
     found.dedup_by(|b, a| syntax_span(a) == syntax_span(b));
-    (parsed, ParseErrors { lex: lexer.errors, syntax: found })
+    let (lex, n, first) = lexer.errors.into_parts();
+    omitted.add(n, first.map(|e| e.to_diagnostic().span));
+    (parsed, ParseErrors { lex, syntax: found, omitted })
 }
 
 /// The primary span of a syntax error.
@@ -153,6 +171,11 @@ fn readable(expected: &[String]) -> Vec<String> {
         _ => 3,
     };
     out.sort_by(|a, b| rank(a).cmp(&rank(b)).then_with(|| a.cmp(b)));
+    // At the end of an action's statements, where another statement could
+    // also follow, the useful hint is the closing keyword.
+    if out.iter().any(|t| t == "`END_ACTION`") && out.iter().any(|t| t == "`EXIT`") {
+        return vec!["`END_ACTION`".to_string()];
+    }
     out
 }
 

@@ -10,11 +10,12 @@
 
 use crate::ast;
 use crate::check::{CheckError, Checker, Context, FastHash, Limits};
-use crate::diagnostic::Diagnostic;
+use crate::diagnostic::{Capped, Diagnostic, Omitted, MAX_ERRORS};
 use crate::errors::LexError;
 use crate::files::{self, SourceFiles, SUBSTITUTE};
 use crate::hir;
 use crate::lower::{self, Lines, Unit};
+use crate::parse_support::Item;
 use crate::parser::{self, ParseErrors};
 use crate::span::{FileId, Span};
 use linc_runtime::ObjectFile;
@@ -81,9 +82,25 @@ impl Checked {
 /// a whole.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SessionError {
-    DuplicateAction { span: Span, name: String, first: (FileId, Span), by_file: bool },
-    NotUtf8 { span: Span, byte: u8, more: usize },
-    ObjectFile { name: String },
+    DuplicateAction {
+        span: Span,
+        name: String,
+        first: (FileId, Span),
+        by_file: bool,
+    },
+    NotUtf8 {
+        span: Span,
+        byte: u8,
+        more: usize,
+    },
+    ObjectFile {
+        name: String,
+    },
+    /// Errors over the number kept per file ([`crate::diagnostic::MAX_ERRORS`]).
+    Omitted {
+        span: Span,
+        count: usize,
+    },
 }
 
 impl SessionError {
@@ -118,6 +135,13 @@ impl SessionError {
                     d
                 }
             }
+            SessionError::Omitted { span, count } => Diagnostic::error(
+                "E0023",
+                format!("{count} more error{} in this file not shown", plural(*count)),
+                *span,
+            )
+            .label("the first of them")
+            .help(format!("linc keeps at most {MAX_ERRORS} errors of each kind per file; fix these and check again")),
             SessionError::ObjectFile { name } => {
                 Diagnostic::error("E0018", format!("`{name}` is a linc object file, not ST source"), Span::default())
                     .label("compiled object")
@@ -199,42 +223,22 @@ impl<'a> Session<'a> {
             self.failed = true;
             return checked;
         }
-        let mut session_errors = Vec::new();
+        let mut session_errors = Capped::default();
         if let Some(&(at, byte)) = source.invalid_bytes().first() {
             let more = source.invalid_bytes().len() - 1;
             session_errors.push(SessionError::NotUtf8 { span: Span::new(at, at + 1), byte, more });
         }
         let mut checker = Checker::new(self.ctx, self.limits.take().unwrap_or_default());
+        if self.programs.is_none() {
+            checker = checker.reporting_only();
+        }
         let (parse_errors, program) = match options.input {
             Input::Actions => {
-                let stem = std::path::Path::new(source.name()).file_stem().and_then(|s| s.to_str()).unwrap_or("action");
-                let mut actions = Vec::new();
-                let mut tree = Vec::new();
-                let (ok, errors) = parser::parse_actions(source.text(), stem, &mut |a| {
-                    let key = a.name.text.to_ascii_uppercase();
-                    match self.actions.entry(key) {
-                        Entry::Occupied(e) => session_errors.push(SessionError::DuplicateAction {
-                            span: a.name.span,
-                            name: a.name.text.clone(),
-                            first: *e.get(),
-                            by_file: a.header.is_none(),
-                        }),
-                        Entry::Vacant(e) => {
-                            e.insert((file, a.name.span));
-                        }
-                    }
-                    let h = checker.action(&a);
-                    if self.programs.is_some() {
-                        actions.push(h);
-                    }
-                    if options.tree {
-                        tree.push(a);
-                    }
-                });
-                if options.tree && ok {
-                    checked.tree = Some(Tree::Actions(ast::SourceFile { actions: tree }));
-                }
-                (errors, Some(hir::Program { actions }))
+                let mut names = Names { map: &mut self.actions, file, errors: &mut session_errors };
+                let keep = self.programs.is_some();
+                let (errors, program, tree) = check_actions(source, &mut checker, &mut names, keep, options.tree);
+                checked.tree = tree.map(Tree::Actions);
+                (errors, Some(program))
             }
             Input::Transition | Input::Expression => {
                 let (expr, errors) = parser::parse_expr(source.text());
@@ -250,8 +254,11 @@ impl<'a> Session<'a> {
             }
         };
         let check_errors = checker.take_errors();
+        let mut omitted = checker.omitted();
         self.limits = Some(checker.into_limits());
-        checked.diagnostics = collect(source, parse_errors, &check_errors, &session_errors, file);
+        let (session_errors, n, first) = session_errors.into_parts();
+        omitted.add(n, first.map(|e| e.to_diagnostic().span));
+        checked.diagnostics = collect(source, parse_errors, &check_errors, &session_errors, omitted, file);
         if checked.has_errors() {
             self.failed = true;
             checked.expr = None;
@@ -290,6 +297,84 @@ impl<'a> Session<'a> {
     }
 }
 
+/// Action names across the files of a session.
+struct Names<'n> {
+    map: &'n mut HashMap<String, (FileId, Span), FastHash>,
+    file: FileId,
+    errors: &'n mut Capped<SessionError>,
+}
+
+impl Names<'_> {
+    /// Records an action's name, reporting it if it is taken (one hashed
+    /// look-up, whatever the number of actions).
+    fn define(&mut self, name: &ast::Ident, by_file: bool) {
+        match self.map.entry(name.text.to_ascii_uppercase()) {
+            Entry::Occupied(e) => self.errors.push(SessionError::DuplicateAction {
+                span: name.span,
+                name: name.text.clone(),
+                first: *e.get(),
+                by_file,
+            }),
+            Entry::Vacant(e) => {
+                e.insert((self.file, name.span));
+            }
+        }
+    }
+}
+
+/// Parses and checks an action file, one statement or action at a time as
+/// the parser reads them. The statements of a file without headers are
+/// checked as they come, as one action named after the file. Returns the
+/// parse errors, the checked program (empty unless `keep`) and the tree (if
+/// `tree` and the parser could build one).
+fn check_actions(
+    source: &files::SourceFile,
+    checker: &mut Checker,
+    names: &mut Names,
+    keep: bool,
+    tree: bool,
+) -> (ParseErrors, hir::Program, Option<ast::SourceFile>) {
+    let (mut actions, mut trees) = (Vec::new(), Vec::new());
+    let (mut body, mut body_tree, mut headers) = (Vec::new(), Vec::new(), 0usize);
+    checker.begin_action(None);
+    let (ok, errors) = parser::parse_actions(source.text(), &mut |item| match item {
+        Item::Stmt(s) => {
+            let h = checker.statement(&s);
+            if keep {
+                body.push(h);
+            }
+            if tree {
+                body_tree.push(s);
+            }
+        }
+        Item::Action(a) => {
+            headers += 1;
+            names.define(&a.name, false);
+            let h = checker.action(&a);
+            if keep {
+                actions.push(h);
+            }
+            if tree {
+                trees.push(a);
+            }
+        }
+    });
+    // Without headers, the statements read are the file's one action.
+    if headers == 0 {
+        let stem = std::path::Path::new(source.name()).file_stem().and_then(|s| s.to_str()).unwrap_or("action");
+        let action = parser::headerless(source.text(), stem, body_tree);
+        names.define(&action.name, true);
+        if keep {
+            actions.push(hir::Action { name: action.name.text.clone(), block_type: None, body, span: action.span });
+        }
+        if tree {
+            trees.push(action);
+        }
+    }
+    let tree = (tree && ok).then_some(ast::SourceFile { actions: trees });
+    (errors, hir::Program { actions }, tree)
+}
+
 /// Every diagnostic of one file, in source order. Lexer errors at bytes
 /// that were not UTF-8 are dropped: E0017 already points there.
 fn collect(
@@ -297,16 +382,25 @@ fn collect(
     errors: ParseErrors,
     checked: &[CheckError],
     session: &[SessionError],
+    mut omitted: Omitted,
     file: FileId,
 ) -> Vec<Diagnostic> {
+    let invalid = source.invalid_bytes();
     let substituted = |e: &LexError| match e {
-        LexError::UnexpectedChar { span, ch: SUBSTITUTE } => source.invalid_byte_at(span.start).is_some(),
+        LexError::UnexpectedChar { span, ch: SUBSTITUTE } => {
+            let n = invalid.partition_point(|p| p.0 < span.end) - invalid.partition_point(|p| p.0 < span.start);
+            n == span.end - span.start
+        }
         _ => false,
     };
+    omitted.add(errors.omitted.count, errors.omitted.first);
     let mut out: Vec<Diagnostic> = errors.lex.iter().filter(|e| !substituted(e)).map(LexError::to_diagnostic).collect();
     out.extend(errors.syntax.iter().map(crate::errors::SyntaxError::to_diagnostic));
     out.extend(checked.iter().map(CheckError::to_diagnostic));
     out.extend(session.iter().map(SessionError::to_diagnostic));
+    if let (n @ 1.., Some(first)) = (omitted.count, omitted.first) {
+        out.push(SessionError::Omitted { span: first, count: n }.to_diagnostic());
+    }
     for d in &mut out {
         d.file = file;
     }

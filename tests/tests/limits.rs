@@ -132,3 +132,17 @@ fn limits_and_literals_agree_between_check_and_compile() {
         assert_check_agrees_with_compile(&src);
     }
 }
+
+#[test]
+fn the_example_files_agree_between_check_and_compile() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/guide");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(dir).expect("examples") {
+        let path = entry.expect("entry").path();
+        if matches!(path.extension().and_then(|e| e.to_str()), Some("st" | "stx")) {
+            assert_check_agrees_with_compile(&std::fs::read_to_string(&path).expect("read"));
+            seen += 1;
+        }
+    }
+    assert_eq!(seen, 3);
+}

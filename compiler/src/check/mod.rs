@@ -12,6 +12,7 @@ pub use limits::{FastHash, Limits, MAX_CALL_ARGS, MAX_FOR_LOOPS, MAX_REFERENCES}
 pub use resolve::Resolved;
 
 use crate::ast::{Action, Expr, ExprKind, Stmt};
+use crate::diagnostic::{Capped, Omitted};
 use crate::hir;
 use limits::ActionLimits;
 use linc_runtime::Database;
@@ -35,7 +36,8 @@ pub struct Context<'a> {
 /// one object file and the errors found so far.
 pub struct Checker<'a> {
     ctx: Context<'a>,
-    errors: Vec<CheckError>,
+    errors: Capped<CheckError>,
+    omitted: Omitted,
     loop_depth: usize,
     /// Template of the action's own block (`ACTION a : PID`).
     self_template: Option<usize>,
@@ -43,6 +45,8 @@ pub struct Checker<'a> {
     action_limits: ActionLimits,
     /// "Did you mean" answers for unknown names, by name.
     suggestions: HashMap<String, Option<String>>,
+    /// Whether the checked program is kept (for compiling).
+    keep: bool,
 }
 
 /// Checks a transition: an expression that must be a truth value (§12.11).
@@ -65,18 +69,36 @@ impl<'a> Checker<'a> {
     pub fn new(ctx: Context<'a>, limits: Limits) -> Checker<'a> {
         Checker {
             ctx,
-            errors: Vec::new(),
+            errors: Capped::default(),
+            omitted: Omitted::default(),
             loop_depth: 0,
             self_template: None,
             limits,
             action_limits: ActionLimits::default(),
             suggestions: HashMap::new(),
+            keep: true,
         }
     }
 
-    /// The errors found since the last call.
+    /// A checker that only reports errors: the checked statements it builds
+    /// are dropped as soon as they are checked, and its programs are empty.
+    pub fn reporting_only(mut self) -> Checker<'a> {
+        self.keep = false;
+        self
+    }
+
+    /// The errors found since the last call (the first
+    /// [`crate::diagnostic::MAX_ERRORS`]; the rest are counted in
+    /// [`Checker::omitted`]).
     pub fn take_errors(&mut self) -> Vec<CheckError> {
-        std::mem::take(&mut self.errors)
+        let (kept, n, first) = std::mem::take(&mut self.errors).into_parts();
+        self.omitted.add(n, first.map(|e| e.to_diagnostic().span));
+        kept
+    }
+
+    /// Errors found but not kept.
+    pub fn omitted(&self) -> Omitted {
+        self.omitted
     }
 
     /// Gives back the limits, to be handed to the next file's checker.
@@ -98,19 +120,33 @@ impl<'a> Checker<'a> {
 
     /// Checks one action.
     pub fn action(&mut self, a: &Action) -> hir::Action {
+        let block_type = self.begin_action(a.block_type.as_ref());
+        let body = self.stmts(&a.body);
+        hir::Action { name: a.name.text.clone(), block_type, body, span: a.span }
+    }
+
+    /// Starts an action of block type `block_type` (`ACTION a : PID`), whose
+    /// statements are then checked one by one with [`Checker::statement`];
+    /// returns the block type's name as the database spells it.
+    pub fn begin_action(&mut self, block_type: Option<&crate::ast::Ident>) -> Option<String> {
         self.self_template = None;
         self.action_limits = ActionLimits::default();
-        if let Some(t) = &a.block_type {
-            match self.ctx.db.template(&t.text) {
-                Some(i) => self.self_template = Some(i),
-                None => self.errors.push(CheckError::UnknownBlockType { span: t.span, name: t.text.clone() }),
+        let t = block_type?;
+        match self.ctx.db.template(&t.text) {
+            Some(i) => {
+                self.self_template = Some(i);
+                Some(self.ctx.db.templates[i].name.clone())
+            }
+            None => {
+                self.errors.push(CheckError::UnknownBlockType { span: t.span, name: t.text.clone() });
+                Some(t.text.clone())
             }
         }
-        let body = self.stmts(&a.body);
-        let block_type = a.block_type.as_ref().map(|t| {
-            self.self_template.map(|i| self.ctx.db.templates[i].name.clone()).unwrap_or_else(|| t.text.clone())
-        });
-        hir::Action { name: a.name.text.clone(), block_type, body, span: a.span }
+    }
+
+    /// Checks one statement of the action begun last.
+    pub fn statement(&mut self, s: &Stmt) -> hir::Stmt {
+        self.stmt(s)
     }
 
     // The statement and expression walks recurse as deep as the tree (at
@@ -118,10 +154,16 @@ impl<'a> Checker<'a> {
     // and small dispatching frames, so that the deepest accepted tree fits a
     // test thread's stack even in a debug build (tests/deep.rs).
 
+    /// Checks a statement list. When the checked program is not wanted
+    /// (`linc check`), each checked statement is dropped at once, so the
+    /// checked program of a long action is never held.
     fn stmts(&mut self, list: &[Stmt]) -> Vec<hir::Stmt> {
-        let mut out = Vec::with_capacity(list.len());
+        let mut out = Vec::with_capacity(if self.keep { list.len() } else { 0 });
         for s in list {
-            out.push(self.stmt(s));
+            let h = self.stmt(s);
+            if self.keep {
+                out.push(h);
+            }
         }
         out
     }

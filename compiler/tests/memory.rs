@@ -1,0 +1,79 @@
+//! `linc check` needs memory in proportion to the largest action, not to the
+//! file: actions are checked as they are parsed and then dropped. A counting
+//! allocator measures the peak of live heap bytes while a session checks a
+//! generated file of realistic actions.
+
+mod workload;
+
+use linc_compiler::check::Context;
+use linc_compiler::session::{CheckOptions, Session};
+use linc_runtime::Database;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+
+static LIVE: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let live = LIVE.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
+        PEAK.fetch_max(live, Ordering::Relaxed);
+        // SAFETY: forwarded unchanged to the system allocator.
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
+        // SAFETY: `ptr` was allocated by `alloc` above with this layout.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
+
+/// The tests of this file measure one at a time (the counters are global).
+static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// The peak of live heap bytes while `f` runs, beyond what was live before.
+fn peak_of(f: impl FnOnce()) -> usize {
+    let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let before = LIVE.load(Ordering::Relaxed);
+    PEAK.store(before, Ordering::Relaxed);
+    f();
+    PEAK.load(Ordering::Relaxed) - before
+}
+
+#[test]
+fn junk_and_many_errors_need_little_memory() {
+    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
+    for src in ["@".repeat(1 << 20), "xx := 1; ".repeat(120_000)] {
+        let size = src.len();
+        let peak = peak_of(|| {
+            let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
+            let id = s.add("junk.st", src.into_bytes());
+            let c = s.check(id, CheckOptions::default());
+            assert!(c.diagnostics.len() <= 1_001 + 1, "{}", c.diagnostics.len());
+        });
+        assert!(peak < size * 2, "peak heap {peak} bytes for a {size}-byte file");
+    }
+}
+
+#[test]
+fn checking_needs_less_than_twice_the_size_of_the_file() {
+    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
+    let mut size = 0;
+    let peak = peak_of(|| {
+        let src = workload::actions(2 << 20).into_bytes();
+        size = src.len();
+        let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
+        let id = s.add("workload.st", src);
+        let checked = s.check(id, CheckOptions::default());
+        assert!(checked.diagnostics.is_empty(), "{:?}", checked.diagnostics.first());
+    });
+    // The text itself is 1x (the session keeps it, for the diagnostics);
+    // the README's target for the whole process is 10x.
+    assert!(peak < size * 2, "peak heap {peak} bytes for a {size}-byte file");
+}
