@@ -34,12 +34,16 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static ALLOCATOR: Counting = Counting;
 
-/// The tests of this file measure one at a time (the counters are global).
+/// The tests of this file run one at a time: the counters are global, and
+/// another test's allocations would count in the peak.
 static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn serial() -> std::sync::MutexGuard<'static, ()> {
+    SERIAL.lock().unwrap_or_else(|e| e.into_inner())
+}
 
 /// The peak of live heap bytes while `f` runs, beyond what was live before.
 fn peak_of(f: impl FnOnce()) -> usize {
-    let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
     let before = LIVE.load(Ordering::Relaxed);
     PEAK.store(before, Ordering::Relaxed);
     f();
@@ -48,6 +52,7 @@ fn peak_of(f: impl FnOnce()) -> usize {
 
 #[test]
 fn junk_and_many_errors_need_little_memory() {
+    let _one = serial();
     let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
     for src in ["@".repeat(1 << 20), "xx := 1; ".repeat(120_000)] {
         let size = src.len();
@@ -63,6 +68,7 @@ fn junk_and_many_errors_need_little_memory() {
 
 #[test]
 fn checking_needs_less_than_twice_the_size_of_the_file() {
+    let _one = serial();
     let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
     let mut size = 0;
     let peak = peak_of(|| {
