@@ -258,22 +258,7 @@ impl<'s> Cook<'s, '_> {
         let text = &src[s..e];
         let prev_adjacent = self.out.back().map(|p| p.2 == s).unwrap_or(false);
         if let Some(t) = simple(tok) {
-            // A two-character operator split by a space.
-            if let Some(prev) = self.out.back_mut() {
-                if prev.2 < s && src[prev.2..s].trim().is_empty() {
-                    if let Some(joined) = split_operator(&prev.1, tok) {
-                        self.errors.push(LexError::IllegalSpace {
-                            span: Span::new(prev.2, s),
-                            what: "an operator",
-                            fixed: keyword_text(&joined),
-                        });
-                        prev.1 = joined;
-                        prev.2 = e;
-                        return true;
-                    }
-                }
-            }
-            self.out.push_back((s, t, e));
+            self.keyword(tok, t, s, e);
             return true;
         }
         match tok {
@@ -334,6 +319,26 @@ impl<'s> Cook<'s, '_> {
             _ => {}
         }
         true
+    }
+
+    /// A keyword or operator; the second half of a two-character operator
+    /// split by a space (`: =`) is joined to the first, and reported.
+    fn keyword(&mut self, tok: Raw, t: Tok<'static>, s: usize, e: usize) {
+        if let Some(prev) = self.out.back_mut() {
+            if prev.2 < s && self.src[prev.2..s].trim().is_empty() {
+                if let Some(joined) = split_operator(&prev.1, tok) {
+                    self.errors.push(LexError::IllegalSpace {
+                        span: Span::new(prev.2, s),
+                        what: "an operator",
+                        fixed: keyword_text(&joined),
+                    });
+                    prev.1 = joined;
+                    prev.2 = e;
+                    return;
+                }
+            }
+        }
+        self.out.push_back((s, t, e));
     }
 
     /// A character that starts no token; a run of them is one error.

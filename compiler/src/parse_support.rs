@@ -32,7 +32,7 @@ pub enum Item {
 
 /// How deep statements may nest: IF, FOR, WHILE and REPEAT inside one
 /// another. Every later stage walks the tree recursively, so the limit keeps
-/// them (and dropping the tree) inside a thread's stack; see ADR 0005.
+/// them (and dropping the tree) inside a thread's stack; see ADR 0007.
 pub const MAX_NESTING: u16 = 100;
 
 /// How deep an expression may be: operators, calls and offsets inside one

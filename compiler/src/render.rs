@@ -149,6 +149,11 @@ fn human(files: &SourceFiles, d: &Diagnostic) -> String {
     term::emit_into_string(&config, &view, &diag).unwrap_or_else(|_| short(files, d))
 }
 
+/// Lines codespan prints after the first and before the last line of a
+/// label over several lines (its `start_context_lines`, `end_context_lines`).
+const MULTI_START: usize = 3;
+const MULTI_END: usize = 1;
+
 /// Lines longer than this (in bytes) are shown in windows around labels.
 const LONG_LINE: usize = 240;
 /// How much of a long line is kept on each side of a labelled position.
@@ -215,11 +220,20 @@ impl View {
 /// The view of one file for label ranges `spans` (original offsets), and
 /// the ranges mapped into the view.
 fn file_view(f: &SourceFile, spans: &[Range<usize>]) -> (FileView, Vec<Range<usize>>) {
-    // Every line a label touches, and the line between two shown lines
-    // that are one apart (codespan prints it rather than a break).
+    // The lines codespan prints: those a label starts or ends on, the first
+    // lines inside a label over several lines and the one before its end,
+    // and the line between two printed lines that are one apart (printed
+    // rather than a break). Other lines inside a label are never printed:
+    // they read as empty, so a label over a whole file costs a few lines.
     let mut wanted: Vec<usize> = Vec::new();
     for s in spans {
-        wanted.extend(f.line_index(s.start)..=f.line_index(s.end));
+        let (first, last) = (f.line_index(s.start), f.line_index(s.end));
+        if last - first <= MULTI_START + MULTI_END + 1 {
+            wanted.extend(first..=last);
+        } else {
+            wanted.extend(first..=first + MULTI_START);
+            wanted.extend(last - MULTI_END..=last);
+        }
     }
     wanted.sort_unstable();
     wanted.dedup();
@@ -340,11 +354,12 @@ impl<'a> Files<'a> for View {
 
     fn line_range(&'a self, id: usize, line_index: usize) -> Result<Range<usize>, FilesError> {
         let f = self.file(id)?;
+        let last = f.lines.last().map(|l| l.0).unwrap_or(0);
         match f.lines.binary_search_by_key(&line_index, |l| l.0) {
             Ok(k) => Ok(f.lines[k].1.clone()),
-            Err(_) => {
-                Err(FilesError::LineTooLarge { given: line_index, max: f.lines.last().map(|l| l.0).unwrap_or(0) })
-            }
+            // A line inside a long label, which is not printed.
+            Err(_) if line_index < last => Ok(f.text.len()..f.text.len()),
+            Err(_) => Err(FilesError::LineTooLarge { given: line_index, max: last }),
         }
     }
 
@@ -388,5 +403,13 @@ mod tests {
         assert!(out.len() < 1_000, "{}", out.len());
         assert!(out.contains(&format!("a.st:1:{}", at + 1)), "{out}");
         assert!(out.contains("…+1+1"), "{out}");
+    }
+    #[test]
+    fn a_label_over_many_lines_shows_its_ends() {
+        let src: String = (1..=10_000).map(|i| format!("line {i}\n")).collect();
+        let out = one(&src, Span::new(0, src.len() - 1), Format::Human);
+        assert!(out.len() < 1_000, "{out}");
+        assert!(out.contains("line 1\n") && out.contains("line 4\n") && out.contains("line 10000"), "{out}");
+        assert!(!out.contains("line 5000"), "{out}");
     }
 }

@@ -6,7 +6,7 @@
 //! twice across all files with one hashed look-up each, counts the limits of
 //! the object file across files, and lowers the checked files into one
 //! object, naming the right file in every diagnostic. `check` and `compile`
-//! run the same checks, so they reject the same files (ADR 0005).
+//! run the same checks, so they reject the same files (ADR 0007).
 
 use crate::ast;
 use crate::check::{CheckError, Checker, Context, FastHash, Limits};

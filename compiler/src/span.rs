@@ -4,7 +4,7 @@
 ///
 /// Spans are file-local: every stage but the session works on one file at a
 /// time, so the file is carried once per diagnostic ([`crate::Diagnostic::file`])
-/// instead of once per span (ADR 0005).
+/// instead of once per span (ADR 0007).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Span {
     pub start: usize,

@@ -34,8 +34,8 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static ALLOCATOR: Counting = Counting;
 
-/// The tests of this file run one at a time, from their first allocation
-/// to their last (the counters are global, and test threads run in parallel).
+/// The tests of this file run one at a time: the counters are global, and
+/// another test's allocations would count in the peak.
 static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
 fn serial() -> std::sync::MutexGuard<'static, ()> {
@@ -52,7 +52,7 @@ fn peak_of(f: impl FnOnce()) -> usize {
 
 #[test]
 fn junk_and_many_errors_need_little_memory() {
-    let _serial = serial();
+    let _one = serial();
     let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
     for src in ["@".repeat(1 << 20), "xx := 1; ".repeat(120_000)] {
         let size = src.len();
@@ -68,7 +68,7 @@ fn junk_and_many_errors_need_little_memory() {
 
 #[test]
 fn checking_needs_less_than_twice_the_size_of_the_file() {
-    let _serial = serial();
+    let _one = serial();
     let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
     let mut size = 0;
     let peak = peak_of(|| {
