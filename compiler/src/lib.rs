@@ -49,7 +49,7 @@ impl<T, P> Report<T, P> {
 /// Checks an action file as a one-file session. `stem` names a file's only
 /// action when it has no `ACTION` header.
 pub fn check_source(src: &str, stem: &str, ctx: Context) -> Report<ast::SourceFile, hir::Program> {
-    let mut s = Session::compiling(ctx);
+    let mut s = Session::keeping(ctx);
     let id = s.add(format!("{stem}.st"), src.as_bytes().to_vec());
     let c = s.check(id, CheckOptions { input: Input::Actions, tree: true });
     let tree = match c.tree {

@@ -169,8 +169,10 @@ pub struct Session<'a> {
     /// Action names seen so far, in upper case, with where each was first defined.
     actions: HashMap<String, (FileId, Span), FastHash>,
     limits: Option<Limits>,
-    /// Checked programs kept for lowering (only when compiling).
+    /// Checked programs kept whole (only in a [`Session::keeping`]).
     programs: Option<Vec<(FileId, hir::Program)>>,
+    /// The object being lowered as files are checked (only when compiling).
+    stream: Option<lower::Stream>,
     failed: bool,
 }
 
@@ -184,12 +186,21 @@ impl<'a> Session<'a> {
             actions: HashMap::default(),
             limits: Some(Limits::default()),
             programs: None,
+            stream: None,
             failed: false,
         }
     }
 
-    /// A session that keeps what it checks, to [`Session::compile`] it.
+    /// A session that lowers what it checks as it goes, to
+    /// [`Session::compile`] it; checked programs are not kept.
     pub fn compiling(ctx: Context<'a>) -> Session<'a> {
+        Session { stream: Some(lower::Stream::default()), ..Session::new(ctx) }
+    }
+
+    /// A session that keeps each file's checked program whole, for
+    /// [`Session::take_program`] (the API's one-file helpers) and
+    /// [`Session::compile`].
+    pub fn keeping(ctx: Context<'a>) -> Session<'a> {
         Session { programs: Some(Vec::new()), ..Session::new(ctx) }
     }
 
@@ -229,14 +240,18 @@ impl<'a> Session<'a> {
             session_errors.push(SessionError::NotUtf8 { span: Span::new(at, at + 1), byte, more });
         }
         let mut checker = Checker::new(self.ctx, self.limits.take().unwrap_or_default());
-        if self.programs.is_none() {
+        if self.programs.is_none() && self.stream.is_none() {
             checker = checker.reporting_only();
+        }
+        if let Some(stream) = &mut self.stream {
+            stream.begin_file(file.index(), source.name(), Lines::new(source.text()));
         }
         let (parse_errors, program) = match options.input {
             Input::Actions => {
                 let mut names = Names { map: &mut self.actions, file, errors: &mut session_errors };
                 let keep = self.programs.is_some();
-                let (errors, program, tree) = check_actions(source, &mut checker, &mut names, keep, options.tree);
+                let sink = Sink { keep, stream: self.stream.as_mut() };
+                let (errors, program, tree) = check_actions(source, &mut checker, &mut names, sink, options.tree);
                 checked.tree = tree.map(Tree::Actions);
                 (errors, Some(program))
             }
@@ -280,6 +295,13 @@ impl<'a> Session<'a> {
     /// errors (they were reported when it was checked) or nothing was kept.
     /// The programs are handed over: a second call gives an empty `Err`.
     pub fn compile(&mut self) -> Result<ObjectFile, Vec<Diagnostic>> {
+        if let Some(stream) = self.stream.take() {
+            if self.failed {
+                return Err(Vec::new());
+            }
+            let in_file = |(i, e): (usize, lower::LowerError)| e.to_diagnostic().in_file(FileId(i as u32));
+            return stream.finish().map_err(|errors| errors.into_iter().map(in_file).collect());
+        }
         let Some(programs) = self.programs.take().filter(|_| !self.failed) else {
             return Err(Vec::new());
         };
@@ -322,6 +344,12 @@ impl Names<'_> {
     }
 }
 
+/// Where checked actions go: kept whole, lowered at once, or both.
+struct Sink<'s> {
+    keep: bool,
+    stream: Option<&'s mut lower::Stream>,
+}
+
 /// Parses and checks an action file, one statement or action at a time as
 /// the parser reads them. The statements of a file without headers are
 /// checked as they come, as one action named after the file. Returns the
@@ -331,15 +359,22 @@ fn check_actions(
     source: &files::SourceFile,
     checker: &mut Checker,
     names: &mut Names,
-    keep: bool,
+    mut sink: Sink,
     tree: bool,
 ) -> (ParseErrors, hir::Program, Option<ast::SourceFile>) {
+    let keep = sink.keep;
     let (mut actions, mut trees) = (Vec::new(), Vec::new());
     let (mut body, mut body_tree, mut headers) = (Vec::new(), Vec::new(), 0usize);
     checker.begin_action(None);
+    if let Some(stream) = sink.stream.as_deref_mut() {
+        stream.begin_statements();
+    }
     let (ok, errors) = parser::parse_actions(source.text(), &mut |item| match item {
         Item::Stmt(s) => {
             let h = checker.statement(&s);
+            if let Some(stream) = sink.stream.as_deref_mut() {
+                stream.statement(&h);
+            }
             if keep {
                 body.push(h);
             }
@@ -351,6 +386,9 @@ fn check_actions(
             headers += 1;
             names.define(&a.name, false);
             let h = checker.action(&a);
+            if let Some(stream) = sink.stream.as_deref_mut() {
+                stream.action(&h);
+            }
             if keep {
                 actions.push(h);
             }
@@ -359,11 +397,15 @@ fn check_actions(
             }
         }
     });
-    // Without headers, the statements read are the file's one action.
+    // Without headers, the statements read are the file's one action. (With
+    // headers, statements outside an action are E0016 and nothing is kept.)
     if headers == 0 {
         let stem = std::path::Path::new(source.name()).file_stem().and_then(|s| s.to_str()).unwrap_or("action");
         let action = parser::headerless(source.text(), stem, body_tree);
         names.define(&action.name, true);
+        if let Some(stream) = sink.stream.as_deref_mut() {
+            stream.end_statements(&action.name.text);
+        }
         if keep {
             actions.push(hir::Action { name: action.name.text.clone(), block_type: None, body, span: action.span });
         }

@@ -83,3 +83,25 @@ fn checking_needs_less_than_twice_the_size_of_the_file() {
     // the README's target for the whole process is 10x.
     assert!(peak < size * 2, "peak heap {peak} bytes for a {size}-byte file");
 }
+
+#[test]
+fn compiling_lowers_as_it_checks_and_keeps_no_checked_program() {
+    let _one = serial();
+    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
+    let mut size = 0;
+    let mut object_bytes = 0;
+    let peak = peak_of(|| {
+        let src = workload::actions(2 << 20).into_bytes();
+        size = src.len();
+        let mut s = Session::compiling(Context { db: &db, resolve_blocks: true, steps: None });
+        let id = s.add("workload.st", src);
+        let checked = s.check(id, CheckOptions::default());
+        assert!(checked.diagnostics.is_empty(), "{:?}", checked.diagnostics.first());
+        let object = s.compile().expect("compiles");
+        object_bytes = object.to_bytes().len();
+    });
+    // The text (1x), the object being built and its encoding; the checked
+    // program of the whole file (about 25x the text) is never held.
+    eprintln!("compile: peak heap {peak} bytes for a {size}-byte file, object {object_bytes} bytes");
+    assert!(peak < size * 6, "peak heap {peak} bytes for a {size}-byte file");
+}

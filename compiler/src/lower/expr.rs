@@ -117,7 +117,7 @@ fn is_real(ty: Ty) -> bool {
     ty == Ty::Real
 }
 
-impl Lowerer<'_> {
+impl Lowerer {
     /// Emits `e` converted to `want` (numeric types convert; strings stay).
     pub(super) fn expr_as(&mut self, e: &Expr, want: Ty) {
         if let Some(c) = constant(e) {

@@ -60,6 +60,7 @@ impl LowerError {
 }
 
 /// Line and column (1-based) of byte offsets in one source.
+#[derive(Clone, Debug, Default)]
 pub struct Lines {
     starts: Vec<usize>,
 }
@@ -79,8 +80,8 @@ impl Lines {
 }
 
 /// Builds an object file from checked actions.
-pub struct Lowerer<'a> {
-    lines: &'a Lines,
+pub struct Lowerer {
+    lines: Lines,
     file: String,
     symbols: Vec<Symbol>,
     symbol_index: HashMap<(String, String, String, u8), u16>,
@@ -105,21 +106,74 @@ pub struct Unit<'a> {
 /// Lowers checked files into one object file. Each error comes with the
 /// index of the unit it belongs to.
 pub fn lower_units(units: &[Unit]) -> Result<ObjectFile, Vec<(usize, LowerError)>> {
-    let Some(first) = units.first() else {
-        return Ok(ObjectFile::default());
-    };
-    let mut l = Lowerer::new(first.lines);
-    let mut actions = Vec::new();
-    let mut owners = Vec::new();
+    let mut stream = Stream::default();
     for (k, u) in units.iter().enumerate() {
-        l.lines = u.lines;
-        l.file = u.file.to_string();
+        stream.begin_file(k, u.file, u.lines.clone());
         for a in &u.program.actions {
-            actions.push(l.action(a));
+            stream.action(a);
         }
-        owners.resize(l.errors.len(), k);
     }
-    l.finish(first.file, actions).map_err(|errors| owners.into_iter().zip(errors).collect())
+    stream.finish()
+}
+
+/// Lowering as the checker goes: actions, or the statements of a file
+/// without headers, are lowered as soon as they are checked and their
+/// checked form is dropped, so compiling holds the object being built, not
+/// every file's checked program (a 50 MB source compiles in a few hundred
+/// MB instead of gigabytes).
+#[derive(Default)]
+pub struct Stream {
+    l: Lowerer,
+    units: Vec<ObjUnit>,
+    /// For each error of `l`, the index of the file it belongs to.
+    owners: Vec<usize>,
+    file: usize,
+    source: Option<String>,
+}
+
+impl Stream {
+    /// Starts file number `index` (as the caller counts files).
+    pub fn begin_file(&mut self, index: usize, name: &str, lines: Lines) {
+        self.file = index;
+        self.source.get_or_insert_with(|| name.to_string());
+        self.l.file = name.to_string();
+        self.l.lines = lines;
+    }
+
+    /// Lowers one whole checked action.
+    pub fn action(&mut self, a: &hir::Action) {
+        let unit = self.l.action(a);
+        self.units.push(unit);
+        self.tag();
+    }
+
+    /// Starts the one action of a file without headers.
+    pub fn begin_statements(&mut self) {
+        self.l.locals = 0;
+    }
+
+    /// Lowers one statement of the action begun by [`Stream::begin_statements`].
+    pub fn statement(&mut self, s: &Stmt) {
+        self.l.stmt(s);
+        self.tag();
+    }
+
+    /// Ends that action, named after its file.
+    pub fn end_statements(&mut self, name: &str) {
+        let unit = self.l.take_action(name, "");
+        self.units.push(unit);
+    }
+
+    fn tag(&mut self) {
+        self.owners.resize(self.l.errors.len(), self.file);
+    }
+
+    /// The object, or the lowering errors with the index of their file.
+    pub fn finish(self) -> Result<ObjectFile, Vec<(usize, LowerError)>> {
+        let source = self.source.unwrap_or_default();
+        let owners = self.owners;
+        self.l.finish(&source, self.units).map_err(|errors| owners.into_iter().zip(errors).collect())
+    }
 }
 
 /// Lowers a whole checked file.
@@ -129,7 +183,7 @@ pub fn lower_program(p: &hir::Program, source: &str, lines: &Lines) -> Result<Ob
 
 /// Lowers one expression into an action named `eval` that returns its value.
 pub fn lower_eval(e: &hir::Expr, lines: &Lines) -> Result<ObjectFile, Vec<LowerError>> {
-    let mut l = Lowerer::new(lines);
+    let mut l = Lowerer { lines: lines.clone(), ..Lowerer::default() };
     l.mark(e.span);
     l.expr(e);
     l.emit(Op::Return { kind: expr::kind_of(e.ty) as u8 });
@@ -137,10 +191,10 @@ pub fn lower_eval(e: &hir::Expr, lines: &Lines) -> Result<ObjectFile, Vec<LowerE
     l.finish("<eval>", vec![action])
 }
 
-impl<'a> Lowerer<'a> {
-    fn new(lines: &'a Lines) -> Lowerer<'a> {
+impl Default for Lowerer {
+    fn default() -> Lowerer {
         Lowerer {
-            lines,
+            lines: Lines::default(),
             file: "<eval>".to_string(),
             symbols: Vec::new(),
             symbol_index: HashMap::new(),
@@ -154,7 +208,9 @@ impl<'a> Lowerer<'a> {
             locals: 0,
         }
     }
+}
 
+impl Lowerer {
     fn finish(self, source: &str, units: Vec<ObjUnit>) -> Result<ObjectFile, Vec<LowerError>> {
         if !self.errors.is_empty() {
             return Err(self.errors);
