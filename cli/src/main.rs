@@ -224,44 +224,19 @@ fn main() -> ExitCode {
             seed,
             watchdog,
             message_format,
-        } => match (db, duration) {
-            (None, Some(duration)) => strategy_cmd::run(&strategy_cmd::Options {
-                db: file,
-                duration,
-                set,
-                show,
-                trace,
-                out,
-                now,
-                seed,
-                watchdog,
-                format: format(message_format),
-            }),
-            (Some(db), None) => run_cmd::run(&run_cmd::Options {
-                file,
-                db,
-                action,
-                block,
-                cycles,
-                period,
-                set,
-                show,
-                trace,
-                out,
-                now,
-                seed,
-                watchdog,
-                format: format(message_format),
-            }),
-            (Some(_), Some(_)) => {
-                eprintln!("error: --for runs a strategy, which is its own database: give PLANT.json without --db");
-                2
+        } => {
+            let common = run_cmd::Common { set, show, trace, out, now, seed, watchdog, format: format(message_format) };
+            match (db, duration) {
+                (None, Some(duration)) => strategy_cmd::run(&strategy_cmd::Options { db: file, duration, common }),
+                (Some(db), None) => run_cmd::run(&run_cmd::Options { file, db, action, block, cycles, period, common }),
+                (Some(_), Some(_)) => {
+                    report::usage("--for runs a strategy, which is its own database: give PLANT.json without --db")
+                }
+                (None, None) => {
+                    report::usage("give --for DURATION to run a strategy, or --db DB.json to run one action")
+                }
             }
-            (None, None) => {
-                eprintln!("error: give --for DURATION to run a strategy, or --db DB.json to run one action");
-                2
-            }
-        },
+        }
         Command::Eval { expr, db, now, seed, message_format } => {
             eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed, format(message_format))
         }

@@ -10,6 +10,19 @@ use linc_runtime::{text, Database, Program, Verified};
 use linc_stdlib::value::decode_dollar;
 use std::path::{Path, PathBuf};
 
+/// What running one action and running a strategy have in common.
+pub struct Common {
+    pub set: Vec<String>,
+    pub show: Vec<String>,
+    /// `-` prints the trace; a path collects it into that file.
+    pub trace: Option<PathBuf>,
+    pub out: Option<PathBuf>,
+    pub now: Option<String>,
+    pub seed: Option<u64>,
+    pub watchdog: u64,
+    pub format: Format,
+}
+
 pub struct Options {
     pub file: PathBuf,
     pub db: PathBuf,
@@ -17,15 +30,7 @@ pub struct Options {
     pub block: Option<String>,
     pub cycles: u32,
     pub period: f64,
-    pub set: Vec<String>,
-    pub show: Vec<String>,
-    /// `-` prints each write as it happens; a path collects them into that file.
-    pub trace: Option<PathBuf>,
-    pub out: Option<PathBuf>,
-    pub now: Option<String>,
-    pub seed: Option<u64>,
-    pub watchdog: u64,
-    pub format: Format,
+    pub common: Common,
 }
 
 /// Where `--set` and `--show` point: a cell and maybe a bit.
@@ -165,20 +170,20 @@ pub fn program_object(path: &Path, db: &Database, format: Format) -> Result<Veri
 pub fn run(o: &Options) -> u8 {
     // `--out` and `--trace FILE` may not replace an input or anything but a
     // regular file; checked before the run, so a refused run changes nothing.
-    for out in [&o.out, &o.trace].into_iter().flatten().filter(|p| p.as_os_str() != "-") {
+    for out in [&o.common.out, &o.common.trace].into_iter().flatten().filter(|p| p.as_os_str() != "-") {
         if let Err(e) = crate::files::check_output(out, &[&o.file, &o.db]) {
             eprintln!("{e}");
             return 2;
         }
     }
     let mut dbfiles = SourceFiles::new();
-    let db = match load_db(Some(&o.db), &mut dbfiles, o.format) {
+    let db = match load_db(Some(&o.db), &mut dbfiles, o.common.format) {
         Ok(Some(db)) => db,
         Ok(None) => return 2,
         Err(status) => return status,
     };
     let db_text = dbfiles.get(0).map(|f| f.source().clone()).unwrap_or_default();
-    let obj = match program_object(&o.file, &db, o.format) {
+    let obj = match program_object(&o.file, &db, o.common.format) {
         Ok(obj) => obj,
         Err(status) => return status,
     };
@@ -200,11 +205,11 @@ pub fn run(o: &Options) -> u8 {
         Ok(b) => b,
         Err(msg) => return usage(msg),
     };
-    let shows = match set_and_show(&mut store, &o.set, &o.show) {
+    let shows = match set_and_show(&mut store, &o.common.set, &o.common.show) {
         Ok(v) => v,
         Err(status) => return status,
     };
-    let now = match start_time(o.now.as_deref()) {
+    let now = match start_time(o.common.now.as_deref()) {
         Ok(s) => s,
         Err(msg) => return usage(msg),
     };
@@ -212,15 +217,18 @@ pub fn run(o: &Options) -> u8 {
     let linked = match obj.link(&store, &[Program { unit: index, own }]) {
         Ok(l) => l,
         Err(e) => {
-            eprint!("{}", crate::report::file_error(&o.file.display().to_string(), e.code(), e.to_string(), o.format));
+            eprint!(
+                "{}",
+                crate::report::file_error(&o.file.display().to_string(), e.code(), e.to_string(), o.common.format)
+            );
             return 2;
         }
     };
     let mut act = Activation::new(&linked, 0, 0);
-    let seed = o.seed.unwrap_or_else(|| now as u64 ^ u64::from(std::process::id()));
-    let mut vm = Vm::new(o.watchdog, Clock::new(seed, 0));
+    let seed = o.common.seed.unwrap_or_else(|| now as u64 ^ u64::from(std::process::id()));
+    let mut vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
     let mut status = 0;
-    let to_stdout = o.trace.as_ref().is_some_and(|p| p.as_os_str() == "-");
+    let to_stdout = o.common.trace.as_ref().is_some_and(|p| p.as_os_str() == "-");
     let mut traced = String::new();
     for cycle in 1..=o.cycles {
         let mut tracer = |s: &Store, cell: u32| {
@@ -231,11 +239,11 @@ pub fn run(o: &Options) -> u8 {
                 traced.push_str(&line);
             }
         };
-        let trace: linc_runtime::vm::Tracer = if o.trace.is_some() { Some(&mut tracer) } else { None };
+        let trace: linc_runtime::vm::Tracer = if o.common.trace.is_some() { Some(&mut tracer) } else { None };
         match vm.run(&linked, &mut act, &mut store, trace) {
             Ok(_) => {}
             Err(e) => {
-                eprint!("{}", crate::report::runtime(&e, o.format));
+                eprint!("{}", crate::report::runtime(&e, o.common.format));
                 status = 1;
                 break;
             }
@@ -245,13 +253,13 @@ pub fn run(o: &Options) -> u8 {
     for (path, a) in &shows {
         println!("{path} = {}", show_value(&store, *a));
     }
-    if let Some(path) = o.trace.as_ref().filter(|_| !to_stdout) {
+    if let Some(path) = o.common.trace.as_ref().filter(|_| !to_stdout) {
         if let Err(e) = crate::files::write_atomic(path, traced.as_bytes()) {
             eprintln!("{e}");
             return 2;
         }
     }
-    if let Some(out) = &o.out {
+    if let Some(out) = &o.common.out {
         if let Err(e) = write_db(out, &db_text, &store) {
             eprintln!("{e}");
             return 2;

@@ -3,7 +3,7 @@
 
 use crate::check_cmd::load_db;
 use crate::report::usage;
-use crate::run_cmd::{program_object, set_and_show, show_value, start_time, write_db};
+use crate::run_cmd::{program_object, set_and_show, show_value, start_time, write_db, Common};
 use linc_compiler::render::{self, Format, SourceFiles};
 use linc_compiler::span::FileId;
 use linc_compiler::{Diagnostic, Span};
@@ -16,14 +16,7 @@ use std::path::{Path, PathBuf};
 pub struct Options {
     pub db: PathBuf,
     pub duration: String,
-    pub set: Vec<String>,
-    pub show: Vec<String>,
-    pub trace: Option<PathBuf>,
-    pub out: Option<PathBuf>,
-    pub now: Option<String>,
-    pub seed: Option<u64>,
-    pub watchdog: u64,
-    pub format: Format,
+    pub common: Common,
 }
 
 /// A duration as an ST time constant, with or without `T#` (`10m`, `T#1h30m`).
@@ -60,7 +53,7 @@ fn objects(o: &Options, db: &Database, wants: &[Want]) -> Result<Plan, u8> {
             Some(&i) => i,
             None => {
                 let path = dir.join(&w.file);
-                objects.push(program_object(&path, db, o.format)?);
+                objects.push(program_object(&path, db, o.common.format)?);
                 index.insert(w.file.clone(), objects.len() - 1);
                 objects.len() - 1
             }
@@ -75,19 +68,19 @@ pub fn run(o: &Options) -> u8 {
         Ok(d) => d,
         Err(msg) => return usage(msg),
     };
-    let now = match start_time(o.now.as_deref()) {
+    let now = match start_time(o.common.now.as_deref()) {
         Ok(s) => s,
         Err(msg) => return usage(msg),
     };
     let mut files = SourceFiles::new();
-    let db = match load_db(Some(&o.db), &mut files, o.format) {
+    let db = match load_db(Some(&o.db), &mut files, o.common.format) {
         Ok(Some(db)) => db,
         Ok(None) => return 2,
         Err(status) => return status,
     };
     let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
     let mut store = Store::new(db.clone());
-    let shows = match set_and_show(&mut store, &o.set, &o.show) {
+    let shows = match set_and_show(&mut store, &o.common.set, &o.common.show) {
         Ok(v) => v,
         Err(status) => return status,
     };
@@ -101,43 +94,43 @@ pub fn run(o: &Options) -> u8 {
     let dir = o.db.parent().map(Path::to_path_buf).unwrap_or_default();
     let inputs: Vec<PathBuf> = std::iter::once(o.db.clone()).chain(wants.iter().map(|w| dir.join(&w.file))).collect();
     let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
-    for out in [&o.out, &o.trace].into_iter().flatten().filter(|p| p.as_os_str() != "-") {
+    for out in [&o.common.out, &o.common.trace].into_iter().flatten().filter(|p| p.as_os_str() != "-") {
         if let Err(e) = crate::files::check_output(out, &input_refs) {
             eprintln!("{e}");
             return 2;
         }
     }
-    let seed = o.seed.unwrap_or(now as u64);
-    let vm = Vm::new(o.watchdog, Clock::new(seed, 0));
+    let seed = o.common.seed.unwrap_or(now as u64);
+    let vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
     let mut s = match Strategy::build(store, objects, &pairs, vm, now as f64) {
         Ok(s) => s,
         Err(e) => {
-            report(&files, FileId(0), &db_text, &e, o.format);
+            report(&files, FileId(0), &db_text, &e, o.common.format);
             return 2;
         }
     };
     let mut trace_bytes = Vec::new();
-    let mut trace = o.trace.as_ref().map(|_| Trace::new(&mut trace_bytes, &s.store));
+    let mut trace = o.common.trace.as_ref().map(|_| Trace::new(&mut trace_bytes, &s.store));
     let failures = s.run_for(duration, trace.as_mut());
     if let Some(t) = trace {
         let _ = t.finish();
     }
     for e in &failures {
-        eprint!("{}", crate::report::runtime(e, o.format));
+        eprint!("{}", crate::report::runtime(e, o.common.format));
     }
     for (path, a) in &shows {
         println!("{path} = {}", show_value(&s.store, *a));
     }
-    if let Some(path) = o.trace.as_ref().filter(|p| p.as_os_str() == "-") {
+    if let Some(path) = o.common.trace.as_ref().filter(|p| p.as_os_str() == "-") {
         let _ = path;
         print!("{}", String::from_utf8_lossy(&trace_bytes));
-    } else if let Some(path) = &o.trace {
+    } else if let Some(path) = &o.common.trace {
         if let Err(e) = crate::files::write_atomic(path, &trace_bytes) {
             eprintln!("error[E0900]: can't write `{}`: {e}", path.display());
             return 2;
         }
     }
-    if let Some(out) = &o.out {
+    if let Some(out) = &o.common.out {
         if let Err(e) = write_db(out, &db_text, &s.store) {
             eprintln!("{e}");
             return 2;

@@ -1,19 +1,15 @@
 //! Loader and I/O errors go through the one renderer, in every format.
-use std::process::Command;
+mod common;
 
+/// Exit status and standard error.
 fn linc(args: &[&str]) -> (Option<i32>, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_linc"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .output()
-        .expect("run linc");
-    (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned())
+    let o = common::linc(args);
+    (o.status.code(), common::stderr(&o))
 }
 
 #[test]
 fn a_damaged_object_is_a_file_level_diagnostic() {
-    let dir = std::env::temp_dir().join(format!("linc-report-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("dir");
+    let dir = common::temp_dir("report");
     let bad = dir.join("bad.sto");
     std::fs::write(&bad, b"LINCSTO\x1a\x02\x00").expect("write");
     let bad = bad.to_string_lossy().into_owned();

@@ -2,21 +2,8 @@
 //! same inputs, deep or long code never crashes them, and source text never
 //! reaches the terminal raw.
 
-use std::process::{Command, Output};
-
-fn linc(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_linc"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .output()
-        .expect("run linc")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-const DB: &str = "examples/guide/plant.db.json";
+mod common;
+use common::{linc, stdout, DB};
 
 /// Writes `bytes` to `dir/name` in a fresh temporary directory of this test
 /// run and returns its path.

@@ -1,18 +1,9 @@
 //! `linc run PLANT.json --for DURATION`: the example strategy, pinned.
-use std::process::{Command, Output};
-
-fn linc(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_linc"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .output()
-        .expect("run linc")
-}
+mod common;
+use common::{linc, temp_dir};
 
 fn temp(name: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("linc-strategy-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir.join(name).to_string_lossy().into_owned()
+    temp_dir("strategy").join(name).to_string_lossy().into_owned()
 }
 
 /// Runs the example for ten simulated minutes; returns (out, trace, stdout).
@@ -52,8 +43,7 @@ fn the_example_strategy_runs_ten_minutes_and_is_pinned() {
 
 #[test]
 fn a_runtime_error_in_a_strategy_is_rendered_and_exits_one() {
-    let dir = std::env::temp_dir().join(format!("linc-strategy-err-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("dir");
+    let dir = temp_dir("strategy-err");
     std::fs::write(dir.join("a.st"), "ACTION Bad\n  R.N0 := R.N0 + 1;\n  R.N1 := 1 / (2 - R.N0);\nEND_ACTION\n")
         .expect("write");
     let db = dir.join("plant.json");

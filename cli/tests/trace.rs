@@ -1,21 +1,16 @@
 //! `--trace` of `linc run`: printed as writes happen, or collected in a file.
-use std::process::Command;
+mod common;
 
 #[test]
 fn one_action_traces_to_stdout_or_to_a_file() {
-    let dir = std::env::temp_dir().join(format!("linc-trace-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("dir");
+    let dir = common::temp_dir("trace");
     let src = dir.join("t.st");
     std::fs::write(&src, "Recipe.N0 := Recipe.N0 + 1;\n").expect("write");
     let file = dir.join("trace.txt");
     let run = |extra: &[&str]| {
-        let mut args = vec!["run", src.to_str().unwrap(), "--db", "examples/guide/plant.db.json", "--cycles", "2"];
+        let mut args = vec!["run", src.to_str().unwrap(), "--db", common::DB, "--cycles", "2"];
         args.extend_from_slice(extra);
-        Command::new(env!("CARGO_BIN_EXE_linc"))
-            .args(&args)
-            .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-            .output()
-            .expect("run")
+        common::linc(&args)
     };
     let expected = "cycle 1: Recipe.N0 = 1\ncycle 2: Recipe.N0 = 2\n";
     let o = run(&["--trace"]);

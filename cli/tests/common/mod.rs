@@ -1,0 +1,32 @@
+//! What the CLI test files share: running the binary from the repository
+//! root, and temporary files of one test run.
+#![allow(dead_code)]
+
+use std::process::{Command, Output};
+
+/// The guide's database, relative to the repository root.
+pub const DB: &str = "examples/guide/plant.db.json";
+
+/// Runs `linc` with `args` in the repository root.
+pub fn linc(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_linc"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .output()
+        .expect("run linc")
+}
+
+pub fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A fresh directory `tag` for this test run.
+pub fn temp_dir(tag: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("linc-cli-{}-{tag}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
