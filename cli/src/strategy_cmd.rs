@@ -85,6 +85,10 @@ pub fn run(o: &Options) -> u8 {
         Err(status) => return status,
     };
     let wants = strategy::wanted(&store);
+    if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
+        report(&files, FileId(0), &db_text, &e, o.common.format);
+        return 2;
+    }
     let (objects, pairs) = match objects(o, &db, &wants) {
         Ok(x) => x,
         Err(status) => return status,

@@ -76,3 +76,18 @@ fn bad_durations_and_mixed_modes_are_usage_errors() {
     let o = linc(&["run", "examples/strategy/plant.json"]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn blocks_without_an_action_run_nothing_and_half_named_ones_are_refused() {
+    // The guide's database has RAW_COM blocks with no action: nothing to run.
+    let o = linc(&["run", "examples/guide/plant.db.json", "--for", "1s", "--show", "Recipe.A0"]);
+    assert_eq!((o.status.code(), String::from_utf8_lossy(&o.stdout).as_ref()), (Some(0), "Recipe.A0 = 3.0\n"));
+    let dir = temp_dir("strategy-half");
+    let db = dir.join("plant.json");
+    std::fs::write(&db, r#"{ "blocks": { "A": { "type": "ACTION", "values": { "ActName": "Fill" } } } }"#)
+        .expect("write");
+    let o = linc(&["run", db.to_str().unwrap(), "--for", "1s", "--message-format", "short"]);
+    assert_eq!(o.status.code(), Some(2));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains(":1:15: error[E0830]: the block names no action: its FileName is empty"), "{out}");
+}

@@ -31,6 +31,19 @@ pub struct Want {
     pub action: String,
 }
 
+impl Want {
+    /// A block must name both its file and its action (E0830).
+    pub fn complete(&self, store: &Store) -> Result<(), StrategyError> {
+        let missing = match (self.file.is_empty(), self.action.is_empty()) {
+            (true, _) => "FileName",
+            (_, true) => "ActName",
+            _ => return Ok(()),
+        };
+        let block = store.db.blocks[self.block].name.clone();
+        Err(StrategyError::new("E0830", block, format!("the block names no action: its {missing} is empty")))
+    }
+}
+
 /// Text of a string field of a block, if the block's template has it.
 fn text_field(store: &Store, block: usize, field: &str) -> Option<String> {
     match store.cell_of(block, field).and_then(|c| store.cells.get(c as usize)) {
@@ -39,13 +52,15 @@ fn text_field(store: &Store, block: usize, field: &str) -> Option<String> {
     }
 }
 
-/// The action-type blocks of a store, in database order.
+/// The action-type blocks of a store that name an action, in database
+/// order. A block with neither `FileName` nor `ActName` has no action and
+/// runs nothing; one with only one of them is refused when building (E0830).
 pub fn wanted(store: &Store) -> Vec<Want> {
     (0..store.db.blocks.len())
         .filter_map(|b| {
             let file = text_field(store, b, "FileName")?;
             let action = text_field(store, b, "ActName")?;
-            Some(Want { block: b, file, action })
+            (!file.is_empty() || !action.is_empty()).then_some(Want { block: b, file, action })
         })
         .collect()
 }
