@@ -85,6 +85,7 @@ codes! {
     "E0711" => "local variable or retained slot out of range",
     "E0712" => "line or loop table outside the code",
     "E0713" => "reference register used before it is set",
+    "E0714" => "sequence chart table out of range",
     "R0001" => "division by zero",
     "R0002" => "MOD by zero",
     "R0003" => "offset outside its run of fields",
@@ -148,6 +149,7 @@ mod tests {
             include_str!("../../runtime/src/strategy/mod.rs"),
             include_str!("../../runtime/src/strategy/errors.rs"),
             include_str!("../../runtime/src/link.rs"),
+            include_str!("../../runtime/src/verify_chart.rs"),
         ];
         for src in sources {
             let starts = src.match_indices("\"E0").chain(src.match_indices("\"W0")).chain(src.match_indices("\"R0"));

@@ -17,6 +17,7 @@ pub mod store;
 pub mod strategy;
 pub mod text;
 pub mod verify;
+mod verify_chart;
 pub mod vm;
 pub mod wire;
 

@@ -146,7 +146,33 @@ records! {
         block_type: String,
         retained: u16,
         blocks: Vec<CodeBlock>,
+        /// A sequence's charts: the ROOT chart first, then the charts of its
+        /// chart actions (empty for other units).
+        charts: Vec<ChartRec>,
     }
+
+    /// A chart of a sequence unit (see `sequence::chart`).
+    ChartRec "chart" {
+        steps: Vec<StepRec>,
+        transitions: Vec<TransitionRec>,
+        actions: Vec<ActionRec>,
+    }
+
+    /// A step: its name, whether it is initial (1), its retained slot pair
+    /// (`.X` at `2 × slot`, `.T` in seconds as REAL bits at `2 × slot + 1`)
+    /// and its associations.
+    StepRec "step" { name: String, initial: u8, slot: u16, assocs: Vec<AssocRec> }
+
+    /// `Action(Q, time)`: an action of the same chart, a qualifier (the
+    /// letter's byte: b'P', b'N', ...), and the time of L, D and E in µs.
+    AssocRec "association" { action: u16, qualifier: u8, time_us: u64 }
+
+    /// A transition: source and target steps of the same chart, priority
+    /// (`u32::MAX` for none) and the code block computing its condition.
+    TransitionRec "transition" { name: String, from: Vec<u16>, to: Vec<u16>, priority: u32, block: u16 }
+
+    /// An action: a code block (`kind` 0) or a chart of this unit (`kind` 1).
+    ActionRec "action" { name: String, kind: u8, index: u16 }
 
     /// A whole object file in memory (without its header).
     ObjectFile "object" {
@@ -164,6 +190,8 @@ records! {
 pub enum UnitKind {
     #[default]
     Action = 1,
+    /// A sequence: charts whose conditions and actions are code blocks.
+    Sequence = 2,
 }
 
 impl Wire for UnitKind {
@@ -173,6 +201,7 @@ impl Wire for UnitKind {
     fn get(r: &mut Reader, what: &str) -> Result<Self, LoadError> {
         match u8::get(r, what)? {
             1 => Ok(UnitKind::Action),
+            2 => Ok(UnitKind::Sequence),
             k => Err(LoadError::Malformed { what: format!("{what}: unknown unit kind {k}") }),
         }
     }

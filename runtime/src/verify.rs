@@ -69,6 +69,7 @@ pub fn verify(obj: ObjectFile) -> Result<Verified, LoadError> {
             return Err(LoadError::Invalid { code: "E0708", action: u.name.clone(), op: 0, what: "no code".into() });
         }
         let per_block = u.blocks.iter().map(|b| verify_block(&obj, u, b)).collect::<Result<Vec<_>, _>>()?;
+        crate::verify_chart::check_charts(u)?;
         limits.push(per_block);
     }
     Ok(Verified { obj, limits })

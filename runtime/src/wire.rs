@@ -59,7 +59,7 @@ macro_rules! wire_int {
         }
     )*};
 }
-wire_int!(u8, u16, u32);
+wire_int!(u8, u16, u32, u64);
 
 /// Names: a `u16` byte length and UTF-8. Longer text can't be encoded; the
 /// compiler and the database loader refuse such names before they get here,

@@ -36,7 +36,7 @@ impl Host for Fake {
 fn step(name: &str, initial: bool, assocs: &[(usize, Qualifier, f64)]) -> Step {
     let assocs =
         assocs.iter().map(|&(action, qualifier, t)| Assoc { action, qualifier, time_us: (t * 1e6) as u64 }).collect();
-    Step { name: name.into(), initial, assocs }
+    Step { name: name.into(), initial, slot: 0, assocs }
 }
 
 fn tr(name: &str, from: &[usize], to: &[usize], priority: Option<u32>, code: usize) -> Transition {
@@ -48,7 +48,13 @@ fn code_actions(names: &[&str]) -> Vec<Action> {
 }
 
 /// Runs `scans` scans `period` seconds apart; returns per scan the actions run.
-fn run(seq: &mut Sequence, host: &mut Fake, scans: usize, period: f64, mut each: impl FnMut(usize, &mut Fake)) -> Vec<String> {
+fn run(
+    seq: &mut Sequence,
+    host: &mut Fake,
+    scans: usize,
+    period: f64,
+    mut each: impl FnMut(usize, &mut Fake),
+) -> Vec<String> {
     let mut out = Vec::new();
     for i in 0..scans {
         each(i, host);
@@ -93,10 +99,7 @@ fn qualifier_timing_at_one_second() {
 #[test]
 fn qualifier_timing_at_a_tenth_of_a_second() {
     // The same chart with 0.2 s: at 0.1 s per scan, T reaches 0.2 s in scan 2.
-    assert_eq!(
-        qualifier_pattern(0.1, 0.2, 5),
-        ["p,n,l,s", "n,l,s", "n,d,e,s", "n,d,s", "n,d,s", "f", "", ""]
-    );
+    assert_eq!(qualifier_pattern(0.1, 0.2, 5), ["p,n,l,s", "n,l,s", "n,d,e,s", "n,d,s", "n,d,s", "f", "", ""]);
 }
 
 #[test]
@@ -158,7 +161,10 @@ fn a_chart_action_scans_while_it_runs_and_restarts_after() {
     let child = Chart {
         steps: vec![step("Fwd", true, &[(0, Qualifier::N, 0.0)]), step("Rev", false, &[(1, Qualifier::N, 0.0)])],
         transitions: vec![tr("Fwd to Rev", &[0], &[1], None, 1)],
-        actions: vec![Action { name: "forward".into(), body: Body::Code(10) }, Action { name: "reverse".into(), body: Body::Code(11) }],
+        actions: vec![
+            Action { name: "forward".into(), body: Body::Code(10) },
+            Action { name: "reverse".into(), body: Body::Code(11) },
+        ],
     };
     let chart = Chart {
         steps: vec![step("Idle", true, &[]), step("Stir", false, &[(0, Qualifier::N, 0.0)])],
@@ -212,7 +218,10 @@ fn sfc_con_reset_stop_hold_run() {
     host.conds[0] = true;
     host.ran.clear();
     seq.scan(8_000_000, &mut host).unwrap();
-    assert_eq!((seq.status, seq.active_steps(), host.ran.as_slice()), (Status::Held, vec!["S1"], &["work".to_string()][..]));
+    assert_eq!(
+        (seq.status, seq.active_steps(), host.ran.as_slice()),
+        (Status::Held, vec!["S1"], &["work".to_string()][..])
+    );
     assert_eq!(seq.step("S1"), Some((true, 3_000_000)));
     seq.command(Command::Run);
     seq.scan(9_000_000, &mut host).unwrap();

@@ -22,6 +22,7 @@ fn object(ops: Vec<Op>, labels: Vec<u32>, locals: u8, retained: u16) -> ObjectFi
         block_type: String::new(),
         retained,
         blocks: vec![block],
+        charts: vec![],
     };
     ObjectFile { source: "hand.st".into(), symbols: vec![n0()], strings: vec![], units: vec![unit] }
 }

@@ -248,6 +248,7 @@ impl Lowerer {
             block_type: block_type.to_string(),
             retained: 0,
             blocks: vec![block],
+            charts: Vec::new(),
         }
     }
 

@@ -19,6 +19,9 @@ pub struct Chart {
 pub struct Step {
     pub name: String,
     pub initial: bool,
+    /// The step's number in the whole sequence: code reads its `.X` and
+    /// `.T` from retained slots `2 × slot` and `2 × slot + 1`.
+    pub slot: usize,
     pub assocs: Vec<Assoc>,
 }
 
@@ -73,4 +76,58 @@ impl Chart {
         order.sort_by_key(|&t| (self.transitions[t].priority.unwrap_or(u32::MAX), t));
         order
     }
+}
+
+impl Chart {
+    /// Chart `index` of a verified sequence unit (the ROOT chart is 0).
+    /// The verifier has checked every index, so nothing here can fail.
+    pub fn from_unit(unit: &crate::object::Unit, index: usize) -> Chart {
+        let Some(c) = unit.charts.get(index) else { return Chart::default() };
+        let steps = c
+            .steps
+            .iter()
+            .map(|s| Step {
+                name: s.name.clone(),
+                initial: s.initial != 0,
+                slot: usize::from(s.slot),
+                assocs: s
+                    .assocs
+                    .iter()
+                    .map(|a| Assoc {
+                        action: usize::from(a.action),
+                        qualifier: qualifier_of(a.qualifier).unwrap_or(Qualifier::N),
+                        time_us: a.time_us,
+                    })
+                    .collect(),
+            })
+            .collect();
+        let transitions = c
+            .transitions
+            .iter()
+            .map(|t| Transition {
+                name: t.name.clone(),
+                from: t.from.iter().map(|&s| usize::from(s)).collect(),
+                to: t.to.iter().map(|&s| usize::from(s)).collect(),
+                priority: (t.priority != u32::MAX).then_some(t.priority),
+                code: usize::from(t.block),
+            })
+            .collect();
+        let actions = c
+            .actions
+            .iter()
+            .map(|a| Action {
+                name: a.name.clone(),
+                body: match a.kind {
+                    1 => Body::Chart(Box::new(Chart::from_unit(unit, usize::from(a.index)))),
+                    _ => Body::Code(usize::from(a.index)),
+                },
+            })
+            .collect();
+        Chart { steps, transitions, actions }
+    }
+}
+
+/// A qualifier from its letter as stored in an object.
+pub fn qualifier_of(letter: u8) -> Option<Qualifier> {
+    std::str::from_utf8(&[letter]).ok().and_then(Qualifier::parse)
 }

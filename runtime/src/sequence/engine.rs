@@ -25,6 +25,8 @@ pub trait Host {
     fn action(&mut self, code: usize) -> Result<(), RuntimeError>;
     /// Something happened, for the trace.
     fn event(&mut self, _e: Event) {}
+    /// A step's `.X` or `.T` changed (`slot` as in [`super::chart::Step`]).
+    fn step_flags(&mut self, _slot: usize, _x: bool, _t_us: u64) {}
 }
 
 /// A change the engine reports (names are unique in a whole sequence).
@@ -114,14 +116,16 @@ impl ChartState {
         let mut activating = vec![false; chart.steps.len()];
         let mut deactivating = vec![false; chart.steps.len()];
         for (s, on) in self.active.iter().enumerate() {
-            if *on {
+            if *on && scan.dt_us > 0 {
                 self.elapsed[s] = self.elapsed[s].saturating_add(scan.dt_us);
+                host.step_flags(chart.steps[s].slot, true, self.elapsed[s]);
             }
         }
         if std::mem::take(&mut self.pending_start) {
             for (s, step) in chart.steps.iter().enumerate().filter(|(_, st)| st.initial) {
                 self.activate(s, &mut activating);
                 host.event(Event::Activated(&step.name));
+                host.step_flags(step.slot, true, 0);
             }
         } else if !scan.hold {
             self.transitions(chart, scan.monitor, host, &mut activating, &mut deactivating)?;
@@ -171,12 +175,14 @@ impl ChartState {
                 self.active[s] = false;
                 deactivating[s] = true;
                 host.event(Event::Deactivated(&chart.steps[s].name));
+                host.step_flags(chart.steps[s].slot, false, self.elapsed[s]);
             }
         }
         for &i in &firing {
             for &s in &chart.transitions[i].to {
                 self.activate(s, activating);
                 host.event(Event::Activated(&chart.steps[s].name));
+                host.step_flags(chart.steps[s].slot, true, 0);
             }
         }
         Ok(())

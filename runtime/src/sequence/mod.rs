@@ -8,6 +8,7 @@
 
 pub mod chart;
 pub mod engine;
+pub mod host;
 
 use chart::Chart;
 use engine::{ChartState, Host, Monitor, Scan};

@@ -1,0 +1,130 @@
+//! A compiled sequence unit run by the engine through the VM: conditions
+//! and actions are code blocks, and step flags are retained slots that code
+//! reads. The charts are written here as object tables (the `.sfc` front
+//! end will produce the same).
+use linc_conformance::guide_db;
+use linc_runtime::isa::Op::{self, *};
+use linc_runtime::object::{
+    ActionRec, AssocRec, ChartRec, Class, CodeBlock, ObjectFile, StepRec, Sub, Symbol, TransitionRec, Unit, UnitKind,
+};
+use linc_runtime::sequence::chart::Chart;
+use linc_runtime::sequence::host::VmHost;
+use linc_runtime::sequence::{Command, Sequence};
+use linc_runtime::store::Store;
+use linc_runtime::vm::{Activation, Clock, Vm};
+use linc_runtime::wire::Code;
+use linc_runtime::{verify, Program};
+
+fn block(ops: Vec<Op>) -> CodeBlock {
+    CodeBlock { ops: Code(ops), ..CodeBlock::default() }
+}
+
+fn sym(field: &str) -> Symbol {
+    Symbol { block: "Counters".into(), field: field.into(), sub: Sub::Field, class: Class::Int }
+}
+
+/// A (initial, counts N0 every scan) → B when N0 >= 3; B copies A.X and A.T.
+fn sequence() -> ObjectFile {
+    let blocks = vec![
+        block(vec![LoadI { sym: 0 }, PushI { v: 3 }, GeI {}, Return { kind: 2 }]),
+        block(vec![LoadI { sym: 0 }, PushI { v: 1 }, AddI {}, StoreI { sym: 0 }, Ret {}]),
+        block(vec![LoadRet { n: 0 }, StoreI { sym: 1 }, LoadRet { n: 1 }, RToI {}, StoreI { sym: 2 }, Ret {}]),
+    ];
+    let chart = ChartRec {
+        steps: vec![
+            StepRec {
+                name: "A".into(),
+                initial: 1,
+                slot: 0,
+                assocs: vec![AssocRec { action: 0, qualifier: b'N', time_us: 0 }],
+            },
+            StepRec {
+                name: "B".into(),
+                initial: 0,
+                slot: 1,
+                assocs: vec![AssocRec { action: 1, qualifier: b'P', time_us: 0 }],
+            },
+        ],
+        transitions: vec![TransitionRec {
+            name: "A to B".into(),
+            from: vec![0],
+            to: vec![1],
+            priority: u32::MAX,
+            block: 0,
+        }],
+        actions: vec![
+            ActionRec { name: "count".into(), kind: 0, index: 1 },
+            ActionRec { name: "show".into(), kind: 0, index: 2 },
+        ],
+    };
+    let unit = Unit {
+        kind: UnitKind::Sequence,
+        name: "Batch".into(),
+        file: "batch.sfc".into(),
+        block_type: String::new(),
+        retained: 4,
+        blocks,
+        charts: vec![chart],
+    };
+    ObjectFile {
+        source: "batch.sfc".into(),
+        symbols: vec![sym("N0"), sym("N1"), sym("N2")],
+        strings: vec![],
+        units: vec![unit],
+    }
+}
+
+#[test]
+fn a_sequence_unit_runs_its_code_blocks_and_code_reads_step_flags() {
+    let obj = sequence();
+    let bytes = obj.to_bytes();
+    let v = linc_runtime::load(&bytes).expect("verifies");
+    let mut store = Store::new(guide_db().clone());
+    let linked = v.link(&store, &[Program { unit: 0, own: None }]).expect("links");
+    let mut seq = Sequence::new(Chart::from_unit(&linked.object().units[0], 0));
+    seq.command(Command::Run);
+    let mut act = Activation::new(&linked, 0, 0);
+    let mut vm = Vm::new(10_000, Clock::new(1, 0));
+    let mut events = Vec::new();
+    for second in 0..5u64 {
+        let mut note = |e: linc_runtime::sequence::engine::Event| events.push(format!("{second}: {e:?}"));
+        let mut host =
+            VmHost { vm: &mut vm, linked: &linked, act: &mut act, store: &mut store, on_event: Some(&mut note) };
+        seq.scan(second * 1_000_000, &mut host).expect("scan");
+    }
+    let get = |f: &str| store.show(store.cell_of(store.db.block("Counters").unwrap(), f).unwrap());
+    // N0 counted in scans 0, 1, 2; A left in scan 3 after 3 s; B's P action saw A.X = 0 and A.T = 3.
+    assert_eq!([get("N0"), get("N1"), get("N2")], ["3", "0", "3"]);
+    assert_eq!(seq.active_steps(), ["B"]);
+    assert!(events.contains(&"3: Fired(\"A to B\")".to_string()), "{events:?}");
+}
+
+fn refused(edit: impl FnOnce(&mut Unit)) -> Option<&'static str> {
+    let mut obj = sequence();
+    edit(&mut obj.units[0]);
+    verify::verify(obj).err().map(|e| e.code())
+}
+
+#[test]
+fn the_verifier_checks_every_chart_table() {
+    assert_eq!(refused(|_| {}), None);
+    assert_eq!(refused(|u| u.charts[0].transitions[0].to = vec![7]), Some("E0714"), "unknown step");
+    assert_eq!(refused(|u| u.charts[0].transitions[0].block = 1), Some("E0714"), "an action's block as a condition");
+    assert_eq!(refused(|u| u.blocks[0].ops.0 = vec![Ret {}]), Some("E0714"), "a condition that returns nothing");
+    assert_eq!(refused(|u| u.charts[0].steps[1].slot = 2), Some("E0714"), "no retained slots for the step");
+    assert_eq!(refused(|u| u.charts[0].steps[0].assocs[0].qualifier = b'Q'), Some("E0714"), "unknown qualifier");
+    assert_eq!(refused(|u| u.charts[0].actions[0] = ActionRec { name: "x".into(), kind: 1, index: 0 }), Some("E0714"));
+    assert_eq!(refused(|u| u.kind = UnitKind::Action), Some("E0714"), "an action unit with charts");
+    // Chart actions nest as a tree, at most 32 deep.
+    let deep = |n: usize| {
+        refused(move |u| {
+            for i in 0..n {
+                let next = ActionRec { name: format!("c{i}"), kind: 1, index: (i + 1) as u16 };
+                u.charts[i].actions.push(next);
+                u.charts.push(ChartRec::default());
+            }
+        })
+    };
+    assert_eq!(deep(32), None);
+    assert_eq!(deep(33), Some("E0714"));
+}
