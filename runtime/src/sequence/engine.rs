@@ -71,6 +71,40 @@ pub struct ChartState {
     children: Vec<Option<ChartState>>,
     /// The initial steps are activated at the next scan.
     pending_start: bool,
+    /// Per-scan working sets, kept to be reused: a scan allocates nothing.
+    scratch: Scratch,
+}
+
+#[derive(Clone, Debug, Default, PartialEq)]
+struct Scratch {
+    activating: Vec<bool>,
+    deactivating: Vec<bool>,
+    truth: Vec<bool>,
+    taken: Vec<bool>,
+    firing: Vec<usize>,
+    ran: Vec<bool>,
+    /// The chart's firing order, computed once.
+    order: Vec<usize>,
+}
+
+impl Scratch {
+    fn clear(&mut self, chart: &Chart) {
+        for (v, n) in [
+            (&mut self.activating, chart.steps.len()),
+            (&mut self.deactivating, chart.steps.len()),
+            (&mut self.truth, chart.transitions.len()),
+            (&mut self.taken, chart.steps.len()),
+            (&mut self.ran, chart.actions.len()),
+        ] {
+            v.clear();
+            v.resize(n, false);
+        }
+        self.firing.clear();
+        self.firing.reserve(chart.transitions.len());
+        if self.order.len() != chart.transitions.len() {
+            self.order = chart.firing_order();
+        }
+    }
 }
 
 /// What a scan does apart from running code.
@@ -92,6 +126,7 @@ impl ChartState {
             stored: vec![false; chart.actions.len()],
             children: vec![None; chart.actions.len()],
             pending_start: true,
+            scratch: Scratch::default(),
         }
     }
 
@@ -113,8 +148,20 @@ impl ChartState {
 
     /// One scan of `chart`. Errors stop the scan where they happen.
     pub fn scan(&mut self, chart: &Chart, scan: &Scan, host: &mut dyn Host) -> Result<(), RuntimeError> {
-        let mut activating = vec![false; chart.steps.len()];
-        let mut deactivating = vec![false; chart.steps.len()];
+        let mut k = std::mem::take(&mut self.scratch);
+        k.clear(chart);
+        let result = self.scan_with(chart, scan, host, &mut k);
+        self.scratch = k;
+        result
+    }
+
+    fn scan_with(
+        &mut self,
+        chart: &Chart,
+        scan: &Scan,
+        host: &mut dyn Host,
+        k: &mut Scratch,
+    ) -> Result<(), RuntimeError> {
         for (s, on) in self.active.iter().enumerate() {
             if *on && scan.dt_us > 0 {
                 self.elapsed[s] = self.elapsed[s].saturating_add(scan.dt_us);
@@ -123,14 +170,14 @@ impl ChartState {
         }
         if std::mem::take(&mut self.pending_start) {
             for (s, step) in chart.steps.iter().enumerate().filter(|(_, st)| st.initial) {
-                self.activate(s, &mut activating);
+                self.activate(s, &mut k.activating);
                 host.event(Event::Activated(&step.name));
                 host.step_flags(step.slot, true, 0);
             }
         } else if !scan.hold {
-            self.transitions(chart, scan.monitor, host, &mut activating, &mut deactivating)?;
+            self.transitions(chart, scan.monitor, host, k)?;
         }
-        self.actions(chart, scan, host, &activating, &deactivating)
+        self.actions(chart, scan, host, k)
     }
 
     fn activate(&mut self, s: usize, activating: &mut [bool]) {
@@ -145,11 +192,10 @@ impl ChartState {
         chart: &Chart,
         monitor: &Monitor,
         host: &mut dyn Host,
-        activating: &mut [bool],
-        deactivating: &mut [bool],
+        k: &mut Scratch,
     ) -> Result<(), RuntimeError> {
         // Every condition is evaluated before any transition fires.
-        let mut truth = vec![false; chart.transitions.len()];
+        let truth = &mut k.truth;
         for (i, t) in chart.transitions.iter().enumerate() {
             let enabled = t.from.iter().all(|&s| self.active[s] && !monitor.is_held(&chart.steps[s].name));
             if enabled {
@@ -159,28 +205,27 @@ impl ChartState {
                 };
             }
         }
-        let mut taken = vec![false; chart.steps.len()];
-        let mut firing = Vec::new();
-        for i in chart.firing_order() {
+        let (taken, firing) = (&mut k.taken, &mut k.firing);
+        for &i in &k.order {
             let t = &chart.transitions[i];
             if truth[i] && t.from.iter().all(|&s| !taken[s]) {
                 t.from.iter().for_each(|&s| taken[s] = true);
                 firing.push(i);
             }
         }
-        for &i in &firing {
+        for &i in firing.iter() {
             let t = &chart.transitions[i];
             host.event(Event::Fired(&t.name));
             for &s in &t.from {
                 self.active[s] = false;
-                deactivating[s] = true;
+                k.deactivating[s] = true;
                 host.event(Event::Deactivated(&chart.steps[s].name));
                 host.step_flags(chart.steps[s].slot, false, self.elapsed[s]);
             }
         }
-        for &i in &firing {
+        for &i in firing.iter() {
             for &s in &chart.transitions[i].to {
-                self.activate(s, activating);
+                self.activate(s, &mut k.activating);
                 host.event(Event::Activated(&chart.steps[s].name));
                 host.step_flags(chart.steps[s].slot, true, 0);
             }
@@ -218,14 +263,13 @@ impl ChartState {
         chart: &Chart,
         scan: &Scan,
         host: &mut dyn Host,
-        activating: &[bool],
-        deactivating: &[bool],
+        k: &mut Scratch,
     ) -> Result<(), RuntimeError> {
-        let mut ran = vec![false; chart.actions.len()];
+        let ran = &mut k.ran;
         for s in 0..chart.steps.len() {
-            for k in 0..chart.steps[s].assocs.len() {
-                let a = chart.steps[s].assocs[k].action;
-                if self.association_runs(chart, s, k, activating[s], deactivating[s]) && !ran[a] {
+            for n in 0..chart.steps[s].assocs.len() {
+                let a = chart.steps[s].assocs[n].action;
+                if self.association_runs(chart, s, n, k.activating[s], k.deactivating[s]) && !ran[a] {
                     ran[a] = true;
                     self.run_action(chart, a, scan, host)?;
                 }

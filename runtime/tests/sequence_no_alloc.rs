@@ -1,0 +1,73 @@
+//! A sequence scan allocates nothing once the chart has run a scan: its
+//! working sets are kept in the chart's state.
+use linc_runtime::errors::RuntimeError;
+use linc_runtime::sequence::chart::{Action, Assoc, Body, Chart, Step, Transition};
+use linc_runtime::sequence::engine::Host;
+use linc_runtime::sequence::{Command, Sequence};
+use linc_runtime::strategy::qualifier::Qualifier;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: forwarded unchanged to the system allocator.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: forwarded unchanged to the system allocator.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+struct Toggle(u64);
+
+impl Host for Toggle {
+    fn condition(&mut self, _code: usize) -> Result<bool, RuntimeError> {
+        Ok(self.0.is_multiple_of(3))
+    }
+    fn action(&mut self, _code: usize) -> Result<(), RuntimeError> {
+        Ok(())
+    }
+}
+
+#[test]
+fn scans_do_not_allocate() {
+    let assoc = |action, qualifier| Assoc { action, qualifier, time_us: 500_000 };
+    let step = |i: usize| Step {
+        name: format!("S{i}"),
+        initial: i == 0,
+        slot: i,
+        assocs: vec![assoc(0, Qualifier::N), assoc(1, Qualifier::D), assoc(2, Qualifier::S), assoc(2, Qualifier::R)],
+    };
+    let chart = Chart {
+        steps: (0..4).map(step).collect(),
+        transitions: (0..4)
+            .map(|i| Transition {
+                name: format!("T{i}"),
+                from: vec![i],
+                to: vec![(i + 1) % 4],
+                priority: None,
+                code: i,
+            })
+            .collect(),
+        actions: (0..3).map(|i| Action { name: format!("a{i}"), body: Body::Code(i) }).collect(),
+    };
+    let mut seq = Sequence::new(chart);
+    seq.command(Command::Run);
+    let mut host = Toggle(0);
+    seq.scan(0, &mut host).expect("scan");
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    for i in 1..=300u64 {
+        host.0 = i;
+        seq.scan(i * 100_000, &mut host).expect("scan");
+    }
+    assert_eq!(ALLOCATIONS.load(Ordering::Relaxed) - before, 0, "allocations in 300 scans");
+}
