@@ -79,10 +79,14 @@ fn bad_durations_and_mixed_modes_are_usage_errors() {
 
 #[test]
 fn blocks_without_an_action_run_nothing_and_half_named_ones_are_refused() {
-    // The guide's database has RAW_COM blocks with no action: nothing to run.
-    let o = linc(&["run", "examples/guide/plant.db.json", "--for", "1s", "--show", "Recipe.A0"]);
-    assert_eq!((o.status.code(), String::from_utf8_lossy(&o.stdout).as_ref()), (Some(0), "Recipe.A0 = 3.0\n"));
+    // Action-type blocks with no action: nothing to run.
     let dir = temp_dir("strategy-half");
+    let idle = dir.join("idle.json");
+    let blocks = r#"{ "blocks": { "R": { "type": "RECIPE", "values": { "A0": 3.0 } },
+        "A": { "type": "ACTION" }, "C": { "type": "RAW_COM" } } }"#;
+    std::fs::write(&idle, blocks).expect("write");
+    let o = linc(&["run", idle.to_str().unwrap(), "--for", "1s", "--show", "R.A0"]);
+    assert_eq!((o.status.code(), String::from_utf8_lossy(&o.stdout).as_ref()), (Some(0), "R.A0 = 3.0\n"));
     let db = dir.join("plant.json");
     std::fs::write(&db, r#"{ "blocks": { "A": { "type": "ACTION", "values": { "ActName": "Fill" } } } }"#)
         .expect("write");

@@ -116,6 +116,7 @@ codes! {
     "E0830" => "action-type block names only half of its action",
     "E0831" => "action-type block names an action its file does not have",
     "E0832" => "error program is not an action-type block",
+    "E0833" => "SFC_CON block's file holds no sequence",
     "E0900" => "file cannot be read or written",
     "E0901" => "output path is not a regular file",
     "E0902" => "output file is one of the inputs",
@@ -148,6 +149,7 @@ mod tests {
             include_str!("../../runtime/src/vm.rs"),
             include_str!("../../runtime/src/strategy/mod.rs"),
             include_str!("../../runtime/src/strategy/errors.rs"),
+            include_str!("../../runtime/src/strategy/sequences.rs"),
             include_str!("../../runtime/src/link.rs"),
             include_str!("../../runtime/src/verify_chart.rs"),
         ];

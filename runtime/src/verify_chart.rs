@@ -88,9 +88,10 @@ fn mark(u: &Unit, uses: &mut [Use], block: usize, as_use: Use) -> Result<(), Loa
 
 /// A condition ends by returning a truth value; an action by `Ret`.
 fn check_block_ends(u: &Unit, b: usize, used: Use) -> Result<(), LoadError> {
+    // A sequence's blocks share one activation, so none may suspend.
     let ok = |op: &Op| match (op, used) {
         (Op::Return { kind }, Use::Condition) => *kind == Kind::Bool as u8,
-        (Op::Ret {}, Use::Condition) | (Op::Return { .. }, _) => false,
+        (Op::Ret {}, Use::Condition) | (Op::Return { .. }, _) | (Op::Yield {}, _) => false,
         _ => true,
     };
     match u.blocks[b].ops.iter().position(|op| !ok(op)) {

@@ -115,6 +115,7 @@ fn the_verifier_checks_every_chart_table() {
     assert_eq!(refused(|u| u.charts[0].steps[0].assocs[0].qualifier = b'Q'), Some("E0714"), "unknown qualifier");
     assert_eq!(refused(|u| u.charts[0].actions[0] = ActionRec { name: "x".into(), kind: 1, index: 0 }), Some("E0714"));
     assert_eq!(refused(|u| u.kind = UnitKind::Action), Some("E0714"), "an action unit with charts");
+    assert_eq!(refused(|u| u.blocks[1].ops.0.insert(0, Yield {})), Some("E0714"), "a block that suspends");
     // Chart actions nest as a tree, at most 32 deep.
     let deep = |n: usize| {
         refused(move |u| {
@@ -127,4 +128,79 @@ fn the_verifier_checks_every_chart_table() {
     };
     assert_eq!(deep(32), None);
     assert_eq!(deep(33), Some("E0714"));
+}
+
+/// A strategy with one SFC_CON block running `sequence()` every second.
+fn strategy(run: bool) -> linc_runtime::strategy::Strategy {
+    use linc_runtime::strategy::{wanted, Strategy};
+    let db = linc_runtime::Database::from_json(&format!(
+        r#"{{ "tasks": {{ "1": {{ "period": "T#1s" }} }}, "blocks": {{
+            "Counters": {{ "type": "RECIPE" }},
+            "SEQ": {{ "type": "SFC_CON", "values": {{ "FileName": "batch.sto", "Run": {run} }} }} }} }}"#
+    ))
+    .expect("db");
+    let store = Store::new(db);
+    let wants: Vec<_> = wanted(&store).into_iter().map(|w| (w, 0)).collect();
+    assert_eq!(wants.len(), 1);
+    assert!(wants[0].0.sequence);
+    let v = verify::verify(sequence()).expect("verifies");
+    Strategy::build(store, vec![v], &wants, Vm::new(10_000, Clock::new(1, 0)), 0.0).expect("builds")
+}
+
+fn field(s: &linc_runtime::strategy::Strategy, path: &str) -> String {
+    let (b, f) = path.split_once('.').unwrap();
+    s.store.show(s.store.cell_of(s.store.db.block(b).unwrap(), f).unwrap())
+}
+
+#[test]
+fn an_sfc_con_block_runs_its_sequence_in_a_strategy() {
+    let mut s = strategy(true);
+    let mut out = Vec::new();
+    let mut trace = linc_runtime::strategy::trace::Trace::new(&mut out, &s.store);
+    let failures = s.run_for(5_000_000, Some(&mut trace));
+    trace.finish().expect("trace");
+    assert!(failures.is_empty(), "{failures:?}");
+    assert_eq!([field(&s, "Counters.N0"), field(&s, "Counters.N2")], ["3", "3"]);
+    assert_eq!([field(&s, "SEQ.Status"), field(&s, "SEQ.Steps"), field(&s, "SEQ.Run")], ["'RUNNING'", "1", "TRUE"]);
+    let trace = String::from_utf8(out).unwrap();
+    for needle in [
+        r#"{"time":0.0,"task":1,"program":"SEQ","step":"A","active":true}"#,
+        r#"{"time":0.0,"task":1,"program":"SEQ","ran":"count"}"#,
+        r#"{"time":3.0,"task":1,"program":"SEQ","fired":"A to B"}"#,
+        r#"{"time":3.0,"task":1,"program":"SEQ","step":"B","active":true}"#,
+    ] {
+        assert!(trace.contains(needle), "{needle} not in\n{trace}");
+    }
+}
+
+#[test]
+fn sfc_con_fields_command_the_sequence() {
+    let mut s = strategy(false);
+    s.run_for(2_000_000, None);
+    assert_eq!([field(&s, "SEQ.Status"), field(&s, "Counters.N0"), field(&s, "SEQ.Init")], ["'RESET'", "0", "TRUE"]);
+    let set = |s: &mut linc_runtime::strategy::Strategy, path: &str, v: bool| {
+        let (b, f) = path.split_once('.').unwrap();
+        let c = s.store.cell_of(s.store.db.block(b).unwrap(), f).unwrap();
+        s.store.cells[c as usize] = linc_runtime::store::Cell::Bool(v);
+    };
+    set(&mut s, "SEQ.Run", true);
+    s.run_for(2_000_000, None);
+    assert_eq!([field(&s, "SEQ.Status"), field(&s, "Counters.N0")], ["'RUNNING'", "2"]);
+    set(&mut s, "SEQ.Stop", true);
+    s.run_for(3_000_000, None);
+    assert_eq!([field(&s, "SEQ.Status"), field(&s, "Counters.N0"), field(&s, "SEQ.Stop")], ["'STOPPED'", "2", "FALSE"]);
+    set(&mut s, "SEQ.Run", true);
+    set(&mut s, "SEQ.Hold", true);
+    s.run_for(3_000_000, None);
+    assert_eq!(
+        [field(&s, "SEQ.Status"), field(&s, "Counters.N0")],
+        ["'HELD'", "5"],
+        "held: actions go on, no transition"
+    );
+    set(&mut s, "SEQ.Hold", false);
+    s.run_for(1_000_000, None);
+    assert_eq!([field(&s, "SEQ.Status"), field(&s, "SEQ.Steps")], ["'RUNNING'", "1"]);
+    set(&mut s, "SEQ.Reset", true);
+    s.run_for(1_000_000, None);
+    assert_eq!([field(&s, "SEQ.Status"), field(&s, "SEQ.Steps"), field(&s, "SEQ.Init")], ["'RESET'", "0", "TRUE"]);
 }

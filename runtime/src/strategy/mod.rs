@@ -10,6 +10,7 @@
 
 mod errors;
 pub mod qualifier;
+mod sequences;
 pub mod trace;
 
 pub use errors::{ErrorStatus, StrategyError};
@@ -21,20 +22,23 @@ use crate::vm::{Activation, Vm};
 use qualifier::{QualState, Qualifier};
 use trace::Trace;
 
-/// An action-type block and the action it names.
+/// A block of the strategy that runs a program, and the program it names.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Want {
     pub block: usize,
     /// `FileName`, as written (relative to the database file).
     pub file: String,
-    /// `ActName`.
+    /// `ActName`; empty for a sequence.
     pub action: String,
+    /// An SFC_CON block: runs the sequence its file holds.
+    pub sequence: bool,
 }
 
 impl Want {
-    /// A block must name both its file and its action (E0830).
+    /// A block must name both its file and (unless it runs a sequence) its
+    /// action (E0830).
     pub fn complete(&self, store: &Store) -> Result<(), StrategyError> {
-        let missing = match (self.file.is_empty(), self.action.is_empty()) {
+        let missing = match (self.file.is_empty(), self.action.is_empty() && !self.sequence) {
             (true, _) => "FileName",
             (_, true) => "ActName",
             _ => return Ok(()),
@@ -59,8 +63,12 @@ pub fn wanted(store: &Store) -> Vec<Want> {
     (0..store.db.blocks.len())
         .filter_map(|b| {
             let file = text_field(store, b, "FileName")?;
+            if sequences::is_sfc_con(store, b) {
+                return (!file.is_empty()).then_some(Want { block: b, file, action: String::new(), sequence: true });
+            }
             let action = text_field(store, b, "ActName")?;
-            (!file.is_empty() || !action.is_empty()).then_some(Want { block: b, file, action })
+            let named = !file.is_empty() || !action.is_empty();
+            named.then_some(Want { block: b, file, action, sequence: false })
         })
         .collect()
 }
@@ -100,6 +108,8 @@ struct Member {
     qual: QualState,
     stopped: bool,
     cells: BlockCells,
+    /// The sequence an SFC_CON block runs.
+    seq: Option<Box<crate::sequence::Sequence>>,
 }
 
 #[derive(Clone, Debug)]
@@ -127,6 +137,16 @@ pub struct Strategy {
     start: f64,
 }
 
+/// The unit of an action block: the action its `ActName` names.
+fn action_unit(v: &Verified, w: &Want, block_name: &dyn Fn(usize) -> String) -> Result<usize, StrategyError> {
+    let unit = v.unit_named(&w.action).filter(|&u| v.object().units[u].kind == crate::object::UnitKind::Action);
+    unit.ok_or_else(|| {
+        let have: Vec<&str> = v.object().units.iter().map(|u| u.name.as_str()).collect();
+        let msg = format!("`{}` has no action `{}` (it has {})", w.file, w.action, have.join(", "));
+        StrategyError::new("E0831", block_name(w.block), msg)
+    })
+}
+
 /// Seconds to whole microseconds of simulated time.
 pub fn micros(seconds: f64) -> u64 {
     (seconds.max(0.0) * 1e6).round().min(u64::MAX as f64) as u64
@@ -147,11 +167,8 @@ impl Strategy {
         let mut members = Vec::with_capacity(wants.len());
         for (w, o) in wants {
             let v = objects.get(*o).ok_or_else(|| StrategyError::new("E0831", block_name(w.block), "no object"))?;
-            let unit = v.unit_named(&w.action).ok_or_else(|| {
-                let have: Vec<&str> = v.object().units.iter().map(|u| u.name.as_str()).collect();
-                let msg = format!("`{}` has no action `{}` (it has {})", w.file, w.action, have.join(", "));
-                StrategyError::new("E0831", block_name(w.block), msg)
-            })?;
+            let unit =
+                if w.sequence { sequences::unit_of(v, w, &block_name)? } else { action_unit(v, w, &block_name)? };
             let program = programs[*o].len();
             programs[*o].push(Program { unit, own: Some(w.block) });
             let cells = BlockCells::of(&store, w.block);
@@ -164,6 +181,7 @@ impl Strategy {
                 qual: QualState::default(),
                 stopped: false,
                 cells,
+                seq: None,
             });
         }
         let mut linked = Vec::with_capacity(objects.len());
@@ -176,6 +194,10 @@ impl Strategy {
         }
         for m in &mut members {
             m.act = Activation::new(&linked[m.object], m.program, 0);
+            if let Some(unit) = linked[m.object].unit(m.program).filter(|u| !u.charts.is_empty()) {
+                m.seq =
+                    Some(Box::new(crate::sequence::Sequence::new(crate::sequence::chart::Chart::from_unit(unit, 0))));
+            }
         }
         let tasks = tasks(&store, &members);
         let mut s = Strategy {
@@ -207,7 +229,8 @@ impl Strategy {
         if name.is_empty() {
             return Ok(());
         }
-        let member = self.store.db.block(&name).and_then(|b| self.members.iter().position(|m| m.block == b));
+        let member =
+            self.store.db.block(&name).and_then(|b| self.members.iter().position(|m| m.block == b && m.seq.is_none()));
         let sys_name = self.store.db.blocks[sys].name.clone();
         let member = member.ok_or_else(|| {
             StrategyError::new("E0832", sys_name, format!("the error program `{name}` is not an action-type block"))
@@ -263,6 +286,13 @@ impl Strategy {
                 return;
             }
             if Some(m) == self.error_program || self.members[m].stopped {
+                continue;
+            }
+            if self.members[m].seq.is_some() {
+                if let Err(e) = self.scan_sequence(m, number, trace.as_deref_mut()) {
+                    self.enter_error(m, number, e, trace.as_deref_mut());
+                }
+                self.check_clear(number, trace.as_deref_mut());
                 continue;
             }
             let runs = self.scan_qualifier(m, number, trace.as_deref_mut());
