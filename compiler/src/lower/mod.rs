@@ -7,6 +7,7 @@
 //! loops record their extent (for watchdog errors).
 
 mod expr;
+pub mod sequence;
 
 use crate::diagnostic::Diagnostic;
 use crate::hir::{self, Place, Stmt, Target};
@@ -82,6 +83,8 @@ impl Lines {
 /// Builds an object file from checked actions.
 pub struct Lowerer {
     lines: Lines,
+    /// A sequence's steps (upper case) and their slots; empty elsewhere.
+    steps: HashMap<String, u16>,
     file: String,
     symbols: Vec<Symbol>,
     symbol_index: HashMap<(String, String, String, u8), u16>,
@@ -195,6 +198,7 @@ impl Default for Lowerer {
     fn default() -> Lowerer {
         Lowerer {
             lines: Lines::default(),
+            steps: HashMap::new(),
             file: "<eval>".to_string(),
             symbols: Vec::new(),
             symbol_index: HashMap::new(),
@@ -219,10 +223,25 @@ impl Lowerer {
         Ok(ObjectFile { source: source.to_string(), symbols: self.symbols, strings, units })
     }
 
-    /// Ends the code of an action: jumps, emitted with instruction indices,
-    /// name labels in the object (one label per distinct target).
+    /// Ends the code of an action as a one-block unit.
     fn take_action(&mut self, name: &str, block_type: &str) -> ObjUnit {
         self.ops.push(Op::Ret {});
+        let block = self.take_block(String::new());
+        ObjUnit {
+            kind: UnitKind::Action,
+            name: name.to_string(),
+            file: self.file.clone(),
+            block_type: block_type.to_string(),
+            retained: 0,
+            blocks: vec![block],
+            charts: Vec::new(),
+        }
+    }
+
+    /// Ends the code emitted so far (which ends as the caller made it end)
+    /// as a block: jumps, emitted with instruction indices, name labels in
+    /// the object (one label per distinct target).
+    fn take_block(&mut self, name: String) -> CodeBlock {
         let mut ops = std::mem::take(&mut self.ops);
         let mut labels: Vec<u32> = ops.iter().filter_map(Op::target).collect();
         labels.sort_unstable();
@@ -233,22 +252,13 @@ impl Lowerer {
                 *op = op.retarget(label);
             }
         }
-        let block = CodeBlock {
-            name: String::new(),
-            locals: self.locals,
+        CodeBlock {
+            name,
+            locals: std::mem::take(&mut self.locals),
             ops: Code(ops),
             labels,
             lines: std::mem::take(&mut self.line_table),
             loops: std::mem::take(&mut self.loops),
-        };
-        ObjUnit {
-            kind: UnitKind::Action,
-            name: name.to_string(),
-            file: self.file.clone(),
-            block_type: block_type.to_string(),
-            retained: 0,
-            blocks: vec![block],
-            charts: Vec::new(),
         }
     }
 
@@ -546,6 +556,13 @@ impl Lowerer {
 
     /// Emits the load or store instruction for a place's kind of cell.
     fn access(&mut self, place: &Place, store: bool) {
+        if let (Target::Step { step, x }, false) = (&place.target, store) {
+            // In a sequence, `.X` and `.T` are the step's retained slots.
+            if let Some(&slot) = self.steps.get(&step.to_ascii_uppercase()) {
+                self.emit(Op::LoadRet { n: 2 * slot + u16::from(!*x) });
+                return;
+            }
+        }
         let Some((sym, via_ref)) = self.address(place) else {
             return self.unaddressable(place);
         };

@@ -1,0 +1,67 @@
+//! Lowering of a checked sequence: one unit of kind `Sequence` whose code
+//! blocks are its transition conditions and its code actions, and whose
+//! chart tables (built by the caller from the sequence's tree) name them.
+//! Step variables read the step's retained slots (`.X` at `2 × slot`, `.T`
+//! at `2 × slot + 1`), in the order the steps are given.
+
+use super::{Lines, LowerError, Lowerer};
+use crate::hir;
+use linc_runtime::isa::{Kind, Op};
+use linc_runtime::object::{ChartRec, ObjectFile, Unit, UnitKind};
+use linc_stdlib::Ty;
+
+/// Builds one sequence unit, block by block.
+pub struct SequenceBuilder {
+    l: Lowerer,
+    blocks: Vec<linc_runtime::object::CodeBlock>,
+    slots: usize,
+}
+
+impl SequenceBuilder {
+    /// `steps` are every step of the sequence, nested charts included, in
+    /// slot order (names are unique in a sequence).
+    pub fn new(file: &str, lines: Lines, steps: &[String]) -> SequenceBuilder {
+        let mut l = Lowerer { lines, file: file.to_string(), ..Lowerer::default() };
+        l.steps = steps.iter().enumerate().map(|(i, s)| (s.to_ascii_uppercase(), i as u16)).collect();
+        SequenceBuilder { l, blocks: Vec::new(), slots: steps.len() }
+    }
+
+    fn next(&self) -> u16 {
+        u16::try_from(self.blocks.len()).unwrap_or(u16::MAX)
+    }
+
+    /// A transition condition: the block computes it and returns a truth value.
+    pub fn condition(&mut self, name: &str, cond: &hir::Expr) -> u16 {
+        self.l.mark(cond.span);
+        self.l.expr_as(cond, Ty::Bool);
+        self.l.emit(Op::Return { kind: Kind::Bool as u8 });
+        let at = self.next();
+        self.blocks.push(self.l.take_block(name.to_string()));
+        at
+    }
+
+    /// A code action: its statements, ending with `Ret`.
+    pub fn action(&mut self, name: &str, body: &[hir::Stmt]) -> u16 {
+        self.l.stmts(body);
+        self.l.emit(Op::Ret {});
+        let at = self.next();
+        self.blocks.push(self.l.take_block(name.to_string()));
+        at
+    }
+
+    /// The object holding the sequence `name` with its charts (ROOT first).
+    pub fn finish(self, name: &str, charts: Vec<ChartRec>) -> Result<ObjectFile, Vec<LowerError>> {
+        let retained = u16::try_from(2 * self.slots).unwrap_or(u16::MAX);
+        let unit = Unit {
+            kind: UnitKind::Sequence,
+            name: name.to_string(),
+            file: self.l.file.clone(),
+            block_type: String::new(),
+            retained,
+            blocks: self.blocks,
+            charts,
+        };
+        let source = self.l.file.clone();
+        self.l.finish(&source, vec![unit])
+    }
+}
