@@ -85,6 +85,7 @@ codes! {
     "E0211" => "transition defined twice",
     "W0200" => "action never used",
     "W0201" => "step can never become active",
+    "W0202" => "unsafe chart: a step activated while active",
     "E0700" => "not a linc object file",
     "E0701" => "unsupported object format version",
     "E0702" => "object file checksum mismatch",

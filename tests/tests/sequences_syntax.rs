@@ -350,3 +350,64 @@ TRANSITION FROM Idle TO Fill := TRUE; END_TRANSITION
 ",
     ["E0200"]
 );
+
+case!(
+    decision_a_source_named_twice_is_waited_for_once,
+    "§20.5: FROM (A, A) is FROM A",
+    None,
+    "INITIAL_STEP A: END_STEP
+STEP B: END_STEP
+TRANSITION FROM (A, A) TO (B, B) := TRUE; END_TRANSITION
+TRANSITION FROM B TO A := TRUE; END_TRANSITION
+",
+    []
+);
+
+/// Bad input never panics: every prefix of the example, and the example
+/// with each token removed, checks without panicking.
+#[test]
+fn damaged_sequences_never_panic() {
+    let builtin = Database::builtin();
+    let ctx = Context { db: &builtin, resolve_blocks: false, steps: None };
+    let mut ends: Vec<usize> = BATCH.char_indices().map(|(i, _)| i).collect();
+    ends.push(BATCH.len());
+    let mut errors = 0;
+    for &end in &ends {
+        errors += usize::from(linc_compiler::check_sequence(&BATCH[..end], ctx).has_errors());
+    }
+    assert!(errors > ends.len() / 2, "most prefixes are incomplete sequences");
+    let words: Vec<&str> = BATCH.split_whitespace().collect();
+    for skip in 0..words.len() {
+        let text: Vec<&str> = words.iter().enumerate().filter(|(i, _)| *i != skip).map(|(_, w)| *w).collect();
+        let _ = linc_compiler::check_sequence(&text.join(" "), ctx);
+    }
+}
+
+case!(
+    s20_5_transition_leaving_a_parallel_branch_is_unsafe,
+    "§20.5, issue 8: a transition leaving one branch of a simultaneous divergence (warning \"unsafe\")",
+    None,
+    "INITIAL_STEP Idle: END_STEP
+STEP Heat: END_STEP
+STEP Stir: END_STEP
+TRANSITION FROM Idle TO (Heat, Stir) := Plant.Start; END_TRANSITION
+TRANSITION FROM Heat TO Idle := Heat.T > T#10m; END_TRANSITION
+",
+    ["W0202"]
+);
+
+case!(
+    s20_5_divergence_that_never_converges_is_unsafe,
+    "§20.5, issue 8: branches that never converge, with the chart coming round again (warning \"unsafe\")",
+    None,
+    "INITIAL_STEP Idle: END_STEP
+STEP Heat: END_STEP
+STEP Stir: END_STEP
+STEP Hot: END_STEP
+TRANSITION FROM Idle TO (Heat, Stir) := Plant.Start; END_TRANSITION
+TRANSITION FROM Heat TO Hot := Heat.T > T#10m; END_TRANSITION
+TRANSITION FROM Stir TO Idle := Stir.T > T#1m; END_TRANSITION
+TRANSITION FROM Hot TO Heat := Hot.T > T#1m; END_TRANSITION
+",
+    ["W0202"]
+);

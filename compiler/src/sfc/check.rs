@@ -5,6 +5,7 @@
 
 use super::ast::{Action, ActionBody, Assoc, Chart, Sequence, Step};
 use super::errors::SfcError;
+use super::safety::{unsafe_edge, Edge};
 use crate::ast::Ident;
 use crate::check::{Checker, Context, Limits};
 use crate::diagnostic::Diagnostic;
@@ -112,6 +113,22 @@ fn chart(c: &Named, all: &[Named], out: &mut Vec<Diagnostic>) {
     for s in unreachable(c.chart, &index).into_iter().filter(|_| has_initial) {
         out.push(Diagnostic::from(SfcError::UnreachableStep { span: s.name.span, name: s.name.text.clone() }));
     }
+    unsafe_transitions(c.chart, &index, out);
+}
+
+/// Transitions that can activate a step that is still active (W0202).
+fn unsafe_transitions(c: &Chart, index: &HashMap<String, usize>, out: &mut Vec<Diagnostic>) {
+    let known = |list: &[Ident]| list.iter().filter_map(|s| index.get(&key(s)).copied()).collect::<Vec<_>>();
+    let edges: Vec<Edge> = c.transitions.iter().map(|t| Edge { from: known(&t.from), to: known(&t.to) }).collect();
+    let initial: Vec<usize> = (0..c.steps.len()).filter(|&i| c.steps[i].initial).collect();
+    if let Some((ti, si)) = unsafe_edge(c.steps.len(), &initial, &edges) {
+        let t = &c.transitions[ti];
+        out.push(Diagnostic::from(SfcError::Unsafe {
+            span: Span::new(t.span.start, t.to.last().map(|s| s.span.end).unwrap_or(t.span.end)),
+            transition: t.display_name(),
+            step: c.steps[si].name.text.clone(),
+        }));
+    }
 }
 
 /// Steps no transition can reach from the initial steps. A transition is
@@ -122,7 +139,10 @@ fn unreachable<'c>(c: &'c Chart, index: &HashMap<String, usize>) -> Vec<&'c Step
     let mut leaving: Vec<Vec<usize>> = vec![Vec::new(); c.steps.len()];
     for (ti, t) in c.transitions.iter().enumerate() {
         for s in t.from.iter().filter_map(|s| index.get(&key(s))) {
-            leaving[*s].push(ti);
+            // `FROM (A, A)` waits for A once.
+            if leaving[*s].last() != Some(&ti) {
+                leaving[*s].push(ti);
+            }
         }
     }
     let mut reached = vec![false; c.steps.len()];

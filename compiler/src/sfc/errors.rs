@@ -80,6 +80,12 @@ pub enum SfcError {
         span: Span,
         name: String,
     },
+    /// A transition that can activate a step that is still active (a warning).
+    Unsafe {
+        span: Span,
+        transition: String,
+        step: String,
+    },
 }
 
 impl SfcError {
@@ -159,6 +165,14 @@ impl SfcError {
                     .label("unreachable")
                     .help("it is not an initial step and no transition from a reachable step leads to it")
             }
+            SfcError::Unsafe { span, transition, step } => Diagnostic::warning(
+                "W0202",
+                format!("unsafe chart: transition `{transition}` can activate step `{step}` while it is active"),
+                *span,
+            )
+            .label(format!("`{step}` may still be active here"))
+            .help("a transition that leaves one branch of a simultaneous divergence, or branches that never converge, leave steps active")
+            .help("join the parallel branches with one transition `FROM (a, b, …)`"),
         }
     }
 }

@@ -10,6 +10,7 @@ pub mod check;
 pub mod errors;
 pub mod parser;
 pub mod pretty;
+mod safety;
 mod shift;
 
 use crate::check::Context;

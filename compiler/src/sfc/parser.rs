@@ -372,7 +372,10 @@ impl Parser<'_> {
         self.pos += 1;
         let name = match self.toks.get(self.pos) {
             Some(&(nl, Tok::Name(n), nr)) => Ident { text: n.trim().to_string(), span: Span::new(nl, nr) },
-            _ => Ident { text: String::new(), span: self.here() },
+            _ => {
+                self.error("an action name");
+                Ident { text: String::new(), span: self.here() }
+            }
         };
         if name.text.contains('.')
             || name.text.chars().count() > 8
