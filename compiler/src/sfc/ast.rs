@@ -20,6 +20,10 @@ pub struct Sequence {
 pub struct Chart {
     pub steps: Vec<Step>,
     pub transitions: Vec<Transition>,
+    /// A transition of this chart did not parse (already reported): the
+    /// checks that follow every transition (reachability, safety) are
+    /// skipped, as they would only report what the broken one hides.
+    pub broken: bool,
 }
 
 /// `[INITIAL_]STEP name: associations END_STEP`.

@@ -110,6 +110,9 @@ fn chart(c: &Named, all: &[Named], out: &mut Vec<Diagnostic>) {
     }
     // Without an initial step nothing is reachable: that is one error, not
     // a warning per step.
+    if c.chart.broken {
+        return;
+    }
     for s in unreachable(c.chart, &index).into_iter().filter(|_| has_initial) {
         out.push(Diagnostic::from(SfcError::UnreachableStep { span: s.name.span, name: s.name.text.clone() }));
     }

@@ -263,6 +263,7 @@ impl Parser<'_> {
             span: Span::new(l, l),
         };
         if self.transition_body(&mut t).is_err() {
+            chart.broken = true;
             self.recover("END_TRANSITION");
         }
         t.span = Span::new(l, self.prev_end());
