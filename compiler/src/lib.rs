@@ -21,6 +21,7 @@ pub mod parser;
 pub mod pretty;
 pub mod render;
 pub mod session;
+pub mod sfc;
 pub mod span;
 pub mod token;
 
@@ -78,4 +79,11 @@ fn expression(src: &str, ctx: Context, input: Input) -> Report<ast::Expr, hir::E
         _ => None,
     };
     Report { tree, program: c.expr, diagnostics: c.diagnostics }
+}
+
+/// Parses and checks a `.sfc` sequence (its chart, associations, actions and
+/// transitions) against `ctx`; the sequence's step names are put in scope
+/// for its ST, whatever `ctx.steps` says.
+pub fn check_sequence(src: &str, ctx: Context) -> Report<sfc::ast::Sequence, ()> {
+    sfc::check_sequence(src, ctx)
 }

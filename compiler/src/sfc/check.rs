@@ -1,0 +1,241 @@
+//! The checks of a sequence: its charts (initial steps, step names,
+//! transitions, reachability), its associations (actions and qualifiers,
+//! §20.5.5) and the ST inside, which the ST checker reads with the
+//! sequence's step names in scope (`Step.X`, `Step.T`).
+
+use super::ast::{Action, ActionBody, Assoc, Chart, Sequence, Step};
+use super::errors::SfcError;
+use super::safety::{unsafe_edge, Edge};
+use crate::ast::Ident;
+use crate::check::{Checker, Context, Limits};
+use crate::diagnostic::Diagnostic;
+use crate::span::Span;
+use std::collections::HashMap;
+
+/// A chart with what the diagnostics call it.
+struct Named<'a> {
+    chart: &'a Chart,
+    what: String,
+    at: Span,
+}
+
+/// Checks a parsed sequence; returns its diagnostics, unsorted.
+pub fn check(seq: &Sequence, ctx: Context) -> Vec<Diagnostic> {
+    let mut charts = vec![Named { chart: &seq.chart, what: "the sequence's chart".into(), at: first_span(&seq.chart) }];
+    for a in &seq.actions {
+        if let ActionBody::Chart(c) = &a.body {
+            charts.push(Named { chart: c, what: format!("chart action `{}`", a.name.text), at: a.name.span });
+        }
+    }
+    let mut out = Vec::new();
+    let steps = step_names(&charts, &mut out);
+    for c in &charts {
+        chart(c, &charts, &mut out);
+    }
+    transition_names(&charts, &mut out);
+    actions(seq, &charts, &mut out);
+    let names: Vec<String> = steps.into_iter().map(|s| s.text.clone()).collect();
+    let ctx = Context { steps: Some(&names), ..ctx };
+    let mut checker = Checker::new(ctx, Limits::default()).reporting_only();
+    for a in &seq.actions {
+        if let ActionBody::St(st) = &a.body {
+            checker.action(st);
+        }
+    }
+    for c in &charts {
+        for t in c.chart.transitions.iter().filter_map(|t| t.cond.as_ref()) {
+            checker.transition(t);
+        }
+    }
+    out.extend(checker.take_errors().iter().map(|e| e.to_diagnostic()));
+    out
+}
+
+fn first_span(c: &Chart) -> Span {
+    let step = c.steps.first().map(|s| s.name.span);
+    let tr = c.transitions.first().map(|t| Span::new(t.span.start, t.span.start));
+    match (step, tr) {
+        (Some(a), Some(b)) => {
+            if a.start <= b.start {
+                a
+            } else {
+                b
+            }
+        }
+        (a, b) => a.or(b).unwrap_or(Span::new(0, 0)),
+    }
+}
+
+fn key(i: &Ident) -> String {
+    i.text.to_ascii_uppercase()
+}
+
+/// Every step of the sequence, each name once; reports duplicates.
+fn step_names<'a>(charts: &[Named<'a>], out: &mut Vec<Diagnostic>) -> Vec<&'a Ident> {
+    let mut seen: HashMap<String, Span> = HashMap::new();
+    let mut names = Vec::new();
+    for s in charts.iter().flat_map(|c| &c.chart.steps) {
+        match seen.get(&key(&s.name)) {
+            Some(&first) => out.push(Diagnostic::from(SfcError::DuplicateStep {
+                span: s.name.span,
+                name: s.name.text.clone(),
+                first,
+            })),
+            None => {
+                seen.insert(key(&s.name), s.name.span);
+                names.push(&s.name);
+            }
+        }
+    }
+    names
+}
+
+/// One chart: an initial step, known steps in transitions, reachability.
+fn chart(c: &Named, all: &[Named], out: &mut Vec<Diagnostic>) {
+    let has_initial = c.chart.steps.iter().any(|s| s.initial);
+    if !has_initial {
+        out.push(Diagnostic::from(SfcError::NoInitialStep { span: c.at, chart: c.what.clone() }));
+    }
+    let index: HashMap<String, usize> =
+        c.chart.steps.iter().enumerate().rev().map(|(i, s)| (key(&s.name), i)).collect();
+    for t in &c.chart.transitions {
+        for s in t.from.iter().chain(&t.to) {
+            if index.contains_key(&key(s)) {
+                continue;
+            }
+            let other_chart =
+                all.iter().find(|o| o.chart.steps.iter().any(|st| key(&st.name) == key(s))).map(|o| o.what.clone());
+            out.push(Diagnostic::from(SfcError::UnknownStep { span: s.span, name: s.text.clone(), other_chart }));
+        }
+    }
+    // Without an initial step nothing is reachable: that is one error, not
+    // a warning per step.
+    if c.chart.broken {
+        return;
+    }
+    for s in unreachable(c.chart, &index).into_iter().filter(|_| has_initial) {
+        out.push(Diagnostic::from(SfcError::UnreachableStep { span: s.name.span, name: s.name.text.clone() }));
+    }
+    unsafe_transitions(c.chart, &index, out);
+}
+
+/// Transitions that can activate a step that is still active (W0202).
+fn unsafe_transitions(c: &Chart, index: &HashMap<String, usize>, out: &mut Vec<Diagnostic>) {
+    let known = |list: &[Ident]| list.iter().filter_map(|s| index.get(&key(s)).copied()).collect::<Vec<_>>();
+    let edges: Vec<Edge> = c.transitions.iter().map(|t| Edge { from: known(&t.from), to: known(&t.to) }).collect();
+    let initial: Vec<usize> = (0..c.steps.len()).filter(|&i| c.steps[i].initial).collect();
+    if let Some((ti, si)) = unsafe_edge(c.steps.len(), &initial, &edges) {
+        let t = &c.transitions[ti];
+        out.push(Diagnostic::from(SfcError::Unsafe {
+            span: Span::new(t.span.start, t.to.last().map(|s| s.span.end).unwrap_or(t.span.end)),
+            transition: t.display_name(),
+            step: c.steps[si].name.text.clone(),
+        }));
+    }
+}
+
+/// Steps no transition can reach from the initial steps. A transition is
+/// taken once all of its source steps are reachable (a simultaneous
+/// convergence waits for every branch); each is visited once.
+fn unreachable<'c>(c: &'c Chart, index: &HashMap<String, usize>) -> Vec<&'c Step> {
+    let mut waiting: Vec<usize> = waits(c, index);
+    let mut leaving: Vec<Vec<usize>> = vec![Vec::new(); c.steps.len()];
+    for (ti, t) in c.transitions.iter().enumerate() {
+        for s in t.from.iter().filter_map(|s| index.get(&key(s))) {
+            // `FROM (A, A)` waits for A once.
+            if leaving[*s].last() != Some(&ti) {
+                leaving[*s].push(ti);
+            }
+        }
+    }
+    let mut reached = vec![false; c.steps.len()];
+    let mut todo: Vec<usize> = (0..c.steps.len()).filter(|&i| c.steps[i].initial).collect();
+    while let Some(s) = todo.pop() {
+        if std::mem::replace(&mut reached[s], true) {
+            continue;
+        }
+        for &ti in &leaving[s] {
+            waiting[ti] -= 1;
+            if waiting[ti] == 0 {
+                todo.extend(c.transitions[ti].to.iter().filter_map(|s| index.get(&key(s))));
+            }
+        }
+    }
+    let first = |i: usize| index.get(&key(&c.steps[i].name)) == Some(&i);
+    (0..c.steps.len()).filter(|&i| !reached[i] && first(i)).map(|i| &c.steps[i]).collect()
+}
+
+/// For each transition, how many distinct known source steps it waits for.
+fn waits(c: &Chart, index: &HashMap<String, usize>) -> Vec<usize> {
+    c.transitions
+        .iter()
+        .map(|t| {
+            let mut s: Vec<usize> = t.from.iter().filter_map(|s| index.get(&key(s)).copied()).collect();
+            s.sort_unstable();
+            s.dedup();
+            s.len()
+        })
+        .collect()
+}
+
+/// Transition names (written ones) are unique in the sequence.
+fn transition_names(charts: &[Named], out: &mut Vec<Diagnostic>) {
+    let mut seen: HashMap<String, Span> = HashMap::new();
+    for n in charts.iter().flat_map(|c| &c.chart.transitions).filter_map(|t| t.name.as_ref()) {
+        if let Some(&first) = seen.get(&key(n)) {
+            out.push(Diagnostic::from(SfcError::DuplicateTransition { span: n.span, name: n.text.clone(), first }));
+        } else {
+            seen.insert(key(n), n.span);
+        }
+    }
+}
+
+/// Actions defined once, associations naming them with a valid qualifier,
+/// and no action left unused.
+fn actions(seq: &Sequence, charts: &[Named], out: &mut Vec<Diagnostic>) {
+    let mut defined: HashMap<String, &Action> = HashMap::new();
+    for a in &seq.actions {
+        match defined.get(&key(&a.name)) {
+            Some(first) => out.push(Diagnostic::from(SfcError::DuplicateAction {
+                span: a.name.span,
+                name: a.name.text.clone(),
+                first: first.name.span,
+            })),
+            None => {
+                defined.insert(key(&a.name), a);
+            }
+        }
+    }
+    let mut used = std::collections::HashSet::new();
+    for a in charts.iter().flat_map(|c| &c.chart.steps).flat_map(|s| &s.assocs) {
+        if let Some(e) = qualifier(a) {
+            out.push(Diagnostic::from(e));
+        }
+        if defined.contains_key(&key(&a.action)) {
+            used.insert(key(&a.action));
+        } else {
+            out.push(Diagnostic::from(SfcError::UnknownAction { span: a.action.span, name: a.action.text.clone() }));
+        }
+    }
+    for a in &seq.actions {
+        if !used.contains(&key(&a.name)) && defined.get(&key(&a.name)).map(|d| d.span) == Some(a.span) {
+            out.push(Diagnostic::from(SfcError::UnusedAction { span: a.name.span, name: a.name.text.clone() }));
+        }
+    }
+}
+
+/// LIN's qualifiers (§20.5.5): L, D and E take a time, P N F S R none.
+fn qualifier(a: &Assoc) -> Option<SfcError> {
+    let q = &a.qualifier;
+    let text = q.text.clone();
+    let iec = |lin| Some(SfcError::IecQualifier { span: q.span, text: text.clone(), lin });
+    match q.text.to_ascii_uppercase().as_str() {
+        "P" | "N" | "F" | "S" | "R" => a.time.map(|(_, span)| SfcError::ExtraTime { span, qualifier: text.clone() }),
+        "L" | "D" | "E" if a.time.is_none() => Some(SfcError::MissingTime { span: q.span, qualifier: text.clone() }),
+        "L" | "D" | "E" => None,
+        "P1" => iec(Some("P")),
+        "P0" => iec(Some("F")),
+        "SD" | "DS" | "SL" => iec(None),
+        _ => Some(SfcError::UnknownQualifier { span: q.span, text: text.clone() }),
+    }
+}

@@ -1,0 +1,37 @@
+//! The front end of `.sfc` sequences (issue 8): a textual SFC with LIN
+//! Structured Text inside and LIN's action qualifiers.
+//!
+//! [`parser`] reads the chart structure and hands the ST inside to the ST
+//! parser; [`check`] checks the charts, the associations and, with the ST
+//! checker, the actions and transition conditions. Lowering is elsewhere.
+
+pub mod ast;
+pub mod check;
+pub mod errors;
+pub mod parser;
+pub mod pretty;
+mod safety;
+mod shift;
+
+use crate::check::Context;
+use crate::diagnostic::Diagnostic;
+use crate::Report;
+
+/// Parses and checks one sequence. The tree is always built (parts that did
+/// not parse are left out, already reported); diagnostics come in source
+/// order, each once.
+pub fn check_sequence(src: &str, ctx: Context) -> Report<ast::Sequence, ()> {
+    let (seq, mut diagnostics) = parser::parse(src);
+    diagnostics.extend(check::check(&seq, ctx));
+    let diagnostics = ordered(diagnostics);
+    let ok = !diagnostics.iter().any(Diagnostic::is_error);
+    Report { tree: Some(seq), program: ok.then_some(()), diagnostics }
+}
+
+/// Sorts by position and drops repeats: the text inside an action is lexed
+/// once for the chart and once more by the ST parser.
+fn ordered(mut d: Vec<Diagnostic>) -> Vec<Diagnostic> {
+    d.sort_by_key(|d| (d.span.start, d.span.end, d.code));
+    d.dedup_by(|b, a| a.code == b.code && a.span == b.span);
+    d
+}

@@ -1,0 +1,428 @@
+//! Reads a `.sfc` text into a [`Sequence`].
+//!
+//! The chart structure is read here, by hand, from the ST lexer's tokens:
+//! `STEP`, `TRANSITION`, `FROM`, `PRIORITY`, `CHART` and the qualifiers are
+//! contextual words (plain names to the ST lexer), so a database field
+//! called `S` or `D` still works in ST code. The ST inside (action bodies
+//! and transition conditions) is handed, as a slice of the text, to the ST
+//! parser, and what it finds is moved to its place in the file. After a
+//! mistake, reading resumes after the `END_STEP`, `END_TRANSITION` or
+//! `END_ACTION` that closes it, so one mistake gives one error.
+
+use super::ast::{Action, ActionBody, Assoc, Chart, Sequence, Step, Transition};
+use super::errors::SfcError;
+use super::shift;
+use crate::ast::{Action as StAction, Ident};
+use crate::diagnostic::{Diagnostic, MAX_ERRORS};
+use crate::errors::SyntaxError;
+use crate::lexer::{lex, Spanned, Tok};
+use crate::parser::{parse_expr, parse_file, ParseErrors};
+use crate::span::Span;
+
+/// Parses a sequence; every diagnostic of lexing and parsing comes back,
+/// placed in the file (not yet sorted or deduplicated).
+pub fn parse(src: &str) -> (Sequence, Vec<Diagnostic>) {
+    let (toks, lex_errors) = lex(src);
+    let mut p = Parser { src, toks, pos: 0, diags: lex_errors.iter().map(|e| e.to_diagnostic()).collect() };
+    let mut sequence = Sequence { chart: Chart::default(), actions: Vec::new() };
+    p.items(&mut sequence.chart, Some(&mut sequence.actions));
+    (sequence, p.diags)
+}
+
+/// The words that start an item; reading resumes at them after an error.
+const STARTERS: [&str; 3] = ["STEP", "INITIAL_STEP", "TRANSITION"];
+
+struct Parser<'s> {
+    src: &'s str,
+    toks: Vec<Spanned<'s>>,
+    pos: usize,
+    diags: Vec<Diagnostic>,
+}
+
+/// An error already reported; the caller recovers.
+struct Reported;
+
+type R<T> = Result<T, Reported>;
+
+impl<'s> Parser<'s> {
+    fn tok(&self) -> Option<&Tok<'s>> {
+        self.toks.get(self.pos).map(|t| &t.1)
+    }
+
+    fn here(&self) -> Span {
+        match self.toks.get(self.pos) {
+            Some(t) => Span::new(t.0, t.2),
+            None => Span::new(self.src.len(), self.src.len()),
+        }
+    }
+
+    fn word_at(&self, i: usize, word: &str) -> bool {
+        matches!(self.toks.get(i), Some((_, Tok::Name(n), _)) if n.eq_ignore_ascii_case(word))
+    }
+
+    fn word(&self, word: &str) -> bool {
+        self.word_at(self.pos, word)
+    }
+
+    /// At a word that starts an item, or at `ACTION`/`END_ACTION`.
+    fn at_starter(&self) -> bool {
+        STARTERS.iter().any(|w| self.word(w)) || matches!(self.tok(), Some(Tok::Action | Tok::EndAction))
+    }
+
+    fn push(&mut self, d: Diagnostic) {
+        if self.diags.len() < MAX_ERRORS {
+            self.diags.push(d);
+        }
+    }
+
+    fn error(&mut self, expected: &'static str) -> Reported {
+        let span = self.here();
+        let e = match self.tok() {
+            None => SfcError::UnexpectedEof { span, expected },
+            Some(t) => SfcError::Unexpected { span, found: t.describe(), expected },
+        };
+        self.push(e.to_diagnostic());
+        Reported
+    }
+
+    fn expect(&mut self, tok: Tok<'static>, expected: &'static str) -> R<Span> {
+        if self.tok() == Some(&tok) {
+            self.pos += 1;
+            return Ok(Span::new(self.toks[self.pos - 1].0, self.toks[self.pos - 1].2));
+        }
+        Err(self.error(expected))
+    }
+
+    fn expect_word(&mut self, word: &str, expected: &'static str) -> R<()> {
+        if self.word(word) {
+            self.pos += 1;
+            return Ok(());
+        }
+        Err(self.error(expected))
+    }
+
+    fn name(&mut self, expected: &'static str) -> R<Ident> {
+        match self.toks.get(self.pos) {
+            Some(&(l, Tok::Name(n), r)) => {
+                self.pos += 1;
+                Ok(Ident { text: n.trim().to_string(), span: Span::new(l, r) })
+            }
+            _ => Err(self.error(expected)),
+        }
+    }
+
+    fn semi(&mut self) {
+        if self.tok() == Some(&Tok::Semi) {
+            self.pos += 1;
+        }
+    }
+
+    /// Skips to just after the `end` word (and its `;`), or to the next item.
+    fn recover(&mut self, end: &str) {
+        while self.tok().is_some() {
+            if self.word(end) {
+                self.pos += 1;
+                self.semi();
+                return;
+            }
+            if self.at_starter() {
+                return;
+            }
+            self.pos += 1;
+        }
+    }
+
+    /// Reads steps, transitions and (at the top, where `actions` is given)
+    /// actions; a nested chart stops at its `END_ACTION`.
+    fn items(&mut self, chart: &mut Chart, mut actions: Option<&mut Vec<Action>>) {
+        while let Some(t) = self.tok() {
+            if self.word("STEP") || self.word("INITIAL_STEP") {
+                self.step(chart);
+            } else if self.word("TRANSITION") {
+                self.transition(chart);
+            } else if matches!(t, Tok::Action | Tok::EndAction) && actions.is_none() {
+                return;
+            } else if let (Tok::Action, Some(list)) = (t, actions.as_deref_mut()) {
+                let a = self.action();
+                list.push(a);
+            } else {
+                let expected = if actions.is_some() {
+                    "`STEP`, `INITIAL_STEP`, `TRANSITION` or `ACTION`"
+                } else {
+                    "`STEP`, `INITIAL_STEP`, `TRANSITION` or `END_ACTION`"
+                };
+                self.error(expected);
+                self.pos += 1;
+                while self.tok().is_some() && !self.at_starter() {
+                    self.pos += 1;
+                }
+            }
+        }
+    }
+
+    fn step(&mut self, chart: &mut Chart) {
+        let l = self.here().start;
+        let initial = self.word("INITIAL_STEP");
+        self.pos += 1;
+        let Ok(name) = self.name("a step name") else {
+            return self.recover("END_STEP");
+        };
+        self.check_name(&name, "a step name has no dots");
+        let mut step = Step { name, initial, assocs: Vec::new(), span: Span::new(l, l) };
+        if self.step_body(&mut step).is_err() {
+            self.recover("END_STEP");
+        }
+        step.span = Span::new(l, self.prev_end());
+        chart.steps.push(step);
+    }
+
+    fn prev_end(&self) -> usize {
+        self.pos.checked_sub(1).and_then(|i| self.toks.get(i)).map(|t| t.2).unwrap_or(0)
+    }
+
+    /// The associations of a step. A missing `:` is reported and reading
+    /// goes on; a broken association is skipped to its `;`, so the ones
+    /// after it still count (and their actions are not reported unused).
+    fn step_body(&mut self, step: &mut Step) -> R<()> {
+        if self.expect(Tok::Colon, "`:` after the step name").is_err() && self.tok() == Some(&Tok::Colon) {
+            self.pos += 1;
+        }
+        while !self.word("END_STEP") {
+            if self.tok().is_none() || self.at_starter() {
+                return Err(self.error("an action association or `END_STEP`"));
+            }
+            match self.assoc() {
+                Ok(a) => step.assocs.push(a),
+                Err(Reported) => self.skip_assoc(),
+            }
+        }
+        self.pos += 1;
+        self.semi();
+        Ok(())
+    }
+
+    /// Skips past the `;` that ends a broken association, stopping before
+    /// `END_STEP` or the next item.
+    fn skip_assoc(&mut self) {
+        while self.tok().is_some() && !self.word("END_STEP") && !self.at_starter() {
+            self.pos += 1;
+            if self.toks[self.pos - 1].1 == Tok::Semi {
+                return;
+            }
+        }
+    }
+
+    /// `Action(Q);` or `Action(Q, T#…);`.
+    fn assoc(&mut self) -> R<Assoc> {
+        let action = self.name("an action name")?;
+        self.expect(Tok::LParen, "`(` and a qualifier after the action name")?;
+        let qualifier = self.name("a qualifier: P, N, L, D, E, F, S or R")?;
+        let mut time = None;
+        if self.tok() == Some(&Tok::Comma) {
+            self.pos += 1;
+            match self.toks.get(self.pos) {
+                Some(&(l, Tok::Time(t), r)) => {
+                    self.pos += 1;
+                    time = Some((t, Span::new(l, r)));
+                }
+                _ => return Err(self.error("a time constant such as T#10s")),
+            }
+        }
+        let r = self.expect(Tok::RParen, "`)`")?;
+        // A missing `;` is reported; the association is whole and kept.
+        let _ = self.expect(Tok::Semi, "`;` after the association");
+        Ok(Assoc { span: Span::new(action.span.start, r.end), action, qualifier, time })
+    }
+
+    /// Step and transition names follow the identifier rules (§12.8).
+    fn check_name(&mut self, name: &Ident, dotted: &'static str) {
+        let (span, text) = (name.span, name.text.clone());
+        let e = if text.contains('.') {
+            SyntaxError::InvalidName { span, name: text, why: dotted }
+        } else if text.starts_with(|c: char| c.is_ascii_digit()) {
+            SyntaxError::InvalidName { span, name: text, why: "starts with a digit" }
+        } else if text.chars().count() > 8 {
+            SyntaxError::NameTooLong { span, name: text }
+        } else {
+            return;
+        };
+        self.push(e.to_diagnostic());
+    }
+}
+
+impl Parser<'_> {
+    fn transition(&mut self, chart: &mut Chart) {
+        let l = self.here().start;
+        self.pos += 1;
+        let mut t = Transition {
+            name: None,
+            priority: None,
+            from: Vec::new(),
+            to: Vec::new(),
+            cond: None,
+            span: Span::new(l, l),
+        };
+        if self.transition_body(&mut t).is_err() {
+            chart.broken = true;
+            self.recover("END_TRANSITION");
+        }
+        t.span = Span::new(l, self.prev_end());
+        chart.transitions.push(t);
+    }
+
+    fn transition_body(&mut self, t: &mut Transition) -> R<()> {
+        if matches!(self.tok(), Some(Tok::Name(_))) && !self.word("FROM") {
+            let n = self.name("a transition name")?;
+            self.check_name(&n, "a transition name has no dots");
+            t.name = Some(n);
+        }
+        if self.tok() == Some(&Tok::LParen) {
+            self.pos += 1;
+            self.expect_word("PRIORITY", "`PRIORITY`")?;
+            self.expect(Tok::Assign, "`:=` after PRIORITY")?;
+            match self.toks.get(self.pos) {
+                Some(&(l, Tok::Int(n), r)) => {
+                    self.pos += 1;
+                    t.priority = Some((n, Span::new(l, r)));
+                }
+                _ => return Err(self.error("a priority number")),
+            }
+            self.expect(Tok::RParen, "`)`")?;
+        }
+        self.expect_word("FROM", "`FROM` and the steps the transition leaves")?;
+        t.from = self.steps()?;
+        self.expect(Tok::To, "`TO` and the steps the transition leads to")?;
+        t.to = self.steps()?;
+        self.expect(Tok::Assign, "`:=` and the transition condition")?;
+        self.condition(t)
+    }
+
+    /// A step name or `(a, b, …)`.
+    fn steps(&mut self) -> R<Vec<Ident>> {
+        if self.tok() != Some(&Tok::LParen) {
+            return Ok(vec![self.name("a step name or `(` and a list of steps")?]);
+        }
+        self.pos += 1;
+        let mut list = vec![self.name("a step name")?];
+        while self.tok() == Some(&Tok::Comma) {
+            self.pos += 1;
+            list.push(self.name("a step name")?);
+        }
+        self.expect(Tok::RParen, "`,` or `)`")?;
+        Ok(list)
+    }
+
+    /// The condition runs to the `;` before `END_TRANSITION`; the ST parser
+    /// reads it.
+    fn condition(&mut self, t: &mut Transition) -> R<()> {
+        let first = self.pos;
+        while self.tok().is_some() && !self.word("END_TRANSITION") && !self.at_starter() {
+            self.pos += 1;
+        }
+        let end = self.pos;
+        let has_semi = end > first && self.toks[end - 1].1 == Tok::Semi;
+        let last = if has_semi { end - 1 } else { end };
+        if last == first {
+            self.pos = first;
+            return Err(self.error("a transition condition"));
+        }
+        let (a, b) = (self.toks[first].0, self.toks[last - 1].2);
+        let (expr, errors) = parse_expr(&self.src[a..b]);
+        self.slice_errors(errors, a, b, last);
+        t.cond = expr.map(|mut e| {
+            shift::expr(&mut e, a);
+            e
+        });
+        if !has_semi {
+            return Err(self.error("`;` after the condition"));
+        }
+        self.expect_word("END_TRANSITION", "`END_TRANSITION`")?;
+        self.semi();
+        Ok(())
+    }
+
+    /// Places the ST parser's errors for the slice starting at `at` in the
+    /// file. The slice's end is not the file's: "unexpected end of file"
+    /// there becomes "unexpected" the token that follows the slice, `next`.
+    fn slice_errors(&mut self, errors: ParseErrors, at: usize, end: usize, next: usize) {
+        let lex = errors.lex.iter().map(|e| e.to_diagnostic());
+        let syntax = errors.syntax.iter().map(|e| e.to_diagnostic());
+        for mut d in lex.chain(syntax).collect::<Vec<_>>() {
+            shift::diagnostic(&mut d, at);
+            if let (Some((l, t, r)), "E0011", true) = (self.toks.get(next), d.code, d.span.start >= end) {
+                d.code = "E0010";
+                d.message = format!("unexpected {}", t.describe());
+                d.span = Span::new(*l, *r);
+            }
+            self.push(d);
+        }
+    }
+
+    fn action(&mut self) -> Action {
+        let l = self.here().start;
+        let is_chart =
+            matches!(self.toks.get(self.pos + 2), Some((_, Tok::Colon, _))) && self.word_at(self.pos + 3, "CHART");
+        if is_chart {
+            return self.chart_action(l);
+        }
+        self.st_action(l)
+    }
+
+    /// `ACTION name : CHART steps and transitions END_ACTION`.
+    fn chart_action(&mut self, l: usize) -> Action {
+        self.pos += 1;
+        let name = match self.toks.get(self.pos) {
+            Some(&(nl, Tok::Name(n), nr)) => Ident { text: n.trim().to_string(), span: Span::new(nl, nr) },
+            _ => {
+                self.error("an action name");
+                Ident { text: String::new(), span: self.here() }
+            }
+        };
+        if name.text.contains('.')
+            || name.text.chars().count() > 8
+            || name.text.starts_with(|c: char| c.is_ascii_digit())
+        {
+            self.push(SyntaxError::BadActionName { span: name.span, name: name.text.clone() }.to_diagnostic());
+        }
+        self.pos += 3;
+        let mut chart = Chart::default();
+        self.items(&mut chart, None);
+        if self.expect(Tok::EndAction, "`END_ACTION`").is_ok() {
+            self.semi();
+        }
+        Action { name, body: ActionBody::Chart(chart), span: Span::new(l, self.prev_end()) }
+    }
+
+    /// `ACTION name … END_ACTION`, read by the ST parser; it runs to its
+    /// `END_ACTION`, or up to the next `ACTION` if that is missing.
+    fn st_action(&mut self, l: usize) -> Action {
+        let first = self.pos;
+        self.pos += 1;
+        while self.tok().is_some() && !matches!(self.tok(), Some(Tok::EndAction | Tok::Action)) {
+            self.pos += 1;
+        }
+        if self.tok() == Some(&Tok::EndAction) {
+            self.pos += 1;
+            self.semi();
+        }
+        let end = self.prev_end();
+        let stem = match self.toks.get(first + 1) {
+            Some((_, Tok::Name(n), _)) => n.trim().to_string(),
+            _ => String::new(),
+        };
+        let (file, errors) = parse_file(&self.src[l..end], &stem);
+        self.slice_errors(errors, l, end, self.pos);
+        let mut st = match file.and_then(|f| f.actions.into_iter().next()) {
+            Some(a) => a,
+            None => StAction {
+                name: Ident { text: stem, span: Span::new(0, 0) },
+                block_type: None,
+                body: Vec::new(),
+                header: None,
+                span: Span::new(0, end - l),
+            },
+        };
+        shift::action(&mut st, l);
+        Action { name: st.name.clone(), body: ActionBody::St(st), span: Span::new(l, end) }
+    }
+}

@@ -1,0 +1,66 @@
+//! The "unsafe" chart check: a transition that can activate a step that is
+//! still active. That is what a transition leaving one branch of a
+//! simultaneous divergence, or a divergence whose branches never converge,
+//! leads to once the chart comes round again: the abandoned branch is still
+//! active when the divergence fires again.
+//!
+//! The chart is played as a token game from its initial steps, each enabled
+//! transition fired on its own (conditions may be anything), over the
+//! distinct sets of active steps. The search is bounded (in sets held and in
+//! work done), so a huge chart is checked only as far as the bounds allow and
+//! can never exhaust memory or time; what it reports is always real.
+
+use std::collections::{HashSet, VecDeque};
+
+/// Words of active-step sets held at most (8 MB).
+const MAX_WORDS: usize = 1 << 20;
+/// Transitions examined at most.
+const MAX_WORK: usize = 5_000_000;
+
+/// A transition by step indices (its unknown steps left out).
+pub struct Edge {
+    pub from: Vec<usize>,
+    pub to: Vec<usize>,
+}
+
+/// The first transition found that can activate an active step, by the
+/// shortest run of firings (breadth first): the transition's index and the
+/// step's. Only the first is reported, as one abandoned branch usually makes
+/// several transitions unsafe.
+pub fn unsafe_edge(steps: usize, initial: &[usize], edges: &[Edge]) -> Option<(usize, usize)> {
+    let words = steps.div_ceil(64).max(1);
+    let max_sets = (MAX_WORDS / words).max(1);
+    let mut start = vec![0u64; words];
+    for &s in initial {
+        start[s / 64] |= 1 << (s % 64);
+    }
+    let has = |m: &[u64], s: usize| m[s / 64] & (1 << (s % 64)) != 0;
+    let mut seen: HashSet<Vec<u64>> = HashSet::from([start.clone()]);
+    let mut todo = VecDeque::from([start]);
+    let mut work = 0usize;
+    while let Some(m) = todo.pop_front() {
+        for (ti, e) in edges.iter().enumerate() {
+            work += 1;
+            if work > MAX_WORK {
+                return None;
+            }
+            if e.from.is_empty() || !e.from.iter().all(|&s| has(&m, s)) {
+                continue;
+            }
+            let mut next = m.clone();
+            for &s in &e.from {
+                next[s / 64] &= !(1 << (s % 64));
+            }
+            if let Some(&twice) = e.to.iter().find(|&&s| has(&next, s)) {
+                return Some((ti, twice));
+            }
+            for &s in &e.to {
+                next[s / 64] |= 1 << (s % 64);
+            }
+            if seen.len() < max_sets && seen.insert(next.clone()) {
+                todo.push_back(next);
+            }
+        }
+    }
+    None
+}
