@@ -36,6 +36,13 @@ pub enum LowerError {
         span: Span,
         what: &'static str,
     },
+    /// A chart action whose chart uses the action itself (directly or not),
+    /// or an association naming no action of the sequence.
+    ChartAction {
+        span: Span,
+        name: String,
+        why: &'static str,
+    },
 }
 
 impl LowerError {
@@ -52,6 +59,11 @@ impl LowerError {
                 *span,
             )
             .label("only sequences have steps"),
+            LowerError::ChartAction { span, name, why } => {
+                Diagnostic::error("E0133", format!("chart action `{name}` {why}"), *span)
+                    .label("used here")
+                    .help("a chart action's chart may use other actions, but not itself")
+            }
             LowerError::TooMany { span, what } => {
                 Diagnostic::error("E0132", format!("too many {what} in one object file"), *span)
                     .label("limit reached here")

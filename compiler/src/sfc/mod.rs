@@ -8,6 +8,7 @@
 pub mod ast;
 pub mod check;
 pub mod errors;
+pub mod lower;
 pub mod parser;
 pub mod pretty;
 mod safety;
@@ -34,4 +35,26 @@ fn ordered(mut d: Vec<Diagnostic>) -> Vec<Diagnostic> {
     d.sort_by_key(|d| (d.span.start, d.span.end, d.code));
     d.dedup_by(|b, a| a.code == b.code && a.span == b.span);
     d
+}
+
+/// Checks a sequence and, when it is clean, lowers it into an object with
+/// one sequence unit called `name`; `file` names the source in the object.
+pub fn compile_sequence(
+    src: &str,
+    name: &str,
+    file: &str,
+    ctx: Context,
+) -> (Vec<Diagnostic>, Option<linc_runtime::ObjectFile>) {
+    let report = check_sequence(src, ctx);
+    let (Some(tree), Some(())) = (&report.tree, report.program) else {
+        return (report.diagnostics, None);
+    };
+    match lower::lower(tree, name, file, src, ctx) {
+        Ok(obj) => (report.diagnostics, Some(obj)),
+        Err(errors) => {
+            let mut d = report.diagnostics;
+            d.extend(errors.iter().map(crate::lower::LowerError::to_diagnostic));
+            (d, None)
+        }
+    }
 }
