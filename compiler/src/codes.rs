@@ -84,6 +84,7 @@ codes! {
     "E0209" => "qualifier needs a time",
     "E0210" => "qualifier takes no time",
     "E0211" => "transition defined twice",
+    "E0212" => "chart action that runs itself",
     "W0200" => "action never used",
     "W0201" => "step can never become active",
     "W0202" => "unsafe chart: a step activated while active",

@@ -460,3 +460,21 @@ TRANSITION Back (PRIORITY := 2) FROM Fill TO Idle := TRUE; END_TRANSITION
 ",
     ["E0200"]
 );
+
+case!(
+    s10_2_2_chart_action_that_runs_itself,
+    "§10.2.2, decision: a chart action cannot run itself, directly or through another",
+    None,
+    "INITIAL_STEP Idle: Stir(N); Mix(N); END_STEP
+ACTION Stir : CHART
+    INITIAL_STEP Fwd: Stir(N); END_STEP
+END_ACTION
+ACTION Mix : CHART
+    INITIAL_STEP M1: Blend(N); END_STEP
+END_ACTION
+ACTION Blend : CHART
+    INITIAL_STEP B1: Mix(P); END_STEP
+END_ACTION
+",
+    ["E0212", "E0212"]
+);

@@ -34,6 +34,7 @@ pub fn check(seq: &Sequence, ctx: Context) -> Vec<Diagnostic> {
     }
     transition_names(&charts, &mut out);
     actions(seq, &charts, &mut out);
+    chart_cycles(seq, &mut out);
     let names: Vec<String> = steps.into_iter().map(|s| s.text.clone()).collect();
     let ctx = Context { steps: Some(&names), ..ctx };
     let mut checker = Checker::new(ctx, Limits::default()).reporting_only();
@@ -237,5 +238,56 @@ fn qualifier(a: &Assoc) -> Option<SfcError> {
         "P0" => iec(Some("F")),
         "SD" | "DS" | "SL" => iec(None),
         _ => Some(SfcError::UnknownQualifier { span: q.span, text: text.clone() }),
+    }
+}
+
+/// A chart action that runs itself, directly or through other chart
+/// actions, would nest charts without end (E0212). Each cycle is reported
+/// once, at the association that closes it, found by a depth-first walk
+/// with an explicit stack.
+fn chart_cycles(seq: &Sequence, out: &mut Vec<Diagnostic>) {
+    let charts: Vec<(&Action, &Chart)> = seq
+        .actions
+        .iter()
+        .filter_map(|a| match &a.body {
+            ActionBody::Chart(c) => Some((a, c)),
+            ActionBody::St(_) => None,
+        })
+        .collect();
+    let index: HashMap<String, usize> = charts.iter().enumerate().rev().map(|(i, (a, _))| (key(&a.name), i)).collect();
+    let edges: Vec<Vec<(usize, &Assoc)>> = charts
+        .iter()
+        .map(|(_, c)| {
+            let assocs = c.steps.iter().flat_map(|s| &s.assocs);
+            assocs.filter_map(|a| index.get(&key(&a.action)).map(|&j| (j, a))).collect()
+        })
+        .collect();
+    // 0: not seen, 1: on the walk's path, 2: done.
+    let mut state = vec![0u8; charts.len()];
+    for root in 0..charts.len() {
+        if state[root] != 0 {
+            continue;
+        }
+        let mut stack = vec![(root, 0usize)];
+        state[root] = 1;
+        while let Some((node, next)) = stack.pop() {
+            let Some(&(to, assoc)) = edges[node].get(next) else {
+                state[node] = 2;
+                continue;
+            };
+            stack.push((node, next + 1));
+            match state[to] {
+                0 => {
+                    state[to] = 1;
+                    stack.push((to, 0));
+                }
+                1 => out.push(Diagnostic::from(SfcError::ChartRunsItself {
+                    span: assoc.span,
+                    chart: charts[node].0.name.text.clone(),
+                    action: assoc.action.text.clone(),
+                })),
+                _ => {}
+            }
+        }
     }
 }

@@ -80,6 +80,12 @@ pub enum SfcError {
         span: Span,
         name: String,
     },
+    /// A chart action whose chart runs it, directly or through others.
+    ChartRunsItself {
+        span: Span,
+        chart: String,
+        action: String,
+    },
     /// A transition that can activate a step that is still active (a warning).
     Unsafe {
         span: Span,
@@ -165,16 +171,34 @@ impl SfcError {
                     .label("unreachable")
                     .help("it is not an initial step and no transition from a reachable step leads to it")
             }
-            SfcError::Unsafe { span, transition, step } => Diagnostic::warning(
-                "W0202",
-                format!("unsafe chart: transition `{transition}` can activate step `{step}` while it is active"),
-                *span,
-            )
-            .label(format!("`{step}` may still be active here"))
-            .help("a transition that leaves one branch of a simultaneous divergence, or branches that never converge, leave steps active")
-            .help("join the parallel branches with one transition `FROM (a, b, …)`"),
+            SfcError::Unsafe { span, transition, step } => unsafe_chart(*span, transition, step),
+            SfcError::ChartRunsItself { span, chart, action } => runs_itself(*span, chart, action),
         }
     }
+}
+
+/// W0202, whose message needs the most words.
+fn unsafe_chart(span: Span, transition: &str, step: &str) -> Diagnostic {
+    Diagnostic::warning(
+        "W0202",
+        format!("unsafe chart: transition `{transition}` can activate step `{step}` while it is active"),
+        span,
+    )
+    .label(format!("`{step}` may still be active here"))
+    .help("leaving one branch of a simultaneous divergence, or branches that never converge, leaves steps active")
+    .help("join the parallel branches with one transition `FROM (a, b, …)`")
+}
+
+/// E0212, naming the loop.
+fn runs_itself(span: Span, chart: &str, action: &str) -> Diagnostic {
+    let label = if chart.eq_ignore_ascii_case(action) {
+        format!("the chart of `{chart}` runs `{action}` itself")
+    } else {
+        format!("the chart of `{chart}` runs `{action}`, which leads back to `{chart}`")
+    };
+    Diagnostic::error("E0212", format!("chart action `{action}` runs itself"), span)
+        .label(label)
+        .help("a chart action's chart cannot run the action it belongs to: charts would nest without end")
 }
 
 impl From<SfcError> for Diagnostic {
