@@ -29,7 +29,17 @@ pub fn compile(
             (&builtin, false)
         }
     };
-    let mut session = Session::compiling(Context { db, resolve_blocks, steps: None });
+    let ctx = Context { db, resolve_blocks, steps: None };
+    if let Some(seq) = paths.iter().find(|p| crate::sequence_src::is_sequence(p)) {
+        // A sequence is one unit of its own (its steps and actions are its).
+        if paths.len() > 1 {
+            crate::report::usage(format_args!("[E0903] `{}` is a sequence: compile it on its own", seq.display()));
+            return Err(Failed(2));
+        }
+        let c = crate::sequence_src::check(seq, ctx, true, false, format).map_err(|()| Failed(2))?;
+        return c.object.ok_or(Failed(errors_status));
+    }
+    let mut session = Session::compiling(ctx);
     for path in paths {
         let bytes = crate::files::read_input(path).map_err(|e| {
             io_error(path, &e, format);

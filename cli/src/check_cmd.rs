@@ -58,6 +58,17 @@ pub fn run(o: &Options) -> u8 {
     let input = if o.transition { Input::Transition } else { Input::Actions };
     let (mut errors, mut warnings, mut status) = (0usize, 0usize, 0u8);
     for path in &o.files {
+        if crate::sequence_src::is_sequence(path) {
+            let ctx = Context { db: &db, resolve_blocks, steps: None };
+            match crate::sequence_src::check(path, ctx, false, o.tree, o.format) {
+                Ok(c) => {
+                    errors += c.errors;
+                    warnings += c.warnings;
+                }
+                Err(()) => status = 2,
+            }
+            continue;
+        }
         let bytes = match crate::files::read_input(path) {
             Ok(b) => b,
             Err(e) => {

@@ -64,11 +64,57 @@ pub fn listing(obj: &ObjectFile) -> String {
             u.retained,
             if u.retained == 1 { "" } else { "s" },
         );
+        for (ci, c) in u.charts.iter().enumerate() {
+            chart(&mut out, u, ci, c);
+        }
         for (bi, b) in u.blocks.iter().enumerate() {
             block(&mut out, obj, bi, b, source);
         }
     }
     out
+}
+
+/// A sequence's chart table: steps with their slots and associations,
+/// transitions with their condition blocks, actions.
+fn chart(out: &mut String, u: &linc_runtime::object::Unit, index: usize, c: &linc_runtime::object::ChartRec) {
+    let title = if index == 0 { "ROOT".to_string() } else { format!("#{index}") };
+    let _ = writeln!(out, "  chart {title}");
+    let block_name = |b: u16| u.blocks.get(usize::from(b)).map(|b| b.name.clone()).unwrap_or_else(|| format!("#{b}"));
+    for s in &c.steps {
+        let assocs: Vec<String> = s
+            .assocs
+            .iter()
+            .map(|a| {
+                let name = c.actions.get(usize::from(a.action)).map_or("?", |x| x.name.as_str());
+                let q = char::from(a.qualifier);
+                if a.time_us > 0 {
+                    format!("{name}({q}, {} s)", a.time_us as f64 / 1e6)
+                } else {
+                    format!("{name}({q})")
+                }
+            })
+            .collect();
+        let kind = if s.initial != 0 { "initial step" } else { "step" };
+        let _ = writeln!(out, "    {kind} {} [slot {}]: {}", s.name, s.slot, assocs.join(", "));
+    }
+    let steps = |v: &[u16]| {
+        v.iter().map(|&i| c.steps.get(usize::from(i)).map_or("?", |s| s.name.as_str())).collect::<Vec<_>>().join(", ")
+    };
+    for t in &c.transitions {
+        let p = if t.priority == u32::MAX { String::new() } else { format!(" priority {}", t.priority) };
+        let _ = writeln!(
+            out,
+            "    transition `{}`{p}: ({}) -> ({}) when {}",
+            t.name,
+            steps(&t.from),
+            steps(&t.to),
+            block_name(t.block)
+        );
+    }
+    for a in &c.actions {
+        let body = if a.kind == 1 { format!("chart #{}", a.index) } else { format!("block {}", block_name(a.index)) };
+        let _ = writeln!(out, "    action {}: {body}", a.name);
+    }
 }
 
 fn block(out: &mut String, obj: &ObjectFile, index: usize, b: &CodeBlock, source: &[String]) {

@@ -11,6 +11,7 @@ mod explain_cmd;
 mod files;
 mod report;
 mod run_cmd;
+mod sequence_src;
 mod strategy_cmd;
 
 use clap::{Parser, Subcommand, ValueEnum};

@@ -8,7 +8,7 @@ use linc_runtime::object::{
     ActionRec, AssocRec, ChartRec, Class, CodeBlock, ObjectFile, StepRec, Sub, Symbol, TransitionRec, Unit, UnitKind,
 };
 use linc_runtime::sequence::chart::Chart;
-use linc_runtime::sequence::host::VmHost;
+use linc_runtime::sequence::host::{Traced, VmHost};
 use linc_runtime::sequence::{Command, Sequence};
 use linc_runtime::store::Store;
 use linc_runtime::vm::{Activation, Clock, Vm};
@@ -85,18 +85,24 @@ fn a_sequence_unit_runs_its_code_blocks_and_code_reads_step_flags() {
     seq.command(Command::Run);
     let mut act = Activation::new(&linked, 0, 0);
     let mut vm = Vm::new(10_000, Clock::new(1, 0));
-    let mut events = Vec::new();
+    let mut out = Vec::new();
+    let mut trace = linc_runtime::strategy::trace::Trace::new(&mut out, &store);
     for second in 0..5u64 {
-        let mut note = |e: linc_runtime::sequence::engine::Event| events.push(format!("{second}: {e:?}"));
-        let mut host =
-            VmHost { vm: &mut vm, linked: &linked, act: &mut act, store: &mut store, on_event: Some(&mut note) };
+        let traced = Traced { trace: &mut trace, now_us: second * 1_000_000, task: 1, program: "SEQ" };
+        let mut host = VmHost { vm: &mut vm, linked: &linked, act: &mut act, store: &mut store, trace: Some(traced) };
         seq.scan(second * 1_000_000, &mut host).expect("scan");
     }
+    trace.finish().expect("trace");
+    let events = String::from_utf8(out).expect("utf-8");
     let get = |f: &str| store.show(store.cell_of(store.db.block("Counters").unwrap(), f).unwrap());
     // N0 counted in scans 0, 1, 2; A left in scan 3 after 3 s; B's P action saw A.X = 0 and A.T = 3.
     assert_eq!([get("N0"), get("N1"), get("N2")], ["3", "0", "3"]);
     assert_eq!(seq.active_steps(), ["B"]);
-    assert!(events.contains(&"3: Fired(\"A to B\")".to_string()), "{events:?}");
+    assert!(events.contains(r#"{"time":3.0,"task":1,"program":"SEQ","fired":"A to B"}"#), "{events}");
+    assert!(
+        events.contains(r#"{"time":2.0,"task":1,"program":"SEQ","field":"Counters.N0","old":"2","new":"3"}"#),
+        "{events}"
+    );
 }
 
 fn refused(edit: impl FnOnce(&mut Unit)) -> Option<&'static str> {

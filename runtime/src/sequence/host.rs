@@ -7,28 +7,44 @@ use super::engine::{Event, Host};
 use crate::errors::RuntimeError;
 use crate::link::Linked;
 use crate::store::Store;
+use crate::strategy::trace::Trace;
 use crate::vm::{Activation, Vm};
 use linc_stdlib::Value;
 
-/// Runs the code of one sequence program; events go to `on_event`.
-pub struct VmHost<'a> {
+/// Where a sequence's events and field writes are traced.
+pub struct Traced<'a, 'w> {
+    pub trace: &'a mut Trace<'w>,
+    pub now_us: u64,
+    pub task: u8,
+    pub program: &'a str,
+}
+
+/// Runs the code of one sequence program.
+pub struct VmHost<'a, 'w> {
     pub vm: &'a mut Vm,
     pub linked: &'a Linked,
     /// The program's one activation: its retained slots hold the step flags.
     pub act: &'a mut Activation,
     pub store: &'a mut Store,
-    pub on_event: Option<&'a mut dyn FnMut(Event)>,
+    pub trace: Option<Traced<'a, 'w>>,
 }
 
-impl VmHost<'_> {
+impl VmHost<'_, '_> {
     fn run(&mut self, block: usize) -> Result<Option<Value>, RuntimeError> {
         self.act.block = block;
-        self.vm.run(self.linked, self.act, self.store, None)?;
+        let result = match self.trace.as_mut() {
+            Some(t) => {
+                let mut note = |s: &Store, cell: u32| t.trace.write(s, t.now_us, t.task, t.program, cell);
+                self.vm.run(self.linked, self.act, self.store, Some(&mut note))
+            }
+            None => self.vm.run(self.linked, self.act, self.store, None),
+        };
+        result?;
         Ok(self.act.result.take())
     }
 }
 
-impl Host for VmHost<'_> {
+impl Host for VmHost<'_, '_> {
     fn condition(&mut self, code: usize) -> Result<bool, RuntimeError> {
         // The verifier proved a condition block returns a truth value.
         Ok(matches!(self.run(code)?, Some(Value::Bool(true))))
@@ -39,8 +55,8 @@ impl Host for VmHost<'_> {
     }
 
     fn event(&mut self, e: Event) {
-        if let Some(f) = self.on_event.as_mut() {
-            f(e);
+        if let Some(t) = self.trace.as_mut() {
+            t.trace.sequence_event(e, t.now_us, t.task, t.program);
         }
     }
 

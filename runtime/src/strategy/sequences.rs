@@ -2,12 +2,11 @@
 //! holds, one scan per run of its task, commanded by its fields (guide
 //! §20.6.3; the state table is in docs/sequences.md).
 
-use super::trace::{seconds, Trace};
+use super::trace::Trace;
 use super::{Strategy, StrategyError, Want};
 use crate::errors::RuntimeError;
 use crate::object::UnitKind;
-use crate::sequence::engine::Event;
-use crate::sequence::host::VmHost;
+use crate::sequence::host::{Traced, VmHost};
 use crate::sequence::{Command, Status};
 use crate::store::{Cell, Store};
 use crate::verify::Verified;
@@ -72,17 +71,12 @@ impl Strategy {
             }
             seq.command(c);
         }
-        let mut note = |e: Event| {
-            if let Some(t) = trace.as_deref_mut() {
-                t.line(&event_line(e, now, task, &name));
-            }
-        };
         let mut host = VmHost {
             vm: &mut self.vm,
             linked: &self.objects[member.object],
             act: &mut member.act,
             store: &mut self.store,
-            on_event: Some(&mut note),
+            trace: trace.as_deref_mut().map(|trace| Traced { trace, now_us: now, task, program: &name }),
         };
         let result = seq.scan(now, &mut host);
         let (status, steps) = (seq.status, seq.active_steps().len());
@@ -125,20 +119,4 @@ impl Strategy {
             }
         }
     }
-}
-
-/// A trace line for a step activated or deactivated, a transition fired or
-/// an action run.
-fn event_line(e: Event, now: u64, task: u8, program: &str) -> serde_json::Value {
-    let (key, name, value) = match e {
-        Event::Activated(s) => ("step", s, Some(true)),
-        Event::Deactivated(s) => ("step", s, Some(false)),
-        Event::Fired(t) => ("fired", t, None),
-        Event::Ran(a) => ("ran", a, None),
-    };
-    let mut line = serde_json::json!({ "time": seconds(now), "task": task, "program": program, key: name });
-    if let (Some(v), Some(obj)) = (value, line.as_object_mut()) {
-        obj.insert("active".into(), serde_json::Value::Bool(v));
-    }
-    line
 }

@@ -39,6 +39,23 @@ impl<'w> Trace<'w> {
         self.line(&line);
     }
 
+    /// Records a step activated or deactivated, a transition fired or an
+    /// action run by a sequence.
+    pub fn sequence_event(&mut self, e: crate::sequence::engine::Event, now_us: u64, task: u8, program: &str) {
+        use crate::sequence::engine::Event;
+        let (key, name, active) = match e {
+            Event::Activated(s) => ("step", s, Some(true)),
+            Event::Deactivated(s) => ("step", s, Some(false)),
+            Event::Fired(t) => ("fired", t, None),
+            Event::Ran(a) => ("ran", a, None),
+        };
+        let mut line = serde_json::json!({ "time": seconds(now_us), "task": task, "program": program, key: name });
+        if let (Some(v), Some(obj)) = (active, line.as_object_mut()) {
+            obj.insert("active".into(), serde_json::Value::Bool(v));
+        }
+        self.line(&line);
+    }
+
     /// Records any other event (an error entered or cleared).
     pub fn line(&mut self, v: &serde_json::Value) {
         if self.failed.is_none() {

@@ -1,0 +1,53 @@
+//! `.sfc` files on the command line: read, checked (and lowered) by the
+//! compiler's sequence front end, diagnostics printed through the renderer.
+
+use crate::check_cmd::io_error;
+use linc_compiler::check::Context;
+use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::{sfc, Diagnostic, Span};
+use linc_runtime::ObjectFile;
+use std::path::Path;
+
+/// Whether a path names a sequence source.
+pub fn is_sequence(path: &Path) -> bool {
+    path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sfc"))
+}
+
+/// What checking one `.sfc` file gave.
+pub struct Checked {
+    pub errors: usize,
+    pub warnings: usize,
+    pub object: Option<ObjectFile>,
+}
+
+/// Reads, checks and (when `lower`) compiles one sequence; prints its
+/// diagnostics (and its tree when `tree`). `Err` is an I/O failure, reported.
+pub fn check(path: &Path, ctx: Context, lower: bool, tree: bool, format: Format) -> Result<Checked, ()> {
+    let bytes = crate::files::read_input(path).map_err(|e| io_error(path, &e, format))?;
+    let name = path.display().to_string();
+    let (text, invalid) = linc_compiler::files::decode(bytes);
+    let mut files = SourceFiles::new();
+    let id = files.add_decoded(name.clone(), text.clone(), invalid.clone());
+    let mut diagnostics = Vec::new();
+    if let Some(&(at, byte)) = invalid.first() {
+        diagnostics.push(Diagnostic::error("E0017", format!("byte {byte:#04X} is not UTF-8"), Span::new(at, at + 1)));
+    }
+    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("sequence");
+    let (more, object) = if lower && invalid.is_empty() {
+        sfc::compile_sequence(&text, stem, &name, ctx)
+    } else {
+        let report = sfc::check_sequence(&text, ctx);
+        if tree {
+            if let Some(t) = &report.tree {
+                print!("{}", sfc::pretty::sequence(t));
+            }
+        }
+        (report.diagnostics, None)
+    };
+    diagnostics.extend(more);
+    let errors = diagnostics.iter().filter(|d| d.is_error()).count();
+    for d in &diagnostics {
+        print!("{}", render::render(&files, &d.clone().in_file(id), format));
+    }
+    Ok(Checked { errors, warnings: diagnostics.len() - errors, object })
+}
