@@ -11,6 +11,7 @@ mod explain_cmd;
 mod files;
 mod report;
 mod run_cmd;
+mod sequence_run;
 mod sequence_src;
 mod strategy_cmd;
 
@@ -92,9 +93,15 @@ enum Command {
         /// Cycles to run; 0 links the action and applies --set, --show and --out without running it.
         #[arg(long, default_value_t = 1, value_name = "N", allow_negative_numbers = true, value_parser = cycles)]
         cycles: u32,
-        /// Seconds of simulated time per cycle (suppression timers, clock); positive and finite.
-        #[arg(long, default_value_t = 1.0, value_name = "SECS", allow_hyphen_values = true, value_parser = period)]
-        period: f64,
+        /// Seconds of simulated time per cycle (default 1), or per scan of a sequence (default: its task's period).
+        #[arg(long, value_name = "SECS", allow_hyphen_values = true, value_parser = period)]
+        period: Option<f64>,
+        /// Hold a step of the sequence being run (repeatable).
+        #[arg(long, value_name = "STEP")]
+        hold_step: Vec<String>,
+        /// Force a transition of the sequence being run: NAME=hold|continue|normal (repeatable).
+        #[arg(long, value_name = "NAME=HOW")]
+        force: Vec<String>,
         /// Set a field before the run: BLOCK.FIELD=VALUE (repeatable).
         #[arg(long)]
         set: Vec<String>,
@@ -203,6 +210,11 @@ fn format(m: MessageFormat) -> linc_compiler::render::Format {
     }
 }
 
+/// Whether a path names a compiled object.
+fn is_object(path: &std::path::Path) -> bool {
+    path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"))
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let status = match cli.command {
@@ -217,6 +229,8 @@ fn main() -> ExitCode {
             block,
             cycles,
             period,
+            hold_step,
+            force,
             set,
             show,
             trace,
@@ -228,11 +242,20 @@ fn main() -> ExitCode {
         } => {
             let common = run_cmd::Common { set, show, trace, out, now, seed, watchdog, format: format(message_format) };
             match (db, duration) {
-                (None, Some(duration)) => strategy_cmd::run(&strategy_cmd::Options { db: file, duration, common }),
-                (Some(db), None) => run_cmd::run(&run_cmd::Options { file, db, action, block, cycles, period, common }),
-                (Some(_), Some(_)) => {
-                    report::usage("--for runs a strategy, which is its own database: give PLANT.json without --db")
+                (None, Some(duration)) => {
+                    strategy_cmd::run(&strategy_cmd::Options { db: file, duration, common, sequence: None })
                 }
+                (Some(db), None) => {
+                    let period = period.unwrap_or(1.0);
+                    run_cmd::run(&run_cmd::Options { file, db, action, block, cycles, period, common })
+                }
+                (Some(db), Some(duration)) if sequence_src::is_sequence(&file) || is_object(&file) => {
+                    let sequence = sequence_run::SequenceRun { file, block, period, hold_steps: hold_step, force };
+                    strategy_cmd::run(&strategy_cmd::Options { db, duration, common, sequence: Some(sequence) })
+                }
+                (Some(_), Some(_)) => report::usage(
+                    "--for runs a strategy (PLANT.json without --db) or a sequence (FILE.sfc --db PLANT.json)",
+                ),
                 (None, None) => {
                     report::usage("give --for DURATION to run a strategy, or --db DB.json to run one action")
                 }

@@ -4,6 +4,7 @@
 use crate::check_cmd::load_db;
 use crate::report::usage;
 use crate::run_cmd::{program_object, set_and_show, show_value, start_time, write_db, Common};
+use crate::sequence_run::{self, SequenceRun};
 use linc_compiler::render::{self, Format, SourceFiles};
 use linc_compiler::span::FileId;
 use linc_compiler::{Diagnostic, Span};
@@ -17,6 +18,8 @@ pub struct Options {
     pub db: PathBuf,
     pub duration: String,
     pub common: Common,
+    /// Run only this sequence (`linc run batch.sfc --db … --for …`).
+    pub sequence: Option<SequenceRun>,
 }
 
 /// A duration as an ST time constant, with or without `T#` (`10m`, `T#1h30m`).
@@ -73,18 +76,31 @@ pub fn run(o: &Options) -> u8 {
         Err(msg) => return usage(msg),
     };
     let mut files = SourceFiles::new();
-    let db = match load_db(Some(&o.db), &mut files, o.common.format) {
+    let mut db = match load_db(Some(&o.db), &mut files, o.common.format) {
         Ok(Some(db)) => db,
         Ok(None) => return 2,
         Err(status) => return status,
     };
     let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
+    let seq_block = match o.sequence.as_ref().map(|q| sequence_run::block(&db, q.block.as_deref())).transpose() {
+        Ok(b) => b,
+        Err(status) => return status,
+    };
+    if let (Some(b), Some(p)) = (seq_block, o.sequence.as_ref().and_then(|q| q.period)) {
+        sequence_run::set_period(&mut db, b, p);
+    }
     let mut store = Store::new(db.clone());
-    let shows = match set_and_show(&mut store, &o.common.set, &o.common.show) {
+    let step_shows: Vec<String> =
+        o.common.show.iter().filter(|p| is_step_show(&store, seq_block, p)).cloned().collect();
+    let field_shows: Vec<String> = o.common.show.iter().filter(|p| !step_shows.contains(p)).cloned().collect();
+    let shows = match set_and_show(&mut store, &o.common.set, &field_shows) {
         Ok(v) => v,
         Err(status) => return status,
     };
-    let wants = strategy::wanted(&store);
+    let wants = match (&o.sequence, seq_block) {
+        (Some(q), Some(b)) => vec![sequence_run::want(q, b)],
+        _ => strategy::wanted(&store),
+    };
     if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
         report(&files, FileId(0), &db_text, &e, o.common.format);
         return 2;
@@ -93,16 +109,8 @@ pub fn run(o: &Options) -> u8 {
         Ok(x) => x,
         Err(status) => return status,
     };
-    // Outputs may not replace an input or anything but a regular file;
-    // checked before the run, so a refused run changes nothing.
-    let dir = o.db.parent().map(Path::to_path_buf).unwrap_or_default();
-    let inputs: Vec<PathBuf> = std::iter::once(o.db.clone()).chain(wants.iter().map(|w| dir.join(&w.file))).collect();
-    let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
-    for out in [&o.common.out, &o.common.trace].into_iter().flatten().filter(|p| p.as_os_str() != "-") {
-        if let Err(e) = crate::files::check_output(out, &input_refs) {
-            eprintln!("{e}");
-            return 2;
-        }
+    if let Err(status) = check_outputs(o, &wants) {
+        return status;
     }
     let seed = o.common.seed.unwrap_or(now as u64);
     let vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
@@ -113,6 +121,11 @@ pub fn run(o: &Options) -> u8 {
             return 2;
         }
     };
+    if let (Some(q), Some(seq)) = (&o.sequence, seq_block.and_then(|b| s.sequence_mut(b))) {
+        if let Err(status) = sequence_run::monitor(seq, q) {
+            return status;
+        }
+    }
     let mut trace_bytes = Vec::new();
     let mut trace = o.common.trace.as_ref().map(|_| Trace::new(&mut trace_bytes, &s.store));
     let failures = s.run_for(duration, trace.as_mut());
@@ -122,23 +135,59 @@ pub fn run(o: &Options) -> u8 {
     for e in &failures {
         eprint!("{}", crate::report::runtime(e, o.common.format));
     }
-    for (path, a) in &shows {
-        println!("{path} = {}", show_value(&s.store, *a));
+    for path in &o.common.show {
+        let step = seq_block.and_then(|b| s.sequence_mut(b)).and_then(|q| sequence_run::step_flag(q, path));
+        let field = shows.iter().find(|(p, _)| p == path).map(|(_, a)| show_value(&s.store, *a));
+        println!("{path} = {}", step.or(field).unwrap_or_default());
     }
-    if let Some(path) = o.common.trace.as_ref().filter(|p| p.as_os_str() == "-") {
-        let _ = path;
-        print!("{}", String::from_utf8_lossy(&trace_bytes));
-    } else if let Some(path) = &o.common.trace {
-        if let Err(e) = crate::files::write_atomic(path, &trace_bytes) {
-            eprintln!("error[E0900]: can't write `{}`: {e}", path.display());
-            return 2;
+    match write_outputs(o, &trace_bytes, &db_text, &s.store) {
+        Ok(()) => u8::from(!failures.is_empty()),
+        Err(status) => status,
+    }
+}
+
+/// `--show Step.X` (or `.T`) of the sequence being run: the first part is
+/// not a block or alias of the database.
+fn is_step_show(store: &Store, seq_block: Option<usize>, path: &str) -> bool {
+    let Some((first, flag)) = path.split_once('.') else { return false };
+    seq_block.is_some()
+        && store.db.block(first).is_none()
+        && store.db.alias(first).is_none()
+        && matches!(flag.to_ascii_uppercase().as_str(), "X" | "T")
+}
+
+/// Outputs may not replace an input or anything but a regular file;
+/// checked before the run, so a refused run changes nothing.
+fn check_outputs(o: &Options, wants: &[Want]) -> Result<(), u8> {
+    let dir = o.db.parent().map(Path::to_path_buf).unwrap_or_default();
+    let inputs: Vec<PathBuf> = std::iter::once(o.db.clone()).chain(wants.iter().map(|w| dir.join(&w.file))).collect();
+    let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    for out in [&o.common.out, &o.common.trace].into_iter().flatten().filter(|p| p.as_os_str() != "-") {
+        if let Err(e) = crate::files::check_output(out, &input_refs) {
+            eprintln!("{e}");
+            return Err(2);
         }
+    }
+    Ok(())
+}
+
+/// Writes the trace (or prints it for `-`) and the database with its values.
+fn write_outputs(o: &Options, trace: &[u8], db_text: &str, store: &Store) -> Result<(), u8> {
+    match o.common.trace.as_ref() {
+        Some(p) if p.as_os_str() == "-" => print!("{}", String::from_utf8_lossy(trace)),
+        Some(p) => {
+            if let Err(e) = crate::files::write_atomic(p, trace) {
+                eprintln!("error[E0900]: can't write `{}`: {e}", p.display());
+                return Err(2);
+            }
+        }
+        None => {}
     }
     if let Some(out) = &o.common.out {
-        if let Err(e) = write_db(out, &db_text, &s.store) {
+        if let Err(e) = write_db(out, db_text, store) {
             eprintln!("{e}");
-            return 2;
+            return Err(2);
         }
     }
-    u8::from(!failures.is_empty())
+    Ok(())
 }

@@ -62,3 +62,26 @@ fn a_broken_sequence_gets_located_errors() {
     let codes: Vec<&str> = out.lines().filter_map(|l| l.split("error[").nth(1)).map(|r| &r[..5]).collect();
     assert_eq!(codes, ["E0207", "E0204"], "{out}");
 }
+
+#[test]
+fn one_sequence_runs_with_hold_force_and_step_flags() {
+    let seq = "examples/sequences/batch.sfc";
+    let run = |extra: &[&str]| {
+        let mut args = vec!["run", seq, "--db", PLANT, "--for", "30s"];
+        args.extend_from_slice(extra);
+        linc(&args)
+    };
+    // Only the sequence runs (no process simulation): the level stays 0, so Fill stays active.
+    let o =
+        run(&["--period", "0.5", "--set", "R1.Level=85", "--show", "Fill.X", "--show", "Heat.X", "--show", "Heat.T"]);
+    assert_eq!(stdout(&o), "Fill.X = FALSE\nHeat.X = TRUE\nHeat.T = 28.5\n", "{}", stderr(&o));
+    // A held step stays active though its transition is TRUE; its timer runs.
+    let o = run(&["--set", "R1.Level=85", "--hold-step", "Fill", "--show", "Fill.X", "--show", "Fill.T"]);
+    assert_eq!(stdout(&o), "Fill.X = TRUE\nFill.T = 28.0\n");
+    // Forced: Abort continues though Plant.N1 is 0; Full held though the level is 85.
+    let o = run(&["--set", "R1.Level=85", "--force", "Abort=continue", "--force", "Full=hold", "--show", "Aborted.X"]);
+    assert_eq!(stdout(&o), "Aborted.X = TRUE\n");
+    let o = run(&["--force", "Nope=hold"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("error[E0903]: --force: the sequence has no transition `Nope`"), "{}", stderr(&o));
+}

@@ -66,6 +66,23 @@ impl Chart {
         self.steps.iter().position(|s| s.name.eq_ignore_ascii_case(name))
     }
 
+    /// Whether this chart or a chart action's chart has a step `name`.
+    pub fn has_step(&self, name: &str) -> bool {
+        self.step(name).is_some() || self.sub_charts().any(|c| c.has_step(name))
+    }
+
+    /// Whether this chart or a chart action's chart has a transition `name`.
+    pub fn has_transition(&self, name: &str) -> bool {
+        self.transition(name).is_some() || self.sub_charts().any(|c| c.has_transition(name))
+    }
+
+    fn sub_charts(&self) -> impl Iterator<Item = &Chart> {
+        self.actions.iter().filter_map(|a| match &a.body {
+            Body::Chart(c) => Some(c.as_ref()),
+            Body::Code(_) => None,
+        })
+    }
+
     pub fn transition(&self, name: &str) -> Option<usize> {
         self.transitions.iter().position(|t| t.name.eq_ignore_ascii_case(name))
     }

@@ -249,6 +249,11 @@ impl Strategy {
         self.now_us
     }
 
+    /// The sequence an SFC_CON block runs, for the monitor's controls.
+    pub fn sequence_mut(&mut self, block: usize) -> Option<&mut crate::sequence::Sequence> {
+        self.members.iter_mut().find(|m| m.block == block).and_then(|m| m.seq.as_deref_mut())
+    }
+
     /// Whether a double error stopped every program.
     pub fn halted(&self) -> bool {
         self.halted

@@ -1,0 +1,92 @@
+//! `linc run batch.sfc --db plant.json --for 10m`: one sequence run by an
+//! SFC_CON block of the database (`--block`, or the only one), with the
+//! monitor's controls (`--hold-step`, `--force`) and step flags for
+//! `--show Step.X` / `Step.T`.
+
+use crate::report::usage;
+use linc_runtime::db::Task;
+use linc_runtime::sequence::Sequence;
+use linc_runtime::strategy::Want;
+use linc_runtime::Database;
+use std::path::PathBuf;
+
+/// The sequence shortcut's own options.
+pub struct SequenceRun {
+    pub file: PathBuf,
+    pub block: Option<String>,
+    /// Seconds per scan: the period of the block's task for this run.
+    pub period: Option<f64>,
+    pub hold_steps: Vec<String>,
+    pub force: Vec<String>,
+}
+
+/// The SFC_CON block that runs the sequence.
+pub fn block(db: &Database, named: Option<&str>) -> Result<usize, u8> {
+    let sfc_con = |b: usize| db.block_template(b).name.eq_ignore_ascii_case("SFC_CON");
+    if let Some(n) = named {
+        return match db.block(n) {
+            Some(b) if sfc_con(b) => Ok(b),
+            Some(_) => Err(usage(format_args!("[E0904] --block {n} is not an SFC_CON block"))),
+            None => Err(usage(format_args!("[E0904] --block: the database has no block `{n}`"))),
+        };
+    }
+    let all: Vec<usize> = (0..db.blocks.len()).filter(|&b| sfc_con(b)).collect();
+    match all.as_slice() {
+        [b] => Ok(*b),
+        [] => Err(usage("[E0904] the database has no SFC_CON block to run the sequence; add one")),
+        _ => Err(usage("[E0904] the database has several SFC_CON blocks; choose one with --block")),
+    }
+}
+
+/// `--period`: the block's task runs at this period for this run.
+pub fn set_period(db: &mut Database, block: usize, seconds: f64) {
+    let number = db.blocks[block].task;
+    db.tasks.retain(|t| t.number != number);
+    db.tasks.push(Task { number, period: seconds });
+    db.tasks.sort_by_key(|t| t.number);
+}
+
+/// The one program to run: the sequence file, by its absolute path (the
+/// strategy resolves `FileName` against the database's folder).
+pub fn want(seq: &SequenceRun, block: usize) -> Want {
+    let file = std::path::absolute(&seq.file).unwrap_or_else(|_| seq.file.clone());
+    Want { block, file: file.display().to_string(), action: String::new(), sequence: true }
+}
+
+/// Applies `--hold-step` and `--force NAME=hold|continue|normal`.
+pub fn monitor(seq: &mut Sequence, o: &SequenceRun) -> Result<(), u8> {
+    for s in &o.hold_steps {
+        if !seq.chart.has_step(s) {
+            return Err(usage(format_args!("[E0903] --hold-step: the sequence has no step `{s}`")));
+        }
+        seq.monitor.held.insert(s.clone());
+    }
+    for f in &o.force {
+        let (name, how) = f.rsplit_once('=').unwrap_or((f.as_str(), ""));
+        if !seq.chart.has_transition(name.trim()) {
+            return Err(usage(format_args!("[E0903] --force: the sequence has no transition `{}`", name.trim())));
+        }
+        let value = match how.trim().to_ascii_lowercase().as_str() {
+            "hold" => Some(false),
+            "continue" => Some(true),
+            "normal" => None,
+            other => return Err(usage(format_args!("[E0903] --force {f}: `{other}` is not hold, continue or normal"))),
+        };
+        match value {
+            Some(v) => seq.monitor.forced.insert(name.trim().to_string(), v),
+            None => seq.monitor.forced.remove(name.trim()),
+        };
+    }
+    Ok(())
+}
+
+/// `Step.X` or `Step.T` of the sequence, as `--show` prints it.
+pub fn step_flag(seq: &Sequence, path: &str) -> Option<String> {
+    let (step, flag) = path.split_once('.')?;
+    let (x, t_us) = seq.step(step)?;
+    match flag.to_ascii_uppercase().as_str() {
+        "X" => Some(if x { "TRUE" } else { "FALSE" }.to_string()),
+        "T" => Some(linc_runtime::text::format_real((t_us as f64 / 1e6) as f32)),
+        _ => None,
+    }
+}
