@@ -37,6 +37,8 @@ enum MessageFormat {
     Json,
 }
 
+// Parsed once per process: the size of the largest variant does not matter.
+#[allow(clippy::large_enum_variant)]
 #[derive(Subcommand)]
 enum Command {
     /// Check action files (.st/.stx) for syntax, names and types.
