@@ -568,15 +568,81 @@ struct Seed {
     obj: ObjectFile,
 }
 
+/// A sequence over the guide database: every qualifier, a parallel branch,
+/// priorities, step variables and a chart action.
+const SEQUENCE: &str = "INITIAL_STEP Idle: Count(P); END_STEP
+STEP Fill: Count(N); Late(D, T#3s); Once(E, T#2s); Bye(F); END_STEP
+STEP Heat: Keep(S); Brief(L, T#2s); END_STEP
+STEP Stir: Stirring(N); END_STEP
+STEP Done: Keep(R); END_STEP
+TRANSITION FROM Idle TO Fill := Counters.N0 >= 1; END_TRANSITION
+TRANSITION Full (PRIORITY := 2) FROM Fill TO (Heat, Stir) := Fill.T >= 4.0; END_TRANSITION
+TRANSITION Stop (PRIORITY := 1) FROM Fill TO Done := Recipe.N3 = 7; END_TRANSITION
+TRANSITION FROM (Heat, Stir) TO Done := Heat.T > 3.0 AND Stir.X; END_TRANSITION
+TRANSITION FROM Done TO Idle := TRUE; END_TRANSITION
+ACTION Count
+    Counters.N0 := Counters.N0 + 1;
+END_ACTION
+ACTION Late
+    Recipe.A0 := Fill.T * 2.0;
+END_ACTION
+ACTION Once
+    Dig_A.Out.Bit1 := NOT Dig_A.Out.Bit1;
+END_ACTION
+ACTION Bye
+    RAW_COM.Buffer1 := CONCAT(RAW_COM.Buffer1, 'x');
+END_ACTION
+ACTION Keep
+    Recipe.N1 := Recipe.N1 + 1;
+END_ACTION
+ACTION Brief
+    Block_5.Val1{Recipe.N1 MOD 8} := Heat.T;
+END_ACTION
+ACTION Stirring : CHART
+    INITIAL_STEP Fwd: Turn(N); END_STEP
+    STEP Rev: Turn(N); END_STEP
+    TRANSITION FROM Fwd TO Rev := Fwd.T >= 1.0; END_TRANSITION
+    TRANSITION FROM Rev TO Fwd := Rev.T >= 1.0; END_TRANSITION
+END_ACTION
+ACTION Turn
+    Recipe.N2 := Recipe.N2 + 1;
+END_ACTION
+";
+
 fn corpus() -> Vec<Seed> {
+    let ctx = linc_compiler::check::Context { db: guide_db(), resolve_blocks: true, steps: None };
+    let (diagnostics, seq) = linc_compiler::sfc::compile_sequence(SEQUENCE, "seq", "seq.sfc", ctx);
+    let seq = seq.unwrap_or_else(|| panic!("the corpus sequence compiles: {diagnostics:?}")).to_bytes();
     SOURCES
         .iter()
-        .map(|src| {
-            let bytes = compile(src, guide_db());
+        .map(|src| compile(src, guide_db()))
+        .chain(std::iter::once(seq))
+        .map(|bytes| {
             let obj = ObjectFile::from_bytes(&bytes).expect("a compiled object decodes");
             Seed { bytes, obj }
         })
         .collect()
+}
+
+/// Runs a linked sequence unit through the engine for a few scans.
+fn exercise_sequence(linked: &linc_runtime::Linked, vm: &mut Vm, store: &mut Store, t: &mut Tally) {
+    use linc_runtime::sequence::{chart::Chart, host::VmHost, Command, Sequence};
+    let Some(unit) = linked.unit(0) else { return };
+    let mut seq = Sequence::new(Chart::from_unit(unit, 0));
+    seq.command(Command::Run);
+    let mut act = Activation::new(linked, 0, 0);
+    for scan in 0..RUNS as u64 * 4 {
+        t.runs += 1;
+        let mut host = VmHost { vm: &mut *vm, linked, act: &mut act, store: &mut *store, trace: None };
+        match seq.scan(scan * 500_000, &mut host) {
+            Ok(()) => t.done += 1,
+            Err(e) => {
+                *t.faults.entry(e.code).or_default() += 1;
+                seq.command(Command::Reset);
+                seq.command(Command::Run);
+            }
+        }
+    }
 }
 
 /// The object of case `case` and the names of its mutations: mostly
@@ -660,6 +726,10 @@ fn exercise(case: u64, bytes: &[u8], base: &Store, t: &mut Tally) {
             t.link_failed += 1;
             continue;
         };
+        if linked.unit(0).is_some_and(|u| !u.charts.is_empty()) {
+            exercise_sequence(&linked, &mut vm, &mut store, t);
+            continue;
+        }
         for block in 0..linked.unit(0).map_or(0, |u| u.blocks.len()).min(16) {
             let mut act = Activation::new(&linked, 0, block);
             for _ in 0..RUNS {
