@@ -41,7 +41,8 @@ fn the_example_plant_runs_its_sequence_and_is_pinned() {
     assert_eq!((o.status.code(), stdout(&o).as_str()), (Some(0), "BATCH.Status = 'RUNNING'\n"), "{}", stderr(&o));
     insta::assert_snapshot!("sequence_plant_trace_2m", std::fs::read_to_string(&trace).expect("trace"));
     let shows = ["R1.Batches", "R1.Log", "R1.Stirs", "R1.Alarm"];
-    let mut args = vec!["run", PLANT, "--for", "1h", "--now", "2026-01-05T06:00:00"];
+    let hour = temp_dir("seq-run").join("hour.jsonl").to_string_lossy().into_owned();
+    let mut args = vec!["run", PLANT, "--for", "1h", "--now", "2026-01-05T06:00:00", "--trace", &hour];
     for s in &shows {
         args.extend(["--show", s]);
     }
@@ -49,6 +50,11 @@ fn the_example_plant_runs_its_sequence_and_is_pinned() {
     // 45 s a batch: 80 batches an hour, each logging once at 10 s of heat and
     // stirring 10 times (Fwd 5 s, Rev 5 s, for Agitate's first 20 s).
     assert_eq!(stdout(&o), "R1.Batches = 80\nR1.Log = 80\nR1.Stirs = 800\nR1.Alarm = FALSE\n");
+    // The hour's trace (16,694 lines, 1.2 MB) is pinned by its size and CRC-32;
+    // the first two minutes are pinned line by line above.
+    let bytes = std::fs::read(&hour).expect("trace");
+    assert_eq!((bytes.len(), bytes.iter().filter(|&&b| b == b'\n').count()), (1_201_151, 16_694));
+    assert_eq!(linc_runtime::object::crc32(&bytes), 0x7f5e_1062);
 }
 
 #[test]
