@@ -6,7 +6,7 @@ use crate::report::usage;
 use linc_compiler::render::{Format, SourceFiles};
 use linc_runtime::store::{Cell, Store};
 use linc_runtime::vm::{Activation, Clock, Vm};
-use linc_runtime::{text, Database, Program, Verified};
+use linc_runtime::{text, Database, Linked, Program, Verified};
 use linc_stdlib::value::decode_dollar;
 use std::path::{Path, PathBuf};
 
@@ -224,32 +224,9 @@ pub fn run(o: &Options) -> u8 {
             return 2;
         }
     };
-    let mut act = Activation::new(&linked, 0, 0);
     let seed = o.common.seed.unwrap_or_else(|| now as u64 ^ u64::from(std::process::id()));
-    let mut vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
-    let mut status = 0;
     let to_stdout = o.common.trace.as_ref().is_some_and(|p| p.as_os_str() == "-");
-    let mut traced = String::new();
-    for cycle in 1..=o.cycles {
-        let mut tracer = |s: &Store, cell: u32| {
-            let line = format!("cycle {cycle}: {} = {}\n", s.describe(cell), s.show(cell));
-            if to_stdout {
-                print!("{line}");
-            } else {
-                traced.push_str(&line);
-            }
-        };
-        let trace: linc_runtime::vm::Tracer = if o.common.trace.is_some() { Some(&mut tracer) } else { None };
-        match vm.run(&linked, &mut act, &mut store, trace) {
-            Ok(_) => {}
-            Err(e) => {
-                eprint!("{}", crate::report::runtime(&e, o.common.format));
-                status = 1;
-                break;
-            }
-        }
-        store.now += o.period;
-    }
+    let (status, traced) = cycles(o, &linked, &mut store, seed, to_stdout);
     for (path, a) in &shows {
         println!("{path} = {}", show_value(&store, *a));
     }
@@ -266,6 +243,32 @@ pub fn run(o: &Options) -> u8 {
         }
     }
     status
+}
+
+/// Runs the action `--cycles` times, `--period` apart; returns the exit
+/// status (1 after a runtime error, which ends the run) and the trace text
+/// kept for a `--trace FILE`.
+fn cycles(o: &Options, linked: &Linked, store: &mut Store, seed: u64, to_stdout: bool) -> (u8, String) {
+    let mut act = Activation::new(linked, 0, 0);
+    let mut vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
+    let mut traced = String::new();
+    for cycle in 1..=o.cycles {
+        let mut tracer = |s: &Store, cell: u32| {
+            let line = format!("cycle {cycle}: {} = {}\n", s.describe(cell), s.show(cell));
+            if to_stdout {
+                print!("{line}");
+            } else {
+                traced.push_str(&line);
+            }
+        };
+        let trace: linc_runtime::vm::Tracer = if o.common.trace.is_some() { Some(&mut tracer) } else { None };
+        if let Err(e) = vm.run(linked, &mut act, store, trace) {
+            eprint!("{}", crate::report::runtime(&e, o.common.format));
+            return (1, traced);
+        }
+        store.now += o.period;
+    }
+    (0, traced)
 }
 
 /// The clock's start in POSIX seconds: `--now`, or the system time.
