@@ -4,6 +4,7 @@
 use crate::check_cmd::io_error;
 use linc_compiler::check::Context;
 use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::sfc::{generic, resources, resources::Instrument};
 use linc_compiler::{sfc, Diagnostic, Span};
 use linc_runtime::ObjectFile;
 use std::path::Path;
@@ -20,9 +21,32 @@ pub struct Checked {
     pub object: Option<ObjectFile>,
 }
 
+/// What a sequence is checked with beyond its database.
+#[derive(Default)]
+pub struct Extra {
+    /// The map file's name when `ctx.db` holds a map's aliases: unknown
+    /// names are then generic names the map lacks (E0250).
+    pub map: Option<String>,
+    /// Unmapped generic names are warnings (W0250).
+    pub allow_unmapped: bool,
+    /// Print the resources used against this instrument's limits.
+    pub resources: Option<Instrument>,
+}
+
 /// Reads, checks and (when `lower`) compiles one sequence; prints its
 /// diagnostics (and its tree when `tree`). `Err` is an I/O failure, reported.
 pub fn check(path: &Path, ctx: Context, lower: bool, tree: bool, format: Format) -> Result<Checked, ()> {
+    check_with(path, ctx, &Extra::default(), (lower, tree), format)
+}
+
+/// [`check`] with a map and resources (`lower`, `tree` as there).
+pub fn check_with(
+    path: &Path,
+    ctx: Context,
+    extra: &Extra,
+    (lower, tree): (bool, bool),
+    format: Format,
+) -> Result<Checked, ()> {
     let bytes = crate::files::read_input(path).map_err(|e| io_error(path, &e, format))?;
     let name = path.display().to_string();
     let (text, invalid) = linc_compiler::files::decode(bytes);
@@ -37,12 +61,22 @@ pub fn check(path: &Path, ctx: Context, lower: bool, tree: bool, format: Format)
         sfc::compile_sequence(&text, stem, &name, ctx)
     } else {
         let report = sfc::check_sequence(&text, ctx);
-        if tree {
-            if let Some(t) = &report.tree {
+        let mut d = report.diagnostics;
+        if let Some(t) = &report.tree {
+            if tree {
                 print!("{}", sfc::pretty::sequence(t));
             }
+            if let Some(i) = extra.resources {
+                let uses = resources::count(t, i);
+                crate::sfc_cmd::print_resources(&name, &uses, i.name(), format);
+                d.extend(resources::over_limit(&uses, i));
+            }
         }
-        (report.diagnostics, None)
+        (d, None)
+    };
+    let more = match &extra.map {
+        Some(map) => generic::unmapped(more, &text, map, extra.allow_unmapped && !lower),
+        None => more,
     };
     diagnostics.extend(more);
     let errors = diagnostics.iter().filter(|d| d.is_error()).count();

@@ -8,9 +8,12 @@
 pub mod ast;
 pub mod check;
 pub mod errors;
+pub mod generic;
 pub mod lower;
 pub mod parser;
 pub mod pretty;
+mod refs;
+pub mod resources;
 mod safety;
 mod shift;
 
@@ -57,4 +60,13 @@ pub fn compile_sequence(
             (d, None)
         }
     }
+}
+
+/// Every step name of the sequence (nested charts included), upper case.
+pub(crate) fn steps_of(seq: &ast::Sequence) -> std::collections::HashSet<String> {
+    let charts = std::iter::once(&seq.chart).chain(seq.actions.iter().filter_map(|a| match &a.body {
+        ast::ActionBody::Chart(c) => Some(c),
+        ast::ActionBody::St(_) => None,
+    }));
+    charts.flat_map(|c| &c.steps).map(|s| s.name.text.to_ascii_uppercase()).collect()
 }
