@@ -72,11 +72,8 @@ pub fn run(o: &Options) -> u8 {
         },
         None => None,
     };
-    let extra = crate::sequence_src::Extra {
-        map: bound.as_ref().map(|b| b.file.clone()),
-        allow_unmapped: o.allow_unmapped,
-        resources: o.resources,
-    };
+    let extra =
+        crate::sequence_src::Extra { map: bound.as_ref(), allow_unmapped: o.allow_unmapped, resources: o.resources };
     let input = if o.transition { Input::Transition } else { Input::Actions };
     for path in &o.files {
         if crate::sequence_src::is_sequence(path) {

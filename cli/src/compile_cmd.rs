@@ -54,7 +54,7 @@ fn compile_mapped(files: &[PathBuf], db: Option<&Database>, map: &Path, format: 
         return Err(Failed(1));
     }
     let ctx = Context { db: &bound.db, resolve_blocks, steps: None };
-    let extra = crate::sequence_src::Extra { map: Some(bound.file.clone()), ..Default::default() };
+    let extra = crate::sequence_src::Extra { map: Some(&bound), ..Default::default() };
     let c = crate::sequence_src::check_with(file, ctx, &extra, (true, false), format).map_err(|()| Failed(2))?;
     c.object.ok_or(Failed(1))
 }

@@ -4,7 +4,7 @@
 use crate::check_cmd::io_error;
 use linc_compiler::check::Context;
 use linc_compiler::render::{self, Format, SourceFiles};
-use linc_compiler::sfc::{generic, resources, resources::Instrument};
+use linc_compiler::sfc::{resources, resources::Instrument};
 use linc_compiler::{sfc, Diagnostic, Span};
 use linc_runtime::ObjectFile;
 use std::path::Path;
@@ -23,10 +23,10 @@ pub struct Checked {
 
 /// What a sequence is checked with beyond its database.
 #[derive(Default)]
-pub struct Extra {
-    /// The map file's name when `ctx.db` holds a map's aliases: unknown
-    /// names are then generic names the map lacks (E0250).
-    pub map: Option<String>,
+pub struct Extra<'a> {
+    /// The map when `ctx.db` holds its aliases: unknown names are then
+    /// generic names the map lacks (E0250).
+    pub map: Option<&'a crate::sfc_cmd::Bound>,
     /// Unmapped generic names are warnings (W0250).
     pub allow_unmapped: bool,
     /// Print the resources used against this instrument's limits.
@@ -58,9 +58,15 @@ pub fn check_with(
     }
     let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("sequence");
     let (more, object) = if lower && invalid.is_empty() {
-        sfc::compile_sequence(&text, stem, &name, ctx)
+        match extra.map {
+            Some(b) => sfc::compile_generic(&text, (stem, &name), ctx, &b.file),
+            None => sfc::compile_sequence(&text, stem, &name, ctx),
+        }
     } else {
-        let report = sfc::check_sequence(&text, ctx);
+        let report = match extra.map {
+            Some(b) => sfc::check_generic(&text, ctx, &b.file, extra.allow_unmapped),
+            None => sfc::check_sequence(&text, ctx),
+        };
         let mut d = report.diagnostics;
         if let Some(t) = &report.tree {
             if tree {
@@ -73,10 +79,6 @@ pub fn check_with(
             }
         }
         (d, None)
-    };
-    let more = match &extra.map {
-        Some(map) => generic::unmapped(more, &text, map, extra.allow_unmapped && !lower),
-        None => more,
     };
     diagnostics.extend(more);
     let errors = diagnostics.iter().filter(|d| d.is_error()).count();

@@ -51,6 +51,7 @@ fn parse(path: &Path, format: Format) -> Result<(String, sfc::ast::Sequence), u8
         2u8
     })?;
     let (seq, diagnostics) = sfc::parser::parse(&text);
+    let diagnostics = generic::allow_long_names(diagnostics, &text);
     let errors: Vec<&Diagnostic> = diagnostics.iter().filter(|d| d.is_error()).collect();
     if errors.is_empty() {
         return Ok((text, seq));

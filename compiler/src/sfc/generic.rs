@@ -159,24 +159,66 @@ pub fn bind(map: &Map, db: &Database, resolve_blocks: bool) -> (Database, Vec<Ma
     (bound, errors)
 }
 
-/// With a map, an unknown name (E0100) is a generic name the map lacks:
-/// E0250, or W0250 when unmapped names are allowed for now.
-pub fn unmapped(diagnostics: Vec<Diagnostic>, src: &str, map_file: &str, allow: bool) -> Vec<Diagnostic> {
+/// A sequence's diagnostics as seen with a map: an unknown name (E0100)
+/// is a generic name the map lacks, E0250, or W0250 when unmapped names are
+/// allowed for now.
+pub fn with_map(diagnostics: Vec<Diagnostic>, src: &str, map_file: &str, allow: bool) -> Vec<Diagnostic> {
     diagnostics
         .into_iter()
         .map(|d| {
             if d.code != "E0100" {
                 return d;
             }
-            let name = src.get(d.span.start..d.span.end).unwrap_or("?");
-            let message = format!("can't find `{name}` in the database or in the map `{map_file}`");
-            let made = if allow { Diagnostic::warning("W0250", message, d.span) } else {
-                Diagnostic::error("E0250", message, d.span)
-            };
-            let made = made.label("a generic name with no target").help(format!(
-                "add it to `{map_file}`, e.g. \"{name}\": \"BLOCK.FIELD\" (or pass --allow-unmapped while the map is incomplete)"
-            ));
-            made
+            let name = src.get(d.span.start..d.span.end).unwrap_or("?").to_string();
+            unmapped(&d, &name, map_file, allow)
+        })
+        .collect()
+}
+
+/// A generic name may have 16 characters where an ST name has 8 (E0005,
+/// which leaves the reference unresolved): for the first name of a
+/// reference whose only syntax error that is, the error goes and the
+/// reference is resolved (through the map, or it is E0250).
+pub fn lift_long_names(seq: &mut Sequence, diagnostics: Vec<Diagnostic>) -> Vec<Diagnostic> {
+    let mut lifted = std::collections::HashSet::new();
+    super::refs::for_each_mut(seq, &mut |v| {
+        let first = &v.segs[0].name;
+        let long = first.text.chars().count();
+        if !v.malformed || long <= 8 || long > MAX_GENERIC {
+            return;
+        }
+        let inside = |d: &&Diagnostic| d.is_error() && d.span.start >= v.span.start && d.span.end <= v.span.end;
+        let only = diagnostics.iter().filter(inside).all(|d| d.code == "E0005" && d.span == first.span);
+        if only {
+            v.malformed = false;
+            lifted.insert((first.span.start, first.span.end));
+        }
+    });
+    diagnostics.into_iter().filter(|d| !(d.code == "E0005" && lifted.contains(&(d.span.start, d.span.end)))).collect()
+}
+
+/// E0250 or W0250 for an unknown name, keeping a "did you mean" of E0100.
+fn unmapped(d: &Diagnostic, name: &str, map_file: &str, allow: bool) -> Diagnostic {
+    let message = format!("can't find `{name}` in the database or in the map `{map_file}`");
+    let made =
+        if allow { Diagnostic::warning("W0250", message, d.span) } else { Diagnostic::error("E0250", message, d.span) };
+    let mut made = made.label("a generic name with no target");
+    for h in d.help.iter().filter(|h| h.starts_with("did you mean")) {
+        made = made.help(h.clone());
+    }
+    made.help(format!(
+        "add it to `{map_file}`, e.g. \"{name}\": \"BLOCK.FIELD\" (or check with --allow-unmapped while the map is incomplete)"
+    ))
+}
+
+/// Drops E0005 (a name longer than 8 characters) for names of at most 16:
+/// in a text being rewritten, such a name may be a generic name.
+pub fn allow_long_names(diagnostics: Vec<Diagnostic>, src: &str) -> Vec<Diagnostic> {
+    diagnostics
+        .into_iter()
+        .filter(|d| {
+            let len = src.get(d.span.start..d.span.end).map_or(usize::MAX, |n| n.chars().count());
+            !(d.code == "E0005" && len <= MAX_GENERIC)
         })
         .collect()
 }

@@ -25,7 +25,12 @@ use crate::Report;
 /// not parse are left out, already reported); diagnostics come in source
 /// order, each once.
 pub fn check_sequence(src: &str, ctx: Context) -> Report<ast::Sequence, ()> {
-    let (seq, mut diagnostics) = parser::parse(src);
+    let (seq, diagnostics) = parser::parse(src);
+    check_parsed(seq, diagnostics, ctx)
+}
+
+/// Checks a parsed sequence; `diagnostics` are the parser's.
+fn check_parsed(seq: ast::Sequence, mut diagnostics: Vec<Diagnostic>, ctx: Context) -> Report<ast::Sequence, ()> {
     diagnostics.extend(check::check(&seq, ctx));
     let diagnostics = ordered(diagnostics);
     let ok = !diagnostics.iter().any(Diagnostic::is_error);
@@ -48,7 +53,16 @@ pub fn compile_sequence(
     file: &str,
     ctx: Context,
 ) -> (Vec<Diagnostic>, Option<linc_runtime::ObjectFile>) {
-    let report = check_sequence(src, ctx);
+    lower_checked(check_sequence(src, ctx), src, (name, file), ctx)
+}
+
+/// Lowers a checked sequence when it is clean.
+fn lower_checked(
+    report: Report<ast::Sequence, ()>,
+    src: &str,
+    (name, file): (&str, &str),
+    ctx: Context,
+) -> (Vec<Diagnostic>, Option<linc_runtime::ObjectFile>) {
     let (Some(tree), Some(())) = (&report.tree, report.program) else {
         return (report.diagnostics, None);
     };
@@ -69,4 +83,28 @@ pub(crate) fn steps_of(seq: &ast::Sequence) -> std::collections::HashSet<String>
         ast::ActionBody::St(_) => None,
     }));
     charts.flat_map(|c| &c.steps).map(|s| s.name.text.to_ascii_uppercase()).collect()
+}
+
+/// [`check_sequence`] for a generic sequence: the map's entries are aliases
+/// in `ctx.db` (see [`generic::bind`]); generic names may have 16
+/// characters, and a name the map lacks is E0250 (W0250 when `allow`);
+/// `map_file` names the map in that message.
+pub fn check_generic(src: &str, ctx: Context, map_file: &str, allow: bool) -> Report<ast::Sequence, ()> {
+    let (mut seq, diagnostics) = parser::parse(src);
+    let diagnostics = generic::lift_long_names(&mut seq, diagnostics);
+    let mut report = check_parsed(seq, diagnostics, ctx);
+    report.diagnostics = generic::with_map(report.diagnostics, src, map_file, allow);
+    let ok = !report.diagnostics.iter().any(Diagnostic::is_error);
+    report.program = ok.then_some(());
+    report
+}
+
+/// [`compile_sequence`] for a generic sequence (every name must be mapped).
+pub fn compile_generic(
+    src: &str,
+    (name, file): (&str, &str),
+    ctx: Context,
+    map_file: &str,
+) -> (Vec<Diagnostic>, Option<linc_runtime::ObjectFile>) {
+    lower_checked(check_generic(src, ctx, map_file, false), src, (name, file), ctx)
 }

@@ -90,3 +90,62 @@ fn var<'a>(v: &'a Var, out: &mut Vec<&'a Var>) {
         expr(o, out);
     }
 }
+
+/// Calls `f` on every reference, mutably (to clear `malformed` of one whose
+/// only fault was a generic name's length). References in offsets come
+/// after the reference holding them.
+pub fn for_each_mut(seq: &mut Sequence, f: &mut dyn FnMut(&mut Var)) {
+    let mut exprs: Vec<&mut Expr> = Vec::new();
+    let mut todo: Vec<&mut Stmt> = Vec::new();
+    for a in &mut seq.actions {
+        match &mut a.body {
+            ActionBody::St(st) => todo.extend(st.body.iter_mut()),
+            ActionBody::Chart(c) => exprs.extend(c.transitions.iter_mut().filter_map(|t| t.cond.as_mut())),
+        }
+    }
+    exprs.extend(seq.chart.transitions.iter_mut().filter_map(|t| t.cond.as_mut()));
+    while let Some(s) = todo.pop() {
+        match s {
+            Stmt::Assign { target, value, .. } => {
+                var_mut(target, f, &mut exprs);
+                exprs.push(value);
+            }
+            Stmt::If { arms, otherwise, .. } => {
+                for (c, b) in arms {
+                    exprs.push(c);
+                    todo.extend(b.iter_mut());
+                }
+                todo.extend(otherwise.iter_mut().flatten());
+            }
+            Stmt::For { var: v, from, to, by, body, .. } => {
+                var_mut(v, f, &mut exprs);
+                exprs.push(from);
+                exprs.push(to);
+                exprs.extend(by.as_deref_mut());
+                todo.extend(body.iter_mut());
+            }
+            Stmt::While { cond, body, .. } | Stmt::Repeat { until: cond, body, .. } => {
+                exprs.push(cond);
+                todo.extend(body.iter_mut());
+            }
+            Stmt::Exit { .. } | Stmt::Error { .. } => {}
+        }
+    }
+    while let Some(e) = exprs.pop() {
+        match &mut e.kind {
+            ExprKind::Var(v) => var_mut(v, f, &mut exprs),
+            ExprKind::Unary(_, a) => exprs.push(a),
+            ExprKind::Binary(_, a, b) => {
+                exprs.push(a);
+                exprs.push(b);
+            }
+            ExprKind::Call { args, .. } => exprs.extend(args.iter_mut()),
+            _ => {}
+        }
+    }
+}
+
+fn var_mut<'a>(v: &'a mut Var, f: &mut dyn FnMut(&mut Var), exprs: &mut Vec<&'a mut Expr>) {
+    f(v);
+    exprs.extend(v.segs.iter_mut().filter_map(|s| s.offset.as_deref_mut()));
+}
