@@ -207,3 +207,69 @@ fn too_many_steps_warn_w0251() {
     let o = linc(&["check", "--resources", "--instrument", "large", p, "--message-format", "short"]);
     assert_eq!(stdout(&o).matches("W0251").count(), 0, "{}", stdout(&o));
 }
+
+#[test]
+fn specialise_refuses_to_overwrite_its_input() {
+    let dir = temp_dir("generic-overwrite");
+    let seq = dir.join("g.sfc");
+    fs::copy(concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/sequences/generic.sfc"), &seq).unwrap();
+    let before = fs::read(&seq).unwrap();
+    let s = seq.to_str().unwrap();
+    let o = linc(&["sfc", "specialise", s, "--map", MAP1, "-o", s]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("E0902"), "{}", stderr(&o));
+    assert_eq!(fs::read(&seq).unwrap(), before);
+}
+
+#[test]
+fn rewriting_with_a_bad_map_or_a_broken_sequence_writes_nothing() {
+    let dir = temp_dir("generic-bad-rewrite");
+    let out = dir.join("out.sfc");
+    let map = dir.join("bad.json");
+    fs::write(&map, "{ \"Reactor\": 1 }").unwrap();
+    let o = linc(&["sfc", "specialise", SEQ, "--map", map.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stdout(&o).contains("error[E0251]"), "{}", stdout(&o));
+    assert!(!out.exists());
+    let broken = dir.join("broken.sfc");
+    fs::write(&broken, "INITIAL_STEP Idle: Go(N); END_STEP\nACTION Go\n    Reactor.Heater := ;\nEND_ACTION\n").unwrap();
+    let o = linc(&["sfc", "generalise", broken.to_str().unwrap(), "--map", MAP1, "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stdout(&o).contains("error[E0"), "{}", stdout(&o));
+    assert!(!out.exists());
+}
+
+#[test]
+fn long_generic_names_are_accepted_with_a_map() {
+    let dir = temp_dir("generic-long");
+    let seq = dir.join("long.sfc");
+    let map = dir.join("long.json");
+    fs::write(
+        &seq,
+        "INITIAL_STEP Idle: Go(N); END_STEP\nACTION Go\n    (* keep me *) WaterLevelLoFlag := ReactorHeaterOn;\nEND_ACTION\n",
+    )
+    .unwrap();
+    fs::write(&map, "{ \"WaterLevelLoFlag\": \"R1.Alarm\", \"ReactorHeaterOn\": \"R2.Heater\" }").unwrap();
+    let (s, m) = (seq.to_str().unwrap(), map.to_str().unwrap());
+    let o = linc(&["check", s, "--map", m, "--db", DB]);
+    assert_eq!((o.status.code(), stdout(&o)), (Some(0), String::new()));
+    // Without the map the names are too long for ST.
+    let o = linc(&["check", s, "--db", DB, "--message-format", "short"]);
+    assert_eq!(stdout(&o).matches("error[E0005]").count(), 2, "{}", stdout(&o));
+    let out = dir.join("specific.sfc");
+    let o = linc(&["sfc", "specialise", s, "--map", m, "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+    assert_eq!(
+        fs::read_to_string(&out).unwrap(),
+        "INITIAL_STEP Idle: Go(N); END_STEP\nACTION Go\n    (* keep me *) R1.Alarm := R2.Heater;\nEND_ACTION\n"
+    );
+    let o = linc(&["sfc", "map-template", s, "--db", DB]);
+    assert_eq!(stdout(&o), "{\n  \"WaterLevelLoFlag\": \"\",\n  \"ReactorHeaterOn\": \"\"\n}\n");
+}
+
+#[test]
+fn allow_unmapped_needs_a_map() {
+    let o = linc(&["check", SEQ, "--allow-unmapped"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--map"), "{}", stderr(&o));
+}
