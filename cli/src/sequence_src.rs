@@ -59,12 +59,12 @@ pub fn check_with(
     let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("sequence");
     let (more, object) = if lower && invalid.is_empty() {
         match extra.map {
-            Some(b) => sfc::compile_generic(&text, (stem, &name), ctx, &b.file),
+            Some(b) => sfc::compile_generic(&text, (stem, &name), ctx, &b.map),
             None => sfc::compile_sequence(&text, stem, &name, ctx),
         }
     } else {
         let report = match extra.map {
-            Some(b) => sfc::check_generic(&text, ctx, &b.file, extra.allow_unmapped),
+            Some(b) => sfc::check_generic(&text, ctx, &b.map, extra.allow_unmapped),
             None => sfc::check_sequence(&text, ctx),
         };
         let mut d = report.diagnostics;

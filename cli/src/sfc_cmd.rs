@@ -14,7 +14,7 @@ use std::path::Path;
 /// file's name for messages, and how many errors the map file had.
 pub struct Bound {
     pub db: Database,
-    pub file: String,
+    pub map: generic::Named,
     pub errors: usize,
 }
 
@@ -30,7 +30,7 @@ pub fn load_map(path: &Path, db: &Database, resolve_blocks: bool, format: Format
     for d in &all {
         print!("{}", render::render(&files, d, format));
     }
-    Ok(Bound { db: bound, file, errors: all.len() })
+    Ok(Bound { db: bound, map: generic::Named { map, file }, errors: all.len() })
 }
 
 fn read_map(path: &Path, format: Format) -> Result<(Map, String, Vec<generic::MapError>), u8> {

@@ -93,6 +93,7 @@ codes! {
     "E0252" => "map target names a block the database does not have",
     "E0253" => "not a valid generic name",
     "E0254" => "map target is not a database name",
+    "E0255" => "step with the name of a generic name",
     "W0250" => "generic name missing from the map (allowed)",
     "W0251" => "sequence uses more than the instrument allows",
     "E0700" => "not a linc object file",

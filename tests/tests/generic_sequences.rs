@@ -2,7 +2,7 @@
 //! guide's database, diagnostics located in the `.sfc` text, and the text
 //! rewrites that keep comments and layout.
 use linc_compiler::check::Context;
-use linc_compiler::sfc::generic::{bind, generalise, generic_names, parse_map, specialise};
+use linc_compiler::sfc::generic::{bind, generalise, generic_names, parse_map, specialise, Named};
 use linc_compiler::sfc::{check_generic, parser};
 use linc_conformance::guide_db;
 
@@ -36,7 +36,8 @@ fn codes(src: &str) -> Vec<(&'static str, String)> {
     assert!(errors.is_empty(), "{errors:?}");
     let (db, errors) = bind(&map, guide_db(), true);
     assert!(errors.is_empty(), "{errors:?}");
-    let report = check_generic(src, Context { db: &db, resolve_blocks: true, steps: None }, "kiln.map.json", false);
+    let named = Named { map, file: "kiln.map.json".into() };
+    let report = check_generic(src, Context { db: &db, resolve_blocks: true, steps: None }, &named, false);
     report.diagnostics.iter().map(|d| (d.code, src[d.span.start..d.span.end].to_string())).collect()
 }
 
@@ -81,4 +82,10 @@ END_ACTION
 ";
     let (seq, _) = parser::parse(src);
     assert_eq!(generic_names(&seq, guide_db()), ["Kiln", "Other"]);
+}
+
+#[test]
+fn a_step_named_like_a_generic_name_is_e0255() {
+    let src = GENERIC.replace("Run", "HeatSP");
+    assert_eq!(codes(&src), [("E0255", "HeatSP".to_string())]);
 }

@@ -45,6 +45,37 @@ impl Map {
     }
 }
 
+/// A map with the name of its file, for messages.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Named {
+    pub map: Map,
+    pub file: String,
+}
+
+/// A step with the name of a map entry: `Fill.T` would resolve through the
+/// map (an alias comes before a step), so the step's variables could not be
+/// read (E0255, at the step).
+pub fn step_collisions(seq: &Sequence, map: &Named) -> Vec<Diagnostic> {
+    let charts = std::iter::once(&seq.chart).chain(seq.actions.iter().filter_map(|a| match &a.body {
+        super::ast::ActionBody::Chart(c) => Some(c),
+        super::ast::ActionBody::St(_) => None,
+    }));
+    charts
+        .flat_map(|c| &c.steps)
+        .filter(|s| map.map.get(&s.name.text).is_some())
+        .map(|s| {
+            let name = &s.name.text;
+            Diagnostic::error(
+                "E0255",
+                format!("step `{name}` has the name of a generic name of `{}`", map.file),
+                s.name.span,
+            )
+            .label("this step")
+            .help(format!("`{name}.X` and `{name}.T` would mean the map's target: rename the step or the map entry"))
+        })
+        .collect()
+}
+
 /// What is wrong with a map file (E0251–E0254, located in the map file).
 #[derive(Clone, Debug, PartialEq)]
 pub enum MapError {

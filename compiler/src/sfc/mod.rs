@@ -88,10 +88,12 @@ pub(crate) fn steps_of(seq: &ast::Sequence) -> std::collections::HashSet<String>
 /// [`check_sequence`] for a generic sequence: the map's entries are aliases
 /// in `ctx.db` (see [`generic::bind`]); generic names may have 16
 /// characters, and a name the map lacks is E0250 (W0250 when `allow`);
-/// `map_file` names the map in that message.
-pub fn check_generic(src: &str, ctx: Context, map_file: &str, allow: bool) -> Report<ast::Sequence, ()> {
+/// a step may not have a generic name of the map (E0255).
+pub fn check_generic(src: &str, ctx: Context, map: &generic::Named, allow: bool) -> Report<ast::Sequence, ()> {
     let (mut seq, diagnostics) = parser::parse(src);
-    let diagnostics = generic::lift_long_names(&mut seq, diagnostics);
+    let mut diagnostics = generic::lift_long_names(&mut seq, diagnostics);
+    diagnostics.extend(generic::step_collisions(&seq, map));
+    let map_file = map.file.as_str();
     let mut report = check_parsed(seq, diagnostics, ctx);
     report.diagnostics = generic::with_map(report.diagnostics, src, map_file, allow);
     let ok = !report.diagnostics.iter().any(Diagnostic::is_error);
@@ -104,7 +106,7 @@ pub fn compile_generic(
     src: &str,
     (name, file): (&str, &str),
     ctx: Context,
-    map_file: &str,
+    map: &generic::Named,
 ) -> (Vec<Diagnostic>, Option<linc_runtime::ObjectFile>) {
-    lower_checked(check_generic(src, ctx, map_file, false), src, (name, file), ctx)
+    lower_checked(check_generic(src, ctx, map, false), src, (name, file), ctx)
 }
