@@ -273,3 +273,14 @@ fn allow_unmapped_needs_a_map() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--map"), "{}", stderr(&o));
 }
+
+#[test]
+fn resources_in_json_are_one_line() {
+    let o = linc(&["check", "--resources", "examples/sequences/batch.sfc", "--message-format", "json"]);
+    assert_eq!(o.status.code(), Some(0));
+    let line = stdout(&o);
+    let v: serde_json::Value = serde_json::from_str(line.trim()).expect("one JSON line");
+    assert_eq!(v["resources"]["instrument"], "small");
+    assert_eq!(v["resources"]["steps"]["used"], 8);
+    assert_eq!(v["resources"]["SFCs"]["limit"], 50);
+}
