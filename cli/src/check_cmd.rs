@@ -3,6 +3,7 @@
 use linc_compiler::check::Context;
 use linc_compiler::render::{self, Format, SourceFiles};
 use linc_compiler::session::{CheckOptions, Input, Session};
+use linc_compiler::sfc::resources::Instrument;
 use linc_compiler::Diagnostic;
 use linc_runtime::Database;
 use std::path::{Path, PathBuf};
@@ -14,6 +15,11 @@ pub struct Options {
     pub tree: bool,
     pub transition: bool,
     pub sequence: bool,
+    /// A map file for generic sequences (`.sfc` files only).
+    pub map: Option<PathBuf>,
+    pub allow_unmapped: bool,
+    /// Print each sequence's resources against this instrument's limits.
+    pub resources: Option<Instrument>,
 }
 
 /// Prints one diagnostic that has no source location (I/O problems).
@@ -55,12 +61,25 @@ pub fn run(o: &Options) -> u8 {
     let any_step: &[String] = &[];
     let steps = (o.sequence || o.transition).then_some(any_step);
     let mut session = Session::new(Context { db: &db, resolve_blocks, steps });
-    let input = if o.transition { Input::Transition } else { Input::Actions };
     let (mut errors, mut warnings, mut status) = (0usize, 0usize, 0u8);
+    let bound = match &o.map {
+        Some(m) => match crate::sfc_cmd::load_map(m, &db, resolve_blocks, o.format) {
+            Ok(b) => {
+                errors += b.errors;
+                Some(b)
+            }
+            Err(status) => return status,
+        },
+        None => None,
+    };
+    let extra =
+        crate::sequence_src::Extra { map: bound.as_ref(), allow_unmapped: o.allow_unmapped, resources: o.resources };
+    let input = if o.transition { Input::Transition } else { Input::Actions };
     for path in &o.files {
         if crate::sequence_src::is_sequence(path) {
-            let ctx = Context { db: &db, resolve_blocks, steps: None };
-            match crate::sequence_src::check(path, ctx, false, o.tree, o.format) {
+            let seq_db = bound.as_ref().map_or(&db, |b| &b.db);
+            let ctx = Context { db: seq_db, resolve_blocks, steps: None };
+            match crate::sequence_src::check_with(path, ctx, &extra, (false, o.tree), o.format) {
                 Ok(c) => {
                     errors += c.errors;
                     warnings += c.warnings;

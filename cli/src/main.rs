@@ -13,6 +13,7 @@ mod report;
 mod run_cmd;
 mod sequence_run;
 mod sequence_src;
+mod sfc_cmd;
 mod strategy_cmd;
 
 use clap::{Parser, Subcommand, ValueEnum};
@@ -61,6 +62,18 @@ enum Command {
         /// Check actions as sequence actions, where step.X and step.T exist.
         #[arg(long)]
         sequence: bool,
+        /// Map file (JSON) turning a generic sequence's names into database names.
+        #[arg(long)]
+        map: Option<PathBuf>,
+        /// With --map: a generic name the map lacks is a warning, not an error.
+        #[arg(long, requires = "map")]
+        allow_unmapped: bool,
+        /// Print the steps, transitions, actions, associations and SFCs each sequence uses.
+        #[arg(long)]
+        resources: bool,
+        /// The instrument whose limits --resources compares against.
+        #[arg(long, value_enum, default_value = "small", requires = "resources")]
+        instrument: InstrumentSize,
     },
     /// Compile action files into one .sto object file.
     Compile {
@@ -72,8 +85,16 @@ enum Command {
         /// Database giving the types of the blocks the actions use.
         #[arg(long)]
         db: Option<PathBuf>,
+        /// Map file (JSON) for a generic sequence: every generic name needs a target.
+        #[arg(long)]
+        map: Option<PathBuf>,
         #[arg(long, value_enum, default_value = "human")]
         message_format: MessageFormat,
+    },
+    /// Generic sequences: specialise, generalise and list generic names (guide §9.1).
+    Sfc {
+        #[command(subcommand)]
+        command: SfcCommand,
     },
     /// Run an action (source or .sto) against a database, once per cycle.
     /// Run a strategy (PLANT.json --for DURATION) or one action (FILE --db DB.json).
@@ -165,6 +186,46 @@ enum Command {
     },
 }
 
+#[derive(Clone, Copy, ValueEnum)]
+enum InstrumentSize {
+    Small,
+    Large,
+}
+
+#[derive(Subcommand)]
+enum SfcCommand {
+    /// Write the specific sequence: generic names replaced by their map targets.
+    Specialise {
+        file: PathBuf,
+        #[arg(long)]
+        map: PathBuf,
+        /// The sequence to write.
+        #[arg(short, long)]
+        out: PathBuf,
+        #[arg(long, value_enum, default_value = "human")]
+        message_format: MessageFormat,
+    },
+    /// Write the generic sequence: database names a map entry targets replaced by its generic name.
+    Generalise {
+        file: PathBuf,
+        #[arg(long)]
+        map: PathBuf,
+        #[arg(short, long)]
+        out: PathBuf,
+        #[arg(long, value_enum, default_value = "human")]
+        message_format: MessageFormat,
+    },
+    /// Print a map (JSON) with every generic name of a sequence and an empty target.
+    MapTemplate {
+        file: PathBuf,
+        /// The database whose blocks and aliases are not generic names.
+        #[arg(long)]
+        db: Option<PathBuf>,
+        #[arg(long, value_enum, default_value = "human")]
+        message_format: MessageFormat,
+    },
+}
+
 // Value parsers: a bad option value is a usage error (exit 2) whose message
 // says what is accepted, before any file is read. Clap prints them as
 // `error: invalid value 'V' for '--OPTION <NAME>': [E0903] ...`.
@@ -217,12 +278,28 @@ fn is_object(path: &std::path::Path) -> bool {
     path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"))
 }
 
+fn sfc(command: SfcCommand) -> u8 {
+    use sfc_cmd::Direction;
+    match command {
+        SfcCommand::Specialise { file, map, out, message_format } => {
+            sfc_cmd::rewrite(Direction::Specialise, &file, &map, &out, format(message_format))
+        }
+        SfcCommand::Generalise { file, map, out, message_format } => {
+            sfc_cmd::rewrite(Direction::Generalise, &file, &map, &out, format(message_format))
+        }
+        SfcCommand::MapTemplate { file, db, message_format } => {
+            sfc_cmd::map_template(&file, db.as_deref(), format(message_format))
+        }
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let status = match cli.command {
-        Command::Compile { files, out, db, message_format } => {
-            compile_cmd::run(&files, &out, db.as_deref(), format(message_format))
+        Command::Compile { files, out, db, map, message_format } => {
+            compile_cmd::run(&files, &out, db.as_deref(), map.as_deref(), format(message_format))
         }
+        Command::Sfc { command } => sfc(command),
         Command::Run {
             file,
             db,
@@ -267,16 +344,31 @@ fn main() -> ExitCode {
             eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed, format(message_format))
         }
         Command::Disasm { file, message_format } => disasm_cmd::run(&file, format(message_format)),
-        Command::Check { files, db, message_format, tree, transition, sequence } => {
-            check_cmd::run(&check_cmd::Options {
-                files,
-                db,
-                format: format(message_format),
-                tree,
-                transition,
-                sequence,
-            })
-        }
+        Command::Check {
+            files,
+            db,
+            message_format,
+            tree,
+            transition,
+            sequence,
+            map,
+            allow_unmapped,
+            resources,
+            instrument,
+        } => check_cmd::run(&check_cmd::Options {
+            files,
+            db,
+            format: format(message_format),
+            tree,
+            transition,
+            sequence,
+            map,
+            allow_unmapped,
+            resources: resources.then_some(match instrument {
+                InstrumentSize::Small => linc_compiler::sfc::resources::Instrument::Small,
+                InstrumentSize::Large => linc_compiler::sfc::resources::Instrument::Large,
+            }),
+        }),
         Command::Explain { code, list } => explain_cmd::run(code.as_deref(), list),
     };
     ExitCode::from(status)

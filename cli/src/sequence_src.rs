@@ -4,6 +4,7 @@
 use crate::check_cmd::io_error;
 use linc_compiler::check::Context;
 use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::sfc::{resources, resources::Instrument};
 use linc_compiler::{sfc, Diagnostic, Span};
 use linc_runtime::ObjectFile;
 use std::path::Path;
@@ -20,9 +21,32 @@ pub struct Checked {
     pub object: Option<ObjectFile>,
 }
 
+/// What a sequence is checked with beyond its database.
+#[derive(Default)]
+pub struct Extra<'a> {
+    /// The map when `ctx.db` holds its aliases: unknown names are then
+    /// generic names the map lacks (E0250).
+    pub map: Option<&'a crate::sfc_cmd::Bound>,
+    /// Unmapped generic names are warnings (W0250).
+    pub allow_unmapped: bool,
+    /// Print the resources used against this instrument's limits.
+    pub resources: Option<Instrument>,
+}
+
 /// Reads, checks and (when `lower`) compiles one sequence; prints its
 /// diagnostics (and its tree when `tree`). `Err` is an I/O failure, reported.
 pub fn check(path: &Path, ctx: Context, lower: bool, tree: bool, format: Format) -> Result<Checked, ()> {
+    check_with(path, ctx, &Extra::default(), (lower, tree), format)
+}
+
+/// [`check`] with a map and resources (`lower`, `tree` as there).
+pub fn check_with(
+    path: &Path,
+    ctx: Context,
+    extra: &Extra,
+    (lower, tree): (bool, bool),
+    format: Format,
+) -> Result<Checked, ()> {
     let bytes = crate::files::read_input(path).map_err(|e| io_error(path, &e, format))?;
     let name = path.display().to_string();
     let (text, invalid) = linc_compiler::files::decode(bytes);
@@ -34,15 +58,27 @@ pub fn check(path: &Path, ctx: Context, lower: bool, tree: bool, format: Format)
     }
     let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("sequence");
     let (more, object) = if lower && invalid.is_empty() {
-        sfc::compile_sequence(&text, stem, &name, ctx)
+        match extra.map {
+            Some(b) => sfc::compile_generic(&text, (stem, &name), ctx, &b.map),
+            None => sfc::compile_sequence(&text, stem, &name, ctx),
+        }
     } else {
-        let report = sfc::check_sequence(&text, ctx);
-        if tree {
-            if let Some(t) = &report.tree {
+        let report = match extra.map {
+            Some(b) => sfc::check_generic(&text, ctx, &b.map, extra.allow_unmapped),
+            None => sfc::check_sequence(&text, ctx),
+        };
+        let mut d = report.diagnostics;
+        if let Some(t) = &report.tree {
+            if tree {
                 print!("{}", sfc::pretty::sequence(t));
             }
+            if let Some(i) = extra.resources {
+                let uses = resources::count(t, i);
+                crate::sfc_cmd::print_resources(&name, &uses, i.name(), format);
+                d.extend(resources::over_limit(&uses, i));
+            }
         }
-        (report.diagnostics, None)
+        (d, None)
     };
     diagnostics.extend(more);
     let errors = diagnostics.iter().filter(|d| d.is_error()).count();

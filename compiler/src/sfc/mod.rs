@@ -8,9 +8,12 @@
 pub mod ast;
 pub mod check;
 pub mod errors;
+pub mod generic;
 pub mod lower;
 pub mod parser;
 pub mod pretty;
+mod refs;
+pub mod resources;
 mod safety;
 mod shift;
 
@@ -22,7 +25,12 @@ use crate::Report;
 /// not parse are left out, already reported); diagnostics come in source
 /// order, each once.
 pub fn check_sequence(src: &str, ctx: Context) -> Report<ast::Sequence, ()> {
-    let (seq, mut diagnostics) = parser::parse(src);
+    let (seq, diagnostics) = parser::parse(src);
+    check_parsed(seq, diagnostics, ctx)
+}
+
+/// Checks a parsed sequence; `diagnostics` are the parser's.
+fn check_parsed(seq: ast::Sequence, mut diagnostics: Vec<Diagnostic>, ctx: Context) -> Report<ast::Sequence, ()> {
     diagnostics.extend(check::check(&seq, ctx));
     let diagnostics = ordered(diagnostics);
     let ok = !diagnostics.iter().any(Diagnostic::is_error);
@@ -45,7 +53,16 @@ pub fn compile_sequence(
     file: &str,
     ctx: Context,
 ) -> (Vec<Diagnostic>, Option<linc_runtime::ObjectFile>) {
-    let report = check_sequence(src, ctx);
+    lower_checked(check_sequence(src, ctx), src, (name, file), ctx)
+}
+
+/// Lowers a checked sequence when it is clean.
+fn lower_checked(
+    report: Report<ast::Sequence, ()>,
+    src: &str,
+    (name, file): (&str, &str),
+    ctx: Context,
+) -> (Vec<Diagnostic>, Option<linc_runtime::ObjectFile>) {
     let (Some(tree), Some(())) = (&report.tree, report.program) else {
         return (report.diagnostics, None);
     };
@@ -57,4 +74,39 @@ pub fn compile_sequence(
             (d, None)
         }
     }
+}
+
+/// Every step name of the sequence (nested charts included), upper case.
+pub(crate) fn steps_of(seq: &ast::Sequence) -> std::collections::HashSet<String> {
+    let charts = std::iter::once(&seq.chart).chain(seq.actions.iter().filter_map(|a| match &a.body {
+        ast::ActionBody::Chart(c) => Some(c),
+        ast::ActionBody::St(_) => None,
+    }));
+    charts.flat_map(|c| &c.steps).map(|s| s.name.text.to_ascii_uppercase()).collect()
+}
+
+/// [`check_sequence`] for a generic sequence: the map's entries are aliases
+/// in `ctx.db` (see [`generic::bind`]); generic names may have 16
+/// characters, and a name the map lacks is E0250 (W0250 when `allow`);
+/// a step may not have a generic name of the map (E0255).
+pub fn check_generic(src: &str, ctx: Context, map: &generic::Named, allow: bool) -> Report<ast::Sequence, ()> {
+    let (mut seq, diagnostics) = parser::parse(src);
+    let mut diagnostics = generic::lift_long_names(&mut seq, diagnostics);
+    diagnostics.extend(generic::step_collisions(&seq, map));
+    let map_file = map.file.as_str();
+    let mut report = check_parsed(seq, diagnostics, ctx);
+    report.diagnostics = generic::with_map(report.diagnostics, src, map_file, allow);
+    let ok = !report.diagnostics.iter().any(Diagnostic::is_error);
+    report.program = ok.then_some(());
+    report
+}
+
+/// [`compile_sequence`] for a generic sequence (every name must be mapped).
+pub fn compile_generic(
+    src: &str,
+    (name, file): (&str, &str),
+    ctx: Context,
+    map: &generic::Named,
+) -> (Vec<Diagnostic>, Option<linc_runtime::ObjectFile>) {
+    lower_checked(check_generic(src, ctx, map, false), src, (name, file), ctx)
 }

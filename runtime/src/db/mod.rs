@@ -9,7 +9,7 @@ mod fields;
 mod json;
 mod period;
 mod schema;
-mod tree;
+pub mod tree;
 
 pub use json::DbError;
 pub use period::{time_constant, MAX_PERIOD, MIN_PERIOD};
