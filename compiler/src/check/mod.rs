@@ -47,6 +47,9 @@ pub struct Checker<'a> {
     suggestions: HashMap<String, Option<String>>,
     /// Whether the checked program is kept (for compiling).
     keep: bool,
+    /// The sequence's step names in upper case, made on first use, so a
+    /// step variable is one hashed look-up however many steps there are.
+    step_index: Option<std::collections::HashSet<String>>,
 }
 
 /// Checks a transition: an expression that must be a truth value (§12.11).
@@ -77,6 +80,7 @@ impl<'a> Checker<'a> {
             action_limits: ActionLimits::default(),
             suggestions: HashMap::new(),
             keep: true,
+            step_index: None,
         }
     }
 

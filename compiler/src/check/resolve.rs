@@ -193,7 +193,8 @@ impl Checker<'_> {
             self.errors.push(CheckError::StepOutsideSequence { span: v.span, name: v.path() });
             return None;
         };
-        if !steps.is_empty() && !steps.iter().any(|s| s.eq_ignore_ascii_case(parts[0].name)) {
+        let index = self.step_index.get_or_insert_with(|| steps.iter().map(|s| s.to_ascii_uppercase()).collect());
+        if !steps.is_empty() && !index.contains(&parts[0].name.to_ascii_uppercase()) {
             self.errors.push(CheckError::UnknownStep { span: parts[0].span, name: parts[0].name.to_string() });
             return None;
         }
