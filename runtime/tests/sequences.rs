@@ -181,6 +181,8 @@ fn a_chart_action_scans_while_it_runs_and_restarts_after() {
         h.conds[0] = i == 1 || i == 5;
     });
     assert_eq!(ran, ["", "Stirring,forward", "Stirring,forward", "Stirring,reverse", "", "Stirring,forward"]);
+    assert_eq!(seq.step("Fwd"), Some((true, 0)), "a chart action's step, found by name");
+    assert_eq!(seq.step("Rev"), Some((false, 0)), "reset with its chart when the action stopped");
 }
 
 fn three_steps() -> Sequence {

@@ -136,6 +136,11 @@ impl ChartState {
         self.pending_start = false;
     }
 
+    /// The state of chart action `a`'s chart while the action runs.
+    pub fn child(&self, a: usize) -> Option<&ChartState> {
+        self.children.get(a).and_then(Option::as_ref)
+    }
+
     /// Whether the chart is at rest (no step active and none to start).
     pub fn is_idle(&self) -> bool {
         !self.pending_start && !self.active.iter().any(|&a| a)

@@ -15,6 +15,16 @@ use engine::{ChartState, Host, Monitor, Scan};
 
 use crate::errors::RuntimeError;
 
+fn find_step(chart: &Chart, state: Option<&ChartState>, name: &str) -> Option<(bool, u64)> {
+    if let Some(s) = chart.step(name) {
+        return Some(state.map_or((false, 0), |st| (st.active[s], st.elapsed[s])));
+    }
+    chart.actions.iter().enumerate().find_map(|(a, action)| match &action.body {
+        chart::Body::Chart(sub) => find_step(sub, state.and_then(|st| st.child(a)), name),
+        chart::Body::Code(_) => None,
+    })
+}
+
 /// SFC_CON's `Status` (§20.6.3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Status {
@@ -102,10 +112,10 @@ impl Sequence {
         result
     }
 
-    /// `.X` and `.T` (µs) of a step of the ROOT chart.
+    /// `.X` and `.T` (µs) of a step, in the ROOT chart or a chart action's
+    /// chart (a chart that is not running has every step inactive at 0).
     pub fn step(&self, name: &str) -> Option<(bool, u64)> {
-        let s = self.chart.step(name)?;
-        Some((self.state.active[s], self.state.elapsed[s]))
+        find_step(&self.chart, Some(&self.state), name)
     }
 
     /// The names of the active steps of the ROOT chart, in order.
