@@ -133,12 +133,15 @@ impl Desugar<'_> {
         })
     }
 
-    /// The statement of a rung that is not a jump (none for a jump whose
-    /// label is wrong: that is reported).
+    /// The statement of a rung that is not a valid jump. A jump whose label
+    /// is wrong (reported, so nothing is lowered) keeps its condition in an
+    /// empty IF, so the ST checker still checks the names in it.
     fn rung(&self, rung: &Rung) -> Option<Stmt> {
         let span = rung.span;
         match &rung.output {
-            Output::Jump { .. } => None,
+            Output::Jump { .. } => {
+                rung.cond.as_ref().map(|c| Stmt::If { arms: vec![(self.cond(c), Vec::new())], otherwise: None, span })
+            }
             Output::Coil { span: s, .. } if self.bad.contains(s) => Some(Stmt::Error { span }),
             Output::Coil { kind, target, .. } => {
                 let ExprKind::Var(v) = &target.kind else { return Some(Stmt::Error { span }) };

@@ -117,8 +117,9 @@ impl Parser<'_> {
 
     /// The span of the character (or end of file) at the cursor.
     fn here(&self) -> Span {
-        let len = self.src[self.pos.min(self.src.len())..].chars().next().map_or(0, char::len_utf8);
-        Span::new(self.pos, self.pos + len)
+        let at = self.pos.min(self.src.len());
+        let len = self.src[at..].chars().next().map_or(0, char::len_utf8);
+        Span::new(at, at + len)
     }
 
     fn error(&mut self, expected: &str) -> Reported {
@@ -168,7 +169,8 @@ impl Parser<'_> {
         while let Some(c) = self.peek() {
             self.pos += 1;
             if c == b'$' {
-                self.pos += 1;
+                // `$` escapes the next character; a `$` at the very end escapes nothing.
+                self.pos = (self.pos + 1).min(self.b.len());
             } else if c == quote {
                 return;
             }
@@ -189,6 +191,10 @@ impl Parser<'_> {
                             break;
                         }
                     }
+                    continue;
+                }
+                b'(' if self.b.get(i + 1) == Some(&b'*') => {
+                    i = i + 2 + self.src[i + 2..].find("*)")? + 2;
                     continue;
                 }
                 _ if c == closer && depth == 0 => return Some(i),
@@ -381,8 +387,10 @@ impl Parser<'_> {
             self.push(d);
             return Err(Reported);
         };
-        self.ws();
-        let negated = self.peek() == Some(b'/');
+        while self.pos < close && self.peek().is_some_and(|c| c.is_ascii_whitespace()) {
+            self.pos += 1;
+        }
+        let negated = self.peek() == Some(b'/') && self.pos < close;
         if negated {
             self.pos += 1;
         }
