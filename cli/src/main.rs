@@ -9,6 +9,7 @@ mod disasm_cmd;
 mod eval_cmd;
 mod explain_cmd;
 mod files;
+mod ladder_cmd;
 mod report;
 mod run_cmd;
 mod sequence_run;
@@ -95,6 +96,11 @@ enum Command {
     Sfc {
         #[command(subcommand)]
         command: SfcCommand,
+    },
+    /// Ladder files (.ld): print the ST a ladder compiles as.
+    Ladder {
+        #[command(subcommand)]
+        command: ladder_cmd::LadderCommand,
     },
     /// Run an action (source or .sto) against a database, once per cycle.
     /// Run a strategy (PLANT.json --for DURATION) or one action (FILE --db DB.json).
@@ -300,6 +306,7 @@ fn main() -> ExitCode {
             compile_cmd::run(&files, &out, db.as_deref(), map.as_deref(), format(message_format))
         }
         Command::Sfc { command } => sfc(command),
+        Command::Ladder { command } => ladder_cmd::run(command),
         Command::Run {
             file,
             db,

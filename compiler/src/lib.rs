@@ -14,6 +14,7 @@ pub mod diagnostic;
 pub mod errors;
 pub mod files;
 pub mod hir;
+pub mod ladder;
 pub mod lexer;
 pub mod lower;
 pub mod parse_support;
@@ -86,4 +87,18 @@ fn expression(src: &str, ctx: Context, input: Input) -> Report<ast::Expr, hir::E
 /// for its ST, whatever `ctx.steps` says.
 pub fn check_sequence(src: &str, ctx: Context) -> Report<sfc::ast::Sequence, ()> {
     sfc::check_sequence(src, ctx)
+}
+
+/// Checks a ladder file (`.ld`, ADR 0009) as a one-file session: its rungs
+/// are desugared into ST and checked as ST actions. `stem` names its only
+/// action when it has no `ACTION` header. The tree is the desugared ST.
+pub fn check_ladder(src: &str, stem: &str, ctx: Context) -> Report<ast::SourceFile, hir::Program> {
+    let mut s = Session::keeping(ctx);
+    let id = s.add(format!("{stem}.ld"), src.as_bytes().to_vec());
+    let c = s.check(id, CheckOptions { input: Input::Actions, tree: true });
+    let tree = match c.tree {
+        Some(Tree::Actions(t)) => Some(t),
+        _ => None,
+    };
+    Report { tree, program: s.take_program(id), diagnostics: c.diagnostics }
 }

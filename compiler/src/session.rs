@@ -246,7 +246,16 @@ impl<'a> Session<'a> {
         if let Some(stream) = &mut self.stream {
             stream.begin_file(file.index(), source.name(), Lines::new(source.text()));
         }
+        let mut ladder_errors = Vec::new();
         let (parse_errors, program) = match options.input {
+            Input::Actions if crate::ladder::is_ladder(source.name()) => {
+                let mut names = Names { map: &mut self.actions, file, errors: &mut session_errors };
+                let sink = Sink { keep: self.programs.is_some(), stream: self.stream.as_mut() };
+                let (program, tree, errors) = check_ladder(source, self.ctx, &mut checker, &mut names, sink);
+                checked.tree = tree.filter(|_| options.tree).map(Tree::Actions);
+                ladder_errors = errors;
+                (ParseErrors::default(), Some(program))
+            }
             Input::Actions => {
                 let mut names = Names { map: &mut self.actions, file, errors: &mut session_errors };
                 let keep = self.programs.is_some();
@@ -274,6 +283,10 @@ impl<'a> Session<'a> {
         let (session_errors, n, first) = session_errors.into_parts();
         omitted.add(n, first.map(|e| e.to_diagnostic().span));
         checked.diagnostics = collect(source, parse_errors, &check_errors, &session_errors, omitted, file);
+        if !ladder_errors.is_empty() {
+            checked.diagnostics.extend(ladder_errors.into_iter().map(|d| d.in_file(file)));
+            checked.diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+        }
         if checked.has_errors() {
             self.failed = true;
             checked.expr = None;
@@ -415,6 +428,32 @@ fn check_actions(
     }
     let tree = (tree && ok).then_some(ast::SourceFile { actions: trees });
     (errors, hir::Program { actions }, tree)
+}
+
+/// Desugars a ladder file into ST actions (ADR 0009) and checks them like
+/// the actions of an ST file. Returns the checked program (empty unless
+/// kept), the desugared tree and the ladder front end's own diagnostics.
+fn check_ladder(
+    source: &files::SourceFile,
+    ctx: Context,
+    checker: &mut Checker,
+    names: &mut Names,
+    mut sink: Sink,
+) -> (hir::Program, Option<ast::SourceFile>, Vec<Diagnostic>) {
+    let stem = std::path::Path::new(source.name()).file_stem().and_then(|s| s.to_str()).unwrap_or("action");
+    let d = crate::ladder::desugar(source.text(), stem, ctx);
+    let mut actions = Vec::new();
+    for a in &d.st.actions {
+        names.define(&a.name, a.header.is_none());
+        let h = checker.action(a);
+        if let Some(stream) = sink.stream.as_deref_mut() {
+            stream.action(&h);
+        }
+        if sink.keep {
+            actions.push(h);
+        }
+    }
+    (hir::Program { actions }, Some(d.st), d.diagnostics)
 }
 
 /// Every diagnostic of one file, in source order. Lexer errors at bytes

@@ -15,7 +15,7 @@ pub mod pretty;
 mod refs;
 pub mod resources;
 mod safety;
-mod shift;
+pub(crate) mod shift;
 
 use crate::check::Context;
 use crate::diagnostic::Diagnostic;

@@ -1,0 +1,76 @@
+//! `linc ladder …`: tools for ladder files (`.ld`, docs/ladder.md).
+//!
+//! `to-st` prints the ST a ladder file compiles as (ADR 0009): what runs
+//! is exactly that ST, so it is the way to review what a rung does.
+
+use crate::check_cmd::{io_error, load_db};
+use crate::MessageFormat;
+use clap::Subcommand;
+use linc_compiler::check::Context;
+use linc_compiler::ladder;
+use linc_compiler::render::{self, Format, SourceFiles};
+use linc_runtime::Database;
+use std::path::{Path, PathBuf};
+
+#[derive(Subcommand)]
+pub enum LadderCommand {
+    /// Print the ST a ladder file compiles as (a jump becomes an IF around the rungs it skips).
+    ToSt {
+        file: PathBuf,
+        /// The database that types contacts and coils (without it, names are not checked).
+        #[arg(long)]
+        db: Option<PathBuf>,
+        #[arg(long, value_enum, default_value = "human")]
+        message_format: MessageFormat,
+    },
+}
+
+pub fn run(command: LadderCommand) -> u8 {
+    match command {
+        LadderCommand::ToSt { file, db, message_format } => to_st(&file, db.as_deref(), crate::format(message_format)),
+    }
+}
+
+/// Prints the ST, or the ladder's own errors (exit 1).
+fn to_st(file: &Path, db: Option<&Path>, format: Format) -> u8 {
+    let mut files = SourceFiles::new();
+    let loaded = match load_db(db, &mut files, format) {
+        Ok(d) => d,
+        Err(status) => return status,
+    };
+    let resolve_blocks = loaded.is_some();
+    let db = loaded.unwrap_or_else(Database::builtin);
+    let bytes = match crate::files::read_input(file) {
+        Ok(b) => b,
+        Err(e) => {
+            io_error(file, &e, format);
+            return 2;
+        }
+    };
+    let name = file.display().to_string();
+    let (text, invalid) = linc_compiler::files::decode(bytes);
+    let id = files.add_decoded(name, text.clone(), invalid.clone());
+    if let Some(&(at, byte)) = invalid.first() {
+        let d = linc_compiler::Diagnostic::error(
+            "E0017",
+            format!("byte {byte:#04X} is not UTF-8"),
+            linc_compiler::Span::new(at, at + 1),
+        );
+        print!("{}", render::render(&files, &d.in_file(id), format));
+        return 1;
+    }
+    let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");
+    let ctx = Context { db: &db, resolve_blocks, steps: None };
+    match ladder::to_st(&text, stem, ctx) {
+        Ok(st) => {
+            print!("{st}");
+            0
+        }
+        Err(diagnostics) => {
+            for d in diagnostics {
+                print!("{}", render::render(&files, &d.in_file(id), format));
+            }
+            1
+        }
+    }
+}

@@ -1,0 +1,170 @@
+//! Rungs to ST statements (ADR 0009): the checker and the lowering of ST
+//! then do the rest, so a ladder action means exactly what its ST means.
+//!
+//! Series is `AND`, a parallel branch `OR`, the function boxes their ST
+//! operators; `(x)` is `x := c;`, `(/x)` is `x := NOT (c);`, `(S x)` and
+//! `(R x)` are `IF c THEN x := TRUE/FALSE; END_IF;`, a variable output is
+//! `IF c THEN target := value; END_IF;`. A forward jump wraps the rungs it
+//! skips in `IF NOT (c) THEN … END_IF;`; when two jumps cross, the rungs
+//! between the first label and the furthest reach are written once for
+//! each way in, so each condition is still evaluated once, where its rung is.
+
+use super::ast::{Action, BoxOp, CoilKind, Cond, Output, Rung};
+use crate::ast::{self, BinOp, Expr, ExprKind, Stmt, UnOp};
+use crate::diagnostic::Diagnostic;
+use crate::span::Span;
+use std::collections::HashSet;
+
+/// How deeply jumps may nest, and how many rungs crossing jumps may make
+/// (rungs written again count): a bound on the work for any input.
+const MAX_NESTING: usize = 48;
+const MAX_EMITTED: usize = 100_000;
+
+/// The ST action of a ladder action. `targets` are [`super::check::jumps`]'s;
+/// `bad` are contacts and coils already reported (left out). An error comes
+/// back when the jumps nest or cross too much to be written out.
+pub fn action(a: &Action, targets: &[Option<usize>], bad: &HashSet<Span>) -> (ast::Action, Option<Diagnostic>) {
+    let mut d = Desugar { rungs: &a.rungs, targets, bad, emitted: 0, error: None };
+    let body = d.block(0, a.rungs.len(), 0);
+    let action =
+        ast::Action { name: a.name.clone(), block_type: a.block_type.clone(), body, header: a.header, span: a.span };
+    (action, d.error)
+}
+
+struct Desugar<'r> {
+    rungs: &'r [Rung],
+    targets: &'r [Option<usize>],
+    bad: &'r HashSet<Span>,
+    emitted: usize,
+    error: Option<Diagnostic>,
+}
+
+impl Desugar<'_> {
+    /// The statements that run from rung `from` until rung `stop`.
+    fn block(&mut self, from: usize, stop: usize, depth: usize) -> Vec<Stmt> {
+        let mut out = Vec::new();
+        let mut i = from;
+        while i < stop {
+            let rung = &self.rungs[i];
+            self.emitted += 1;
+            if self.error.is_some() {
+                return out;
+            }
+            if depth > MAX_NESTING || self.emitted > MAX_EMITTED {
+                self.error = Some(
+                    Diagnostic::error("E0312", "jumps nest or cross too deeply", rung.span)
+                        .label("here the jumps around this rung are too many to compile")
+                        .help(format!("at most {MAX_NESTING} jumps may skip one rung; split the action")),
+                );
+                return out;
+            }
+            let Some(t) = self.targets.get(i).copied().flatten() else {
+                out.extend(self.rung(rung));
+                i += 1;
+                continue;
+            };
+            let reach = self.reach(i, t);
+            let cond = self.cond_or_true(rung);
+            let span = rung.span;
+            if reach == t {
+                let skipped = self.block(i + 1, t, depth + 1);
+                let not = Expr { kind: ExprKind::Unary(UnOp::Not, Box::new(cond)), span };
+                out.push(Stmt::If { arms: vec![(not, skipped)], otherwise: None, span });
+            } else {
+                let jumped = self.block(t, reach, depth + 1);
+                let fell = self.block(i + 1, reach, depth + 1);
+                out.push(Stmt::If { arms: vec![(cond, jumped)], otherwise: Some(fell), span });
+            }
+            i = reach;
+        }
+        out
+    }
+
+    /// Where control from the jump at `i` to `t` meets again: the furthest
+    /// target of any jump between them, taken again over the rungs added.
+    fn reach(&self, i: usize, t: usize) -> usize {
+        let (mut r, mut k) = (t, i + 1);
+        while k < r {
+            if let Some(tk) = self.targets.get(k).copied().flatten() {
+                r = r.max(tk);
+            }
+            k += 1;
+        }
+        r
+    }
+
+    fn cond_or_true(&self, rung: &Rung) -> Expr {
+        match &rung.cond {
+            Some(c) => self.cond(c),
+            None => Expr { kind: ExprKind::Bool(true), span: rung.span },
+        }
+    }
+
+    fn cond(&self, c: &Cond) -> Expr {
+        match c {
+            Cond::Contact { span, .. } if self.bad.contains(span) => Expr { kind: ExprKind::Error, span: *span },
+            Cond::Contact { negated: false, expr, .. } => expr.clone(),
+            Cond::Contact { negated: true, expr, span } => {
+                Expr { kind: ExprKind::Unary(UnOp::Not, Box::new(expr.clone())), span: *span }
+            }
+            Cond::Series(v) => self.fold(v, BinOp::And, c.span()),
+            Cond::Parallel(v, span) => self.fold(v, BinOp::Or, *span),
+            Cond::Box { op: BoxOp::Not, args, span } => {
+                let inner = self.fold(args, BinOp::And, *span);
+                Expr { kind: ExprKind::Unary(UnOp::Not, Box::new(inner)), span: *span }
+            }
+            Cond::Box { op, args, span } => {
+                let bin = match op {
+                    BoxOp::Or => BinOp::Or,
+                    BoxOp::Xor => BinOp::Xor,
+                    _ => BinOp::And,
+                };
+                self.fold(args, bin, *span)
+            }
+        }
+    }
+
+    fn fold(&self, v: &[Cond], op: BinOp, span: Span) -> Expr {
+        let mut it = v.iter().map(|c| self.cond(c));
+        let first = it.next().unwrap_or(Expr { kind: ExprKind::Error, span });
+        it.fold(first, |a, b| {
+            let span = a.span.to(b.span);
+            Expr { kind: ExprKind::Binary(op, Box::new(a), Box::new(b)), span }
+        })
+    }
+
+    /// The statement of a rung that is not a valid jump. A jump whose label
+    /// is wrong (reported, so nothing is lowered) keeps its condition in an
+    /// empty IF, so the ST checker still checks the names in it.
+    fn rung(&self, rung: &Rung) -> Option<Stmt> {
+        let span = rung.span;
+        match &rung.output {
+            Output::Jump { .. } => {
+                rung.cond.as_ref().map(|c| Stmt::If { arms: vec![(self.cond(c), Vec::new())], otherwise: None, span })
+            }
+            Output::Coil { span: s, .. } if self.bad.contains(s) => Some(Stmt::Error { span }),
+            Output::Coil { kind, target, .. } => {
+                let ExprKind::Var(v) = &target.kind else { return Some(Stmt::Error { span }) };
+                let assign = |value: Expr| Stmt::Assign { target: v.clone(), value: Box::new(value), span };
+                let cond = self.cond_or_true(rung);
+                Some(match kind {
+                    CoilKind::Normal => assign(cond),
+                    CoilKind::Negated => assign(Expr { kind: ExprKind::Unary(UnOp::Not, Box::new(cond)), span }),
+                    CoilKind::Set | CoilKind::Reset => {
+                        let value = Expr { kind: ExprKind::Bool(*kind == CoilKind::Set), span: target.span };
+                        self.when(rung, assign(value))
+                    }
+                })
+            }
+            Output::Assign(s) => Some(self.when(rung, s.clone())),
+        }
+    }
+
+    /// `s` when the rung has no condition, else `IF cond THEN s; END_IF;`.
+    fn when(&self, rung: &Rung, s: Stmt) -> Stmt {
+        match &rung.cond {
+            None => s,
+            Some(c) => Stmt::If { arms: vec![(self.cond(c), vec![s])], otherwise: None, span: rung.span },
+        }
+    }
+}

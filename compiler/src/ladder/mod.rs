@@ -1,0 +1,64 @@
+//! The front end of ladder diagrams as text (`.ld` files, issue 9, guide
+//! chapter 11 and §20.8).
+//!
+//! [`parser`] reads rungs by hand and hands the ST inside them (contacts,
+//! coil targets, variable outputs) to the ST parser; [`check`] checks labels,
+//! jumps, contacts and coils; [`desugar`] turns each rung into ST
+//! statements, which the ST checker and lowering then compile (ADR 0009):
+//! types, names and most errors of a ladder action are those of its ST.
+
+pub mod ast;
+pub mod check;
+pub mod desugar;
+pub mod parser;
+pub mod pretty {
+    pub mod to_st;
+}
+
+use crate::check::Context;
+use crate::diagnostic::Diagnostic;
+
+/// Whether a file name is a ladder source (`.ld`, any case).
+pub fn is_ladder(name: &str) -> bool {
+    std::path::Path::new(name).extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("ld"))
+}
+
+/// What the ladder front end makes of a file.
+#[derive(Debug)]
+pub struct Desugared {
+    /// The rungs as read.
+    pub ladder: ast::File,
+    /// The same actions as ST, for the ST checker.
+    pub st: crate::ast::SourceFile,
+    /// The ladder front end's diagnostics (the ST checker's come later), in
+    /// source order.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Parses a ladder file, checks its labels, jumps, contacts and coils, and
+/// desugars it into ST. `stem` names the action of a file without headers.
+pub fn desugar(src: &str, stem: &str, ctx: Context) -> Desugared {
+    let (ladder, mut diagnostics) = parser::parse(src, stem);
+    let mut actions = Vec::with_capacity(ladder.actions.len());
+    for a in &ladder.actions {
+        let (targets, jump_errors) = check::jumps(&a.rungs);
+        let (type_errors, bad) = check::types(a, ctx);
+        diagnostics.extend(jump_errors);
+        diagnostics.extend(type_errors);
+        let (st, error) = desugar::action(a, &targets, &bad);
+        diagnostics.extend(error);
+        actions.push(st);
+    }
+    diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+    Desugared { ladder, st: crate::ast::SourceFile { actions }, diagnostics }
+}
+
+/// The equivalent ST of a ladder file, as text (`linc ladder to-st`), or
+/// the diagnostics when it has errors of its own.
+pub fn to_st(src: &str, stem: &str, ctx: Context) -> Result<String, Vec<Diagnostic>> {
+    let d = desugar(src, stem, ctx);
+    if d.diagnostics.iter().any(Diagnostic::is_error) {
+        return Err(d.diagnostics);
+    }
+    Ok(pretty::to_st::file(&d.st))
+}
