@@ -4,11 +4,18 @@
 use crate::ast::{Action, BinOp, Expr, ExprKind, SourceFile, Stmt, UnOp, Var};
 use std::fmt::Write;
 
-/// The actions as ST, each with its `ACTION` header.
+/// The actions as ST: each with its `ACTION` header, or, for a file
+/// without headers, its statements alone (the ST file then has the ladder
+/// file's stem, and so the same action name).
 pub fn file(f: &SourceFile) -> String {
     let mut out = String::new();
-    for a in &f.actions {
-        action(&mut out, a);
+    match f.actions.as_slice() {
+        [a] if a.header.is_none() => stmts(&mut out, &a.body, 0),
+        all => {
+            for a in all {
+                action(&mut out, a);
+            }
+        }
     }
     out
 }
