@@ -156,6 +156,7 @@ invalid!(
     ["E0300"]
 );
 invalid!(ld_missing_arrow, "a rung needs ->", "[Dig_1a.In] (Dig_1b.Out);\n[Dig_2a.In] -> (Dig_2c.Out);\n", ["E0300"]);
+invalid!(ld_missing_semicolon, "every rung ends with ;", "[Dig_1a.In] -> (Dig_1b.Out)\n", ["E0300"]);
 invalid!(
     ld_variable_output_type,
     "§11.2.7 variable outputs are ST assignments",

@@ -303,9 +303,14 @@ impl Parser<'_> {
         self.pos += 2;
         self.ws();
         let output = self.output()?;
+        let end = self.pos;
         self.ws();
         if self.peek() != Some(b';') {
-            return Err(self.error("`;` after the rung's output"));
+            let d = Diagnostic::error("E0300", "expected `;` after the rung's output", Span::new(end, end))
+                .label("`;` expected here")
+                .help("every rung ends with `;`, the last one too");
+            self.push(d);
+            return Err(Reported);
         }
         self.pos += 1;
         Ok(Rung { label, cond, output, span: Span::new(start, self.pos) })
