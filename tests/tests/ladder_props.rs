@@ -254,6 +254,15 @@ fn deep_branches_and_crossing_jumps_are_bounded() {
     let deep = format!("{}[Dig_1a.In]{} -> (Dig_1b.Out);\n", "(".repeat(100_000), ")".repeat(100_000));
     let rep = linc_compiler::check_ladder(&deep, "case", ctx);
     assert_eq!(rep.diagnostics.iter().map(|d| d.code).collect::<Vec<_>>(), ["E0300"]);
+    // A long series is a balanced tree: 100 000 contacts check and compile.
+    let long = format!("{} -> (Dig_1b.Out);\n", "[Dig_1a.In] ".repeat(100_000));
+    let rep = linc_compiler::check_ladder(&long, "case", ctx);
+    assert!(rep.diagnostics.is_empty() && rep.program.is_some(), "{:?}", rep.diagnostics);
+    // Boxes around a contact that is nearly as deep as ST allows: too deep.
+    let inner = format!("{}Dig_1a.In{}", "NOT (".repeat(190), ")".repeat(190));
+    let boxed = format!("{}[{inner}]{} -> (Dig_1b.Out);\n", "NOT(".repeat(30), ")".repeat(30));
+    let rep = linc_compiler::check_ladder(&boxed, "case", ctx);
+    assert_eq!(rep.diagnostics.iter().map(|d| d.code).collect::<Vec<_>>(), ["E0022"]);
     // Each jump crosses the next one's label: written out, rungs would repeat 2^n times.
     let mut src = String::new();
     for i in 0..60 {

@@ -17,7 +17,7 @@ use crate::sfc::shift;
 use crate::span::Span;
 
 /// How deeply branches and boxes may nest (the stack is not unbounded).
-const MAX_DEPTH: usize = 64;
+const MAX_DEPTH: usize = 32;
 
 /// Parses a ladder file; `stem` names its action when it has no headers.
 /// Every diagnostic of reading comes back, in the file's coordinates.

@@ -143,8 +143,11 @@ pub fn expr(e: &Expr) -> String {
         ExprKind::Unary(UnOp::Neg, a) => format!("-{}", wrap(a, 7)),
         ExprKind::Binary(op, a, b) => {
             let me = strength(e);
-            // Left-associative: the right operand needs parentheses at equal strength.
-            format!("{} {} {}", wrap(a, me), op.symbol(), wrap(b, me + 1))
+            // Left-associative: the right operand needs parentheses at equal
+            // strength, unless it is the same associative operator.
+            let same = matches!(&b.kind, ExprKind::Binary(o, ..) if o == op)
+                && matches!(op, BinOp::And | BinOp::Or | BinOp::Xor);
+            format!("{} {} {}", wrap(a, me), op.symbol(), wrap(b, if same { me } else { me + 1 }))
         }
         ExprKind::Call { name, args } => {
             let args: Vec<String> = args.iter().map(expr).collect();
