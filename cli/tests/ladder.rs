@@ -64,9 +64,9 @@ fn to_st_prints_the_equivalent_st() {
     let o = linc(&["ladder", "to-st", LD, "--db", DB]);
     assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
     let text = stdout(&o);
-    assert!(text.starts_with("ACTION interlock\n    Dig_1b.Out := Dig_1a.In;\n"), "{text}");
-    assert!(text.contains("    IF NOT (Dig_5a.In OR NOT Dig_5b.In) THEN\n        IF Dig_6a.In THEN\n"), "{text}");
-    assert!(text.ends_with("    END_IF;\nEND_ACTION\n"), "{text}");
+    assert!(text.starts_with("Dig_1b.Out := Dig_1a.In;\nDig_2c.Out := NOT (Dig_2a.In AND NOT Dig_2b.In);\n"), "{text}");
+    assert!(text.contains("IF NOT (Dig_5a.In OR NOT Dig_5b.In) THEN\n    IF Dig_6a.In THEN\n"), "{text}");
+    assert!(text.ends_with("    Ana_8c.PV := MAX(Ana_8a.PV, 8.5);\nEND_IF;\n"), "{text}");
 }
 
 #[test]
@@ -88,4 +88,23 @@ fn an_ld_action_and_an_st_action_share_one_namespace() {
     let o = linc(&["check", LD, &st, "--db", DB, "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stdout(&o).contains("E0117"), "{}", stdout(&o));
+}
+
+#[test]
+fn the_printed_st_runs_like_the_ladder() {
+    let st = stdout(&linc(&["ladder", "to-st", LD, "--db", DB]));
+    let st_path = temp_file("interlock.st", &st);
+    for set in [["Dig_2a.In=TRUE", "Dig_5b.In=TRUE"], ["Dig_3a.In=TRUE", "Dig_6a.In=TRUE"]] {
+        let mut outs = Vec::new();
+        for file in [LD, st_path.as_str()] {
+            let mut args = vec!["run", file, "--db", DB, "--set", set[0], "--set", set[1]];
+            for f in ["Dig_1b.Out", "Dig_2c.Out", "Dig_3c.Out", "Dig_4c.Out", "RECIPE1.A0", "Ana_7b.PV", "Ana_8c.PV"] {
+                args.extend(["--show", f]);
+            }
+            let o = linc(&args);
+            assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+            outs.push(stdout(&o));
+        }
+        assert_eq!(outs[0], outs[1], "{set:?}");
+    }
 }

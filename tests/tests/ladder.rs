@@ -45,6 +45,7 @@ macro_rules! valid {
             let (codes, snapshot) = case($section, $src);
             insta::assert_snapshot!(stringify!($name), snapshot);
             assert!(codes.is_empty(), "expected no diagnostics, got {codes:?}");
+            runs_as_its_st($src);
         }
     };
 }
@@ -155,6 +156,7 @@ invalid!(
     ["E0300"]
 );
 invalid!(ld_missing_arrow, "a rung needs ->", "[Dig_1a.In] (Dig_1b.Out);\n[Dig_2a.In] -> (Dig_2c.Out);\n", ["E0300"]);
+invalid!(ld_missing_semicolon, "every rung ends with ;", "[Dig_1a.In] -> (Dig_1b.Out)\n", ["E0300"]);
 invalid!(
     ld_variable_output_type,
     "§11.2.7 variable outputs are ST assignments",
@@ -170,14 +172,41 @@ fn compile(src: &str) -> Vec<u8> {
     lower::lower_program(&program, "case.ld", &Lines::new(src)).expect("lowers").to_bytes()
 }
 
+/// The ladder and the ST `linc ladder to-st` prints for it run to the same
+/// database, for 32 settings of the digital inputs (each action in turn).
+fn runs_as_its_st(src: &str) {
+    let ctx = Context { db: db(), resolve_blocks: true, steps: None };
+    let r = linc_compiler::check_ladder(src, "case", ctx);
+    let st = to_st::file(r.tree.as_ref().expect("tree"));
+    let st_r = linc_compiler::check_source(&st, "case", ctx);
+    let st_program = st_r.program.unwrap_or_else(|| panic!("{st}: {:?}", st_r.diagnostics));
+    let st_bytes = lower::lower_program(&st_program, "case.st", &Lines::new(&st)).expect("lowers").to_bytes();
+    let ld_bytes = compile(src);
+    let inputs =
+        ["Dig_1a.In", "Dig_2a.In", "Dig_2b.In", "Dig_3a.In", "Dig_3b.In", "Dig_4a.In", "Dig_5a.In", "Dig_6a.In"];
+    for unit in 0..st_program.actions.len() {
+        for m in 0..32u32 {
+            let bits = m.wrapping_mul(0x9E37_79B9) >> 8;
+            let set: Vec<(&str, bool)> = inputs.iter().enumerate().map(|(i, p)| (*p, bits >> i & 1 == 1)).collect();
+            let (a, b) = (run_unit(&ld_bytes, &set, unit), run_unit(&st_bytes, &set, unit));
+            assert_eq!(a.cells, b.cells, "unit {unit}, inputs {set:?}\nST:\n{st}");
+        }
+    }
+}
+
 /// Runs `bytes` once after setting the BOOL fields `set`; gives the store.
 fn run(bytes: &[u8], set: &[(&str, bool)]) -> Store {
+    run_unit(bytes, set, 0)
+}
+
+/// [`run`] for action `unit` of the object.
+fn run_unit(bytes: &[u8], set: &[(&str, bool)], unit: usize) -> Store {
     let verified = linc_runtime::load(bytes).expect("verifies");
     let mut store = Store::new(db().clone());
     for (path, v) in set {
         *cell(&mut store, path) = Cell::Bool(*v);
     }
-    let linked = verified.link(&store, &[Program { unit: 0, own: None }]).expect("links");
+    let linked = verified.link(&store, &[Program { unit, own: None }]).expect("links");
     let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0));
     let mut act = Activation::new(&linked, 0, 0);
     vm.run(&linked, &mut act, &mut store, None).expect("runs");

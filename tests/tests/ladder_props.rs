@@ -1,10 +1,12 @@
 //! Property tests of ladder (docs/ladder.md): random rungs (contacts,
 //! series, branches, function boxes, the four coils, forward jumps that
 //! nest and cross) compiled and run in the VM give what a direct Boolean
-//! evaluation of the rungs, top to bottom, gives; and no input text makes
+//! evaluation of the rungs, top to bottom, gives, and so does the ST that
+//! `linc ladder to-st` prints for them; and no input text makes
 //! the ladder front end panic or run away.
 
 use linc_compiler::check::Context;
+use linc_compiler::ladder::pretty::to_st;
 use linc_compiler::lower::{self, Lines};
 use linc_runtime::store::{Cell, Store};
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
@@ -161,8 +163,13 @@ fn random_rungs_run_as_their_boolean_evaluation() {
         let rep = linc_compiler::check_ladder(&src, "case", ctx);
         let program = rep.program.unwrap_or_else(|| panic!("{src}: {:?}", rep.diagnostics));
         let bytes = lower::lower_program(&program, "case.ld", &Lines::new(&src)).expect("lowers").to_bytes();
-        for _ in 0..6 {
-            let verified = linc_runtime::load(&bytes).expect("verifies");
+        // The ST that `linc ladder to-st` prints runs the same.
+        let st = to_st::file(rep.tree.as_ref().expect("tree"));
+        let st_rep = linc_compiler::check_source(&st, "case", ctx);
+        let st_program = st_rep.program.unwrap_or_else(|| panic!("{st}: {:?}", st_rep.diagnostics));
+        let st_bytes = lower::lower_program(&st_program, "case.st", &Lines::new(&st)).expect("lowers").to_bytes();
+        for k in 0..12 {
+            let verified = linc_runtime::load(if k % 2 == 0 { &bytes } else { &st_bytes }).expect("verifies");
             let mut state: Vec<bool> = (0..VARS.len()).map(|_| r.below(2) == 1).collect();
             let mut store = Store::new(db.clone());
             let cells: Vec<usize> = VARS
@@ -181,7 +188,7 @@ fn random_rungs_run_as_their_boolean_evaluation() {
             let before = state.clone();
             model(&p, &mut state);
             let got: Vec<bool> = cells.iter().map(|c| store.cells[*c] == Cell::Bool(true)).collect();
-            assert_eq!(got, state, "program:\n{src}inputs {before:?}");
+            assert_eq!(got, state, "program (run {k}):\n{src}as ST:\n{st}inputs {before:?}");
         }
     }
 }
@@ -247,6 +254,15 @@ fn deep_branches_and_crossing_jumps_are_bounded() {
     let deep = format!("{}[Dig_1a.In]{} -> (Dig_1b.Out);\n", "(".repeat(100_000), ")".repeat(100_000));
     let rep = linc_compiler::check_ladder(&deep, "case", ctx);
     assert_eq!(rep.diagnostics.iter().map(|d| d.code).collect::<Vec<_>>(), ["E0300"]);
+    // A long series is a balanced tree: 100 000 contacts check and compile.
+    let long = format!("{} -> (Dig_1b.Out);\n", "[Dig_1a.In] ".repeat(100_000));
+    let rep = linc_compiler::check_ladder(&long, "case", ctx);
+    assert!(rep.diagnostics.is_empty() && rep.program.is_some(), "{:?}", rep.diagnostics);
+    // Boxes around a contact that is nearly as deep as ST allows: too deep.
+    let inner = format!("{}Dig_1a.In{}", "NOT (".repeat(190), ")".repeat(190));
+    let boxed = format!("{}[{inner}]{} -> (Dig_1b.Out);\n", "NOT(".repeat(30), ")".repeat(30));
+    let rep = linc_compiler::check_ladder(&boxed, "case", ctx);
+    assert_eq!(rep.diagnostics.iter().map(|d| d.code).collect::<Vec<_>>(), ["E0022"]);
     // Each jump crosses the next one's label: written out, rungs would repeat 2^n times.
     let mut src = String::new();
     for i in 0..60 {

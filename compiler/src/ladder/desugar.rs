@@ -12,6 +12,7 @@
 use super::ast::{Action, BoxOp, CoilKind, Cond, Output, Rung};
 use crate::ast::{self, BinOp, Expr, ExprKind, Stmt, UnOp};
 use crate::diagnostic::Diagnostic;
+use crate::parse_support::MAX_EXPR_DEPTH;
 use crate::span::Span;
 use std::collections::HashSet;
 
@@ -23,12 +24,12 @@ const MAX_EMITTED: usize = 100_000;
 /// The ST action of a ladder action. `targets` are [`super::check::jumps`]'s;
 /// `bad` are contacts and coils already reported (left out). An error comes
 /// back when the jumps nest or cross too much to be written out.
-pub fn action(a: &Action, targets: &[Option<usize>], bad: &HashSet<Span>) -> (ast::Action, Option<Diagnostic>) {
-    let mut d = Desugar { rungs: &a.rungs, targets, bad, emitted: 0, error: None };
+pub fn action(a: &Action, targets: &[Option<usize>], bad: &HashSet<Span>) -> (ast::Action, Vec<Diagnostic>) {
+    let mut d = Desugar { rungs: &a.rungs, targets, bad, emitted: 0, stopped: false, errors: Vec::new() };
     let body = d.block(0, a.rungs.len(), 0);
     let action =
         ast::Action { name: a.name.clone(), block_type: a.block_type.clone(), body, header: a.header, span: a.span };
-    (action, d.error)
+    (action, d.errors)
 }
 
 struct Desugar<'r> {
@@ -36,7 +37,9 @@ struct Desugar<'r> {
     targets: &'r [Option<usize>],
     bad: &'r HashSet<Span>,
     emitted: usize,
-    error: Option<Diagnostic>,
+    /// E0312 was reported: nothing more is written.
+    stopped: bool,
+    errors: Vec<Diagnostic>,
 }
 
 impl Desugar<'_> {
@@ -47,11 +50,12 @@ impl Desugar<'_> {
         while i < stop {
             let rung = &self.rungs[i];
             self.emitted += 1;
-            if self.error.is_some() {
+            if self.stopped {
                 return out;
             }
             if depth > MAX_NESTING || self.emitted > MAX_EMITTED {
-                self.error = Some(
+                self.stopped = true;
+                self.errors.push(
                     Diagnostic::error("E0312", "jumps nest or cross too deeply", rung.span)
                         .label("here the jumps around this rung are too many to compile")
                         .help(format!("at most {MAX_NESTING} jumps may skip one rung; split the action")),
@@ -93,11 +97,26 @@ impl Desugar<'_> {
         r
     }
 
-    fn cond_or_true(&self, rung: &Rung) -> Expr {
+    fn cond_or_true(&mut self, rung: &Rung) -> Expr {
         match &rung.cond {
-            Some(c) => self.cond(c),
+            Some(c) => self.top(c),
             None => Expr { kind: ExprKind::Bool(true), span: rung.span },
         }
+    }
+
+    /// A rung's whole condition; one that would be deeper than ST allows
+    /// is an error (E0022), so that checking and lowering stay bounded.
+    fn top(&mut self, c: &Cond) -> Expr {
+        let e = self.cond(c);
+        if depth(&e) <= usize::from(MAX_EXPR_DEPTH) {
+            return e;
+        }
+        self.errors.push(
+            Diagnostic::error("E0022", format!("rung condition nested more than {MAX_EXPR_DEPTH} deep"), c.span())
+                .label("too many branches and boxes inside each other")
+                .help("split the rung: write part of the condition to a digital variable on an earlier rung"),
+        );
+        Expr { kind: ExprKind::Error, span: c.span() }
     }
 
     fn cond(&self, c: &Cond) -> Expr {
@@ -124,23 +143,31 @@ impl Desugar<'_> {
         }
     }
 
+    /// `v[0] op v[1] op …` as a balanced tree (the operators are
+    /// associative and operands are still evaluated left to right), so a
+    /// long series is only as deep as its logarithm.
     fn fold(&self, v: &[Cond], op: BinOp, span: Span) -> Expr {
-        let mut it = v.iter().map(|c| self.cond(c));
-        let first = it.next().unwrap_or(Expr { kind: ExprKind::Error, span });
-        it.fold(first, |a, b| {
-            let span = a.span.to(b.span);
-            Expr { kind: ExprKind::Binary(op, Box::new(a), Box::new(b)), span }
-        })
+        match v {
+            [] => Expr { kind: ExprKind::Error, span },
+            [one] => self.cond(one),
+            _ => {
+                let (l, r) = v.split_at(v.len() / 2);
+                let (a, b) = (self.fold(l, op, span), self.fold(r, op, span));
+                let span = a.span.to(b.span);
+                Expr { kind: ExprKind::Binary(op, Box::new(a), Box::new(b)), span }
+            }
+        }
     }
 
     /// The statement of a rung that is not a valid jump. A jump whose label
     /// is wrong (reported, so nothing is lowered) keeps its condition in an
     /// empty IF, so the ST checker still checks the names in it.
-    fn rung(&self, rung: &Rung) -> Option<Stmt> {
+    fn rung(&mut self, rung: &Rung) -> Option<Stmt> {
         let span = rung.span;
         match &rung.output {
             Output::Jump { .. } => {
-                rung.cond.as_ref().map(|c| Stmt::If { arms: vec![(self.cond(c), Vec::new())], otherwise: None, span })
+                let c = rung.cond.as_ref()?;
+                Some(Stmt::If { arms: vec![(self.top(c), Vec::new())], otherwise: None, span })
             }
             Output::Coil { span: s, .. } if self.bad.contains(s) => Some(Stmt::Error { span }),
             Output::Coil { kind, target, .. } => {
@@ -161,10 +188,22 @@ impl Desugar<'_> {
     }
 
     /// `s` when the rung has no condition, else `IF cond THEN s; END_IF;`.
-    fn when(&self, rung: &Rung, s: Stmt) -> Stmt {
+    fn when(&mut self, rung: &Rung, s: Stmt) -> Stmt {
         match &rung.cond {
             None => s,
-            Some(c) => Stmt::If { arms: vec![(self.cond(c), vec![s])], otherwise: None, span: rung.span },
+            Some(c) => Stmt::If { arms: vec![(self.top(c), vec![s])], otherwise: None, span: rung.span },
         }
+    }
+}
+
+/// How deep an expression is (its own recursion is bounded by the parser's
+/// nesting limit and the balanced folds).
+fn depth(e: &Expr) -> usize {
+    1 + match &e.kind {
+        ExprKind::Unary(_, a) => depth(a),
+        ExprKind::Binary(_, a, b) => depth(a).max(depth(b)),
+        ExprKind::Call { args, .. } => args.iter().map(depth).max().unwrap_or(0),
+        ExprKind::Var(v) => v.segs.iter().filter_map(|s| s.offset.as_deref()).map(depth).max().unwrap_or(0),
+        _ => 0,
     }
 }

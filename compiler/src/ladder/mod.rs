@@ -45,8 +45,8 @@ pub fn desugar(src: &str, stem: &str, ctx: Context) -> Desugared {
         let (type_errors, bad) = check::types(a, ctx);
         diagnostics.extend(jump_errors);
         diagnostics.extend(type_errors);
-        let (st, error) = desugar::action(a, &targets, &bad);
-        diagnostics.extend(error);
+        let (st, errors) = desugar::action(a, &targets, &bad);
+        diagnostics.extend(errors);
         actions.push(st);
     }
     diagnostics.sort_by_key(|d| (d.span.start, d.span.end));

@@ -17,7 +17,7 @@ use crate::sfc::shift;
 use crate::span::Span;
 
 /// How deeply branches and boxes may nest (the stack is not unbounded).
-const MAX_DEPTH: usize = 64;
+const MAX_DEPTH: usize = 32;
 
 /// Parses a ladder file; `stem` names its action when it has no headers.
 /// Every diagnostic of reading comes back, in the file's coordinates.
@@ -303,9 +303,14 @@ impl Parser<'_> {
         self.pos += 2;
         self.ws();
         let output = self.output()?;
+        let end = self.pos;
         self.ws();
         if self.peek() != Some(b';') {
-            return Err(self.error("`;` after the rung's output"));
+            let d = Diagnostic::error("E0300", "expected `;` after the rung's output", Span::new(end, end))
+                .label("`;` expected here")
+                .help("every rung ends with `;`, the last one too");
+            self.push(d);
+            return Err(Reported);
         }
         self.pos += 1;
         Ok(Rung { label, cond, output, span: Span::new(start, self.pos) })

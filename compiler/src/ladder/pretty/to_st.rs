@@ -4,11 +4,18 @@
 use crate::ast::{Action, BinOp, Expr, ExprKind, SourceFile, Stmt, UnOp, Var};
 use std::fmt::Write;
 
-/// The actions as ST, each with its `ACTION` header.
+/// The actions as ST: each with its `ACTION` header, or, for a file
+/// without headers, its statements alone (the ST file then has the ladder
+/// file's stem, and so the same action name).
 pub fn file(f: &SourceFile) -> String {
     let mut out = String::new();
-    for a in &f.actions {
-        action(&mut out, a);
+    match f.actions.as_slice() {
+        [a] if a.header.is_none() => stmts(&mut out, &a.body, 0),
+        all => {
+            for a in all {
+                action(&mut out, a);
+            }
+        }
     }
     out
 }
@@ -136,8 +143,11 @@ pub fn expr(e: &Expr) -> String {
         ExprKind::Unary(UnOp::Neg, a) => format!("-{}", wrap(a, 7)),
         ExprKind::Binary(op, a, b) => {
             let me = strength(e);
-            // Left-associative: the right operand needs parentheses at equal strength.
-            format!("{} {} {}", wrap(a, me), op.symbol(), wrap(b, me + 1))
+            // Left-associative: the right operand needs parentheses at equal
+            // strength, unless it is the same associative operator.
+            let same = matches!(&b.kind, ExprKind::Binary(o, ..) if o == op)
+                && matches!(op, BinOp::And | BinOp::Or | BinOp::Xor);
+            format!("{} {} {}", wrap(a, me), op.symbol(), wrap(b, if same { me } else { me + 1 }))
         }
         ExprKind::Call { name, args } => {
             let args: Vec<String> = args.iter().map(expr).collect();
