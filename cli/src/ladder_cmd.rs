@@ -14,6 +14,12 @@ use std::path::{Path, PathBuf};
 
 #[derive(Subcommand)]
 pub enum LadderCommand {
+    /// Draw each rung as a diagram between the rails.
+    Show {
+        file: PathBuf,
+        #[arg(long, value_enum, default_value = "human")]
+        message_format: MessageFormat,
+    },
     /// Print the ST a ladder file compiles as (a jump becomes an IF around the rungs it skips).
     ToSt {
         file: PathBuf,
@@ -27,6 +33,7 @@ pub enum LadderCommand {
 
 pub fn run(command: LadderCommand) -> u8 {
     match command {
+        LadderCommand::Show { file, message_format } => show(&file, crate::format(message_format)),
         LadderCommand::ToSt { file, db, message_format } => to_st(&file, db.as_deref(), crate::format(message_format)),
     }
 }
@@ -67,6 +74,33 @@ fn to_st(file: &Path, db: Option<&Path>, format: Format) -> u8 {
             0
         }
         Err(diagnostics) => {
+            for d in diagnostics {
+                print!("{}", render::render(&files, &d.in_file(id), format));
+            }
+            1
+        }
+    }
+}
+
+/// Prints the diagram, or the file's syntax errors (exit 1).
+fn show(file: &Path, format: Format) -> u8 {
+    let bytes = match crate::files::read_input(file) {
+        Ok(b) => b,
+        Err(e) => {
+            io_error(file, &e, format);
+            return 2;
+        }
+    };
+    let (text, _) = linc_compiler::files::decode(bytes);
+    let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");
+    match ladder::draw(&text, stem) {
+        Ok(d) => {
+            print!("{d}");
+            0
+        }
+        Err(diagnostics) => {
+            let mut files = SourceFiles::new();
+            let id = files.add(file.display().to_string(), text);
             for d in diagnostics {
                 print!("{}", render::render(&files, &d.in_file(id), format));
             }

@@ -12,6 +12,7 @@ pub mod check;
 pub mod desugar;
 pub mod parser;
 pub mod pretty {
+    pub mod draw;
     pub mod to_st;
 }
 
@@ -61,4 +62,13 @@ pub fn to_st(src: &str, stem: &str, ctx: Context) -> Result<String, Vec<Diagnost
         return Err(d.diagnostics);
     }
     Ok(pretty::to_st::file(&d.st))
+}
+
+/// The diagram of a ladder file (`linc ladder show`), or its syntax errors.
+pub fn draw(src: &str, stem: &str) -> Result<String, Vec<Diagnostic>> {
+    let (ladder, diagnostics) = parser::parse(src, stem);
+    if diagnostics.iter().any(Diagnostic::is_error) {
+        return Err(diagnostics);
+    }
+    Ok(pretty::draw::file(src, &ladder))
 }

@@ -1,0 +1,155 @@
+//! `linc ladder show`: each rung drawn as a diagram between two rails, as
+//! the LINtools ladder editor shows it. Contacts `--[ x ]--` / `--[/x]--`,
+//! parallel branches joined by `+` and `|`, function boxes as a labelled
+//! branch group, coils `( x )` `(/x)` `(S x)` `(R x)`, jumps `>> L`,
+//! variable outputs `{ t := v }`. Element text is the source as written.
+
+use crate::ladder::ast::{Action, CoilKind, Cond, File, Output, Rung};
+use crate::span::Span;
+
+/// A drawn element: rows of equal width; the wire runs along row 0.
+struct Cell {
+    rows: Vec<String>,
+    width: usize,
+}
+
+impl Cell {
+    fn one(text: String) -> Cell {
+        let width = text.chars().count();
+        Cell { rows: vec![text], width }
+    }
+
+    /// Row `i`, padded to the cell's width with `fill` (the wire on row 0).
+    fn row(&self, i: usize) -> String {
+        let (text, fill) = match self.rows.get(i) {
+            Some(r) => (r.as_str(), if i == 0 { '-' } else { ' ' }),
+            None => ("", ' '),
+        };
+        let pad = self.width.saturating_sub(text.chars().count());
+        format!("{text}{}", fill.to_string().repeat(pad))
+    }
+}
+
+fn slice(src: &str, span: Span) -> String {
+    let text = src.get(span.start..span.end).unwrap_or("?");
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// Elements side by side, aligned on the wire.
+fn series(cells: Vec<Cell>) -> Cell {
+    let height = cells.iter().map(|c| c.rows.len()).max().unwrap_or(1);
+    let rows = (0..height).map(|i| cells.iter().map(|c| c.row(i)).collect::<String>()).collect();
+    Cell { rows, width: cells.iter().map(|c| c.width).sum() }
+}
+
+/// Branches one under the other, joined left and right.
+fn parallel(cells: Vec<Cell>) -> Cell {
+    let width = cells.iter().map(|c| c.width).max().unwrap_or(0);
+    let last_wire: usize = cells.iter().take(cells.len().saturating_sub(1)).map(|c| c.rows.len()).sum();
+    let mut rows = Vec::new();
+    for c in &cells {
+        for i in 0..c.rows.len() {
+            let at = rows.len();
+            let body = format!("{:-<width$}", c.row(i));
+            let body = if i == 0 { body } else { format!("{:<width$}", c.row(i)) };
+            let joint = if i == 0 {
+                '+'
+            } else if at < last_wire {
+                '|'
+            } else {
+                ' '
+            };
+            let lead = if at == 0 { "--" } else { "  " };
+            let wire = if i == 0 { '-' } else { ' ' };
+            rows.push(format!("{lead}{joint}{wire}{body}{wire}{joint}"));
+        }
+    }
+    Cell { rows, width: width + 6 }
+}
+
+fn cond(src: &str, c: &Cond) -> Cell {
+    match c {
+        Cond::Contact { negated, expr, .. } => {
+            let inner = slice(src, expr.span);
+            Cell::one(if *negated { format!("--[/{inner}]--") } else { format!("--[ {inner} ]--") })
+        }
+        Cond::Series(v) => series(v.iter().map(|x| cond(src, x)).collect()),
+        Cond::Parallel(v, _) if v.len() == 1 => cond(src, &v[0]),
+        Cond::Parallel(v, _) => parallel(v.iter().map(|x| cond(src, x)).collect()),
+        Cond::Box { op, args, .. } => {
+            let inputs = if args.len() == 1 {
+                cond(src, &args[0])
+            } else {
+                parallel(args.iter().map(|x| cond(src, x)).collect())
+            };
+            series(vec![inputs, Cell::one(format!("--[{}]", op.name()))])
+        }
+    }
+}
+
+fn output(src: &str, o: &Output) -> Cell {
+    match o {
+        Output::Coil { kind, target, .. } => {
+            let t = slice(src, target.span);
+            let coil = match kind {
+                CoilKind::Normal => format!("( {t} )"),
+                CoilKind::Negated => format!("(/{t})"),
+                CoilKind::Set => format!("(S {t})"),
+                CoilKind::Reset => format!("(R {t})"),
+            };
+            Cell::one(format!("--{coil}"))
+        }
+        Output::Jump { label, .. } => Cell::one(format!("-->> {}", label.text)),
+        Output::Assign(s) => Cell::one(format!("--{{ {} }}", slice(src, stmt_span(s)).trim_end_matches(';'))),
+    }
+}
+
+fn stmt_span(s: &crate::ast::Stmt) -> Span {
+    match s {
+        crate::ast::Stmt::Assign { span, .. } => *span,
+        _ => Span::default(),
+    }
+}
+
+/// One rung between the rails, its label on the line above.
+fn rung(src: &str, r: &Rung, width: usize, out: &mut String) {
+    if let Some(l) = &r.label {
+        out.push_str(&format!("{}:\n", l.text));
+    }
+    let left = r.cond.as_ref().map_or_else(|| Cell::one("--".into()), |c| cond(src, c));
+    let body = series(vec![left, output(src, &r.output)]);
+    for i in 0..body.rows.len() {
+        let line = if i == 0 { format!("{:-<width$}--", body.row(0)) } else { format!("{:<width$}  ", body.row(i)) };
+        out.push_str(&format!("  |{line}|\n"));
+    }
+    out.push_str("  |\n");
+}
+
+fn action(src: &str, a: &Action, out: &mut String) {
+    out.push_str(&format!("(* {} *)\n", a.name.text));
+    let width = a
+        .rungs
+        .iter()
+        .map(|r| {
+            let left = r.cond.as_ref().map_or(2, |c| cond(src, c).width);
+            left + output(src, &r.output).width
+        })
+        .max()
+        .unwrap_or(0);
+    for r in &a.rungs {
+        rung(src, r, width, out);
+    }
+    out.push_str("  |_End\n");
+}
+
+/// Draws every action of a parsed ladder file.
+pub fn file(src: &str, f: &File) -> String {
+    let mut out = String::new();
+    for (i, a) in f.actions.iter().enumerate() {
+        if i > 0 {
+            out.push('\n');
+        }
+        action(src, a, &mut out);
+    }
+    out
+}
