@@ -17,6 +17,17 @@ pub enum LadderCommand {
     /// Draw each rung as a diagram between the rails.
     Show {
         file: PathBuf,
+        /// Run the file's actions first (--db, --set, --cycles) and draw powered elements with `==` wires.
+        #[arg(long)]
+        values: bool,
+        #[arg(long)]
+        db: Option<PathBuf>,
+        /// Set a field before the run: BLOCK.FIELD=VALUE (repeatable).
+        #[arg(long)]
+        set: Vec<String>,
+        /// Runs of every action before drawing.
+        #[arg(long, default_value_t = 1)]
+        cycles: u32,
         #[arg(long, value_enum, default_value = "human")]
         message_format: MessageFormat,
     },
@@ -33,7 +44,19 @@ pub enum LadderCommand {
 
 pub fn run(command: LadderCommand) -> u8 {
     match command {
-        LadderCommand::Show { file, message_format } => show(&file, crate::format(message_format)),
+        LadderCommand::Show { file, values, db, set, cycles, message_format } => {
+            let format = crate::format(message_format);
+            if !values {
+                return show(&file, &|_| None, format);
+            }
+            let Some(db) = db else {
+                return crate::report::usage("[E0903] --values runs the ladder: give --db DB.json");
+            };
+            match crate::ladder_values::after_run(&file, &db, &set, cycles, format) {
+                Ok(known) => show(&file, &|span| known.get(&(span.start, span.end)).copied(), format),
+                Err(status) => status,
+            }
+        }
         LadderCommand::ToSt { file, db, message_format } => to_st(&file, db.as_deref(), crate::format(message_format)),
     }
 }
@@ -83,7 +106,7 @@ fn to_st(file: &Path, db: Option<&Path>, format: Format) -> u8 {
 }
 
 /// Prints the diagram, or the file's syntax errors (exit 1).
-fn show(file: &Path, format: Format) -> u8 {
+fn show(file: &Path, values: ladder::pretty::draw::Values, format: Format) -> u8 {
     let bytes = match crate::files::read_input(file) {
         Ok(b) => b,
         Err(e) => {
@@ -93,7 +116,7 @@ fn show(file: &Path, format: Format) -> u8 {
     };
     let (text, _) = linc_compiler::files::decode(bytes);
     let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");
-    match ladder::draw(&text, stem) {
+    match ladder::draw(&text, stem, values) {
         Ok(d) => {
             print!("{d}");
             0

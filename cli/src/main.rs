@@ -10,6 +10,7 @@ mod eval_cmd;
 mod explain_cmd;
 mod files;
 mod ladder_cmd;
+mod ladder_values;
 mod report;
 mod run_cmd;
 mod sequence_run;

@@ -286,7 +286,7 @@ pub fn start_time(now: Option<&str>) -> Result<i64, String> {
 /// Picks the block that runs an `ACTION name : TYPE` action. A block named
 /// with `--block` must be of that type: the action's lone field names would
 /// otherwise link to whatever same-named fields another type happens to have.
-fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result<Option<usize>, String> {
+pub(crate) fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result<Option<usize>, String> {
     let t = store.db.template(block_type);
     if let Some(n) = named {
         let b = store.db.block(n).ok_or_else(|| format!("--block: the database has no block `{n}`"))?;

@@ -26,3 +26,26 @@ fn nested_branches_and_boxes_are_drawn() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stdout(&o).contains("error[E03"), "{}", stdout(&o));
 }
+
+#[test]
+fn values_draw_powered_elements_after_a_run() {
+    let o = linc(&[
+        "ladder",
+        "show",
+        "examples/ladder/interlock.ld",
+        "--values",
+        "--db",
+        "examples/ladder/plant.json",
+        "--set",
+        "Dig_1a.In=1",
+        "--set",
+        "Dig_3a.In=1",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", common::stderr(&o));
+    let drawn = stdout(&o);
+    assert!(drawn.contains("  |==[ Dig_1a.In ]====( Dig_1b.Out )--"), "{drawn}");
+    assert!(drawn.contains("  |--[ Dig_2a.In ]--==[/Dig_2b.In]====(/Dig_2c.Out)--"), "{drawn}");
+    insta::assert_snapshot!("ladder_show_values", drawn);
+    let o = linc(&["ladder", "show", "examples/ladder/interlock.ld", "--values"]);
+    assert_eq!(o.status.code(), Some(2), "--values needs --db");
+}

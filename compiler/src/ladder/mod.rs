@@ -64,11 +64,18 @@ pub fn to_st(src: &str, stem: &str, ctx: Context) -> Result<String, Vec<Diagnost
     Ok(pretty::to_st::file(&d.st))
 }
 
-/// The diagram of a ladder file (`linc ladder show`), or its syntax errors.
-pub fn draw(src: &str, stem: &str) -> Result<String, Vec<Diagnostic>> {
+/// The diagram of a ladder file (`linc ladder show`), or its syntax errors;
+/// `values` gives the state of each element (contact operands and coil
+/// targets, by span), for `--values`.
+pub fn draw(src: &str, stem: &str, values: pretty::draw::Values) -> Result<String, Vec<Diagnostic>> {
     let (ladder, diagnostics) = parser::parse(src, stem);
     if diagnostics.iter().any(Diagnostic::is_error) {
         return Err(diagnostics);
     }
-    Ok(pretty::draw::file(src, &ladder))
+    Ok(pretty::draw::file(src, &ladder, values))
+}
+
+/// The spans of the elements `--values` shows, for the caller to evaluate.
+pub fn element_spans(src: &str, stem: &str) -> Vec<crate::span::Span> {
+    pretty::draw::element_spans(&parser::parse(src, stem).0)
 }

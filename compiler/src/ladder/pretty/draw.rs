@@ -7,6 +7,21 @@
 use crate::ladder::ast::{Action, CoilKind, Cond, File, Output, Rung};
 use crate::span::Span;
 
+/// The state of an element after a run (`linc ladder show --values`): the
+/// value of the ST expression at `span` (a contact's operand, a coil's
+/// target), or `None` when it is not known.
+pub type Values<'v> = &'v dyn Fn(Span) -> Option<bool>;
+
+/// How an element is drawn with its state: a powered contact or coil gets
+/// `=` wires (the editor's highlight), an unpowered one keeps `-`, and one
+/// whose state is unknown is drawn plain.
+fn wire(powered: Option<bool>) -> &'static str {
+    match powered {
+        Some(true) => "==",
+        _ => "--",
+    }
+}
+
 /// A drawn element: rows of equal width; the wire runs along row 0.
 struct Cell {
     rows: Vec<String>,
@@ -67,27 +82,29 @@ fn parallel(cells: Vec<Cell>) -> Cell {
     Cell { rows, width: width + 6 }
 }
 
-fn cond(src: &str, c: &Cond) -> Cell {
+fn cond(src: &str, c: &Cond, values: Values) -> Cell {
     match c {
         Cond::Contact { negated, expr, .. } => {
             let inner = slice(src, expr.span);
-            Cell::one(if *negated { format!("--[/{inner}]--") } else { format!("--[ {inner} ]--") })
+            // A contact passes power when its operand is TRUE ([x]) or FALSE ([/x]).
+            let w = wire(values(expr.span).map(|v| v != *negated));
+            Cell::one(if *negated { format!("{w}[/{inner}]{w}") } else { format!("{w}[ {inner} ]{w}") })
         }
-        Cond::Series(v) => series(v.iter().map(|x| cond(src, x)).collect()),
-        Cond::Parallel(v, _) if v.len() == 1 => cond(src, &v[0]),
-        Cond::Parallel(v, _) => parallel(v.iter().map(|x| cond(src, x)).collect()),
+        Cond::Series(v) => series(v.iter().map(|x| cond(src, x, values)).collect()),
+        Cond::Parallel(v, _) if v.len() == 1 => cond(src, &v[0], values),
+        Cond::Parallel(v, _) => parallel(v.iter().map(|x| cond(src, x, values)).collect()),
         Cond::Box { op, args, .. } => {
             let inputs = if args.len() == 1 {
-                cond(src, &args[0])
+                cond(src, &args[0], values)
             } else {
-                parallel(args.iter().map(|x| cond(src, x)).collect())
+                parallel(args.iter().map(|x| cond(src, x, values)).collect())
             };
             series(vec![inputs, Cell::one(format!("--[{}]", op.name()))])
         }
     }
 }
 
-fn output(src: &str, o: &Output) -> Cell {
+fn output(src: &str, o: &Output, values: Values) -> Cell {
     match o {
         Output::Coil { kind, target, .. } => {
             let t = slice(src, target.span);
@@ -97,7 +114,7 @@ fn output(src: &str, o: &Output) -> Cell {
                 CoilKind::Set => format!("(S {t})"),
                 CoilKind::Reset => format!("(R {t})"),
             };
-            Cell::one(format!("--{coil}"))
+            Cell::one(format!("{}{coil}", wire(values(target.span))))
         }
         Output::Jump { label, .. } => Cell::one(format!("-->> {}", label.text)),
         Output::Assign(s) => Cell::one(format!("--{{ {} }}", slice(src, stmt_span(s)).trim_end_matches(';'))),
@@ -112,12 +129,12 @@ fn stmt_span(s: &crate::ast::Stmt) -> Span {
 }
 
 /// One rung between the rails, its label on the line above.
-fn rung(src: &str, r: &Rung, width: usize, out: &mut String) {
+fn rung(src: &str, r: &Rung, width: usize, values: Values, out: &mut String) {
     if let Some(l) = &r.label {
         out.push_str(&format!("{}:\n", l.text));
     }
-    let left = r.cond.as_ref().map_or_else(|| Cell::one("--".into()), |c| cond(src, c));
-    let body = series(vec![left, output(src, &r.output)]);
+    let left = r.cond.as_ref().map_or_else(|| Cell::one("--".into()), |c| cond(src, c, values));
+    let body = series(vec![left, output(src, &r.output, values)]);
     for i in 0..body.rows.len() {
         let line = if i == 0 { format!("{:-<width$}--", body.row(0)) } else { format!("{:<width$}  ", body.row(i)) };
         out.push_str(&format!("  |{line}|\n"));
@@ -125,31 +142,52 @@ fn rung(src: &str, r: &Rung, width: usize, out: &mut String) {
     out.push_str("  |\n");
 }
 
-fn action(src: &str, a: &Action, out: &mut String) {
+fn action(src: &str, a: &Action, values: Values, out: &mut String) {
     out.push_str(&format!("(* {} *)\n", a.name.text));
     let width = a
         .rungs
         .iter()
         .map(|r| {
-            let left = r.cond.as_ref().map_or(2, |c| cond(src, c).width);
-            left + output(src, &r.output).width
+            let left = r.cond.as_ref().map_or(2, |c| cond(src, c, values).width);
+            left + output(src, &r.output, values).width
         })
         .max()
         .unwrap_or(0);
     for r in &a.rungs {
-        rung(src, r, width, out);
+        rung(src, r, width, values, out);
     }
     out.push_str("  |_End\n");
 }
 
-/// Draws every action of a parsed ladder file.
-pub fn file(src: &str, f: &File) -> String {
+/// Draws every action of a parsed ladder file, elements in the state
+/// `values` gives them.
+pub fn file(src: &str, f: &File, values: Values) -> String {
     let mut out = String::new();
     for (i, a) in f.actions.iter().enumerate() {
         if i > 0 {
             out.push('\n');
         }
-        action(src, a, &mut out);
+        action(src, a, values, &mut out);
+    }
+    out
+}
+
+/// Every span whose value `--values` shows: contacts' operands and coils' targets.
+pub fn element_spans(f: &File) -> Vec<Span> {
+    fn walk(c: &Cond, out: &mut Vec<Span>) {
+        match c {
+            Cond::Contact { expr, .. } => out.push(expr.span),
+            Cond::Series(v) | Cond::Parallel(v, _) | Cond::Box { args: v, .. } => v.iter().for_each(|x| walk(x, out)),
+        }
+    }
+    let mut out = Vec::new();
+    for r in f.actions.iter().flat_map(|a| &a.rungs) {
+        if let Some(c) = &r.cond {
+            walk(c, &mut out);
+        }
+        if let Output::Coil { target, .. } = &r.output {
+            out.push(target.span);
+        }
     }
     out
 }

@@ -1,0 +1,75 @@
+//! `linc ladder show --values`: runs a ladder file's actions against a
+//! database, then evaluates each element (contact operands, coil targets)
+//! in the database as the run left it, for the drawing.
+
+use crate::check_cmd::load_db;
+use crate::run_cmd::{own_block, set_and_show};
+use linc_compiler::check::Context;
+use linc_compiler::lower::{self, Lines};
+use linc_compiler::render::{Format, SourceFiles};
+use linc_compiler::session::{CheckOptions, Input, Session};
+use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
+use linc_runtime::{Database, Program, Store};
+use linc_stdlib::Value;
+use std::collections::HashMap;
+use std::path::Path;
+
+/// The truth of each element after `cycles` runs of every action, by span.
+pub fn after_run(
+    file: &Path,
+    db_path: &Path,
+    set: &[String],
+    cycles: u32,
+    format: Format,
+) -> Result<HashMap<(usize, usize), bool>, u8> {
+    let mut files = SourceFiles::new();
+    let db = load_db(Some(db_path), &mut files, format)?.unwrap_or_default();
+    let mut store = Store::new(db.clone());
+    set_and_show(&mut store, set, &[])?;
+    let obj =
+        crate::build::compile(&[file.to_path_buf()], Some(&db), format, 1).map_err(|crate::build::Failed(s)| s)?;
+    let verified =
+        linc_runtime::verify::verify(obj).map_err(|e| crate::report::usage(format_args!("[{}] {e}", e.code())))?;
+    let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0));
+    for unit in 0..verified.object().units.len() {
+        let own = own_block(&store, None, &verified.object().units[unit].block_type).map_err(crate::report::usage)?;
+        let linked = verified
+            .clone()
+            .link(&store, &[Program { unit, own }])
+            .map_err(|e| crate::report::usage(format_args!("[{}] {e}", e.code())))?;
+        let mut act = Activation::new(&linked, 0, 0);
+        for _ in 0..cycles {
+            if let Err(e) = vm.run(&linked, &mut act, &mut store, None) {
+                eprint!("{}", crate::report::runtime(&e, format));
+                break;
+            }
+        }
+    }
+    let text = std::fs::read_to_string(file).unwrap_or_default();
+    let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");
+    let mut known = HashMap::new();
+    for span in linc_compiler::ladder::element_spans(&text, stem) {
+        if let Some(v) = text.get(span.start..span.end).and_then(|e| truth(e, &db, &store)) {
+            known.insert((span.start, span.end), v);
+        }
+    }
+    Ok(known)
+}
+
+/// An expression's value in `store`, as a truth value (`None` if it is not
+/// one or does not evaluate).
+fn truth(expr: &str, db: &Database, store: &Store) -> Option<bool> {
+    let mut session = Session::new(Context { db, resolve_blocks: true, steps: None });
+    let id = session.add("<element>", expr.as_bytes().to_vec());
+    let program = session.check(id, CheckOptions { input: Input::Expression, tree: false }).expr?;
+    let obj = lower::lower_eval(&program, &Lines::new(expr)).ok()?;
+    let linked = linc_runtime::verify::verify(obj).ok()?.link(store, &[Program { unit: 0, own: None }]).ok()?;
+    let mut scratch = store.clone();
+    let mut act = Activation::new(&linked, 0, 0);
+    Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0)).run(&linked, &mut act, &mut scratch, None).ok()?;
+    match act.result? {
+        Value::Bool(b) => Some(b),
+        Value::Int(i) => Some(i != 0),
+        _ => None,
+    }
+}
