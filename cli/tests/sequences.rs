@@ -91,3 +91,46 @@ fn one_sequence_runs_with_hold_force_and_step_flags() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("error[E0903]: --force: the sequence has no transition `Nope`"), "{}", stderr(&o));
 }
+
+#[test]
+fn a_sequence_action_may_be_ladder() {
+    let dir = temp_dir("seq-ladder");
+    let f = dir.join("lad.sfc");
+    let src = "INITIAL_STEP Idle: Interlk(N); END_STEP\nSTEP Run: END_STEP\n\
+        TRANSITION FROM Idle TO Run := R1.Alarm; END_TRANSITION\n\
+        ACTION Interlk : LADDER\n    [R1.FillVlv] [/R1.Heater]        -> (R1.Agitator);\n\
+        ([R1.Level > 50.0] | [R1.Alarm]) -> (S R1.Reverse);\n                                     -> R1.Stirs := R1.Stirs + 1;\nEND_ACTION\n";
+    std::fs::write(&f, src).expect("write");
+    let file = f.to_str().unwrap();
+    let o = linc(&["check", file, "--db", PLANT]);
+    assert_eq!((o.status.code(), stdout(&o).as_str()), (Some(0), ""), "{}", stderr(&o));
+    let o = linc(&[
+        "run",
+        file,
+        "--db",
+        PLANT,
+        "--for",
+        "5s",
+        "--set",
+        "R1.FillVlv=1",
+        "--set",
+        "R1.Level=60",
+        "--show",
+        "R1.Agitator",
+        "--show",
+        "R1.Reverse",
+        "--show",
+        "R1.Stirs",
+    ]);
+    assert_eq!(stdout(&o), "R1.Agitator = TRUE\nR1.Reverse = TRUE\nR1.Stirs = 5\n", "{}", stderr(&o));
+    // The ladder's own errors, located in the sequence file.
+    let bad = dir.join("bad.sfc");
+    std::fs::write(
+        &bad,
+        "INITIAL_STEP A: L(N); END_STEP\nACTION L : LADDER\n  [R1.Alarm] -> JUMP Nowhere;\nEND_ACTION\n",
+    )
+    .expect("write");
+    let o = linc(&["check", bad.to_str().unwrap(), "--db", PLANT, "--message-format", "short"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stdout(&o).contains("bad.sfc:3:22: error[E0304]: unresolved jump"), "{}", stdout(&o));
+}

@@ -79,3 +79,21 @@ pub fn draw(src: &str, stem: &str, values: pretty::draw::Values) -> Result<Strin
 pub fn element_spans(src: &str, stem: &str) -> Vec<crate::span::Span> {
     pretty::draw::element_spans(&parser::parse(src, stem).0)
 }
+
+/// The rungs of a sequence's `ACTION name : LADDER` as one ST action named
+/// `name` (spans relative to `body`), with the ladder's own diagnostics:
+/// syntax, labels and jumps. Contacts and coils are typed by the ST
+/// checker when the sequence is checked.
+pub fn desugar_body(body: &str, name: &str) -> (crate::ast::Action, Vec<Diagnostic>) {
+    let (ladder, mut diagnostics) = parser::parse(body, name);
+    let Some(a) = ladder.actions.into_iter().next() else {
+        let name = crate::ast::Ident { text: name.to_string(), span: crate::span::Span::default() };
+        let span = crate::span::Span::new(0, body.len());
+        return (crate::ast::Action { name, block_type: None, body: Vec::new(), header: None, span }, diagnostics);
+    };
+    let (targets, jump_errors) = check::jumps(&a.rungs);
+    diagnostics.extend(jump_errors);
+    let (st, errors) = desugar::action(&a, &targets, &std::collections::HashSet::new());
+    diagnostics.extend(errors);
+    (st, diagnostics)
+}

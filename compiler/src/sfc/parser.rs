@@ -23,10 +23,16 @@ use crate::span::Span;
 /// placed in the file (not yet sorted or deduplicated).
 pub fn parse(src: &str) -> (Sequence, Vec<Diagnostic>) {
     let (toks, lex_errors) = lex(src);
-    let mut p = Parser { src, toks, pos: 0, diags: lex_errors.iter().map(|e| e.to_diagnostic()).collect() };
+    let mut p = Parser { src, toks, pos: 0, diags: Vec::new(), ladder: Vec::new() };
     let mut sequence = Sequence { chart: Chart::default(), actions: Vec::new() };
     p.items(&mut sequence.chart, Some(&mut sequence.actions));
-    (sequence, p.diags)
+    // The ST lexer does not know rungs (`|`, `->`): the ladder front end
+    // reads the bodies of ladder actions and reports their errors itself.
+    let in_ladder = |at: usize| p.ladder.iter().any(|&(l, r)| (l..r).contains(&at));
+    let mut diags: Vec<Diagnostic> =
+        lex_errors.iter().map(|e| e.to_diagnostic()).filter(|d| !in_ladder(d.span.start)).collect();
+    diags.append(&mut p.diags);
+    (sequence, diags)
 }
 
 /// The words that start an item; reading resumes at them after an error.
@@ -37,6 +43,8 @@ struct Parser<'s> {
     toks: Vec<Spanned<'s>>,
     pos: usize,
     diags: Vec<Diagnostic>,
+    /// Byte ranges of ladder action bodies.
+    ladder: Vec<(usize, usize)>,
 }
 
 /// An error already reported; the caller recovers.
@@ -365,7 +373,42 @@ impl Parser<'_> {
         if is_chart {
             return self.chart_action(l);
         }
+        let is_ladder =
+            matches!(self.toks.get(self.pos + 2), Some((_, Tok::Colon, _))) && self.word_at(self.pos + 3, "LADDER");
+        if is_ladder {
+            return self.ladder_action(l);
+        }
         self.st_action(l)
+    }
+
+    /// `ACTION name : LADDER rungs END_ACTION` (§10.2.2): the rungs are read
+    /// by the ladder front end and desugared into ST (ADR 0009), so the
+    /// action checks and compiles like an ST action. Contacts and coils are
+    /// typed by the ST checker here (its codes, not the ladder's).
+    fn ladder_action(&mut self, l: usize) -> Action {
+        let name = match self.toks.get(self.pos + 1) {
+            Some(&(nl, Tok::Name(n), nr)) => Ident { text: n.trim().to_string(), span: Span::new(nl, nr) },
+            _ => Ident { text: String::new(), span: self.here() },
+        };
+        let body_start = self.toks.get(self.pos + 3).map_or(l, |t| t.2);
+        self.pos += 4;
+        while self.tok().is_some() && !matches!(self.tok(), Some(Tok::EndAction | Tok::Action)) {
+            self.pos += 1;
+        }
+        let body_end = if self.tok().is_some() { self.here().start } else { self.src.len() };
+        if self.expect(Tok::EndAction, "`END_ACTION`").is_ok() {
+            self.semi();
+        }
+        self.ladder.push((body_start, body_end));
+        let (st, diagnostics) = crate::ladder::desugar_body(&self.src[body_start..body_end], &name.text);
+        for mut d in diagnostics {
+            shift::diagnostic(&mut d, body_start);
+            self.push(d);
+        }
+        let mut st = st;
+        shift::action(&mut st, body_start);
+        st.name = name.clone();
+        Action { name, body: ActionBody::St(st), span: Span::new(l, self.prev_end()) }
     }
 
     /// `ACTION name : CHART steps and transitions END_ACTION`.
