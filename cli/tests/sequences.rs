@@ -134,3 +134,27 @@ fn a_sequence_action_may_be_ladder() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stdout(&o).contains("bad.sfc:3:22: error[E0304]: unresolved jump"), "{}", stdout(&o));
 }
+
+#[test]
+fn a_transition_may_be_one_ladder_rung() {
+    let dir = temp_dir("seq-ladder-transition");
+    let f = dir.join("lt.sfc");
+    let src = "INITIAL_STEP Idle: END_STEP\nSTEP Run: Count(N); END_STEP\n\
+        TRANSITION Go FROM Idle TO Run : LADDER ([R1.FillVlv] | [R1.Level > 50.0]) [/R1.Alarm]; END_TRANSITION\n\
+        ACTION Count\n    R1.Stirs := R1.Stirs + 1;\nEND_ACTION\n";
+    std::fs::write(&f, src).expect("write");
+    let file = f.to_str().unwrap();
+    let run = |extra: &[&str]| {
+        let mut args = vec!["run", file, "--db", PLANT, "--for", "5s", "--show", "Run.X"];
+        args.extend_from_slice(extra);
+        stdout(&linc(&args))
+    };
+    assert_eq!(run(&["--set", "R1.Level=60"]), "Run.X = TRUE\n");
+    assert_eq!(run(&["--set", "R1.Level=60", "--set", "R1.Alarm=1"]), "Run.X = FALSE\n", "the NC contact opens");
+    assert_eq!(run(&["--set", "R1.FillVlv=1"]), "Run.X = TRUE\n", "the other branch");
+    assert_eq!(run(&[]), "Run.X = FALSE\n");
+    std::fs::write(&f, src.replace("[/R1.Alarm]", "[/R1.Alarm")).expect("write");
+    let o = linc(&["check", file, "--db", PLANT, "--message-format", "short"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stdout(&o).contains("lt.sfc:3:"), "{}", stdout(&o));
+}

@@ -97,3 +97,17 @@ pub fn desugar_body(body: &str, name: &str) -> (crate::ast::Action, Vec<Diagnost
     diagnostics.extend(errors);
     (st, diagnostics)
 }
+
+/// A sequence's ladder transition condition (one rung without an output,
+/// §20.5.7) as the ST expression it stands for (spans relative to `cond`),
+/// with the ladder front end's diagnostics.
+pub fn desugar_condition(cond: &str) -> (Option<crate::ast::Expr>, Vec<Diagnostic>) {
+    // Read as a rung whose coil stands for the transition; its value is the condition.
+    let rung = format!("{cond} -> (T);");
+    let (st, diagnostics) = desugar_body(&rung, "T");
+    let expr = st.body.into_iter().find_map(|s| match s {
+        crate::ast::Stmt::Assign { value, .. } => Some(*value),
+        _ => None,
+    });
+    (expr, diagnostics)
+}

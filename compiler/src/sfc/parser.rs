@@ -301,8 +301,40 @@ impl Parser<'_> {
         t.from = self.steps()?;
         self.expect(Tok::To, "`TO` and the steps the transition leads to")?;
         t.to = self.steps()?;
+        if self.tok() == Some(&Tok::Colon) && self.word_at(self.pos + 1, "LADDER") {
+            self.pos += 2;
+            return self.ladder_condition(t);
+        }
         self.expect(Tok::Assign, "`:=` and the transition condition")?;
         self.condition(t)
+    }
+
+    /// `… : LADDER <contacts>; END_TRANSITION` (§20.5.7): one rung without
+    /// an output, read by the ladder front end and desugared into the ST
+    /// condition it stands for.
+    fn ladder_condition(&mut self, t: &mut Transition) -> R<()> {
+        let a = self.toks.get(self.pos).map_or(self.src.len(), |tok| tok.0);
+        while self.tok().is_some() && self.tok() != Some(&Tok::Semi) && !self.word("END_TRANSITION") {
+            self.pos += 1;
+        }
+        let b = self.toks.get(self.pos).map_or(self.src.len(), |tok| tok.0);
+        if self.tok() != Some(&Tok::Semi) {
+            return Err(self.error("`;` after the ladder condition"));
+        }
+        self.pos += 1;
+        self.ladder.push((a, b));
+        let (cond, diagnostics) = crate::ladder::desugar_condition(&self.src[a..b]);
+        for mut d in diagnostics {
+            shift::diagnostic(&mut d, a);
+            self.push(d);
+        }
+        t.cond = cond.map(|mut e| {
+            shift::expr(&mut e, a);
+            e
+        });
+        self.expect_word("END_TRANSITION", "`END_TRANSITION`")?;
+        self.semi();
+        Ok(())
     }
 
     /// A step name or `(a, b, …)`.
