@@ -1,27 +1,14 @@
 //! `.ld` files on the command line (docs/ladder.md): check, compile, run
 //! and `linc ladder to-st`, on the guide's eight rungs.
 
-use std::process::{Command, Output};
-
-fn linc(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_linc"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .output()
-        .expect("run linc")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
+mod common;
+use common::{linc, stdout, temp_dir};
 
 const LD: &str = "examples/ladder/interlock.ld";
 const DB: &str = "examples/ladder/plant.json";
 
 fn temp_file(name: &str, text: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("linc-ladder-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let path = dir.join(name);
+    let path = temp_dir(&format!("ladder-{name}")).join(name);
     std::fs::write(&path, text).expect("write temp file");
     path.to_string_lossy().into_owned()
 }
