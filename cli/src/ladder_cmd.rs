@@ -80,13 +80,8 @@ fn to_st(file: &Path, db: Option<&Path>, format: Format) -> u8 {
     let name = file.display().to_string();
     let (text, invalid) = linc_compiler::files::decode(bytes);
     let id = files.add_decoded(name, text.clone(), invalid.clone());
-    if let Some(&(at, byte)) = invalid.first() {
-        let d = linc_compiler::Diagnostic::error(
-            "E0017",
-            format!("byte {byte:#04X} is not UTF-8"),
-            linc_compiler::Span::new(at, at + 1),
-        );
-        print!("{}", render::render(&files, &d.in_file(id), format));
+    if let Some(e) = linc_compiler::session::SessionError::not_utf8(&invalid) {
+        print!("{}", render::render(&files, &e.to_diagnostic().in_file(id), format));
         return 1;
     }
     let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");

@@ -4,8 +4,8 @@
 use crate::check_cmd::io_error;
 use linc_compiler::check::Context;
 use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::sfc;
 use linc_compiler::sfc::{resources, resources::Instrument};
-use linc_compiler::{sfc, Diagnostic, Span};
 use linc_runtime::ObjectFile;
 use std::path::Path;
 
@@ -53,9 +53,7 @@ pub fn check_with(
     let mut files = SourceFiles::new();
     let id = files.add_decoded(name.clone(), text.clone(), invalid.clone());
     let mut diagnostics = Vec::new();
-    if let Some(&(at, byte)) = invalid.first() {
-        diagnostics.push(Diagnostic::error("E0017", format!("byte {byte:#04X} is not UTF-8"), Span::new(at, at + 1)));
-    }
+    diagnostics.extend(linc_compiler::session::SessionError::not_utf8(&invalid).map(|e| e.to_diagnostic()));
     let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("sequence");
     let (more, object) = if lower && invalid.is_empty() {
         match extra.map {

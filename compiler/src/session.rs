@@ -104,6 +104,13 @@ pub enum SessionError {
 }
 
 impl SessionError {
+    /// E0017 for the first of a file's bytes that were not UTF-8 (from
+    /// [`files::decode`]), if any; every front end reports it the same way.
+    pub fn not_utf8(invalid: &[(usize, u8)]) -> Option<SessionError> {
+        let &(at, byte) = invalid.first()?;
+        Some(SessionError::NotUtf8 { span: Span::new(at, at + 1), byte, more: invalid.len() - 1 })
+    }
+
     pub fn to_diagnostic(&self) -> Diagnostic {
         match self {
             SessionError::DuplicateAction { span, name, first, by_file } => {
@@ -235,9 +242,8 @@ impl<'a> Session<'a> {
             return checked;
         }
         let mut session_errors = Capped::default();
-        if let Some(&(at, byte)) = source.invalid_bytes().first() {
-            let more = source.invalid_bytes().len() - 1;
-            session_errors.push(SessionError::NotUtf8 { span: Span::new(at, at + 1), byte, more });
+        if let Some(e) = SessionError::not_utf8(source.invalid_bytes()) {
+            session_errors.push(e);
         }
         let mut checker = Checker::new(self.ctx, self.limits.take().unwrap_or_default());
         if self.programs.is_none() && self.stream.is_none() {
