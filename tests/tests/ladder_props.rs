@@ -8,27 +8,13 @@
 use linc_compiler::check::Context;
 use linc_compiler::ladder::pretty::to_st;
 use linc_compiler::lower::{self, Lines};
+use linc_conformance::rng::Rng;
 use linc_runtime::store::{Cell, Store};
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{Database, Program};
 
 fn db() -> Database {
     Database::from_json(include_str!("../../examples/ladder/plant.json")).expect("plant.json")
-}
-
-/// xorshift64*: a fixed seed, so a failure is reproducible.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
 }
 
 /// Variables 0..8 are inputs, 8..12 outputs (coils write outputs; contacts

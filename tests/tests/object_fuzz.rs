@@ -12,6 +12,7 @@
 //! few seconds in a debug build); `LINC_OBJECT_FUZZ_ONLY=N` reruns case N.
 use linc_conformance::exec::compile;
 use linc_conformance::guide_db;
+use linc_conformance::rng::Rng;
 use linc_runtime::isa::{Op, OPCODES};
 use linc_runtime::object::{crc32, Class, CodeBlock, LineEntry, LoopEntry, ObjectFile, Sub};
 use linc_runtime::store::Store;
@@ -84,34 +85,15 @@ const SOURCES: &[&str] = &[
     "ACTION Ramp : PID\n  SL := SL + 0.5;\n  IF SL > 100.0 THEN SL := 0.0; END_IF;\n  Mode := 'AUTO';\nEND_ACTION\nACTION Alarm\n  Dig_B.Out.Bit2 := ANIN_005.Alarms.HiLevel;\n  ANIN_004.Alarms.HiLevel.Suppress := 5;\n  REC1.N0 := REC1.N0 + 1;\nEND_ACTION\n",
 ];
 
-/// A small deterministic generator (xorshift64*, seeded through splitmix64).
-struct Rng(u64);
+/// What the fuzz test draws besides plain numbers.
+trait Draw {
+    fn byte(&mut self) -> u8;
+    fn number(&mut self) -> u32;
+}
 
-impl Rng {
-    fn new(seed: u64) -> Rng {
-        let mut z = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        Rng((z ^ (z >> 31)) | 1)
-    }
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        if n == 0 {
-            0
-        } else {
-            (self.next() % n as u64) as usize
-        }
-    }
-    fn one_in(&mut self, n: u64) -> bool {
-        self.below(n as usize) == 0
-    }
+impl Draw for Rng {
     fn byte(&mut self) -> u8 {
-        self.next() as u8
+        self.next_u64() as u8
     }
     /// Mostly small numbers, sometimes boundary values, sometimes anything.
     fn number(&mut self) -> u32 {
@@ -119,7 +101,7 @@ impl Rng {
         match self.below(4) {
             0 | 1 => self.below(16) as u32,
             2 => EDGES[self.below(EDGES.len())],
-            _ => self.next() as u32,
+            _ => self.next_u64() as u32,
         }
     }
 }
@@ -245,7 +227,7 @@ fn real(rng: &mut Rng) -> f32 {
     if rng.one_in(2) {
         SPECIAL[rng.below(SPECIAL.len())]
     } else {
-        f32::from_bits(rng.next() as u32)
+        f32::from_bits(rng.next_u64() as u32)
     }
 }
 
