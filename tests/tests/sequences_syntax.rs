@@ -414,18 +414,24 @@ TRANSITION FROM Hot TO Heat := Hot.T > T#1m; END_TRANSITION
 
 /// A long chain checks clean and quickly: the checks are linear in the
 /// chart, and the unsafe search is bounded.
-#[test]
-fn long_sequence_checks_clean() {
+/// A ring of `n` steps, transition `i` leaving step `i` when `cond(i)`.
+fn ring(n: usize, cond: impl Fn(usize) -> String) -> String {
     use std::fmt::Write;
-    let n = 20_000;
     let mut src = String::from("INITIAL_STEP S0: A(N); END_STEP\n");
     for i in 1..n {
         let _ = writeln!(src, "STEP S{i}: A(N); END_STEP");
     }
     for i in 0..n {
-        let _ = writeln!(src, "TRANSITION FROM S{i} TO S{} := X.Y > 1; END_TRANSITION", (i + 1) % n);
+        let _ = writeln!(src, "TRANSITION FROM S{i} TO S{} := {}; END_TRANSITION", (i + 1) % n, cond(i));
     }
     src.push_str("ACTION A\n    X.Y := 1;\nEND_ACTION\n");
+    src
+}
+
+#[test]
+fn long_sequence_checks_clean() {
+    let n = 20_000;
+    let src = ring(n, |_| "X.Y > 1".into());
     let builtin = Database::builtin();
     let ctx = Context { db: &builtin, resolve_blocks: false, steps: None };
     let started = std::time::Instant::now();
@@ -481,15 +487,7 @@ END_ACTION
 
 /// Checks a ring of `n` steps whose transitions read the step variables.
 fn ring_with_step_variables(n: usize) -> std::time::Duration {
-    use std::fmt::Write;
-    let mut src = String::from("INITIAL_STEP S0: A(N); END_STEP\n");
-    for i in 1..n {
-        let _ = writeln!(src, "STEP S{i}: A(N); END_STEP");
-    }
-    for i in 0..n {
-        let _ = writeln!(src, "TRANSITION FROM S{i} TO S{} := S{i}.T > 1.0 AND S{i}.X; END_TRANSITION", (i + 1) % n);
-    }
-    src.push_str("ACTION A\n    X.Y := 1;\nEND_ACTION\n");
+    let src = ring(n, |i| format!("S{i}.T > 1.0 AND S{i}.X"));
     let builtin = Database::builtin();
     let ctx = Context { db: &builtin, resolve_blocks: false, steps: None };
     (0..3)
