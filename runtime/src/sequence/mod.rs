@@ -118,6 +118,11 @@ impl Sequence {
         find_step(&self.chart, Some(&self.state), name)
     }
 
+    /// How many steps of the ROOT chart are active (SFC_CON's `Steps`).
+    pub fn active_count(&self) -> usize {
+        self.state.active.iter().filter(|&&on| on).count()
+    }
+
     /// The names of the active steps of the ROOT chart, in order.
     pub fn active_steps(&self) -> Vec<&str> {
         self.chart.steps.iter().zip(&self.state.active).filter(|(_, &on)| on).map(|(s, _)| s.name.as_str()).collect()

@@ -82,9 +82,17 @@ struct BlockCells {
     active: Option<u32>,
     status: Option<u32>,
     alarms: Option<u32>,
+    /// SFC_CON's commands and state.
+    run: Option<u32>,
+    hold: Option<u32>,
+    init: Option<u32>,
+    reset: Option<u32>,
+    stop: Option<u32>,
+    steps: Option<u32>,
 }
 
 impl BlockCells {
+    /// Looked up once, when the strategy is built, not at every scan.
     fn of(store: &Store, block: usize) -> BlockCells {
         let c = |f| store.cell_of(block, f);
         BlockCells {
@@ -94,6 +102,12 @@ impl BlockCells {
             active: c("Active"),
             status: c("Status"),
             alarms: c("Alarms"),
+            run: c("Run"),
+            hold: c("Hold"),
+            init: c("Init"),
+            reset: c("Reset"),
+            stop: c("Stop"),
+            steps: c("Steps"),
         }
     }
 }
@@ -320,8 +334,8 @@ impl Strategy {
         };
         let q = c
             .qualifier
-            .and_then(|cell| self.store.enum_names(cell).get(enum_index(&self.store, cell)).cloned())
-            .and_then(|n| Qualifier::parse(&n))
+            .and_then(|cell| self.store.enum_names(cell).get(enum_index(&self.store, cell)))
+            .and_then(|n| Qualifier::parse(n))
             .unwrap_or(Qualifier::N);
         let time = match c.qual_time.and_then(|c| self.store.cells.get(c as usize)) {
             Some(Cell::Real(r)) => micros(f64::from(*r)),
@@ -336,10 +350,13 @@ impl Strategy {
     }
 
     fn run_member(&mut self, m: usize, task: u8, trace: Option<&mut Trace>) -> Result<(), crate::RuntimeError> {
-        let (now, name) = (self.now_us, self.store.db.blocks[self.members[m].block].name.clone());
+        let now = self.now_us;
+        // The block's name is copied only for a trace (the store is borrowed by the run).
+        let name = trace.as_ref().map(|_| self.store.db.blocks[self.members[m].block].name.clone());
         let member = &mut self.members[m];
         let linked = &self.objects[member.object];
-        let mut note = trace.map(|t| move |s: &Store, cell: u32| t.write(s, now, task, &name, cell));
+        let mut note =
+            trace.map(|t| move |s: &Store, cell: u32| t.write(s, now, task, name.as_deref().unwrap_or(""), cell));
         let tracer: crate::vm::Tracer = match note.as_mut() {
             Some(f) => Some(f),
             None => None,

@@ -27,15 +27,17 @@ pub enum Qualifier {
 impl Qualifier {
     /// From an ENUM value name (`"N"`, `"P"`, ...), ignoring case.
     pub fn parse(name: &str) -> Option<Qualifier> {
-        Some(match name.to_ascii_uppercase().as_str() {
-            "N" => Qualifier::N,
-            "P" => Qualifier::P,
-            "L" => Qualifier::L,
-            "D" => Qualifier::D,
-            "E" => Qualifier::E,
-            "F" => Qualifier::F,
-            "S" => Qualifier::S,
-            "R" => Qualifier::R,
+        // Read once per block and scan: no allocation.
+        let [letter] = name.as_bytes() else { return None };
+        Some(match letter.to_ascii_uppercase() {
+            b'N' => Qualifier::N,
+            b'P' => Qualifier::P,
+            b'L' => Qualifier::L,
+            b'D' => Qualifier::D,
+            b'E' => Qualifier::E,
+            b'F' => Qualifier::F,
+            b'S' => Qualifier::S,
+            b'R' => Qualifier::R,
             _ => return None,
         })
     }

@@ -3,7 +3,7 @@
 //! §20.6.3; the state table is in docs/sequences.md).
 
 use super::trace::Trace;
-use super::{Strategy, StrategyError, Want};
+use super::{BlockCells, Strategy, StrategyError, Want};
 use crate::errors::RuntimeError;
 use crate::object::UnitKind;
 use crate::sequence::host::{Traced, VmHost};
@@ -28,26 +28,24 @@ pub(super) fn unit_of(v: &Verified, w: &Want, block_name: &dyn Fn(usize) -> Stri
         .ok_or_else(|| StrategyError::new("E0833", block_name(w.block), format!("`{}` holds no sequence", w.file)))
 }
 
-fn flag(store: &Store, block: usize, field: &str) -> Option<bool> {
-    match store.cell_of(block, field).and_then(|c| store.cells.get(c as usize)) {
-        Some(Cell::Bool(b)) => Some(*b),
-        _ => None,
-    }
+/// A BOOL field's value (FALSE when the block has no such field).
+fn flag(store: &Store, cell: Option<u32>) -> bool {
+    matches!(cell.and_then(|c| store.cells.get(c as usize)), Some(Cell::Bool(true)))
 }
 
 /// The command the block's fields ask for, given the sequence's status:
 /// Reset first, then Stop, then Hold (from RUNNING or STOPPED), then Run
 /// (and Run written FALSE while running stops it).
-fn command(store: &Store, block: usize, status: Status) -> Option<Command> {
-    let f = |name| flag(store, block, name).unwrap_or(false);
+fn command(store: &Store, c: &BlockCells, status: Status) -> Option<Command> {
     let scanning = matches!(status, Status::Running | Status::Held);
+    let (run, hold) = (flag(store, c.run), flag(store, c.hold));
     match () {
-        _ if f("Reset") => Some(Command::Reset),
-        _ if f("Stop") && status != Status::Stopped => Some(Command::Stop),
-        _ if f("Hold") && matches!(status, Status::Running | Status::Stopped) => Some(Command::Hold),
-        _ if !f("Hold") && status == Status::Held => Some(Command::Run),
-        _ if f("Run") && matches!(status, Status::Reset | Status::Stopped) => Some(Command::Run),
-        _ if !f("Run") && scanning => Some(Command::Stop),
+        _ if flag(store, c.reset) => Some(Command::Reset),
+        _ if flag(store, c.stop) && status != Status::Stopped => Some(Command::Stop),
+        _ if hold && matches!(status, Status::Running | Status::Stopped) => Some(Command::Hold),
+        _ if !hold && status == Status::Held => Some(Command::Run),
+        _ if run && matches!(status, Status::Reset | Status::Stopped) => Some(Command::Run),
+        _ if !run && scanning => Some(Command::Stop),
         _ => None,
     }
 }
@@ -60,12 +58,12 @@ impl Strategy {
         task: u8,
         mut trace: Option<&mut Trace>,
     ) -> Result<(), RuntimeError> {
-        let block = self.members[m].block;
-        let name = self.store.db.blocks[block].name.clone();
+        // The block's name is copied only for a trace (the store is borrowed by the scan).
+        let name = trace.as_ref().map(|_| self.store.db.blocks[self.members[m].block].name.clone());
         let now = self.now_us;
         let member = &mut self.members[m];
         let Some(seq) = member.seq.as_mut() else { return Ok(()) };
-        if let Some(c) = command(&self.store, block, seq.status) {
+        if let Some(c) = command(&self.store, &member.cells, seq.status) {
             if c == Command::Reset {
                 member.act.reset();
             }
@@ -76,17 +74,21 @@ impl Strategy {
             linked: &self.objects[member.object],
             act: &mut member.act,
             store: &mut self.store,
-            trace: trace.as_deref_mut().map(|trace| Traced { trace, now_us: now, task, program: &name }),
+            trace: trace.as_deref_mut().map(|trace| Traced {
+                trace,
+                now_us: now,
+                task,
+                program: name.as_deref().unwrap_or(""),
+            }),
         };
         let result = seq.scan(now, &mut host);
-        let (status, steps) = (seq.status, seq.active_steps().len());
+        let (status, steps) = (seq.status, seq.active_count());
         self.show_sequence(m, task, status, steps, trace);
         result
     }
 
     /// The block's fields after a scan, as §20.6.3 has them per status.
     fn show_sequence(&mut self, m: usize, task: u8, status: Status, steps: usize, mut trace: Option<&mut Trace>) {
-        let block = self.members[m].block;
         let (run, hold, init) = match status {
             Status::Reset => (false, false, true),
             Status::Running => (true, false, false),
@@ -100,21 +102,21 @@ impl Strategy {
             Status::Stopped => "STOPPED",
             Status::Error => "ERROR",
         };
+        let c = self.members[m].cells;
         // Hold is only ever set here: a Hold written while the sequence is
         // not yet running stays pending for the next scan.
-        let mut writes = vec![("Run", Cell::Bool(run)), ("Init", Cell::Bool(init))];
-        if hold {
-            writes.push(("Hold", Cell::Bool(true)));
-        }
-        writes.extend([("Reset", Cell::Bool(false)), ("Stop", Cell::Bool(false))]);
-        writes.push(("Steps", Cell::Int(steps as i32)));
-        if let Some(cell) = self.store.cell_of(block, "Status") {
-            if let Some(idx) = self.store.enum_names(cell).iter().position(|n| n == status_name) {
-                writes.push(("Status", Cell::Enum { idx: idx as u16 }));
-            }
-        }
-        for (field, v) in writes {
-            if let Some(cell) = self.store.cell_of(block, field) {
+        let status_idx = c.status.and_then(|cell| self.store.enum_names(cell).iter().position(|n| n == status_name));
+        let writes = [
+            (c.run, Some(Cell::Bool(run))),
+            (c.init, Some(Cell::Bool(init))),
+            (c.hold, hold.then_some(Cell::Bool(true))),
+            (c.reset, Some(Cell::Bool(false))),
+            (c.stop, Some(Cell::Bool(false))),
+            (c.steps, Some(Cell::Int(steps as i32))),
+            (c.status, status_idx.map(|idx| Cell::Enum { idx: idx as u16 })),
+        ];
+        for (cell, v) in writes {
+            if let (Some(cell), Some(v)) = (cell, v) {
                 self.host_write(m, task, cell, v, trace.as_deref_mut());
             }
         }
