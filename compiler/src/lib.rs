@@ -13,6 +13,7 @@ pub mod codes;
 pub mod diagnostic;
 pub mod errors;
 pub mod files;
+pub mod fst;
 pub mod hir;
 pub mod ladder;
 pub mod lexer;

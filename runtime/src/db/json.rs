@@ -6,6 +6,7 @@
 
 use super::fields::{field_spec, init_values};
 use super::period::{check_period, time_constant};
+use super::roc::Device;
 use super::schema::{Alias, Block, Database, Task, Template};
 use super::tree::{self, get, Json, Member, Node, Span};
 use std::collections::HashSet;
@@ -32,6 +33,7 @@ pub mod code {
     pub const OUT_OF_RANGE: &str = "E0815";
     pub const ALIAS_CYCLE: &str = "E0816";
     pub const ALIAS_TOO_BIG: &str = "E0817";
+    pub const DEVICE: &str = "E0818";
 }
 
 /// Longest name in bytes: the object file stores names with a u16 length.
@@ -130,7 +132,10 @@ impl<'a> Loader<'a> {
     fn load(&mut self, text: &str) -> Result<(), DbError> {
         let root = tree::parse(text)?;
         let members = object(&root, "the database")?;
-        only_keys(members, &["templates", "blocks", "aliases", "tasks"], "the database")?;
+        only_keys(members, &["device", "templates", "blocks", "aliases", "tasks"], "the database")?;
+        if let Some(m) = get(members, "device") {
+            self.device(&m.value)?;
+        }
         // Tasks first: blocks name them, wherever the key is in the file.
         if let Some(m) = get(members, "tasks") {
             self.tasks(&m.value)?;
@@ -187,6 +192,38 @@ impl<'a> Loader<'a> {
         Ok(())
     }
 
+    /// `"device": "ROC800"`: the family whose point type numbers TLPs use.
+    fn device(&mut self, node: &Node) -> Result<(), DbError> {
+        let names = || Device::ALL.map(Device::name).join(", ");
+        let name = node.as_str().ok_or_else(|| {
+            DbError::at(code::SHAPE, format!("`device` must be a device family ({}), not {}", names(), node.kind()), node.span)
+        })?;
+        self.db.device = Device::parse(name).ok_or_else(|| {
+            DbError::at(code::DEVICE, format!("unknown device family `{name}` (expected {})", names()), node.span)
+        })?;
+        Ok(())
+    }
+
+    /// A template's `"roc": {"ROC800": 96, "FB107": 16}` point type numbers.
+    fn roc_types(what: &str, node: &Node) -> Result<Vec<(Device, u16)>, DbError> {
+        let mut out = Vec::new();
+        for m in object(node, &format!("`roc` of {what}"))? {
+            let device = Device::parse(&m.key).ok_or_else(|| {
+                let names = Device::ALL.map(Device::name).join(", ");
+                DbError::at(code::DEVICE, format!("unknown device family `{}` (expected {names})", m.key), m.key_span)
+            })?;
+            let t = match &m.value.v {
+                Json::Num(x) if x.fract() == 0.0 && (0.0..=65_535.0).contains(x) => *x as u16,
+                _ => {
+                    let message = format!("point type of {what} on {} must be a whole number from 0 to 65535", m.key);
+                    return Err(DbError::at(code::OUT_OF_RANGE, message, m.value.span));
+                }
+            };
+            out.push((device, t));
+        }
+        Ok(out)
+    }
+
     fn template(&mut self, m: &Member) -> Result<(), DbError> {
         let name = &m.key;
         check_name("a template", name, m.key_span)?;
@@ -196,7 +233,7 @@ impl<'a> Loader<'a> {
         }
         let what = format!("template `{name}`");
         let spec = object(&m.value, &what)?;
-        only_keys(spec, &["doc", "fields"], &what)?;
+        only_keys(spec, &["doc", "fields", "roc"], &what)?;
         let doc =
             match get(spec, "doc") {
                 None => String::new(),
@@ -216,7 +253,11 @@ impl<'a> Loader<'a> {
                 fields.push(field_spec(name, f)?);
             }
         }
-        self.db.put_template(Template::new(name.clone(), doc, fields));
+        let mut template = Template::new(name.clone(), doc, fields);
+        if let Some(r) = get(spec, "roc") {
+            template.roc = Self::roc_types(&what, &r.value)?;
+        }
+        self.db.put_template(template);
         Ok(())
     }
 

@@ -2,6 +2,8 @@
 
 use std::collections::HashMap;
 
+pub use super::roc::Device;
+
 /// The type of one field of a block template.
 #[derive(Clone, Debug, PartialEq)]
 pub enum FieldType {
@@ -86,13 +88,22 @@ pub struct Template {
     pub name: String,
     pub doc: String,
     pub fields: Vec<FieldDef>,
+    /// ROC point type numbers by device family (`"roc"` in the file): a
+    /// template with them is a ROC point type, addressable by numeric TLP,
+    /// whose parameter numbers are its field positions.
+    pub roc: Vec<(Device, u16)>,
     index: HashMap<String, usize>,
 }
 
 impl Template {
     pub fn new(name: String, doc: String, fields: Vec<FieldDef>) -> Self {
         let index = fields.iter().enumerate().map(|(i, f)| (f.name.to_ascii_uppercase(), i)).collect();
-        Template { name, doc, fields, index }
+        Template { name, doc, fields, roc: Vec::new(), index }
+    }
+
+    /// The ROC point type number of this template on `device`.
+    pub fn point_type(&self, device: Device) -> Option<u16> {
+        self.roc.iter().find(|(d, _)| *d == device).map(|&(_, t)| t)
     }
 
     /// Finds a field by case-insensitive name.
@@ -153,6 +164,8 @@ pub struct Database {
     pub aliases: Vec<Alias>,
     /// Sorted by number; always holds task 1 and every task a block uses.
     pub tasks: Vec<Task>,
+    /// The ROC device family whose point type numbers numeric TLPs use.
+    pub device: Device,
     template_index: HashMap<String, usize>,
     block_index: HashMap<String, usize>,
     alias_index: HashMap<String, usize>,
@@ -166,6 +179,7 @@ impl Default for Database {
             blocks: Vec::new(),
             aliases: Vec::new(),
             tasks: vec![Task::DEFAULT],
+            device: Device::default(),
             template_index: HashMap::new(),
             block_index: HashMap::new(),
             alias_index: HashMap::new(),

@@ -1,0 +1,89 @@
+//! ROC Function Sequence Tables (FST): the CSV reader, the checker and the
+//! lowering to the shared instruction set (`docs/fst.md`).
+//!
+//! Data flows one way: CSV text → [`reader::read`] → [`Table`] (cells with
+//! spans) → [`check::check`] against a database → [`Checked`] (every
+//! argument resolved) → [`lower::lower`] → one FST unit of an object.
+
+pub mod check;
+pub mod commands;
+pub mod list;
+pub mod lower;
+pub mod reader;
+pub mod tlp;
+
+pub use commands::Cmd;
+
+use crate::span::Span;
+use linc_runtime::object::Class;
+
+/// One cell of the table as written, with where it is in the CSV text.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cell {
+    pub text: String,
+    pub span: Span,
+}
+
+/// A row of the table as read: a step. Empty cells are `None`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    /// 0, 1, 2 … (the STEP column, checked to count up without gaps).
+    pub step: u32,
+    /// 1-based line of the row in the CSV file.
+    pub line: u32,
+    pub label: Option<Cell>,
+    pub cmd: Cell,
+    pub arg1: Option<Cell>,
+    pub arg2: Option<Cell>,
+    /// Kept for listings and diagnostics; never compiled.
+    pub comment: String,
+}
+
+/// A table as read: its rows up to the first blank command.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Table {
+    pub rows: Vec<Row>,
+}
+
+/// A resolved database parameter: a field of a block, as a symbol of the
+/// object names it. An empty `block` is the FST running the table (timer
+/// numbers 1–4 of ST and CT).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Param {
+    pub block: String,
+    pub field: String,
+    pub class: Class,
+    pub readonly: bool,
+    /// The argument as written, for listings and messages.
+    pub written: String,
+}
+
+/// A checked argument.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Arg {
+    None,
+    /// A numeric constant (as the device holds it: single precision).
+    Const(f32),
+    /// A branch target: the index of the step the label is on.
+    Label(u32),
+    /// Message text (MSG, ALM, EVT): MSG keeps 30 characters, ALM/EVT 10.
+    Text(String),
+    Param(Param),
+}
+
+/// A checked step: command and resolved arguments, with its position.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Step {
+    pub cmd: Cmd,
+    pub arg1: Arg,
+    pub arg2: Arg,
+    /// Line and column (1-based) of the command cell.
+    pub line: u32,
+    pub col: u32,
+}
+
+/// A table that checked clean: its steps, the last one always END.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Checked {
+    pub steps: Vec<Step>,
+}
