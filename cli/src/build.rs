@@ -21,6 +21,9 @@ pub fn compile(
     format: Format,
     errors_status: u8,
 ) -> Result<ObjectFile, Failed> {
+    if let Some(table) = paths.iter().find(|p| crate::fst_src::is_fst(p)) {
+        return compile_fst(paths, table, db, format, errors_status);
+    }
     let builtin;
     let (db, resolve_blocks) = match db {
         Some(d) => (d, true),
@@ -60,4 +63,26 @@ pub fn compile(
         }
         Failed(errors_status)
     })
+}
+
+/// An FST table is one unit of its own, and compiling it needs the
+/// database its points live in.
+fn compile_fst(
+    paths: &[PathBuf],
+    table: &std::path::Path,
+    db: Option<&Database>,
+    format: Format,
+    errors_status: u8,
+) -> Result<ObjectFile, Failed> {
+    if paths.len() > 1 {
+        crate::report::usage(format_args!("[E0903] `{}` is an FST table: compile it on its own", table.display()));
+        return Err(Failed(2));
+    }
+    let Some(db) = db else {
+        let what = format!("[E0903] compiling the FST table `{}` needs its point database: pass --db", table.display());
+        crate::report::usage(what);
+        return Err(Failed(2));
+    };
+    let c = crate::fst_src::check(table, Some(db), true, format).map_err(|()| Failed(2))?;
+    c.object.ok_or(Failed(errors_status))
 }

@@ -76,6 +76,16 @@ pub fn run(o: &Options) -> u8 {
         crate::sequence_src::Extra { map: bound.as_ref(), allow_unmapped: o.allow_unmapped, resources: o.resources };
     let input = if o.transition { Input::Transition } else { Input::Actions };
     for path in &o.files {
+        if crate::fst_src::is_fst(path) {
+            match crate::fst_src::check(path, resolve_blocks.then_some(&db), false, o.format) {
+                Ok(c) => {
+                    errors += c.errors;
+                    warnings += c.warnings;
+                }
+                Err(()) => status = 2,
+            }
+            continue;
+        }
         if crate::sequence_src::is_sequence(path) {
             let seq_db = bound.as_ref().map_or(&db, |b| &b.db);
             let ctx = Context { db: seq_db, resolve_blocks, steps: None };

@@ -9,6 +9,7 @@ mod disasm_cmd;
 mod eval_cmd;
 mod explain_cmd;
 mod files;
+mod fst_src;
 mod ladder_cmd;
 mod ladder_values;
 mod report;
@@ -97,6 +98,11 @@ enum Command {
     Sfc {
         #[command(subcommand)]
         command: SfcCommand,
+    },
+    /// ROC Function Sequence Tables (.csv): list a table as the FST Editor shows it.
+    Fst {
+        #[command(subcommand)]
+        command: FstCommand,
     },
     /// Ladder files (.ld): print the ST a ladder compiles as.
     Ladder {
@@ -190,6 +196,19 @@ enum Command {
         /// List every code with its title.
         #[arg(long)]
         list: bool,
+    },
+}
+
+#[derive(Subcommand)]
+enum FstCommand {
+    /// Print the table aligned, with each step's instruction offset (IP) when --db lets it compile.
+    List {
+        file: PathBuf,
+        /// The ROC point database the table's points live in.
+        #[arg(long)]
+        db: Option<PathBuf>,
+        #[arg(long, value_enum, default_value = "human")]
+        message_format: MessageFormat,
     },
 }
 
@@ -307,6 +326,9 @@ fn main() -> ExitCode {
             compile_cmd::run(&files, &out, db.as_deref(), map.as_deref(), format(message_format))
         }
         Command::Sfc { command } => sfc(command),
+        Command::Fst { command: FstCommand::List { file, db, message_format } } => {
+            fst_src::list(&file, db.as_deref(), format(message_format))
+        }
         Command::Ladder { command } => ladder_cmd::run(command),
         Command::Run {
             file,
@@ -330,18 +352,22 @@ fn main() -> ExitCode {
             let common = run_cmd::Common { set, show, trace, out, now, seed, watchdog, format: format(message_format) };
             match (db, duration) {
                 (None, Some(duration)) => {
-                    strategy_cmd::run(&strategy_cmd::Options { db: file, duration, common, sequence: None })
+                    strategy_cmd::run(&strategy_cmd::Options { db: file, duration, common, single: None })
                 }
                 (Some(db), None) => {
                     let period = period.unwrap_or(1.0);
                     run_cmd::run(&run_cmd::Options { file, db, action, block, cycles, period, common })
                 }
-                (Some(db), Some(duration)) if sequence_src::is_sequence(&file) || is_object(&file) => {
-                    let sequence = sequence_run::SequenceRun { file, block, period, hold_steps: hold_step, force };
-                    strategy_cmd::run(&strategy_cmd::Options { db, duration, common, sequence: Some(sequence) })
+                (Some(db), Some(duration))
+                    if sequence_src::is_sequence(&file) || fst_src::is_fst(&file) || is_object(&file) =>
+                {
+                    let kind = if fst_src::is_fst(&file) { sequence_run::Kind::Fst } else { sequence_run::Kind::Sequence };
+                    let single = sequence_run::SequenceRun { file, kind, block, period, hold_steps: hold_step, force };
+                    strategy_cmd::run(&strategy_cmd::Options { db, duration, common, single: Some(single) })
                 }
                 (Some(_), Some(_)) => report::usage(
-                    "--for runs a strategy (PLANT.json without --db) or a sequence (FILE.sfc --db PLANT.json)",
+                    "--for runs a strategy (PLANT.json without --db), a sequence (FILE.sfc --db PLANT.json) \
+                     or an FST table (TABLE.csv --db ROC.json)",
                 ),
                 (None, None) => {
                     report::usage("give --for DURATION to run a strategy, or --db DB.json to run one action")

@@ -6,13 +6,22 @@
 use crate::report::usage;
 use linc_runtime::db::Task;
 use linc_runtime::sequence::Sequence;
-use linc_runtime::strategy::Want;
+use linc_runtime::strategy::{Want, WantKind};
 use linc_runtime::Database;
 use std::path::PathBuf;
 
-/// The sequence shortcut's own options.
+/// Which program a single-program run is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    Sequence,
+    Fst,
+}
+
+/// The single-program shortcut's own options: a sequence run by an SFC_CON
+/// block, or an FST table run by an FST block.
 pub struct SequenceRun {
     pub file: PathBuf,
+    pub kind: Kind,
     pub block: Option<String>,
     /// Seconds per scan: the period of the block's task for this run.
     pub period: Option<f64>,
@@ -20,21 +29,26 @@ pub struct SequenceRun {
     pub force: Vec<String>,
 }
 
-/// The SFC_CON block that runs the sequence.
-pub fn block(db: &Database, named: Option<&str>) -> Result<usize, u8> {
-    let sfc_con = |b: usize| db.block_template(b).name.eq_ignore_ascii_case("SFC_CON");
+/// The block that runs the program: an SFC_CON block for a sequence, an
+/// FST block for a table (`--block`, or the only one).
+pub fn block(db: &Database, named: Option<&str>, kind: Kind) -> Result<usize, u8> {
+    let (template, what) = match kind {
+        Kind::Sequence => ("SFC_CON", "the sequence"),
+        Kind::Fst => ("FST", "the table"),
+    };
+    let runs = |b: usize| db.block_template(b).name.eq_ignore_ascii_case(template);
     if let Some(n) = named {
         return match db.block(n) {
-            Some(b) if sfc_con(b) => Ok(b),
-            Some(_) => Err(usage(format_args!("[E0904] --block {n} is not an SFC_CON block"))),
+            Some(b) if runs(b) => Ok(b),
+            Some(_) => Err(usage(format_args!("[E0904] --block {n} is not an {template} block"))),
             None => Err(usage(format_args!("[E0904] --block: the database has no block `{n}`"))),
         };
     }
-    let all: Vec<usize> = (0..db.blocks.len()).filter(|&b| sfc_con(b)).collect();
+    let all: Vec<usize> = (0..db.blocks.len()).filter(|&b| runs(b)).collect();
     match all.as_slice() {
         [b] => Ok(*b),
-        [] => Err(usage("[E0904] the database has no SFC_CON block to run the sequence; add one")),
-        _ => Err(usage("[E0904] the database has several SFC_CON blocks; choose one with --block")),
+        [] => Err(usage(format_args!("[E0904] the database has no {template} block to run {what}; add one"))),
+        _ => Err(usage(format_args!("[E0904] the database has several {template} blocks; choose one with --block"))),
     }
 }
 
@@ -50,7 +64,11 @@ pub fn set_period(db: &mut Database, block: usize, seconds: f64) {
 /// strategy resolves `FileName` against the database's folder).
 pub fn want(seq: &SequenceRun, block: usize) -> Want {
     let file = std::path::absolute(&seq.file).unwrap_or_else(|_| seq.file.clone());
-    Want { block, file: file.display().to_string(), action: String::new(), sequence: true }
+    let kind = match seq.kind {
+        Kind::Sequence => WantKind::Sequence,
+        Kind::Fst => WantKind::Fst,
+    };
+    Want { block, file: file.display().to_string(), action: String::new(), kind }
 }
 
 /// Applies `--hold-step` and `--force NAME=hold|continue|normal`.

@@ -18,8 +18,8 @@ pub struct Options {
     pub db: PathBuf,
     pub duration: String,
     pub common: Common,
-    /// Run only this sequence (`linc run batch.sfc --db … --for …`).
-    pub sequence: Option<SequenceRun>,
+    /// Run only this sequence or FST table (`linc run batch.sfc --db … --for …`).
+    pub single: Option<SequenceRun>,
 }
 
 /// A duration as an ST time constant, with or without `T#` (`10m`, `T#1h30m`).
@@ -82,11 +82,11 @@ pub fn run(o: &Options) -> u8 {
         Err(status) => return status,
     };
     let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
-    let seq_block = match o.sequence.as_ref().map(|q| sequence_run::block(&db, q.block.as_deref())).transpose() {
+    let seq_block = match o.single.as_ref().map(|q| sequence_run::block(&db, q.block.as_deref(), q.kind)).transpose() {
         Ok(b) => b,
         Err(status) => return status,
     };
-    if let (Some(b), Some(p)) = (seq_block, o.sequence.as_ref().and_then(|q| q.period)) {
+    if let (Some(b), Some(p)) = (seq_block, o.single.as_ref().and_then(|q| q.period)) {
         sequence_run::set_period(&mut db, b, p);
     }
     let mut store = Store::new(db.clone());
@@ -97,7 +97,7 @@ pub fn run(o: &Options) -> u8 {
         Ok(v) => v,
         Err(status) => return status,
     };
-    let wants = match (&o.sequence, seq_block) {
+    let wants = match (&o.single, seq_block) {
         (Some(q), Some(b)) => vec![sequence_run::want(q, b)],
         _ => strategy::wanted(&store),
     };
@@ -121,7 +121,7 @@ pub fn run(o: &Options) -> u8 {
             return 2;
         }
     };
-    if let (Some(q), Some(seq)) = (&o.sequence, seq_block.and_then(|b| s.sequence_mut(b))) {
+    if let (Some(q), Some(seq)) = (&o.single, seq_block.and_then(|b| s.sequence_mut(b))) {
         if let Err(status) = sequence_run::monitor(seq, q) {
             return status;
         }

@@ -121,6 +121,7 @@ instructions! {
     0x18 StoreS { sym: u16 }         [0 0 1 0] "Pop bytes into a string-family, ENUM, BSEQ or WSTR field.";
     0x19 StoreBit { sym: u16, bit: u8 } [1 0 0 0] "Pop an INT into one bit (non-zero is 1).";
     0x1A StoreSuppress { sym: u16 }  [1 0 0 0] "Pop seconds of suppression (§18.3.1).";
+    0x1B StoreRKeep { sym: u16 }     [1 0 0 0] "Pop a REAL into a REAL field; a non-finite one leaves the field as it was (FST math).";
     0x20 Ref { sym: u16 }            [0 0 0 0] "Point the reference register at a field.";
     0x21 RefOff { sym: u16 }         [1 0 0 0] "Pop n; point at the field n places after `sym`, within its run.";
     0x22 RefBit { bit: u8 }          [0 0 0 0] "Select a bit of the referenced bitfield.";
@@ -137,6 +138,8 @@ instructions! {
     0x31 RToI {}                     [1 1 0 0] "REAL to INT, rounding halves away from zero.";
     0x32 Decode {}                   [0 0 1 1] "Decode the $-sequences of a string constant or STRING value.";
     0x33 Truth {}                    [1 1 0 0] "INT to BOOL: non-zero is 1.";
+    0x34 Clamp { lo: i32, hi: i32 }  [1 1 0 0] "Limit an INT to `lo..=hi` (FST values into 8-bit flags).";
+    0x35 TruncR {}                   [1 1 0 0] "REAL to its integer part, as REAL (FST INT).";
     0x40 AddI {}                     [2 1 0 0] "INT +, wrapping.";
     0x41 SubI {}                     [2 1 0 0] "INT -, wrapping.";
     0x42 MulI {}                     [2 1 0 0] "INT *, wrapping.";
@@ -177,6 +180,12 @@ instructions! {
     0x73 Yield {}                    [0 0 0 0] "Suspend: end this run here and resume after it next time (FST WT); locals survive.";
     0x74 Ret {}                      [0 0 0 0] "End the run.";
     0x75 Return { kind: u8 }         [0 0 0 0] "Pop a value of `kind` as the run's result and end (linc eval).";
+    0x79 Step { n: u16 }             [0 0 0 0] "FST: begin step `n`; when the run's step budget is spent, end the run here (it resumes at this step).";
+    0x7A Pause { why: u8 }           [1 0 0 0] "FST: pop a REAL; end the run after this instruction for WT (why 0: seconds) or BRK (why 1: 100 ms units).";
+    0x7B Clock { what: u8 }          [0 1 0 0] "FST: push the device clock's day of week (0; 1 = Sunday) or minutes since midnight (1), as REAL.";
+    0x7C Log { which: u8 }           [1 0 1 0] "FST: pop a message and a REAL; append them to the alarm (0) or event (1) log.";
+    0x7D HistWrite { time: u8 }      [3 1 0 0] "FST: pop index, history point, value; WDB (0) or WTM (1); push the next index.";
+    0x7E HistRead { f: u8 }          [2 2 0 0] "FST: pop ARGUMENT2 and ARGUMENT1 of history read `f`; push the result and the next index.";
     0x78 Call { func: u8, argc: u8, ret: u8, types: u32 } [0 0 0 0] "Call library function `func`; argument kinds in `types` (2 bits each), result kind `ret`.";
 }
 
@@ -269,6 +278,7 @@ impl Op {
             Op::StoreS { .. } => Op::StoreS { sym: n },
             Op::StoreBit { bit, .. } => Op::StoreBit { sym: n, bit },
             Op::StoreSuppress { .. } => Op::StoreSuppress { sym: n },
+            Op::StoreRKeep { .. } => Op::StoreRKeep { sym: n },
             Op::Ref { .. } => Op::Ref { sym: n },
             Op::RefOff { .. } => Op::RefOff { sym: n },
             Op::LoadRefI { .. } => Op::LoadRefI { sym: n },
@@ -292,6 +302,7 @@ impl Op {
                 | Op::StoreS { .. }
                 | Op::StoreBit { .. }
                 | Op::StoreSuppress { .. }
+                | Op::StoreRKeep { .. }
                 | Op::StoreRefI { .. }
                 | Op::StoreRefR { .. }
                 | Op::StoreRefS { .. }
@@ -313,6 +324,7 @@ impl Op {
             | Op::StoreS { sym }
             | Op::StoreBit { sym, .. }
             | Op::StoreSuppress { sym }
+            | Op::StoreRKeep { sym }
             | Op::Ref { sym }
             | Op::RefOff { sym }
             | Op::LoadRefI { sym }

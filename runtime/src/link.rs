@@ -47,7 +47,20 @@ pub struct LinkedProgram {
     pub unit: usize,
     pub own: Option<usize>,
     pub targets: Vec<Target>,
+    /// The object's symbol behind each target, for messages.
+    pub symbols: Vec<u16>,
     pub blocks: Vec<LinkedBlock>,
+}
+
+impl Target {
+    /// What an FST table's reference to a missing point links to: touching
+    /// it stops the table with run flag 5 (R0010) instead of refusing the
+    /// whole strategy, as a ROC does when a point is removed.
+    pub const ABSENT: Target = Target { cell: u32::MAX, run_end: 0, alarm: u16::MAX };
+
+    pub fn is_absent(&self) -> bool {
+        self.cell == u32::MAX
+    }
 }
 
 /// A verified object linked to a store: what the VM runs.
@@ -110,6 +123,8 @@ fn link_program(v: &Verified, unit: &Unit, p: Program, store: &Store) -> Result<
     }
     let mut local: HashMap<u16, u16> = HashMap::new();
     let mut targets = Vec::new();
+    let mut symbols = Vec::new();
+    let fst = unit.kind == crate::object::UnitKind::Fst;
     let mut blocks = Vec::with_capacity(unit.blocks.len());
     for (bi, b) in unit.blocks.iter().enumerate() {
         let mut ops = Vec::with_capacity(b.ops.len());
@@ -124,12 +139,17 @@ fn link_program(v: &Verified, unit: &Unit, p: Program, store: &Store) -> Result<
                     Some(&n) => n,
                     None => {
                         let sym = &v.object().symbols[usize::from(s)];
-                        targets.push(bind(sym, unit, p.own, store)?);
+                        let target = match bind(sym, unit, p.own, store) {
+                            Err(_) if fst && !sym.block.is_empty() => Target::ABSENT,
+                            other => other?,
+                        };
+                        targets.push(target);
+                        symbols.push(s);
                         local.insert(s, next);
                         next
                     }
                 };
-                if op.writes() {
+                if op.writes() && !targets[usize::from(n)].is_absent() {
                     check_writable(&v.object().symbols[usize::from(s)], targets[usize::from(n)], store)?;
                 }
                 op = op.with_symbol(n);
@@ -138,7 +158,7 @@ fn link_program(v: &Verified, unit: &Unit, p: Program, store: &Store) -> Result<
         }
         blocks.push(LinkedBlock { ops, limits: v.limits(p.unit, bi) });
     }
-    Ok(LinkedProgram { unit: p.unit, own: p.own, targets, blocks })
+    Ok(LinkedProgram { unit: p.unit, own: p.own, targets, symbols, blocks })
 }
 
 /// A direct write to a read-only field is refused at link time; writes

@@ -6,7 +6,8 @@
 //! ```text
 //! magic "LINCSTO\x1a" | version u16 (2) | flags u16 | crc32 u32 | length u32
 //! object: source name, symbols, constant pool, units
-//! unit:   kind u8, name, source file, block type, retained u16, code blocks
+//! unit:   kind u8, name, source file, block type, retained u16, code blocks,
+//!         charts (sequences), step listing (FST tables)
 //! block:  name, locals u8, u32 code length + code, labels (u32 each),
 //!         line table (op, line, col), loop table (start, end, line, col)
 //! ```
@@ -149,6 +150,9 @@ records! {
         /// A sequence's charts: the ROOT chart first, then the charts of its
         /// chart actions (empty for other units).
         charts: Vec<ChartRec>,
+        /// An FST table's steps as listed (`CMD ARG1 ARG2`), for traces and
+        /// run-time messages (empty for other units).
+        steps: Vec<String>,
     }
 
     /// A chart of a sequence unit (see `sequence::chart`).
@@ -192,6 +196,9 @@ pub enum UnitKind {
     Action = 1,
     /// A sequence: charts whose conditions and actions are code blocks.
     Sequence = 2,
+    /// A ROC Function Sequence Table: one code block whose label `n` is
+    /// step `n`, run by the FST engine (`docs/fst.md`).
+    Fst = 3,
 }
 
 impl Wire for UnitKind {
@@ -202,6 +209,7 @@ impl Wire for UnitKind {
         match u8::get(r, what)? {
             1 => Ok(UnitKind::Action),
             2 => Ok(UnitKind::Sequence),
+            3 => Ok(UnitKind::Fst),
             k => Err(LoadError::Malformed { what: format!("{what}: unknown unit kind {k}") }),
         }
     }

@@ -74,6 +74,8 @@ pub struct Store {
     readonly: Vec<bool>,
     /// Current time, POSIX seconds.
     pub now: f64,
+    /// The ROC device's logs and history archives, which FST tables write.
+    pub roc: crate::roc::RocState,
 }
 
 impl Store {
@@ -100,7 +102,8 @@ impl Store {
             }
             run_end.extend(ends);
         }
-        Store { db, cells, first, run_end, readonly, now: 0.0 }
+        let roc = crate::roc::RocState::new(&db);
+        Store { db, cells, first, run_end, readonly, now: 0.0, roc }
     }
 
     /// Whether programs may not write this cell.

@@ -15,7 +15,7 @@
 
 use crate::errors::LoadError;
 use crate::isa::{Kind, Op, MAX_CALL_ARGS};
-use crate::object::{Class, CodeBlock, ObjectFile, Sub, Symbol, Unit};
+use crate::object::{Class, CodeBlock, ObjectFile, Sub, Symbol, Unit, UnitKind};
 use linc_stdlib::SIGNATURES;
 use std::cell::Cell;
 
@@ -132,6 +132,22 @@ fn check_operands(obj: &ObjectFile, u: &Unit, b: &CodeBlock, pc: usize, op: &Op)
             return Err(invalid("E0711", u, b, pc, what));
         }
         Op::Call { func, argc, ret, types } => check_call(u, b, pc, func, argc, ret, types)?,
+        _ if fst_only(op) && u.kind != UnitKind::Fst => {
+            return Err(invalid("E0710", u, b, pc, format!("{} belongs to FST tables only", op.name())));
+        }
+        Op::Step { n } if usize::from(n) >= u.steps.len() || usize::from(n) >= b.labels.len() => {
+            let what = format!("step {n} does not exist (the table lists {})", u.steps.len());
+            return Err(invalid("E0710", u, b, pc, what));
+        }
+        Op::Pause { why: 2.. } | Op::Clock { what: 2.. } | Op::Log { which: 2.. } | Op::HistWrite { time: 2.. } => {
+            return Err(invalid("E0710", u, b, pc, format!("{} has no variant {:?}", op.name(), op.operands())));
+        }
+        Op::HistRead { f } if crate::roc::HistFn::from_u8(f).is_none() => {
+            return Err(invalid("E0710", u, b, pc, format!("history read {f} does not exist")));
+        }
+        Op::Clamp { lo, hi } if lo > hi => {
+            return Err(invalid("E0710", u, b, pc, format!("Clamp to an empty range {lo}..={hi}")));
+        }
         _ => {}
     }
     if let Some(s) = op.symbol() {
@@ -176,7 +192,9 @@ fn symbol_fits(op: &Op, sym: &Symbol) -> bool {
     let c = sym.class;
     match *op {
         Op::LoadI { .. } | Op::StoreI { .. } | Op::LoadRefI { .. } | Op::StoreRefI { .. } => field && c.is_int(),
-        Op::LoadR { .. } | Op::StoreR { .. } | Op::LoadRefR { .. } | Op::StoreRefR { .. } => field && c == Class::Real,
+        Op::LoadR { .. } | Op::StoreR { .. } | Op::StoreRKeep { .. } | Op::LoadRefR { .. } | Op::StoreRefR { .. } => {
+            field && c == Class::Real
+        }
         Op::LoadS { .. } | Op::StoreS { .. } | Op::LoadRefS { .. } | Op::StoreRefS { .. } => field && c.is_string(),
         Op::LoadBit { bit, .. } | Op::StoreBit { bit, .. } => field && c.bits().is_some_and(|w| bit < w),
         Op::LoadRefBit { .. } | Op::StoreRefBit { .. } => field && c.bits().is_some(),
@@ -195,6 +213,21 @@ struct State {
     num: u32,
     strs: u32,
     ref_sym: Option<u16>,
+}
+
+/// Instructions that only an FST unit may hold (the FST engine gives them
+/// their step budget and reads their pauses).
+fn fst_only(op: &Op) -> bool {
+    matches!(
+        op,
+        Op::Step { .. } | Op::Pause { .. } | Op::Clock { .. } | Op::Log { .. } | Op::HistWrite { .. } | Op::HistRead { .. }
+    )
+}
+
+/// Instructions where a run may end, so both stacks must be empty there: a
+/// resumed run starts with empty stacks.
+fn suspends(op: &Op) -> bool {
+    matches!(op, Op::Ret {} | Op::Yield {} | Op::Return { .. } | Op::Step { .. } | Op::Pause { .. })
 }
 
 fn uses_ref(op: &Op) -> bool {
@@ -240,13 +273,13 @@ fn step(obj: &ObjectFile, u: &Unit, b: &CodeBlock, pc: usize, s: State) -> Resul
     }
     let num = s.num - e.num_pop + e.num_push;
     let strs = s.strs - e.str_pop + e.str_push;
-    if matches!(op, Op::Ret {} | Op::Yield {} | Op::Return { .. }) && (num, strs) != (0, 0) {
+    if suspends(op) && (num, strs) != (0, 0) {
         return Err(invalid("E0708", u, b, pc, format!("{} with values left on the stack", op.name())));
     }
     let ref_sym = match *op {
         Op::Ref { sym } | Op::RefOff { sym } => Some(sym),
         // The register does not survive a suspension.
-        Op::Yield {} => None,
+        _ if suspends(op) => None,
         _ => s.ref_sym,
     };
     Ok(State { num, strs, ref_sym })

@@ -15,6 +15,25 @@ fn bad(u: &Unit, what: impl Into<String>) -> LoadError {
     LoadError::Invalid { code: "E0714", action: u.name.clone(), op: 0, what: what.into() }
 }
 
+/// An FST unit is one code block whose label `n` is the `Step n` that
+/// begins step `n`, for every step of its listing: the engine shows the
+/// label as the instruction pointer and never needs to search the code.
+fn check_fst(u: &Unit) -> Result<(), LoadError> {
+    let [b] = &u.blocks[..] else {
+        return Err(bad(u, format!("an FST table with {} code blocks (it has one)", u.blocks.len())));
+    };
+    if !u.charts.is_empty() || u.steps.is_empty() || b.labels.len() < u.steps.len() {
+        return Err(bad(u, "an FST table needs steps, a label for each, and no charts"));
+    }
+    for n in 0..u.steps.len() {
+        let at = b.labels[n] as usize;
+        if b.ops.get(at) != Some(&crate::isa::Op::Step { n: n as u16 }) {
+            return Err(bad(u, format!("label {n} of an FST table is not where step {n} begins")));
+        }
+    }
+    Ok(())
+}
+
 /// What a code block of a sequence is used for.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Use {
@@ -24,7 +43,11 @@ enum Use {
 }
 
 pub fn check_charts(u: &Unit) -> Result<(), LoadError> {
+    if u.kind != UnitKind::Fst && !u.steps.is_empty() {
+        return Err(bad(u, "a step listing in a unit that is not an FST table"));
+    }
     match u.kind {
+        UnitKind::Fst => return check_fst(u),
         UnitKind::Action if u.charts.is_empty() => return Ok(()),
         UnitKind::Action => return Err(bad(u, "an action unit with charts")),
         UnitKind::Sequence if u.charts.is_empty() => return Err(bad(u, "a sequence without a chart")),

@@ -53,13 +53,29 @@ pub struct Activation {
     pub retained: Vec<u32>,
     /// The value of the last `Return` (linc eval).
     pub result: Option<Value>,
+    /// FST: steps the next run may begin (the engine sets it before a run).
+    pub steps_left: u32,
+    /// FST: the step that ran last (`Step`).
+    pub step: u16,
+    /// FST: why the last run paused (`Pause`): 0 WT seconds, 1 BRK intervals.
+    pub pause: Option<(u8, f32)>,
 }
 
 impl Activation {
     /// An activation of block `block` of `program`, at its start.
     pub fn new(linked: &Linked, program: usize, block: usize) -> Activation {
         let retained = linked.unit(program).map_or(0, |u| usize::from(u.retained));
-        Activation { program, block, resume: None, locals: Vec::new(), retained: vec![0; retained], result: None }
+        Activation {
+            program,
+            block,
+            resume: None,
+            locals: Vec::new(),
+            retained: vec![0; retained],
+            result: None,
+            steps_left: 0,
+            step: 0,
+            pause: None,
+        }
     }
 
     pub fn is_suspended(&self) -> bool {
@@ -71,6 +87,8 @@ impl Activation {
         self.resume = None;
         self.retained.fill(0);
         self.result = None;
+        self.step = 0;
+        self.pause = None;
     }
 }
 
@@ -397,6 +415,17 @@ impl Vm {
                     tri!(store_bit(store, ref_cell, ref_bit, v));
                     note(trace, store, ref_cell);
                 }
+                Op::StoreRKeep { sym } => {
+                    let v = self.pop_r();
+                    let c = cell(l, sym);
+                    if v.is_finite() {
+                        match store.cells.get_mut(c as usize) {
+                            Some(Cell::Real(r)) => *r = v,
+                            _ => break Err(corrupt()),
+                        }
+                        note(trace, store, c);
+                    }
+                }
                 Op::StoreSuppress { sym } => {
                     let t = target(l, sym);
                     let secs = self.pop_i();
@@ -472,6 +501,14 @@ impl Vm {
                 Op::Truth {} => {
                     let v = self.pop_i();
                     self.push_i(i32::from(v != 0));
+                }
+                Op::Clamp { lo, hi } => {
+                    let v = self.pop_i();
+                    self.push_i(v.clamp(lo, hi.max(lo)));
+                }
+                Op::TruncR {} => {
+                    let v = self.pop_r();
+                    self.push_r(v.trunc());
                 }
                 Op::AddI {} => self.int2(i32::wrapping_add),
                 Op::SubI {} => self.int2(i32::wrapping_sub),
@@ -559,6 +596,59 @@ impl Vm {
                     }
                 }
                 Op::Yield {} => break Ok(Outcome::Suspended),
+                Op::Step { n } => {
+                    if act.steps_left == 0 {
+                        // Resume at this step, not after it.
+                        pc -= 1;
+                        break Ok(Outcome::Suspended);
+                    }
+                    act.steps_left -= 1;
+                    act.step = n;
+                }
+                Op::Pause { why } => {
+                    act.pause = Some((why, self.pop_r()));
+                    break Ok(Outcome::Suspended);
+                }
+                Op::Clock { what } => {
+                    let now = self.clock.local_time();
+                    let v = if what == 0 {
+                        crate::roc::day_of_week(now)
+                    } else {
+                        crate::roc::minutes_since_midnight(now)
+                    };
+                    self.push_r(v);
+                }
+                Op::Log { which } => {
+                    let text = self.pop_s();
+                    let value = self.pop_r();
+                    let source = l.prog.own.map(|b| store.db.blocks[b].name.clone()).unwrap_or_default();
+                    let entry = crate::roc::LogEntry {
+                        time: self.clock.local_time(),
+                        text: String::from_utf8_lossy(&text).chars().take(10).collect(),
+                        value,
+                        source,
+                    };
+                    let log = if which == 0 { &mut store.roc.alarms } else { &mut store.roc.events };
+                    log.push(entry);
+                }
+                Op::HistWrite { time } => {
+                    let idx = self.pop_r();
+                    let hp = self.pop_r();
+                    let value = self.pop_r();
+                    let value = (time == 0).then_some(value);
+                    let next = store.roc.history.write(hp, idx, value, self.clock.local_time());
+                    let next = tri!(next.map_err(|e| Fault::new(e.code, e.message)));
+                    self.push_r(next);
+                }
+                Op::HistRead { f } => {
+                    let a2 = self.pop_r();
+                    let a1 = self.pop_r();
+                    let Some(f) = crate::roc::HistFn::from_u8(f) else { break Err(corrupt()) };
+                    let got = store.roc.history.read(f, a1, a2);
+                    let (v, next) = tri!(got.map_err(|e| Fault::new(e.code, e.message)));
+                    self.push_r(v);
+                    self.push_r(next);
+                }
                 Op::Ret {} => break Ok(Outcome::Done),
                 Op::Return { kind } => {
                     self.result = Some(match Kind::from_bits(u32::from(kind)) {
@@ -743,6 +833,16 @@ fn locate(l: &Running, pc: usize, f: Fault) -> RuntimeError {
             message = format!("{message}; stopped in the loop at line {}", lp.line);
         }
     }
+    let mut code = f.code;
+    let absent = l.block.ops.get(pc).and_then(|op| op.symbol()).filter(|&s| target(l, s).is_absent());
+    if let Some(s) = absent {
+        let sym = l.prog.symbols.get(usize::from(s)).and_then(|&o| l.linked.object().symbols.get(usize::from(o)));
+        code = "R0010";
+        message = format!(
+            "invalid point reference: the database has no {}",
+            sym.map_or_else(|| "such point".to_string(), |s| format!("`{}`", s.text()))
+        );
+    }
     let u = l.unit;
-    RuntimeError { code: f.code, message, action: u.name.clone(), file: u.file.clone(), line: at.0, col: at.1 }
+    RuntimeError { code, message, action: u.name.clone(), file: u.file.clone(), line: at.0, col: at.1 }
 }

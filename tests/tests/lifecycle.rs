@@ -23,6 +23,7 @@ fn object(ops: Vec<Op>, labels: Vec<u32>, locals: u8, retained: u16) -> ObjectFi
         retained,
         blocks: vec![block],
         charts: vec![],
+        steps: Vec::new(),
     };
     ObjectFile { source: "hand.st".into(), symbols: vec![n0()], strings: vec![], units: vec![unit] }
 }

@@ -65,6 +65,7 @@ fn sequence() -> ObjectFile {
         retained: 4,
         blocks,
         charts: vec![chart],
+        steps: Vec::new(),
     };
     ObjectFile {
         source: "batch.sfc".into(),

@@ -14,8 +14,10 @@ pub mod tlp;
 
 pub use commands::Cmd;
 
+use crate::diagnostic::Diagnostic;
 use crate::span::Span;
-use linc_runtime::object::Class;
+use linc_runtime::object::{Class, ObjectFile};
+use linc_runtime::Database;
 
 /// One cell of the table as written, with where it is in the CSV text.
 #[derive(Clone, Debug, PartialEq)]
@@ -86,4 +88,32 @@ pub struct Step {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Checked {
     pub steps: Vec<Step>,
+}
+
+/// Reads, checks and (with a database) lowers one table. `name` names the
+/// unit, `file` is the source file recorded in it. Compiling needs the
+/// database the table's points live in; without one the table is checked
+/// as far as it can be and no object is made.
+pub fn compile(text: &str, name: &str, file: &str, db: Option<&Database>) -> (Vec<Diagnostic>, Option<ObjectFile>) {
+    let (table, mut diagnostics) = reader::read(text);
+    let (checked, more) = check::check(&table, db);
+    diagnostics.extend(more);
+    if diagnostics.iter().any(Diagnostic::is_error) {
+        return (diagnostics, None);
+    }
+    let object = checked.map(|c| lower::lower(&c, name, file));
+    match object {
+        Some(Ok(o)) => (diagnostics, Some(o)),
+        Some(Err(errors)) => {
+            diagnostics.extend(errors.iter().map(|e| e.to_diagnostic()));
+            (diagnostics, None)
+        }
+        None => (diagnostics, None),
+    }
+}
+
+/// Each step's instruction offset in a compiled table (label `n` is step `n`).
+pub fn offsets(object: &ObjectFile) -> Option<Vec<u32>> {
+    let unit = object.units.first()?;
+    Some(unit.main()?.labels.get(..unit.steps.len())?.to_vec())
 }

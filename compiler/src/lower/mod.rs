@@ -247,6 +247,7 @@ impl Lowerer {
             retained: 0,
             blocks: vec![block],
             charts: Vec::new(),
+            steps: Vec::new(),
         }
     }
 

@@ -60,6 +60,7 @@ impl SequenceBuilder {
             retained,
             blocks: self.blocks,
             charts,
+            steps: Vec::new(),
         };
         let source = self.l.file.clone();
         self.l.finish(&source, vec![unit])

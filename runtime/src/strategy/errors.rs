@@ -60,7 +60,8 @@ impl Strategy {
     pub(super) fn enter_error(&mut self, m: usize, task: u8, e: RuntimeError, mut trace: Option<&mut Trace>) {
         let block = self.members[m].block;
         let name = self.store.db.blocks[block].name.clone();
-        self.members[m].stopped = true;
+        // An FST table stops itself (RUNFLG 5) and runs again when started.
+        self.members[m].stopped = self.members[m].fst.is_none();
         self.failures.push(e.clone());
         self.show_failed(m, task, trace.as_deref_mut());
         if let Some(t) = trace.as_deref_mut() {

@@ -9,11 +9,13 @@
 //! status, as a PLC kernel's error word does, and may run an error program.
 
 mod errors;
+mod fst;
 pub mod qualifier;
 mod sequences;
 pub mod trace;
 
 pub use errors::{ErrorStatus, StrategyError};
+pub use fst::same_point;
 
 use crate::link::{Linked, Program};
 use crate::store::{Cell, Store};
@@ -28,17 +30,27 @@ pub struct Want {
     pub block: usize,
     /// `FileName`, as written (relative to the database file).
     pub file: String,
-    /// `ActName`; empty for a sequence.
+    /// `ActName`; empty for a sequence or an FST table.
     pub action: String,
-    /// An SFC_CON block: runs the sequence its file holds.
-    pub sequence: bool,
+    pub kind: WantKind,
+}
+
+/// What kind of program a block runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WantKind {
+    /// An action-type block: the action `ActName` of its file.
+    Action,
+    /// An SFC_CON block: the sequence its file holds.
+    Sequence,
+    /// A ROC FST block: the table its file holds.
+    Fst,
 }
 
 impl Want {
     /// A block must name both its file and (unless it runs a sequence) its
     /// action (E0830).
     pub fn complete(&self, store: &Store) -> Result<(), StrategyError> {
-        let missing = match (self.file.is_empty(), self.action.is_empty() && !self.sequence) {
+        let missing = match (self.file.is_empty(), self.action.is_empty() && self.kind == WantKind::Action) {
             (true, _) => "FileName",
             (_, true) => "ActName",
             _ => return Ok(()),
@@ -63,12 +75,16 @@ pub fn wanted(store: &Store) -> Vec<Want> {
     (0..store.db.blocks.len())
         .filter_map(|b| {
             let file = text_field(store, b, "FileName")?;
+            let whole = |kind| (!file.is_empty()).then(|| Want { block: b, file: file.clone(), action: String::new(), kind });
             if sequences::is_sfc_con(store, b) {
-                return (!file.is_empty()).then_some(Want { block: b, file, action: String::new(), sequence: true });
+                return whole(WantKind::Sequence);
+            }
+            if fst::is_fst(store, b) {
+                return whole(WantKind::Fst);
             }
             let action = text_field(store, b, "ActName")?;
             let named = !file.is_empty() || !action.is_empty();
-            named.then_some(Want { block: b, file, action, sequence: false })
+            named.then_some(Want { block: b, file, action, kind: WantKind::Action })
         })
         .collect()
 }
@@ -124,6 +140,8 @@ struct Member {
     cells: BlockCells,
     /// The sequence an SFC_CON block runs.
     seq: Option<Box<crate::sequence::Sequence>>,
+    /// The state of the table an FST block runs.
+    fst: Option<Box<fst::FstRun>>,
 }
 
 #[derive(Clone, Debug)]
@@ -149,6 +167,8 @@ pub struct Strategy {
     failures: Vec<crate::RuntimeError>,
     now_us: u64,
     start: f64,
+    /// The ROC device's clockwork (TDO outputs, history logger).
+    device: fst::Device,
 }
 
 /// The unit of an action block: the action its `ActName` names.
@@ -181,8 +201,11 @@ impl Strategy {
         let mut members = Vec::with_capacity(wants.len());
         for (w, o) in wants {
             let v = objects.get(*o).ok_or_else(|| StrategyError::new("E0831", block_name(w.block), "no object"))?;
-            let unit =
-                if w.sequence { sequences::unit_of(v, w, &block_name)? } else { action_unit(v, w, &block_name)? };
+            let unit = match w.kind {
+                WantKind::Action => action_unit(v, w, &block_name)?,
+                WantKind::Sequence => sequences::unit_of(v, w, &block_name)?,
+                WantKind::Fst => fst::unit_of(v, w, &block_name)?,
+            };
             let program = programs[*o].len();
             programs[*o].push(Program { unit, own: Some(w.block) });
             let cells = BlockCells::of(&store, w.block);
@@ -196,6 +219,7 @@ impl Strategy {
                 stopped: false,
                 cells,
                 seq: None,
+                fst: None,
             });
         }
         let mut linked = Vec::with_capacity(objects.len());
@@ -213,7 +237,14 @@ impl Strategy {
                     Some(Box::new(crate::sequence::Sequence::new(crate::sequence::chart::Chart::from_unit(unit, 0))));
             }
         }
+        let mut store = store;
+        for m in &mut members {
+            if let Some(unit) = linked[m.object].unit(m.program).filter(|u| u.kind == crate::object::UnitKind::Fst) {
+                m.fst = Some(Box::new(fst::FstRun::new(&mut store, m.block, unit)));
+            }
+        }
         let tasks = tasks(&store, &members);
+        let device = fst::Device::of(&store);
         let mut s = Strategy {
             store,
             objects: linked,
@@ -227,6 +258,7 @@ impl Strategy {
             failures: Vec::new(),
             now_us: 0,
             start,
+            device,
         };
         s.store.now = start;
         s.find_error_program()?;
@@ -244,7 +276,7 @@ impl Strategy {
             return Ok(());
         }
         let member =
-            self.store.db.block(&name).and_then(|b| self.members.iter().position(|m| m.block == b && m.seq.is_none()));
+            self.store.db.block(&name).and_then(|b| self.members.iter().position(|m| m.block == b && m.seq.is_none() && m.fst.is_none()));
         let sys_name = self.store.db.blocks[sys].name.clone();
         let member = member.ok_or_else(|| {
             StrategyError::new("E0832", sys_name, format!("the error program `{name}` is not an action-type block"))
@@ -281,6 +313,7 @@ impl Strategy {
         let end = self.now_us.saturating_add(duration_us);
         while let Some(next) = self.tasks.iter().map(|t| t.next_us).min().filter(|&n| n < end) {
             self.set_time(next);
+            self.device_tick(trace.as_deref_mut());
             for t in 0..self.tasks.len() {
                 if self.tasks[t].next_us == next {
                     self.run_task(t, trace.as_deref_mut());
@@ -307,8 +340,13 @@ impl Strategy {
             if Some(m) == self.error_program || self.members[m].stopped {
                 continue;
             }
-            if self.members[m].seq.is_some() {
-                if let Err(e) = self.scan_sequence(m, number, trace.as_deref_mut()) {
+            if self.members[m].seq.is_some() || self.members[m].fst.is_some() {
+                let scanned = if self.members[m].fst.is_some() {
+                    self.scan_fst(m, number, trace.as_deref_mut())
+                } else {
+                    self.scan_sequence(m, number, trace.as_deref_mut())
+                };
+                if let Err(e) = scanned {
                     self.enter_error(m, number, e, trace.as_deref_mut());
                 }
                 self.check_clear(number, trace.as_deref_mut());
@@ -349,7 +387,12 @@ impl Strategy {
         runs
     }
 
-    fn run_member(&mut self, m: usize, task: u8, trace: Option<&mut Trace>) -> Result<(), crate::RuntimeError> {
+    fn run_member(
+        &mut self,
+        m: usize,
+        task: u8,
+        trace: Option<&mut Trace>,
+    ) -> Result<crate::vm::Outcome, crate::RuntimeError> {
         let now = self.now_us;
         // The block's name is copied only for a trace (the store is borrowed by the run).
         let name = trace.as_ref().map(|_| self.store.db.blocks[self.members[m].block].name.clone());
@@ -361,7 +404,7 @@ impl Strategy {
             Some(f) => Some(f),
             None => None,
         };
-        self.vm.run(linked, &mut member.act, &mut self.store, tracer).map(|_| ())
+        self.vm.run(linked, &mut member.act, &mut self.store, tracer)
     }
 
     /// A write by the engine itself (Active, Status, alarms), traced like a program's.

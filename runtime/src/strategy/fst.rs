@@ -1,0 +1,323 @@
+//! FST blocks in a strategy: each runs the table its `FileName` holds, in
+//! its task, as a ROC runs a Function Sequence Table (`docs/fst.md`).
+//!
+//! In each cycle a running table (RUNFLG 1) executes up to its steps-per-
+//! cycle limit, stopping early at END (the next cycle starts at step 0), at
+//! WT (it sleeps for the time asked, then goes on at the next step) and
+//! while a BRK delay is in force (one command per BRK × 100 ms). Its four
+//! timers count down by one every 100 ms while it runs. A runtime fault —
+//! a point removed from the database, an invalid history index — stops the
+//! table with RUNFLG 5 and IP at the failing step.
+
+use super::trace::{seconds, Trace};
+use super::{Strategy, StrategyError, Want};
+use crate::errors::RuntimeError;
+use crate::object::{Unit, UnitKind};
+use crate::store::{Cell, Store};
+use crate::verify::Verified;
+use crate::vm::Outcome;
+
+/// Steps one cycle may execute when the block's STEPS is 0.
+pub const DEFAULT_STEPS: u32 = 20;
+
+/// The FST timers' interval and the unit of BRK.
+pub const TICK_US: u64 = 100_000;
+
+/// WT's range in seconds (Table B-14).
+pub const MIN_WAIT: f64 = 0.1;
+pub const MAX_WAIT: f64 = 999_999.0;
+
+/// Whether a block is an FST point (a template with the FST registers and
+/// a `FileName`).
+pub(super) fn is_fst(store: &Store, block: usize) -> bool {
+    let t = store.db.block_template(block);
+    ["FileName", "RR", "CMPFLG", "RUNFLG", "IP", "BRK"].iter().all(|f| t.field(f).is_some())
+}
+
+/// The FST unit of an FST block's file: its first table.
+pub(super) fn unit_of(v: &Verified, w: &Want, block_name: &dyn Fn(usize) -> String) -> Result<usize, StrategyError> {
+    v.object()
+        .units
+        .iter()
+        .position(|u| u.kind == UnitKind::Fst)
+        .ok_or_else(|| StrategyError::new("E0834", block_name(w.block), format!("`{}` holds no FST table", w.file)))
+}
+
+/// The cells of an FST block the engine reads and writes.
+#[derive(Clone, Copy, Debug, Default)]
+struct FstCells {
+    rr: Option<u32>,
+    cf: Option<u32>,
+    runflg: Option<u32>,
+    ip: Option<u32>,
+    brk: Option<u32>,
+    steps: Option<u32>,
+    timers: [Option<u32>; 4],
+}
+
+/// One FST block's engine state.
+#[derive(Clone, Debug)]
+pub(super) struct FstRun {
+    cells: FstCells,
+    /// Instruction offset of each step, for IP.
+    offsets: Vec<u32>,
+    /// Asleep (WT, BRK) until this time.
+    wait_until: u64,
+    /// Time up to which the timers have counted.
+    ticked: u64,
+    /// Whether the table ran at the last scan (a stop and start begins again at step 0).
+    running: bool,
+}
+
+fn int(store: &Store, cell: Option<u32>) -> i32 {
+    match cell.and_then(|c| store.cells.get(c as usize)) {
+        Some(Cell::Int(i)) => *i,
+        Some(Cell::Bits { v, .. }) => i32::from(*v),
+        Some(Cell::Real(r)) => *r as i32,
+        _ => 0,
+    }
+}
+
+impl FstRun {
+    /// The state of `block` running `unit`. A block whose file does not set
+    /// RUNFLG starts running, as a table does when started after download.
+    pub(super) fn new(store: &mut Store, block: usize, unit: &Unit) -> FstRun {
+        let c = |f: &str| store.cell_of(block, f);
+        let cells = FstCells {
+            rr: c("RR"),
+            cf: c("CMPFLG"),
+            runflg: c("RUNFLG"),
+            ip: c("IP"),
+            brk: c("BRK"),
+            steps: c("STEPS"),
+            timers: [c("TMR1"), c("TMR2"), c("TMR3"), c("TMR4")],
+        };
+        let t = store.db.block_template(block);
+        let set = t.field("RUNFLG").is_some_and(|f| store.db.blocks[block].values.iter().any(|(i, _)| *i == f));
+        if let (false, Some(cell)) = (set, cells.runflg) {
+            store.cells[cell as usize] = Cell::Int(1);
+        }
+        let offsets = unit.main().map(|b| b.labels[..unit.steps.len()].to_vec()).unwrap_or_default();
+        FstRun { cells, offsets, wait_until: 0, ticked: 0, running: false }
+    }
+}
+
+/// Microseconds of a WT of `secs` seconds: within 0.1 s to 999,999 s, in
+/// whole 100 ms intervals (rounded to the nearest).
+fn wait_us(secs: f32) -> u64 {
+    let s = f64::from(secs).clamp(MIN_WAIT, MAX_WAIT);
+    ((s * 10.0).round() as u64).max(1) * TICK_US
+}
+
+impl Strategy {
+    /// Counts the timers of member `m`'s block down by the 100 ms intervals
+    /// passed since they last counted.
+    fn tick_timers(&mut self, m: usize, task: u8, mut trace: Option<&mut Trace>) {
+        let now = self.now_us;
+        let Some(f) = self.members[m].fst.as_mut() else { return };
+        let ticks = now.saturating_sub(f.ticked) / TICK_US;
+        f.ticked += ticks * TICK_US;
+        let timers = f.cells.timers;
+        if ticks == 0 {
+            return;
+        }
+        for cell in timers.into_iter().flatten() {
+            let v = int(&self.store, Some(cell));
+            if v > 0 {
+                let left = i64::from(v).saturating_sub(ticks as i64).max(0) as i32;
+                self.host_write(m, task, cell, Cell::Int(left), trace.as_deref_mut());
+            }
+        }
+    }
+
+    /// One cycle of an FST block's table.
+    pub(super) fn scan_fst(&mut self, m: usize, task: u8, mut trace: Option<&mut Trace>) -> Result<(), RuntimeError> {
+        let now = self.now_us;
+        let Some(f) = self.members[m].fst.as_deref() else { return Ok(()) };
+        let (c, running) = (f.cells, f.running);
+        if int(&self.store, c.runflg) != 1 {
+            if let Some(f) = self.members[m].fst.as_mut() {
+                f.running = false;
+                f.ticked = now;
+            }
+            self.members[m].act.reset();
+            return Ok(());
+        }
+        if running {
+            self.tick_timers(m, task, trace.as_deref_mut());
+        } else if let Some(f) = self.members[m].fst.as_mut() {
+            // Started (again): from step 0, awake, timers counting from now.
+            f.running = true;
+            f.ticked = now;
+            f.wait_until = 0;
+            self.members[m].act.reset();
+        }
+        if self.members[m].fst.as_ref().is_some_and(|f| now < f.wait_until) {
+            return Ok(());
+        }
+        let brk = int(&self.store, c.brk);
+        let budget = match (brk, int(&self.store, c.steps)) {
+            (1.., _) => 1,
+            (_, s @ 1..) => s as u32,
+            _ => DEFAULT_STEPS,
+        };
+        let result = self.fst_cycle(m, task, budget, brk, trace.as_deref_mut());
+        let f = self.members[m].fst.as_deref();
+        let ip = f.and_then(|f| f.offsets.get(usize::from(self.members[m].act.step)).copied()).unwrap_or(0);
+        if let Some(cell) = c.ip {
+            self.host_write(m, task, cell, Cell::Int(ip as i32), trace.as_deref_mut());
+        }
+        if result.is_err() {
+            if let Some(cell) = c.runflg {
+                self.host_write(m, task, cell, Cell::Int(5), trace);
+            }
+            if let Some(f) = self.members[m].fst.as_mut() {
+                f.running = false;
+            }
+        }
+        result
+    }
+
+    /// Runs up to `budget` steps; with a trace, one step per VM run so each
+    /// step is recorded with RR and CF after it.
+    fn fst_cycle(
+        &mut self,
+        m: usize,
+        task: u8,
+        budget: u32,
+        brk: i32,
+        mut trace: Option<&mut Trace>,
+    ) -> Result<(), RuntimeError> {
+        let now = self.now_us;
+        let mut left = budget;
+        loop {
+            let per_run = if trace.is_some() { 1 } else { left };
+            let member = &mut self.members[m];
+            member.act.steps_left = per_run;
+            member.act.pause = None;
+            let outcome = self.run_member(m, task, trace.as_deref_mut());
+            let member = &mut self.members[m];
+            let used = per_run - member.act.steps_left;
+            left -= used;
+            if let (Some(t), 1..) = (trace.as_deref_mut(), used) {
+                self.trace_step(m, task, t);
+            }
+            let member = &mut self.members[m];
+            let Some(f) = member.fst.as_mut() else { return Ok(()) };
+            match outcome {
+                Err(e) => return Err(e),
+                Ok(Outcome::Done) => return Ok(()),
+                Ok(Outcome::Suspended) => match member.act.pause.take() {
+                    Some((0, secs)) => {
+                        f.wait_until = now + wait_us(secs);
+                        return Ok(());
+                    }
+                    Some((_, n)) if n >= 1.0 => {
+                        f.wait_until = now + (n as u64) * TICK_US;
+                        return Ok(());
+                    }
+                    _ if left > 0 => {}
+                    _ => {
+                        if brk > 0 {
+                            f.wait_until = now + brk as u64 * TICK_US;
+                        }
+                        return Ok(());
+                    }
+                },
+            }
+        }
+    }
+
+    /// A trace line for the step member `m` just executed: its number and
+    /// command, and RR and CF after it.
+    fn trace_step(&self, m: usize, task: u8, t: &mut Trace) {
+        let member = &self.members[m];
+        let Some(f) = member.fst.as_deref() else { return };
+        let step = member.act.step;
+        let cmd = self.objects[member.object].unit(member.program).and_then(|u| u.steps.get(usize::from(step)));
+        // RR as its shortest decimal form (0.1, not 0.10000000149011612).
+        let rr = match f.cells.rr.and_then(|c| self.store.cells.get(c as usize)) {
+            Some(Cell::Real(r)) => r.to_string().parse::<f64>().unwrap_or(0.0),
+            _ => 0.0,
+        };
+        let line = serde_json::json!({
+            "time": seconds(self.now_us), "task": task,
+            "program": self.store.db.blocks[member.block].name,
+            "step": step, "cmd": cmd.map(String::as_str).unwrap_or(""),
+            "RR": rr, "CF": int(&self.store, f.cells.cf),
+        });
+        t.line(&line);
+    }
+}
+
+/// The ROC device's own clockwork, run whenever simulated time moves:
+/// timed discrete outputs (TDO) turn off when their time is up, and the
+/// history logger samples its points. Found once when the strategy is
+/// built, so a strategy without ROC points pays nothing.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Device {
+    /// `TDOREM` and `STATUS` of every DOU point.
+    tdo: Vec<(u32, u32)>,
+    /// Whether any history point is sampled by the logger.
+    logs: bool,
+    last_us: u64,
+}
+
+impl Device {
+    pub(super) fn of(store: &Store) -> Device {
+        let tdo = (0..store.db.blocks.len())
+            .filter(|&b| store.db.block_template(b).name.eq_ignore_ascii_case("DOU"))
+            .filter_map(|b| Some((store.cell_of(b, "TDOREM")?, store.cell_of(b, "STATUS")?)))
+            .collect();
+        let logs = (0..store.db.blocks.len()).any(|b| store.db.block_template(b).name.eq_ignore_ascii_case("HIST"));
+        Device { tdo, logs, last_us: 0 }
+    }
+}
+
+impl Strategy {
+    /// Advances the device's clockwork to now.
+    pub(super) fn device_tick(&mut self, mut trace: Option<&mut Trace>) {
+        let now = self.now_us;
+        let dt = now.saturating_sub(self.device.last_us);
+        self.device.last_us = now;
+        if dt == 0 {
+            return;
+        }
+        for i in 0..self.device.tdo.len() {
+            let (rem, status) = self.device.tdo[i];
+            let Some(Cell::Real(left)) = self.store.cells.get(rem as usize).cloned() else { continue };
+            if left <= 0.0 {
+                continue;
+            }
+            let after = (f64::from(left) - dt as f64 / 1e6).max(0.0) as f32;
+            self.host_write(usize::MAX, 0, rem, Cell::Real(after), trace.as_deref_mut());
+            if after == 0.0 {
+                self.host_write(usize::MAX, 0, status, Cell::Int(0), trace.as_deref_mut());
+            }
+        }
+        if self.device.logs {
+            let local = self.store.now.floor() as i64 + self.vm.clock.utc_offset;
+            let crate::store::Store { db, cells, first, roc, .. } = &mut self.store;
+            let mut value_of = |point: &str| {
+                let (block, field) = point.split_once(',')?;
+                let b = db.blocks.iter().position(|x| same_point(&x.name, block))?;
+                let f = db.block_template(b).field(field.trim())?;
+                match cells.get(first[b] as usize + f)? {
+                    Cell::Real(r) => Some(*r),
+                    Cell::Int(i) => Some(*i as f32),
+                    Cell::Bits { v, .. } => Some(f32::from(*v)),
+                    Cell::Bool(b) => Some(f32::from(u8::from(*b))),
+                    _ => None,
+                }
+            };
+            roc.history.sample(local, &mut value_of);
+        }
+    }
+}
+
+/// Whether two ROC point names are the same, ignoring case and spaces
+/// (`DIN4-1` is `DIN 4-1`).
+pub fn same_point(a: &str, b: &str) -> bool {
+    let squeeze = |s: &str| s.chars().filter(|c| !c.is_whitespace()).map(|c| c.to_ascii_uppercase()).collect::<String>();
+    squeeze(a) == squeeze(b)
+}
