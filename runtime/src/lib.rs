@@ -12,6 +12,7 @@ pub mod errors;
 pub mod isa;
 pub mod link;
 pub mod object;
+pub mod roc;
 pub mod sequence;
 pub mod store;
 pub mod strategy;
