@@ -132,6 +132,8 @@ codes! {
     "R0006" => "watchdog: too many instructions in one run",
     "R0007" => "string too long, or too many string bytes in one run",
     "R0008" => "write to a read-only field through an offset",
+    "R0010" => "FST table: invalid point reference",
+    "R0011" => "FST table: invalid history point or index",
     "R0099" => "object and database disagree at run time",
     "E0800" => "database file is not valid JSON",
     "E0801" => "database file has the wrong shape",
@@ -156,6 +158,7 @@ codes! {
     "E0831" => "action-type block names an action its file does not have",
     "E0832" => "error program is not an action-type block",
     "E0833" => "SFC_CON block's file holds no sequence",
+    "E0834" => "FST block's file holds no FST table",
     "E0900" => "file cannot be read or written",
     "E0901" => "output path is not a regular file",
     "E0902" => "output file is one of the inputs",
@@ -195,6 +198,10 @@ mod tests {
             include_str!("../../runtime/src/strategy/sequences.rs"),
             include_str!("../../runtime/src/link.rs"),
             include_str!("../../runtime/src/verify_chart.rs"),
+            include_str!("../../runtime/src/db/roc.rs"),
+            include_str!("../../runtime/src/strategy/fst.rs"),
+            include_str!("../../runtime/src/roc/mod.rs"),
+            include_str!("../../runtime/src/roc/history.rs"),
         ];
         for src in sources {
             let starts = src.match_indices("\"E0").chain(src.match_indices("\"W0")).chain(src.match_indices("\"R0"));

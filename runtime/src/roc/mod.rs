@@ -1,100 +1,55 @@
-//! TEMPORARY stub of the ROC device state (being written on branch roc-state).
-#![allow(dead_code, unused_variables)]
+//! The ROC device's own state that FST tables read and write
+//! (`docs/fst-history.md`): the alarm and event logs (ALM, EVT), the
+//! history archives (RDB, WDB, WTM, DHV … PIN) with the logger that
+//! fills CURRENT points, and the clock functions (GTE, DWK, MND).
+//!
+//! Pure data and functions: nothing here runs a table or touches the
+//! store. The VM calls in with the device clock (POSIX seconds, no time
+//! zone) and the values it resolved; errors are [`HistError`] values with
+//! code `R0011`, on which the FST halts.
+
+mod clock;
+mod history;
+mod log;
+mod logger;
+#[cfg(test)]
+mod tests;
+
+pub use clock::{civil, day_of_week, gte, iso, minutes_since_midnight, Civil, DAY};
+pub use history::{
+    split_archpt, Archive, ArchiveType, Entry, HistError, HistFn, History, Point, DEFAULT_DAILY, DEFAULT_PERIOD,
+    DEFAULT_PERIODIC, HALT, MAX_DAILY, MAX_PERIODIC, MAX_POINTS, MINUTE_ENTRIES,
+};
+pub use log::{Log, LogEntry, ALARM_LOG, EVENT_LOG, MESSAGE_CHARS};
+
 use crate::db::Database;
+use serde_json::{json, Value};
 
-pub const ALARM_LOG: usize = 240;
-pub const EVENT_LOG: usize = 240;
-
+/// Everything a ROC device keeps for its FSTs besides the database values.
 #[derive(Clone, Debug, PartialEq)]
-pub struct LogEntry {
-    pub time: i64,
-    pub text: String,
-    pub value: f32,
-    pub source: String,
-}
-
-#[derive(Clone, Debug, Default)]
-pub struct Log {
-    entries: std::collections::VecDeque<LogEntry>,
-}
-impl Log {
-    pub fn new(cap: usize) -> Log {
-        Log::default()
-    }
-    pub fn push(&mut self, e: LogEntry) {
-        self.entries.push_back(e);
-    }
-    pub fn iter(&self) -> impl Iterator<Item = &LogEntry> {
-        self.entries.iter()
-    }
-    pub fn len(&self) -> usize {
-        self.entries.len()
-    }
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum HistFn {
-    Rdb,
-    Dhv,
-    Dht,
-    Phv,
-    Pht,
-    Mhv,
-    Dis,
-    Din,
-    Pis,
-    Pin,
-    Gte,
-}
-impl HistFn {
-    pub fn from_u8(b: u8) -> Option<HistFn> {
-        use HistFn::*;
-        [Rdb, Dhv, Dht, Phv, Pht, Mhv, Dis, Din, Pis, Pin, Gte].get(usize::from(b)).copied()
-    }
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub struct HistError {
-    pub code: &'static str,
-    pub message: String,
-}
-
-#[derive(Clone, Debug, Default)]
-pub struct History {}
-impl History {
-    pub fn from_db(db: &Database) -> History {
-        History {}
-    }
-    pub fn write(&mut self, hp: f32, idx: f32, value: Option<f32>, now: i64) -> Result<f32, HistError> {
-        Err(HistError { code: "R0011", message: "stub".into() })
-    }
-    pub fn read(&self, f: HistFn, arg1: f32, arg2: f32) -> Result<(f32, f32), HistError> {
-        Err(HistError { code: "R0011", message: "stub".into() })
-    }
-    pub fn sample(&mut self, now: i64, value_of: &mut dyn FnMut(&str) -> Option<f32>) {}
-    pub fn to_json(&self) -> serde_json::Value {
-        serde_json::Value::Null
-    }
-}
-
-pub fn day_of_week(now: i64) -> f32 {
-    0.0
-}
-pub fn minutes_since_midnight(now: i64) -> f32 {
-    0.0
-}
-
-#[derive(Clone, Debug, Default)]
 pub struct RocState {
     pub alarms: Log,
     pub events: Log,
     pub history: History,
 }
+
 impl RocState {
-    pub fn new(db: &Database) -> RocState {
-        RocState::default()
+    /// Empty logs and the history points the database configures.
+    pub fn new(db: &Database) -> Self {
+        RocState { alarms: Log::new(ALARM_LOG), events: Log::new(EVENT_LOG), history: History::from_db(db) }
     }
-    pub fn to_json(&self) -> serde_json::Value {
-        serde_json::Value::Null
+
+    /// For `--out`: `{"alarms": log, "events": log, "history": {"points": [...]}}`.
+    pub fn to_json(&self) -> Value {
+        json!({"alarms": self.alarms.to_json(), "events": self.events.to_json(), "history": self.history.to_json()})
+    }
+}
+
+/// A REAL for JSON: the shortest decimal that reads back to the same f32
+/// (as `--out` prints block values), `null` when not finite.
+fn real(r: f32) -> Value {
+    match crate::text::format_real(r).parse::<f64>() {
+        Ok(x) if x.is_finite() => json!(x),
+        _ => Value::Null,
     }
 }
