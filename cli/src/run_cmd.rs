@@ -325,6 +325,14 @@ pub fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<
             }
         }
     }
+    // The ROC device's logs and archives, when the database has history
+    // points or a table logged something (the loader skips this key).
+    let roc = &store.roc;
+    if !roc.history.points().is_empty() || !roc.alarms.is_empty() || !roc.events.is_empty() {
+        if let Some(obj) = root.as_object_mut() {
+            obj.insert("roc".to_string(), roc.to_json());
+        }
+    }
     let text = serde_json::to_string_pretty(&root).map_err(json_error)? + "\n";
     crate::files::write_atomic(out, text.as_bytes())
 }

@@ -125,6 +125,8 @@ macro_rules! invalid {
 }
 
 /// Running compiled ST against a database, for the runtime semantics tests.
+pub mod fst;
+
 pub mod exec {
     use linc_compiler::check::Context;
     use linc_compiler::lower::{self, Lines};

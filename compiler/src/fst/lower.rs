@@ -55,6 +55,9 @@ pub fn lower(table: &Checked, name: &str, file: &str) -> Result<ObjectFile, Vec<
         l.step(step.cmd, &step.arg1, &step.arg2);
         listing.push(describe(step.cmd, &step.arg1, &step.arg2));
     }
+    // A table whose last step is not END or GO ends its cycle there, as
+    // if END followed (END may stand earlier, with branches after it).
+    l.ops.push(Op::Ret {});
     if l.symbols.len() > usize::from(u16::MAX) {
         return Err(vec![LowerError::TooMany { span: Span::new(0, 0), what: "database references" }]);
     }

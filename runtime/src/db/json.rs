@@ -132,7 +132,9 @@ impl<'a> Loader<'a> {
     fn load(&mut self, text: &str) -> Result<(), DbError> {
         let root = tree::parse(text)?;
         let members = object(&root, "the database")?;
-        only_keys(members, &["device", "templates", "blocks", "aliases", "tasks"], "the database")?;
+        // `roc` holds the logs and archives a run wrote with `--out`; it
+        // describes a past run, not the database, so loading skips it.
+        only_keys(members, &["device", "templates", "blocks", "aliases", "tasks", "roc"], "the database")?;
         if let Some(m) = get(members, "device") {
             self.device(&m.value)?;
         }

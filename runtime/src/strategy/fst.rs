@@ -195,12 +195,14 @@ impl Strategy {
             let member = &mut self.members[m];
             member.act.steps_left = per_run;
             member.act.pause = None;
+            let logged = (self.store.roc.alarms.total(), self.store.roc.events.total());
             let outcome = self.run_member(m, task, trace.as_deref_mut());
             let member = &mut self.members[m];
             let used = per_run - member.act.steps_left;
             left -= used;
             if let (Some(t), 1..) = (trace.as_deref_mut(), used) {
                 self.trace_step(m, task, t);
+                self.trace_logged(m, task, logged, t);
             }
             let member = &mut self.members[m];
             let Some(f) = member.fst.as_mut() else { return Ok(()) };
@@ -224,6 +226,24 @@ impl Strategy {
                         return Ok(());
                     }
                 },
+            }
+        }
+    }
+
+    /// A trace line for an alarm or event the step just logged.
+    fn trace_logged(&self, m: usize, task: u8, before: (u64, u64), t: &mut Trace) {
+        let roc = &self.store.roc;
+        for (key, log, was) in [("alarm", &roc.alarms, before.0), ("event", &roc.events, before.1)] {
+            if log.total() == was {
+                continue;
+            }
+            if let Some(e) = log.iter().last() {
+                let line = serde_json::json!({
+                    "time": seconds(self.now_us), "task": task,
+                    "program": self.store.db.blocks[self.members[m].block].name,
+                    key: e.text, "value": e.value.to_string().parse::<f64>().unwrap_or(0.0),
+                });
+                t.line(&line);
             }
         }
     }
