@@ -7,6 +7,7 @@
 
 pub mod check;
 pub mod commands;
+pub mod errors;
 pub mod list;
 pub mod lower;
 pub mod reader;
@@ -33,6 +34,8 @@ pub struct Row {
     pub step: u32,
     /// 1-based line of the row in the CSV file.
     pub line: u32,
+    /// 1-based column (in characters) of the CMD cell, for [`Step::col`].
+    pub col: u32,
     pub label: Option<Cell>,
     pub cmd: Cell,
     pub arg1: Option<Cell>,
@@ -45,6 +48,10 @@ pub struct Row {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Table {
     pub rows: Vec<Row>,
+    /// Line and column (1-based) just after the last row of the program:
+    /// where an END the table leaves out is placed.
+    pub end_line: u32,
+    pub end_col: u32,
 }
 
 /// A resolved database parameter: a field of a block, as a symbol of the
