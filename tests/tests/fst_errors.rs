@@ -197,3 +197,73 @@ fn the_explanations_examples_hold() {
     }
     assert_eq!(pages, 30);
 }
+
+/// Tables made of random pieces of real ones (quotes, delimiters, line
+/// ends, commands, TLPs, non-ASCII text) never panic the reader, the
+/// checker or the listing, and every diagnostic points inside the text, on
+/// character boundaries, so that it renders.
+#[test]
+fn random_tables_are_read_and_checked_without_panics() {
+    use linc_conformance::rng::Rng;
+    const PIECES: &[&str] = &[
+        ",",
+        ",",
+        ",",
+        ";",
+        "\n",
+        "\r\n",
+        "\"",
+        "\"\"",
+        " ",
+        "0",
+        "1",
+        "2",
+        "17,0,2",
+        "98,0,2",
+        "VAL",
+        "SAV",
+        "GO",
+        "END",
+        "ST",
+        "CT",
+        "WDB",
+        "DIS",
+        "MSG",
+        ">=",
+        "LOOP",
+        "PMPOFF",
+        "AIN 3-1,EU",
+        "\"SFP 1,DATA1\"",
+        "DOU 4-1",
+        "FST 1,TMR1",
+        "1e39",
+        "-3.5",
+        "é",
+        "€uro",
+        "\u{feff}",
+        "STEP",
+        "LABEL,CMD,ARGUMENT1,ARGUMENT2",
+    ];
+    let db = db();
+    let mut rng = Rng::new(0x05ee_df57);
+    for round in 0..3000 {
+        let mut src = if round % 2 == 0 { HEADER.to_string() } else { String::new() };
+        for _ in 0..rng.below(60) {
+            src.push_str(PIECES[rng.below(PIECES.len())]);
+        }
+        let (table, mut diagnostics) = reader::read(&src);
+        let (checked, more) = check::check(&table, Some(&db));
+        diagnostics.extend(more);
+        let _ = linc_compiler::fst::list::listing(&table, None);
+        if let Some(c) = checked {
+            assert_eq!(c.steps.last().map(|s| s.cmd), Some(Cmd::End), "{src:?}");
+        }
+        for d in &diagnostics {
+            for span in std::iter::once(d.span).chain(d.secondary.iter().map(|l| l.span)) {
+                assert!(span.start <= span.end && span.end <= src.len(), "{src:?}: {d:?}");
+                assert!(src.is_char_boundary(span.start) && src.is_char_boundary(span.end), "{src:?}: {d:?}");
+            }
+        }
+        let _ = snapshot("random", &src, &diagnostics);
+    }
+}

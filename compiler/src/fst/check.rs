@@ -218,7 +218,17 @@ impl Checker<'_> {
                 self.push(errors::bad_timer(cell.span, &cell.text));
                 Arg::None
             }
-            Operand::Unresolved | Operand::Bad => Arg::None,
+            // Without a database the point is unknown, but the parameter
+            // name still says whether it is a timer.
+            Operand::Unresolved => {
+                if let Ok(Syntax::Text { param: Some(p), .. }) = tlp::parse(&cell.text) {
+                    if !is_timer_field(p) {
+                        self.push(errors::bad_timer(cell.span, &cell.text));
+                    }
+                }
+                Arg::None
+            }
+            Operand::Bad => Arg::None,
         }
     }
 
@@ -580,6 +590,8 @@ mod tests {
         assert!(checked.is_none());
         let (checked, d, _) = run(&[",VAL,1,"], None);
         assert!(checked.is_none() && d.is_empty());
+        let (_, d, _) = run(&[",ST,\"FST 2,TMR3\",10", ",ST,\"FST 2,R1\",10", ",ST,7,10", ",WT,0,", "X,VAL,X,"], None);
+        assert_eq!(d.iter().map(|d| d.code).collect::<Vec<_>>(), ["E0416", "E0416", "E0417", "E0412"]);
     }
 
     #[test]

@@ -203,8 +203,8 @@ pub fn tlp_no_param(span: Span, p: u16, template: &str, count: usize) -> Diagnos
 
 /// AO/DO/TDO on a point of another template.
 pub fn wrong_point_type(span: Span, cmd: &str, point: &str, found: &str, expected: &str) -> Diagnostic {
-    Diagnostic::error("E0427", format!("`{cmd}` drives {expected} points; `{point}` is {found}"), span)
-        .label(format!("not an {expected} point"))
+    Diagnostic::error("E0427", format!("`{cmd}` drives {expected} points, and `{point}` is of type {found}"), span)
+        .label(format!("type {found}, not {expected}"))
 }
 
 /// Message text longer than the device keeps.
