@@ -220,7 +220,12 @@ struct State {
 fn fst_only(op: &Op) -> bool {
     matches!(
         op,
-        Op::Step { .. } | Op::Pause { .. } | Op::Clock { .. } | Op::Log { .. } | Op::HistWrite { .. } | Op::HistRead { .. }
+        Op::Step { .. }
+            | Op::Pause { .. }
+            | Op::Clock { .. }
+            | Op::Log { .. }
+            | Op::HistWrite { .. }
+            | Op::HistRead { .. }
     )
 }
 

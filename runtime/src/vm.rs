@@ -611,11 +611,8 @@ impl Vm {
                 }
                 Op::Clock { what } => {
                     let now = self.clock.local_time();
-                    let v = if what == 0 {
-                        crate::roc::day_of_week(now)
-                    } else {
-                        crate::roc::minutes_since_midnight(now)
-                    };
+                    let v =
+                        if what == 0 { crate::roc::day_of_week(now) } else { crate::roc::minutes_since_midnight(now) };
                     self.push_r(v);
                 }
                 Op::Log { which } => {

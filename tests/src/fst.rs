@@ -1,8 +1,8 @@
 //! Running FST tables in tests: a table and a ROC database in, a strategy
 //! out, built the way `linc run TABLE.csv --db DB.json` builds it.
 
-use linc_runtime::strategy::{trace::Trace, Strategy, Want, WantKind};
 use linc_runtime::store::Cell;
+use linc_runtime::strategy::{trace::Trace, Strategy, Want, WantKind};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::{Database, Store};
 
@@ -23,7 +23,10 @@ pub const POINTS: &str = r#"
 /// A ROC800 database of [`POINTS`] with `values` (JSON members
 /// `"FIELD": value`) given to `FST 1`.
 pub fn database(fst_values: &str) -> Database {
-    let points = POINTS.replace(r#""FST 1": { "type": "FST" }"#, &format!(r#""FST 1": {{ "type": "FST", "values": {{ {fst_values} }} }}"#));
+    let points = POINTS.replace(
+        r#""FST 1": { "type": "FST" }"#,
+        &format!(r#""FST 1": {{ "type": "FST", "values": {{ {fst_values} }} }}"#),
+    );
     let text = format!(r#"{{ "device": "ROC800", "blocks": {{ {points} }} }}"#);
     Database::from_json(&text).unwrap_or_else(|e| panic!("test database: {e}"))
 }

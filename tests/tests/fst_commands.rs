@@ -14,8 +14,18 @@ fn once(rows: &[&str], fst: &str) -> linc_runtime::strategy::Strategy {
 fn math_add_subtract_multiply_divide() {
     let s = once(
         &[
-            ",VAL,10,", ",+,5,", ",SAV,\"FST 1,R1\",", ",-,20,", ",SAV,\"FST 1,R2\",", ",*,-2,",
-            ",SAV,\"FST 1,R3\",", ",/,4,", ",SAV,\"FST 1,R4\",", ",/,0,", ",SAV,\"FST 1,R5\",", ",END,,",
+            ",VAL,10,",
+            ",+,5,",
+            ",SAV,\"FST 1,R1\",",
+            ",-,20,",
+            ",SAV,\"FST 1,R2\",",
+            ",*,-2,",
+            ",SAV,\"FST 1,R3\",",
+            ",/,4,",
+            ",SAV,\"FST 1,R4\",",
+            ",/,0,",
+            ",SAV,\"FST 1,R5\",",
+            ",END,,",
         ],
         r#""CMPFLG": 7"#,
     );
@@ -29,7 +39,10 @@ fn math_add_subtract_multiply_divide() {
 
 #[test]
 fn math_with_database_arguments_and_overflow() {
-    let s = once(&[",VAL,\"AIN 3-1,EU\",", ",+,\"AIN 3-1,HIAL\",", ",SAV,\"FST 1,R1\",", ",VAL,3e38,", ",*,10,", ",END,,"], "");
+    let s = once(
+        &[",VAL,\"AIN 3-1,EU\",", ",+,\"AIN 3-1,HIAL\",", ",SAV,\"FST 1,R1\",", ",VAL,3e38,", ",*,10,", ",END,,"],
+        "",
+    );
     assert_eq!(num(&s, "FST 1.R1"), 132.0);
     assert_eq!(num(&s, "FST 1.RR"), 3e38_f32 as f64, "an overflowing product leaves RR unchanged");
 }
@@ -38,8 +51,18 @@ fn math_with_database_arguments_and_overflow() {
 fn power_only_for_positive_rr() {
     let s = once(
         &[
-            ",VAL,2,", ",**,10,", ",SAV,\"FST 1,R1\",", ",VAL,-2,", ",**,2,", ",SAV,\"FST 1,R2\",", ",VAL,0,",
-            ",**,2,", ",SAV,\"FST 1,R3\",", ",VAL,4,", ",**,0.5,", ",END,,",
+            ",VAL,2,",
+            ",**,10,",
+            ",SAV,\"FST 1,R1\",",
+            ",VAL,-2,",
+            ",**,2,",
+            ",SAV,\"FST 1,R2\",",
+            ",VAL,0,",
+            ",**,2,",
+            ",SAV,\"FST 1,R3\",",
+            ",VAL,4,",
+            ",**,0.5,",
+            ",END,,",
         ],
         "",
     );
@@ -53,8 +76,20 @@ fn power_only_for_positive_rr() {
 fn abs_exp_int() {
     let s = once(
         &[
-            ",VAL,-3.5,", ",ABS,,", ",SAV,\"FST 1,R1\",", ",VAL,1,", ",EXP,,", ",SAV,\"FST 1,R2\",", ",VAL,100,",
-            ",EXP,,", ",SAV,\"FST 1,R3\",", ",VAL,-2.7,", ",INT,,", ",SAV,\"FST 1,R4\",", ",VAL,2.7,", ",INT,,",
+            ",VAL,-3.5,",
+            ",ABS,,",
+            ",SAV,\"FST 1,R1\",",
+            ",VAL,1,",
+            ",EXP,,",
+            ",SAV,\"FST 1,R2\",",
+            ",VAL,100,",
+            ",EXP,,",
+            ",SAV,\"FST 1,R3\",",
+            ",VAL,-2.7,",
+            ",INT,,",
+            ",SAV,\"FST 1,R4\",",
+            ",VAL,2.7,",
+            ",INT,,",
             ",END,,",
         ],
         "",
@@ -70,9 +105,28 @@ fn abs_exp_int() {
 fn log_ln_sqr_and_their_domains() {
     let s = once(
         &[
-            ",VAL,1000,", ",LOG,,", ",SAV,\"FST 1,R1\",", ",VAL,-1,", ",LOG,,", ",SAV,\"FST 1,R2\",", ",VAL,1,",
-            ",EXP,,", ",LN,,", ",SAV,\"FST 1,R3\",", ",VAL,0,", ",LN,,", ",SAV,\"FST 1,R4\",", ",VAL,16,", ",SQR,,",
-            ",SAV,\"FST 1,R5\",", ",VAL,-4,", ",SQR,,", ",SAV,\"FST 1,R6\",", ",VAL,0,", ",SQR,,", ",END,,",
+            ",VAL,1000,",
+            ",LOG,,",
+            ",SAV,\"FST 1,R1\",",
+            ",VAL,-1,",
+            ",LOG,,",
+            ",SAV,\"FST 1,R2\",",
+            ",VAL,1,",
+            ",EXP,,",
+            ",LN,,",
+            ",SAV,\"FST 1,R3\",",
+            ",VAL,0,",
+            ",LN,,",
+            ",SAV,\"FST 1,R4\",",
+            ",VAL,16,",
+            ",SQR,,",
+            ",SAV,\"FST 1,R5\",",
+            ",VAL,-4,",
+            ",SQR,,",
+            ",SAV,\"FST 1,R6\",",
+            ",VAL,0,",
+            ",SQR,,",
+            ",END,,",
         ],
         r#""STEPS": 30"#,
     );
@@ -113,8 +167,13 @@ fn logical_commands_work_on_the_8_bit_flag() {
 
 /// RR compared with 5 by `cmd`; R1 = 1 when the branch was taken.
 fn branch(cmd: &str, rr: &str) -> f64 {
-    let rows =
-        [format!(",VAL,{rr},"), format!(",{cmd},5,YES"), ",END,,".into(), "YES,VAL,1,".into(), ",SAV,\"FST 1,R1\",".into()];
+    let rows = [
+        format!(",VAL,{rr},"),
+        format!(",{cmd},5,YES"),
+        ",END,,".into(),
+        "YES,VAL,1,".into(),
+        ",SAV,\"FST 1,R1\",".into(),
+    ];
     let r: Vec<&str> = rows.iter().map(String::as_str).collect();
     let s = once(&r, r#""CMPFLG": 3"#);
     assert_eq!(num(&s, "FST 1.CMPFLG"), 3.0);
@@ -139,9 +198,20 @@ fn comparisons_branch_to_argument2() {
 
 #[test]
 fn equality_is_bit_for_bit() {
-    let s = once(&[",VAL,-0,", ",==,0,YES", ",!=,0,NO", ",END,,", "YES,VAL,1,", ",SAV,\"FST 1,R1\",", ",END,,", "NO,VAL,2,", ",SAV,\"FST 1,R1\","], "");
-    assert_eq!(num(&s, "FST 1.R1"), 0.0, "END at step 3 ends before anything is saved");
-    let s = once(&[",VAL,-0,", ",==,0,YES", ",!=,0,NO", "YES,VAL,1,", ",SAV,\"FST 1,R1\",", ",GO,DONE,", "NO,VAL,2,", ",SAV,\"FST 1,R1\",", "DONE,END,,"], "");
+    let s = once(
+        &[
+            ",VAL,-0,",
+            ",==,0,YES",
+            ",!=,0,NO",
+            "YES,VAL,1,",
+            ",SAV,\"FST 1,R1\",",
+            ",GO,DONE,",
+            "NO,VAL,2,",
+            ",SAV,\"FST 1,R1\",",
+            "DONE,END,,",
+        ],
+        "",
+    );
     assert_eq!(num(&s, "FST 1.R1"), 2.0, "-0 and 0 differ bit for bit: == not taken, != taken");
     let s = once(&[",VAL,0.1,", ",==,0.1,YES", ",END,,", "YES,VAL,1,", ",SAV,\"FST 1,R1\","], "");
     assert_eq!(num(&s, "FST 1.R1"), 1.0);
@@ -178,7 +248,7 @@ fn st_sets_a_timer_and_ct_branches_while_it_runs() {
 
 #[test]
 fn timers_of_another_fst_and_by_number() {
-    let s = once(&[",ST,\"FST 1,TMR4\",30,", ",ST,2,12.6,", ",ST,3,-5,", ",END,,"], "");
+    let s = once(&[",ST,\"FST 1,TMR4\",30", ",ST,2,12.6", ",ST,3,-5", ",END,,"], "");
     assert_eq!(num(&s, "FST 1.TMR4"), 30.0);
     assert_eq!(num(&s, "FST 1.TMR2"), 13.0, "rounded");
     assert_eq!(num(&s, "FST 1.TMR3"), 0.0, "below 0 is 0");
@@ -249,7 +319,8 @@ fn ao_and_do_send_nothing_in_manual() {
 
 #[test]
 fn tdo_turns_an_output_on_for_a_time() {
-    let t = table(&[",VAL,\"FST 1,R1\",", ",==,1,DONE", ",TDO,DOU 4-1,2", ",VAL,1,", ",SAV,\"FST 1,R1\",", "DONE,END,,"]);
+    let t =
+        table(&[",VAL,\"FST 1,R1\",", ",==,1,DONE", ",TDO,DOU 4-1,2", ",VAL,1,", ",SAV,\"FST 1,R1\",", "DONE,END,,"]);
     let s = run(&t, "", 50);
     assert_eq!((num(&s, "DOU 4-1.STATUS"), num(&s, "DOU 4-1.TDOON")), (1.0, 2.0));
     assert_eq!(num(&run(&t, "", 1950), "DOU 4-1.STATUS"), 1.0);
@@ -260,8 +331,15 @@ fn tdo_turns_an_output_on_for_a_time() {
 fn val_and_sav_convert_to_the_parameter() {
     let s = once(
         &[
-            ",VAL,\"DOU 4-1,STATUS\",", ",+,2.5,", ",SAV,\"FST 1,TMR1\",", ",SAV,\"FST 1,R1\",", ",VAL,300,",
-            ",SAV,\"FST 1,CMPFLG\",", ",VAL,-1,", ",SAV,\"FST 1,MISC1\",", ",END,,",
+            ",VAL,\"DOU 4-1,STATUS\",",
+            ",+,2.5,",
+            ",SAV,\"FST 1,TMR1\",",
+            ",SAV,\"FST 1,R1\",",
+            ",VAL,300,",
+            ",SAV,\"FST 1,CMPFLG\",",
+            ",VAL,-1,",
+            ",SAV,\"FST 1,MISC1\",",
+            ",END,,",
         ],
         "",
     );
@@ -296,15 +374,40 @@ fn wdb_wtm_rdb_use_fst_history_points() {
 
 #[test]
 fn history_reads_and_gte() {
-    let s = once(&[",GTE,1700000000,2", ",SAV,\"FST 1,R1\",", ",GTE,1700000000,0", ",SAV,\"FST 1,R2\",", ",GTE,1700000000,3", ",END,,"], "");
+    let s = once(
+        &[
+            ",GTE,1700000000,2",
+            ",SAV,\"FST 1,R1\",",
+            ",GTE,1700000000,0",
+            ",SAV,\"FST 1,R2\",",
+            ",GTE,1700000000,3",
+            ",END,,",
+        ],
+        "",
+    );
     assert_eq!(num(&s, "FST 1.R1"), 2023.0);
     assert_eq!(num(&s, "FST 1.R2"), 11.0);
     assert_eq!(num(&s, "FST 1.RR"), 22.0);
-    let s = once(&[",DIS,9,1225,", ",SAV,\"FST 1,R1\",", ",DIN,9,1225", ",SAV,\"FST 1,R2\",", ",PIS,9,105", ",END,,"], "");
+    let s =
+        once(&[",DIS,9,1225", ",SAV,\"FST 1,R1\",", ",DIN,9,1225", ",SAV,\"FST 1,R2\",", ",PIS,9,105", ",END,,"], "");
     assert_eq!(num(&s, "FST 1.R1"), -1.0, "no entry on 25 December");
     assert_eq!(num(&s, "FST 1.R2"), -1.0);
     assert_eq!(num(&s, "FST 1.RR"), -1.0, "nothing logged yet on 5 January");
-    let s = run(&table(&[",WDB,9,0", ",PIS,9,105", ",SAV,\"FST 1,R1\",", ",PIN,9,105", ",SAV,\"FST 1,R2\",", ",PHV,9,0", ",SAV,\"FST 1,R3\",", ",PHT,9,0", ",END,,"]), "", 50);
+    let s = run(
+        &table(&[
+            ",WDB,9,0",
+            ",PIS,9,105",
+            ",SAV,\"FST 1,R1\",",
+            ",PIN,9,105",
+            ",SAV,\"FST 1,R2\",",
+            ",PHV,9,0",
+            ",SAV,\"FST 1,R3\",",
+            ",PHT,9,0",
+            ",END,,",
+        ]),
+        "",
+        50,
+    );
     assert_eq!((num(&s, "FST 1.R1"), num(&s, "FST 1.R2")), (0.0, 1.0), "one periodic entry on 5 January, at 0");
     assert_eq!(num(&s, "FST 1.RR"), linc_conformance::fst::START as f32 as f64);
 }
@@ -312,7 +415,7 @@ fn history_reads_and_gte() {
 #[test]
 fn go_msg_end_alm_evt() {
     let t = table(&[
-        ",GO,SKIP",
+        ",GO,SKIP,",
         ",VAL,99,",
         "SKIP,VAL,\"FST 1,R1\",",
         ",+,1,",

@@ -198,7 +198,11 @@ impl<'a> Loader<'a> {
     fn device(&mut self, node: &Node) -> Result<(), DbError> {
         let names = || Device::ALL.map(Device::name).join(", ");
         let name = node.as_str().ok_or_else(|| {
-            DbError::at(code::SHAPE, format!("`device` must be a device family ({}), not {}", names(), node.kind()), node.span)
+            DbError::at(
+                code::SHAPE,
+                format!("`device` must be a device family ({}), not {}", names(), node.kind()),
+                node.span,
+            )
         })?;
         self.db.device = Device::parse(name).ok_or_else(|| {
             DbError::at(code::DEVICE, format!("unknown device family `{name}` (expected {})", names()), node.span)

@@ -338,6 +338,7 @@ impl Strategy {
 /// Whether two ROC point names are the same, ignoring case and spaces
 /// (`DIN4-1` is `DIN 4-1`).
 pub fn same_point(a: &str, b: &str) -> bool {
-    let squeeze = |s: &str| s.chars().filter(|c| !c.is_whitespace()).map(|c| c.to_ascii_uppercase()).collect::<String>();
+    let squeeze =
+        |s: &str| s.chars().filter(|c| !c.is_whitespace()).map(|c| c.to_ascii_uppercase()).collect::<String>();
     squeeze(a) == squeeze(b)
 }

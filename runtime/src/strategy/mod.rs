@@ -75,7 +75,8 @@ pub fn wanted(store: &Store) -> Vec<Want> {
     (0..store.db.blocks.len())
         .filter_map(|b| {
             let file = text_field(store, b, "FileName")?;
-            let whole = |kind| (!file.is_empty()).then(|| Want { block: b, file: file.clone(), action: String::new(), kind });
+            let whole =
+                |kind| (!file.is_empty()).then(|| Want { block: b, file: file.clone(), action: String::new(), kind });
             if sequences::is_sfc_con(store, b) {
                 return whole(WantKind::Sequence);
             }
@@ -275,8 +276,11 @@ impl Strategy {
         if name.is_empty() {
             return Ok(());
         }
-        let member =
-            self.store.db.block(&name).and_then(|b| self.members.iter().position(|m| m.block == b && m.seq.is_none() && m.fst.is_none()));
+        let member = self
+            .store
+            .db
+            .block(&name)
+            .and_then(|b| self.members.iter().position(|m| m.block == b && m.seq.is_none() && m.fst.is_none()));
         let sys_name = self.store.db.blocks[sys].name.clone();
         let member = member.ok_or_else(|| {
             StrategyError::new("E0832", sys_name, format!("the error program `{name}` is not an action-type block"))
