@@ -361,8 +361,7 @@ fn main() -> ExitCode {
                 (Some(db), Some(duration))
                     if sequence_src::is_sequence(&file) || fst_src::is_fst(&file) || is_object(&file) =>
                 {
-                    let kind =
-                        if fst_src::is_fst(&file) { sequence_run::Kind::Fst } else { sequence_run::Kind::Sequence };
+                    let kind = sequence_run::Kind::of(&file);
                     let single = sequence_run::SequenceRun { file, kind, block, period, hold_steps: hold_step, force };
                     strategy_cmd::run(&strategy_cmd::Options { db, duration, common, single: Some(single) })
                 }

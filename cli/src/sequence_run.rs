@@ -29,6 +29,26 @@ pub struct SequenceRun {
     pub force: Vec<String>,
 }
 
+impl Kind {
+    /// What `file` holds: an FST table (`.csv`, or an object whose first
+    /// unit is one) or a sequence. An unreadable object is taken for a
+    /// sequence here; loading it later reports why it can't be read.
+    pub fn of(file: &std::path::Path) -> Kind {
+        if crate::fst_src::is_fst(file) {
+            return Kind::Fst;
+        }
+        let fst_object = crate::files::read_input(file)
+            .ok()
+            .and_then(|bytes| linc_runtime::ObjectFile::from_bytes(&bytes).ok())
+            .is_some_and(|o| o.units.first().is_some_and(|u| u.kind == linc_runtime::object::UnitKind::Fst));
+        if fst_object {
+            Kind::Fst
+        } else {
+            Kind::Sequence
+        }
+    }
+}
+
 /// The block that runs the program: an SFC_CON block for a sequence, an
 /// FST block for a table (`--block`, or the only one).
 pub fn block(db: &Database, named: Option<&str>, kind: Kind) -> Result<usize, u8> {

@@ -182,7 +182,7 @@ instructions! {
     0x75 Return { kind: u8 }         [0 0 0 0] "Pop a value of `kind` as the run's result and end (linc eval).";
     0x79 Step { n: u16 }             [0 0 0 0] "FST: begin step `n`; when the run's step budget is spent, end the run here (it resumes at this step).";
     0x7A Pause { why: u8 }           [1 0 0 0] "FST: pop a REAL; end the run after this instruction for WT (why 0: seconds) or BRK (why 1: 100 ms units).";
-    0x7B Clock { what: u8 }          [0 1 0 0] "FST: push the device clock's day of week (0; 1 = Sunday) or minutes since midnight (1), as REAL.";
+    0x7B DayTime { what: u8 }        [0 1 0 0] "FST: push the device clock's day of week (0; 1 = Sunday) or minutes since midnight (1), as REAL.";
     0x7C Log { which: u8 }           [1 0 1 0] "FST: pop a message and a REAL; append them to the alarm (0) or event (1) log.";
     0x7D HistWrite { time: u8 }      [3 1 0 0] "FST: pop index, history point, value; WDB (0) or WTM (1); push the next index.";
     0x7E HistRead { f: u8 }          [2 2 0 0] "FST: pop ARGUMENT2 and ARGUMENT1 of history read `f`; push the result and the next index.";

@@ -139,7 +139,7 @@ fn check_operands(obj: &ObjectFile, u: &Unit, b: &CodeBlock, pc: usize, op: &Op)
             let what = format!("step {n} does not exist (the table lists {})", u.steps.len());
             return Err(invalid("E0710", u, b, pc, what));
         }
-        Op::Pause { why: 2.. } | Op::Clock { what: 2.. } | Op::Log { which: 2.. } | Op::HistWrite { time: 2.. } => {
+        Op::Pause { why: 2.. } | Op::DayTime { what: 2.. } | Op::Log { which: 2.. } | Op::HistWrite { time: 2.. } => {
             return Err(invalid("E0710", u, b, pc, format!("{} has no variant {:?}", op.name(), op.operands())));
         }
         Op::HistRead { f } if crate::roc::HistFn::from_u8(f).is_none() => {
@@ -222,7 +222,7 @@ fn fst_only(op: &Op) -> bool {
         op,
         Op::Step { .. }
             | Op::Pause { .. }
-            | Op::Clock { .. }
+            | Op::DayTime { .. }
             | Op::Log { .. }
             | Op::HistWrite { .. }
             | Op::HistRead { .. }

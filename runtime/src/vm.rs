@@ -609,7 +609,7 @@ impl Vm {
                     act.pause = Some((why, self.pop_r()));
                     break Ok(Outcome::Suspended);
                 }
-                Op::Clock { what } => {
+                Op::DayTime { what } => {
                     let now = self.clock.local_time();
                     let v =
                         if what == 0 { crate::roc::day_of_week(now) } else { crate::roc::minutes_since_midnight(now) };

@@ -149,7 +149,7 @@ fn strategy(run: bool) -> linc_runtime::strategy::Strategy {
     let store = Store::new(db);
     let wants: Vec<_> = wanted(&store).into_iter().map(|w| (w, 0)).collect();
     assert_eq!(wants.len(), 1);
-    assert!(wants[0].0.sequence);
+    assert_eq!(wants[0].0.kind, linc_runtime::strategy::WantKind::Sequence);
     let v = verify::verify(sequence()).expect("verifies");
     Strategy::build(store, vec![v], &wants, Vm::new(10_000, Clock::new(1, 0)), 0.0).expect("builds")
 }

@@ -38,7 +38,10 @@ pub fn check(table: &Table, db: Option<&Database>) -> (Option<Checked>, Vec<Diag
         let arg2 = c.arg(row, cmd, 2, k2, row.arg2.as_ref());
         steps.push(Step { cmd, arg1, arg2, line: row.line, col: row.col });
     }
-    if steps.last().map(|s| s.cmd) != Some(Cmd::End) {
+    // B.1: "If an END command is not present, the FST Editor automatically
+    // adds the END command". A table with its one END earlier keeps it
+    // there; its last step, when not a jump, ends the cycle (docs/fst.md).
+    if end.is_none() {
         let (line, col) = (table.end_line, table.end_col);
         steps.push(Step { cmd: Cmd::End, arg1: Arg::None, arg2: Arg::None, line, col });
     }

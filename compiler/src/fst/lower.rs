@@ -288,7 +288,7 @@ impl Lowering {
                 self.ops.push(Op::Pause { why: 0 });
             }
             Cmd::Dwk | Cmd::Mnd => {
-                self.ops.push(Op::Clock { what: u8::from(cmd == Cmd::Mnd) });
+                self.ops.push(Op::DayTime { what: u8::from(cmd == Cmd::Mnd) });
                 self.keep_rr();
             }
             Cmd::Ao | Cmd::Do | Cmd::Tdo => self.output(cmd, a1, a2),

@@ -91,7 +91,8 @@ pub struct Step {
     pub col: u32,
 }
 
-/// A table that checked clean: its steps, the last one always END.
+/// A table that checked clean: its steps, exactly one of them END (appended
+/// when the table has none).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Checked {
     pub steps: Vec<Step>,
