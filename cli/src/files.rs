@@ -161,33 +161,66 @@ pub fn check_output(out: &Path, inputs: &[&Path]) -> Result<(), Refused> {
     existing_output(out).map(|_| ())
 }
 
-/// Writes `bytes` to `path` atomically: into a new temporary file beside it
+/// An output written atomically: into a new temporary file beside `path`
 /// (created exclusively, with an unpredictable name, so a link planted in
-/// the directory can't redirect the write), then renamed over `path`. An
-/// existing `path` must be a regular file (E0901) and keeps its permission
-/// bits (and, where allowed, its owner and group); a new one gets 0666 less
-/// the umask, like any created file. On failure `path` is untouched and the
-/// temporary file removed.
+/// the directory can't redirect the write), renamed over `path` by
+/// [`AtomicFile::commit`]. An existing `path` must be a regular file
+/// (E0901) and keeps its permission bits (and, where allowed, its owner and
+/// group); a new one gets 0666 less the umask, like any created file. If
+/// the file is dropped without a commit, `path` is untouched and the
+/// temporary file removed. Writes are buffered, so a long trace streams to
+/// disk instead of growing in memory.
+pub struct AtomicFile {
+    path: std::path::PathBuf,
+    existing: Option<Metadata>,
+    tmp: io::BufWriter<tempfile::NamedTempFile>,
+}
+
+impl AtomicFile {
+    pub fn create(path: &Path) -> Result<AtomicFile, Refused> {
+        let existing = existing_output(path)?;
+        let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("out");
+        let prefix = format!(".{name}.");
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(&prefix).suffix(".tmp").rand_bytes(12);
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            builder.permissions(fs::Permissions::from_mode(0o666));
+        }
+        let tmp = builder.tempfile_in(dir).map_err(|e| cant_write(path, e))?;
+        Ok(AtomicFile { path: path.to_path_buf(), existing, tmp: io::BufWriter::with_capacity(1 << 16, tmp) })
+    }
+
+    /// Flushes, syncs and renames the file into place.
+    pub fn commit(self) -> Result<(), Refused> {
+        let path = self.path;
+        let tmp = self.tmp.into_inner().map_err(|e| cant_write(&path, e.error()))?;
+        if let Some(meta) = &self.existing {
+            keep_attributes(tmp.as_file(), meta).map_err(|e| cant_write(&path, e))?;
+        }
+        tmp.as_file().sync_all().map_err(|e| cant_write(&path, e))?;
+        tmp.persist(&path).map_err(|e| cant_write(&path, e.error))?;
+        Ok(())
+    }
+}
+
+impl Write for AtomicFile {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        self.tmp.write(buf)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.tmp.flush()
+    }
+}
+
+/// Writes `bytes` to `path` atomically (see [`AtomicFile`]).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Refused> {
-    let existing = existing_output(path)?;
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("out");
-    let prefix = format!(".{name}.");
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(&prefix).suffix(".tmp").rand_bytes(12);
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(fs::Permissions::from_mode(0o666));
-    }
-    let mut tmp = builder.tempfile_in(dir).map_err(|e| cant_write(path, e))?;
-    tmp.write_all(bytes).map_err(|e| cant_write(path, e))?;
-    if let Some(meta) = &existing {
-        keep_attributes(tmp.as_file(), meta).map_err(|e| cant_write(path, e))?;
-    }
-    tmp.as_file().sync_all().map_err(|e| cant_write(path, e))?;
-    tmp.persist(path).map_err(|e| cant_write(path, e.error))?;
-    Ok(())
+    let mut file = AtomicFile::create(path)?;
+    file.write_all(bytes).map_err(|e| cant_write(path, e))?;
+    file.commit()
 }
 
 /// Gives the new file the replaced file's permission bits (not set-id or

@@ -126,12 +126,22 @@ pub fn run(o: &Options) -> u8 {
             return status;
         }
     }
-    let mut trace_bytes = Vec::new();
-    let mut trace = o.common.trace.as_ref().map(|_| Trace::new(&mut trace_bytes, &s.store));
+    // The trace streams to its file (or standard output) as the run goes.
+    let mut sink: Option<Box<dyn std::io::Write>> = match o.common.trace.as_ref() {
+        Some(p) if p.as_os_str() == "-" => Some(Box::new(std::io::BufWriter::new(std::io::stdout().lock()))),
+        Some(p) => match crate::files::AtomicFile::create(p) {
+            Ok(f) => Some(Box::new(TraceFile(Some(f)))),
+            Err(e) => {
+                eprintln!("{e}");
+                return 2;
+            }
+        },
+        None => None,
+    };
+    let mut trace = sink.as_mut().map(|w| Trace::new(w.as_mut(), &s.store));
     let failures = s.run_for(duration, trace.as_mut());
-    if let Some(t) = trace {
-        let _ = t.finish();
-    }
+    let traced = trace.map(Trace::finish);
+    drop(sink);
     for e in &failures {
         eprint!("{}", crate::report::runtime(e, o.common.format));
     }
@@ -140,7 +150,11 @@ pub fn run(o: &Options) -> u8 {
         let field = shows.iter().find(|(p, _)| p == path).map(|(_, a)| show_value(&s.store, *a));
         println!("{path} = {}", step.or(field).unwrap_or_default());
     }
-    match write_outputs(o, &trace_bytes, &db_text, &s.store) {
+    if let Some(Err(e)) = traced {
+        eprintln!("error[E0900]: can't write the trace: {e}");
+        return 2;
+    }
+    match write_outputs(o, &db_text, &s.store) {
         Ok(()) => u8::from(!failures.is_empty()),
         Err(status) => status,
     }
@@ -171,18 +185,29 @@ fn check_outputs(o: &Options, wants: &[Want]) -> Result<(), u8> {
     Ok(())
 }
 
-/// Writes the trace (or prints it for `-`) and the database with its values.
-fn write_outputs(o: &Options, trace: &[u8], db_text: &str, store: &Store) -> Result<(), u8> {
-    match o.common.trace.as_ref() {
-        Some(p) if p.as_os_str() == "-" => print!("{}", String::from_utf8_lossy(trace)),
-        Some(p) => {
-            if let Err(e) = crate::files::write_atomic(p, trace) {
-                eprintln!("error[E0900]: can't write `{}`: {e}", p.display());
-                return Err(2);
-            }
+/// A trace file: committed (renamed into place) when the trace is
+/// flushed at its end, so a run that fails to write leaves no partial file.
+struct TraceFile(Option<crate::files::AtomicFile>);
+
+impl std::io::Write for TraceFile {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        match self.0.as_mut() {
+            Some(f) => f.write(buf),
+            None => Err(std::io::Error::other("the trace was already committed")),
         }
-        None => {}
     }
+
+    /// The trace flushes once, at its end ([`Trace::finish`]): that commits the file.
+    fn flush(&mut self) -> std::io::Result<()> {
+        match self.0.take() {
+            Some(f) => f.commit().map_err(|e| std::io::Error::other(e.to_string())),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Writes the database with its values.
+fn write_outputs(o: &Options, db_text: &str, store: &Store) -> Result<(), u8> {
     if let Some(out) = &o.common.out {
         if let Err(e) = write_db(out, db_text, store) {
             eprintln!("{e}");
