@@ -591,14 +591,52 @@ ACTION Turn
 END_ACTION
 ";
 
+/// The guide's database with ROC points for the FST table of the corpus.
+fn fuzz_db() -> &'static linc_runtime::Database {
+    static DB: std::sync::OnceLock<linc_runtime::Database> = std::sync::OnceLock::new();
+    DB.get_or_init(|| {
+        let text = include_str!("../../examples/guide/plant.db.json").replacen(
+            "\"blocks\": {",
+            r#""blocks": { "FST 1": { "type": "FST" }, "SFP 1": { "type": "SFP" }, "DOU 4-1": { "type": "DOU" },
+               "HIST 9": { "type": "HIST", "values": { "ARCHTYP": "FSTDATA", "PERIODIC": 8 } },
+               "HIST 3": { "type": "HIST", "values": { "ARCHTYP": "CURRENT", "ARCHPT": "SFP 1,DATA1" } },"#,
+            1,
+        );
+        linc_runtime::Database::from_json(&text).expect("the fuzz database loads")
+    })
+}
+
+/// An FST table using every FST-only instruction.
+const TABLE: &str = "STEP,LABEL,CMD,ARGUMENT1,ARGUMENT2
+0,TOP,VAL,\"SFP 1,DATA1\",
+1,,+,1.5,
+2,,SAV,\"SFP 1,DATA1\",
+3,,WDB,9,\"FST 1,R3\"
+4,,WTM,9,\"FST 1,R4\"
+5,,RDB,9,\"FST 1,R5\"
+6,,MHV,3,\"FST 1,R6\"
+7,,GTE,1700000000,4
+8,,ALM,HIGH,\"SFP 1,DATA1\"
+9,,DWK,,
+10,,TDO,DOU 4-1,0.5
+11,,CT,1,TOP
+12,,ST,1,3
+13,,BRK,\"FST 1,R9\",
+14,,WT,0.3,
+15,,/,\"FST 1,R2\",
+16,,GO,TOP,
+";
+
 fn corpus() -> Vec<Seed> {
     let ctx = linc_compiler::check::Context { db: guide_db(), resolve_blocks: true, steps: None };
+    let (diagnostics, table) = linc_compiler::fst::compile(TABLE, "table", "table.csv", Some(fuzz_db()));
+    let table = table.unwrap_or_else(|| panic!("the corpus table compiles: {diagnostics:?}")).to_bytes();
     let (diagnostics, seq) = linc_compiler::sfc::compile_sequence(SEQUENCE, "seq", "seq.sfc", ctx);
     let seq = seq.unwrap_or_else(|| panic!("the corpus sequence compiles: {diagnostics:?}")).to_bytes();
     SOURCES
         .iter()
         .map(|src| compile(src, guide_db()))
-        .chain(std::iter::once(seq))
+        .chain([seq, table])
         .map(|bytes| {
             let obj = ObjectFile::from_bytes(&bytes).expect("a compiled object decodes");
             Seed { bytes, obj }
@@ -716,6 +754,8 @@ fn exercise(case: u64, bytes: &[u8], base: &Store, t: &mut Tally) {
             let mut act = Activation::new(&linked, 0, block);
             for _ in 0..RUNS {
                 t.runs += 1;
+                // An FST unit's steps per run (ignored by other units).
+                act.steps_left = 20;
                 match vm.run(&linked, &mut act, &mut store, None) {
                     Ok(Outcome::Done) => t.done += 1,
                     Ok(Outcome::Suspended) => t.suspended += 1,
@@ -742,7 +782,7 @@ fn env_u64(name: &str) -> Option<u64> {
 fn mutated_objects_never_panic_and_stay_within_memory() {
     install_hook();
     let corpus = corpus();
-    let mut base = Store::new(guide_db().clone());
+    let mut base = Store::new(fuzz_db().clone());
     base.now = 1_000_000.0;
     let cases: Vec<u64> = match env_u64("LINC_OBJECT_FUZZ_ONLY") {
         Some(one) => vec![one],
