@@ -17,7 +17,8 @@ pub const POINTS: &str = r#"
     "AOU 5-1": { "type": "AOU" },
     "DOU 4-1": { "type": "DOU" },
     "HIST 9": { "type": "HIST", "values": { "ARCHTYP": "FSTDATA", "PERIODIC": 4 } },
-    "HIST 10": { "type": "HIST", "values": { "ARCHTYP": "FSTSEC", "PERIODIC": 4 } }
+    "HIST 10": { "type": "HIST", "values": { "ARCHTYP": "FSTSEC", "PERIODIC": 4 } },
+    "HIST 3": { "type": "HIST", "values": { "ARCHTYP": "CURRENT", "ARCHPT": "AIN 3-1,EU" } }
 "#;
 
 /// A ROC800 database of [`POINTS`] with `values` (JSON members
@@ -33,6 +34,11 @@ pub fn database(fst_values: &str) -> Database {
 
 /// The table compiled against `db` and run by its block `FST 1`.
 pub fn strategy(table: &str, db: Database) -> Strategy {
+    strategy_at(table, db, START)
+}
+
+/// [`strategy`] with the clock starting at `start` (POSIX seconds).
+pub fn strategy_at(table: &str, db: Database, start: f64) -> Strategy {
     let (diagnostics, object) = linc_compiler::fst::compile(table, "t", "t.csv", Some(&db));
     let object = object.unwrap_or_else(|| panic!("table does not compile: {diagnostics:?}"));
     let verified = linc_runtime::verify::verify(object).unwrap_or_else(|e| panic!("verify: {e}"));
@@ -40,7 +46,7 @@ pub fn strategy(table: &str, db: Database) -> Strategy {
     let block = store.db.block("FST 1").expect("FST 1");
     let want = Want { block, file: "t.csv".into(), action: String::new(), kind: WantKind::Fst };
     let vm = Vm::new(linc_runtime::vm::DEFAULT_WATCHDOG, Clock::new(1, 0));
-    Strategy::build(store, vec![verified], &[(want, 0)], vm, START).unwrap_or_else(|e| panic!("build: {e:?}"))
+    Strategy::build(store, vec![verified], &[(want, 0)], vm, start).unwrap_or_else(|e| panic!("build: {e:?}"))
 }
 
 /// Runs `table` (with `fst_values` for `FST 1`) for `ms` milliseconds.

@@ -413,6 +413,38 @@ fn history_reads_and_gte() {
 }
 
 #[test]
+fn daily_and_minute_history_of_a_logged_point() {
+    // From 23:58:00 the table raises AIN 3-1's EU by 1 every 100 ms; the
+    // logger samples it each minute (before the tasks of that instant) and
+    // at midnight into the daily archive.
+    let t = table(&[
+        ",VAL,\"AIN 3-1,EU\",",
+        ",+,1,",
+        ",SAV,\"AIN 3-1,EU\",",
+        ",DHV,3,0",
+        ",SAV,\"FST 1,R1\",",
+        ",DHT,3,0",
+        ",SAV,\"FST 1,R2\",",
+        ",MHV,3,59",
+        ",SAV,\"FST 1,R3\",",
+        ",MHV,3,0",
+        ",SAV,\"FST 1,R4\",",
+        ",DIS,3,106",
+        ",SAV,\"FST 1,R5\",",
+        ",DIN,3,106",
+        ",END,,",
+    ]);
+    let start = linc_conformance::fst::START + 18.0 * 3600.0 - 120.0;
+    let mut s = linc_conformance::fst::strategy_at(&t, linc_conformance::fst::database(""), start);
+    assert!(s.run_for(180_000_000, None).is_empty());
+    assert_eq!(num(&s, "FST 1.R3"), 642.0, "23:59:00: 42 + 600 steps of 1");
+    assert_eq!(num(&s, "FST 1.R4"), 1242.0, "00:00:00");
+    assert_eq!(num(&s, "FST 1.R1"), 1242.0, "the daily entry of midnight");
+    assert_eq!(num(&s, "FST 1.R2"), 1_767_657_600.0, "stamped 2026-01-06 00:00:00");
+    assert_eq!((num(&s, "FST 1.R5"), num(&s, "FST 1.RR")), (0.0, 1.0), "one daily entry on 6 January, at index 0");
+}
+
+#[test]
 fn go_msg_end_alm_evt() {
     let t = table(&[
         ",GO,SKIP,",
