@@ -7,11 +7,16 @@
 //! stops at the failing statement with a located [`RuntimeError`], and what
 //! it wrote before stays written.
 
+mod cells;
+mod fst_ops;
+
 use crate::errors::{Fault, RuntimeError};
 use crate::isa::{Kind, Op};
-use crate::link::{Linked, LinkedBlock, LinkedProgram, Target};
+use crate::link::{Linked, LinkedBlock, LinkedProgram};
 use crate::object::{CodeBlock, Unit};
-use crate::store::{bits_value, Cell, Store};
+use crate::store::{Cell, Store};
+use cells::{cell, corrupt, load_bit, load_int, locate, note, store_bit, store_int, store_str, target, writable};
+use fst_ops::FstFlow;
 use linc_stdlib::value::{decode_dollar, round_to_i32};
 use linc_stdlib::{Env, FnError, Value};
 
@@ -596,56 +601,20 @@ impl Vm {
                     }
                 }
                 Op::Yield {} => break Ok(Outcome::Suspended),
-                Op::Step { n } => {
-                    if act.steps_left == 0 {
-                        // Resume at this step, not after it.
+                Op::Step { .. }
+                | Op::Pause { .. }
+                | Op::DayTime { .. }
+                | Op::Log { .. }
+                | Op::HistWrite { .. }
+                | Op::HistRead { .. } => match tri!(self.fst_op(op, l, act, store)) {
+                    FstFlow::Go => {}
+                    FstFlow::SuspendHere => {
+                        // Resume at this instruction, not after it.
                         pc -= 1;
                         break Ok(Outcome::Suspended);
                     }
-                    act.steps_left -= 1;
-                    act.step = n;
-                }
-                Op::Pause { why } => {
-                    act.pause = Some((why, self.pop_r()));
-                    break Ok(Outcome::Suspended);
-                }
-                Op::DayTime { what } => {
-                    let now = self.clock.local_time();
-                    let v =
-                        if what == 0 { crate::roc::day_of_week(now) } else { crate::roc::minutes_since_midnight(now) };
-                    self.push_r(v);
-                }
-                Op::Log { which } => {
-                    let text = self.pop_s();
-                    let value = self.pop_r();
-                    let source = l.prog.own.map(|b| store.db.blocks[b].name.clone()).unwrap_or_default();
-                    let entry = crate::roc::LogEntry {
-                        time: self.clock.local_time(),
-                        text: String::from_utf8_lossy(&text).chars().take(10).collect(),
-                        value,
-                        source,
-                    };
-                    let log = if which == 0 { &mut store.roc.alarms } else { &mut store.roc.events };
-                    log.push(entry);
-                }
-                Op::HistWrite { time } => {
-                    let idx = self.pop_r();
-                    let hp = self.pop_r();
-                    let value = self.pop_r();
-                    let value = (time == 0).then_some(value);
-                    let next = store.roc.history.write(hp, idx, value, self.clock.local_time());
-                    let next = tri!(next.map_err(|e| Fault::new(e.code, e.message)));
-                    self.push_r(next);
-                }
-                Op::HistRead { f } => {
-                    let a2 = self.pop_r();
-                    let a1 = self.pop_r();
-                    let Some(f) = crate::roc::HistFn::from_u8(f) else { break Err(corrupt()) };
-                    let got = store.roc.history.read(f, a1, a2);
-                    let (v, next) = tri!(got.map_err(|e| Fault::new(e.code, e.message)));
-                    self.push_r(v);
-                    self.push_r(next);
-                }
+                    FstFlow::SuspendAfter => break Ok(Outcome::Suspended),
+                },
                 Op::Ret {} => break Ok(Outcome::Done),
                 Op::Return { kind } => {
                     self.result = Some(match Kind::from_bits(u32::from(kind)) {
@@ -719,127 +688,4 @@ impl Vm {
 /// `A ** B` (§12.6 note 1), shared with the library and constant folding.
 pub fn power(a: f32, b: f32) -> Option<f32> {
     linc_stdlib::power(a, b).ok()
-}
-
-fn corrupt() -> Fault {
-    Fault::new("R0099", "the object does not match the database (field of another type)")
-}
-
-fn target(l: &Running, sym: u16) -> Target {
-    l.prog.targets.get(usize::from(sym)).copied().unwrap_or(Target { cell: u32::MAX, run_end: 0, alarm: 0 })
-}
-
-fn cell(l: &Running, sym: u16) -> u32 {
-    target(l, sym).cell
-}
-
-fn note(trace: &mut Tracer, store: &Store, cell: u32) {
-    if let Some(t) = trace.as_mut() {
-        t(store, cell);
-    }
-}
-
-/// A cell reached through an offset may be a read-only field of the same
-/// run (PID's SP sits between PV and SL); direct writes are refused at link.
-fn writable(store: &Store, c: u32) -> Result<u32, Fault> {
-    if store.is_readonly(c) {
-        return Err(Fault::new("R0008", format!("{} is read-only; an offset led the write to it", store.describe(c))));
-    }
-    Ok(c)
-}
-
-fn load_int(store: &Store, c: u32) -> Result<i32, Fault> {
-    match store.cells.get(c as usize) {
-        Some(Cell::Int(i)) => Ok(*i),
-        Some(Cell::Bool(b)) => Ok(i32::from(*b)),
-        Some(Cell::Bits { v, width }) => Ok(bits_value(*v, *width)),
-        _ => Err(corrupt()),
-    }
-}
-
-fn load_bit(store: &Store, c: u32, bit: u8) -> Result<i32, Fault> {
-    match store.cells.get(c as usize) {
-        Some(Cell::Bits { v, width }) if bit < *width => Ok(i32::from((v >> bit) & 1)),
-        _ => Err(corrupt()),
-    }
-}
-
-/// An INT into an INT, BOOL (non-zero is TRUE) or bitfield (its low 8 or 16 bits).
-fn store_int(store: &mut Store, c: u32, v: i32) -> Result<(), Fault> {
-    match store.cells.get_mut(c as usize) {
-        Some(Cell::Int(i)) => *i = v,
-        Some(Cell::Bool(b)) => *b = v != 0,
-        Some(Cell::Bits { v: bits, width }) => *bits = if *width == 8 { (v as u16) & 0xFF } else { v as u16 },
-        _ => return Err(corrupt()),
-    }
-    Ok(())
-}
-
-fn store_bit(store: &mut Store, c: u32, bit: u8, v: i32) -> Result<(), Fault> {
-    match store.cells.get_mut(c as usize) {
-        Some(Cell::Bits { v: bits, width }) if bit < *width => {
-            if v != 0 {
-                *bits |= 1 << bit;
-            } else {
-                *bits &= !(1 << bit);
-            }
-            Ok(())
-        }
-        _ => Err(corrupt()),
-    }
-}
-
-fn store_str(store: &mut Store, c: u32, s: Vec<u8>) -> Result<(), Fault> {
-    if let Some(Cell::Enum { .. }) = store.cells.get(c as usize) {
-        let names = store.enum_names(c);
-        let Some(idx) = names.iter().position(|n| n.as_bytes().eq_ignore_ascii_case(&s)) else {
-            let msg = format!(
-                "'{}' is not a value of {} ({})",
-                String::from_utf8_lossy(&s),
-                store.describe(c),
-                names.join(", ")
-            );
-            return Err(Fault::new("R0004", msg));
-        };
-        if let Some(Cell::Enum { idx: i }) = store.cells.get_mut(c as usize) {
-            *i = idx as u16;
-        }
-        return Ok(());
-    }
-    match store.cells.get_mut(c as usize) {
-        Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => *t = s,
-        _ => return Err(corrupt()),
-    }
-    Ok(())
-}
-
-/// Adds the action name and source position to a fault: the statement
-/// containing the failing instruction, or for the watchdog the innermost
-/// loop around it.
-fn locate(l: &Running, pc: usize, f: Fault) -> RuntimeError {
-    let a = l.code;
-    // The line table is sorted by instruction (the verifier proves it).
-    let stmt = a.lines[..a.lines.partition_point(|e| e.op as usize <= pc)].last();
-    let mut at = stmt.map(|e| (e.line, e.col)).unwrap_or((0, 0));
-    let mut message = f.message;
-    if f.code == "R0006" {
-        let inner =
-            a.loops.iter().filter(|lp| (lp.start as usize..lp.end as usize).contains(&pc)).max_by_key(|lp| lp.start);
-        if let Some(lp) = inner {
-            at = (lp.line, lp.col);
-            message = format!("{message}; stopped in the loop at line {}", lp.line);
-        }
-    }
-    let mut code = f.code;
-    let absent = l.block.ops.get(pc).and_then(|op| op.symbol()).filter(|&s| target(l, s).is_absent());
-    if let Some(s) = absent {
-        let sym = l.prog.symbols.get(usize::from(s)).and_then(|&o| l.linked.object().symbols.get(usize::from(o)));
-        code = "R0010";
-        message = format!(
-            "invalid point reference: the database has no {}",
-            sym.map_or_else(|| "such point".to_string(), |s| format!("`{}`", s.text()))
-        );
-    }
-    let u = l.unit;
-    RuntimeError { code, message, action: u.name.clone(), file: u.file.clone(), line: at.0, col: at.1 }
 }
