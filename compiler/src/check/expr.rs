@@ -244,7 +244,7 @@ fn suggest(name: &str) -> Option<String> {
 }
 
 /// Levenshtein distance over bytes.
-pub(super) fn distance(a: &str, b: &str) -> usize {
+pub(crate) fn distance(a: &str, b: &str) -> usize {
     let b = b.as_bytes();
     let mut row: Vec<usize> = (0..=b.len()).collect();
     for (i, ca) in a.bytes().enumerate() {

@@ -4,6 +4,7 @@
 
 mod errors;
 mod expr;
+pub(crate) use expr::distance;
 mod limits;
 mod resolve;
 

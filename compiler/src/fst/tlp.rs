@@ -152,21 +152,8 @@ fn suggest(db: &Database, point: &str) -> Option<String> {
         .map(|(_, n)| n.clone())
 }
 
-/// Levenshtein distance over bytes (names here are short: cells of a table).
-pub(super) fn distance(a: &str, b: &str) -> usize {
-    let b = b.as_bytes();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.bytes().enumerate() {
-        let mut prev = i;
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let cur = row[j + 1];
-            row[j + 1] = (prev + usize::from(ca != *cb)).min(row[j] + 1).min(cur + 1);
-            prev = cur;
-        }
-    }
-    row[b.len()]
-}
+/// Edit distance, for "did you mean" (the ST checker's).
+pub(super) use crate::check::distance;
 
 #[cfg(test)]
 mod tests {
