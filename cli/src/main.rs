@@ -18,6 +18,8 @@ mod sequence_run;
 mod sequence_src;
 mod sfc_cmd;
 mod strategy_cmd;
+mod test_cmd;
+mod test_report;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -167,6 +169,20 @@ enum Command {
         watchdog: u64,
         #[arg(long, value_enum, default_value = "human")]
         message_format: MessageFormat,
+    },
+    /// Run scenario tests (.ltest files; a directory is searched) and report like `cargo test`.
+    Test {
+        /// Scenario files or directories (default: the current directory).
+        paths: Vec<PathBuf>,
+        /// Scenarios run at once (default: one per core); reports are the same for any number.
+        #[arg(long, value_name = "N")]
+        jobs: Option<usize>,
+        /// Write a JUnit XML report here.
+        #[arg(long, value_name = "FILE")]
+        junit: Option<PathBuf>,
+        /// Write a VCD trace of the fields the scenario names (a directory of NAME.vcd for several scenarios).
+        #[arg(long, value_name = "PATH")]
+        vcd: Option<PathBuf>,
     },
     /// Evaluate one ST expression and print its value.
     Eval {
@@ -377,6 +393,7 @@ fn main() -> ExitCode {
         Command::Eval { expr, db, now, seed, message_format } => {
             eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed, format(message_format))
         }
+        Command::Test { paths, jobs, junit, vcd } => test_cmd::run(&test_cmd::Options { paths, jobs, junit, vcd }),
         Command::Disasm { file, message_format } => disasm_cmd::run(&file, format(message_format)),
         Command::Check {
             files,

@@ -44,10 +44,15 @@ fn report(files: &SourceFiles, db_id: FileId, db_text: &str, e: &StrategyError, 
 
 /// Compiles or loads each action file the strategy names, once each.
 /// The verified objects, and each wanted action with the index of its object.
-type Plan = (Vec<Verified>, Vec<(Want, usize)>);
+pub type Plan = (Vec<Verified>, Vec<(Want, usize)>);
 
 fn objects(o: &Options, db: &Database, wants: &[Want]) -> Result<Plan, u8> {
     let dir = o.db.parent().map(Path::to_path_buf).unwrap_or_default();
+    compile_wants(&dir, db, wants, o.common.format)
+}
+
+/// Compiles or loads each file `wants` name (relative to `dir`), once each.
+pub fn compile_wants(dir: &Path, db: &Database, wants: &[Want], format: Format) -> Result<Plan, u8> {
     let mut index: HashMap<String, usize> = HashMap::new();
     let mut objects = Vec::new();
     let mut pairs = Vec::with_capacity(wants.len());
@@ -56,7 +61,7 @@ fn objects(o: &Options, db: &Database, wants: &[Want]) -> Result<Plan, u8> {
             Some(&i) => i,
             None => {
                 let path = dir.join(&w.file);
-                objects.push(program_object(&path, db, o.common.format)?);
+                objects.push(program_object(&path, db, format)?);
                 index.insert(w.file.clone(), objects.len() - 1);
                 objects.len() - 1
             }

@@ -139,6 +139,11 @@ codes! {
     "E0426" => "numeric TLP with an unknown parameter number",
     "E0427" => "FST output command on the wrong kind of point",
     "W0401" => "FST message text cut to length",
+    "E0460" => "scenario target missing or repeated",
+    "E0461" => "`at` without a console command",
+    "E0462" => "scenario time not understood",
+    "E0463" => "unknown scenario line",
+    "E0464" => "unknown kind of expectation",
     "E0700" => "not a linc object file",
     "E0701" => "unsupported object format version",
     "E0702" => "object file checksum mismatch",
@@ -233,6 +238,7 @@ mod tests {
             include_str!("../../runtime/src/strategy/fst.rs"),
             include_str!("../../runtime/src/roc/mod.rs"),
             include_str!("../../runtime/src/roc/history.rs"),
+            include_str!("scenario.rs"),
         ];
         for src in sources {
             let starts = src.match_indices("\"E0").chain(src.match_indices("\"W0")).chain(src.match_indices("\"R0"));

@@ -22,6 +22,7 @@ pub mod parse_support;
 pub mod parser;
 pub mod pretty;
 pub mod render;
+pub mod scenario;
 pub mod session;
 pub mod sfc;
 pub mod span;

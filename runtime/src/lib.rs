@@ -7,12 +7,14 @@
 //! [`Verified::link`] to a [`Store`] → [`Linked`] → [`vm::Vm::run`] of an
 //! [`vm::Activation`] that the caller owns. [`load`] does the first two.
 
+pub mod console;
 pub mod db;
 pub mod errors;
 pub mod isa;
 pub mod link;
 pub mod object;
 pub mod roc;
+pub mod scenario;
 pub mod sequence;
 pub mod store;
 pub mod strategy;

@@ -206,6 +206,21 @@ pub fn lower_eval(e: &hir::Expr, lines: &Lines) -> Result<ObjectFile, Vec<LowerE
     l.finish("<eval>", vec![action])
 }
 
+/// Lowers a BOOL expression that may read the step variables of `steps`
+/// (slot order) into a unit named `expect` whose retained slots are those
+/// step variables (`.X` at `2 × slot`, `.T` at `2 × slot + 1`), so a
+/// scenario can evaluate it over a copy of the sequences' slots.
+pub fn lower_expectation(e: &hir::Expr, lines: &Lines, steps: &[String]) -> Result<ObjectFile, Vec<LowerError>> {
+    let mut l = Lowerer { lines: lines.clone(), ..Lowerer::default() };
+    l.steps = steps.iter().enumerate().map(|(i, s)| (s.to_ascii_uppercase(), i as u16)).collect();
+    l.mark(e.span);
+    l.expr_as(e, Ty::Bool);
+    l.emit(Op::Return { kind: expr::kind_of(Ty::Bool) as u8 });
+    let mut unit = l.take_action("expect", "");
+    unit.retained = u16::try_from(2 * steps.len()).unwrap_or(u16::MAX);
+    l.finish("<expect>", vec![unit])
+}
+
 impl Default for Lowerer {
     fn default() -> Lowerer {
         Lowerer {

@@ -10,6 +10,7 @@
 
 mod errors;
 mod fst;
+mod observe;
 pub mod qualifier;
 mod sequences;
 pub mod trace;

@@ -1,0 +1,288 @@
+//! `linc test [PATH…]`: runs scenario files (`*.ltest`, a directory is
+//! searched) and reports like `cargo test`. The scenario language is the
+//! compiler's (`linc_compiler::scenario`), running it the runtime's
+//! (`linc_runtime::scenario`); this reads files, builds strategies, runs
+//! scenarios on all cores and prints (`docs/testing.md`).
+
+use crate::report::usage;
+use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::scenario::{self, Action, How, Target};
+use linc_runtime::scenario::{Check, Report, Step};
+use linc_runtime::strategy::{Strategy, Want, WantKind};
+use linc_runtime::vm::{Clock, Vm};
+use linc_runtime::{Database, Store};
+use std::path::{Path, PathBuf};
+
+pub struct Options {
+    pub paths: Vec<PathBuf>,
+    pub jobs: Option<usize>,
+    pub junit: Option<PathBuf>,
+    pub vcd: Option<PathBuf>,
+}
+
+/// Every simulation starts at this time (2026-01-05 00:00:00 UTC, a
+/// Monday), so scenarios are repeatable; `at` times count from it.
+pub const START: f64 = 1_767_571_200.0;
+
+/// What one scenario gave: its name, whether it passed, the text to print
+/// under `failures:`, its report (for JUnit and VCD).
+pub struct Outcome {
+    pub name: String,
+    pub passed: bool,
+    pub details: String,
+    pub report: Report,
+}
+
+/// Every `.ltest` file under the paths, sorted, each once.
+fn scenarios(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
+    let mut out = Vec::new();
+    for p in paths {
+        if p.is_dir() {
+            walk(p, &mut out, 0).map_err(|e| format!("can't read `{}`: {e}", p.display()))?;
+        } else if p.is_file() {
+            out.push(p.clone());
+        } else {
+            return Err(format!("`{}` is not a scenario file or directory", p.display()));
+        }
+    }
+    out.sort();
+    out.dedup();
+    Ok(out)
+}
+
+fn walk(dir: &Path, out: &mut Vec<PathBuf>, depth: usize) -> std::io::Result<()> {
+    if depth > 32 {
+        return Ok(());
+    }
+    for entry in std::fs::read_dir(dir)? {
+        let entry = entry?;
+        let kind = entry.file_type()?;
+        let path = entry.path();
+        if kind.is_dir() {
+            walk(&path, out, depth + 1)?;
+        } else if kind.is_file() && path.extension().is_some_and(|e| e == "ltest") {
+            out.push(path);
+        }
+    }
+    Ok(())
+}
+
+pub fn run(o: &Options) -> u8 {
+    let paths = if o.paths.is_empty() { vec![PathBuf::from(".")] } else { o.paths.clone() };
+    let files = match scenarios(&paths) {
+        Ok(f) => f,
+        Err(msg) => return usage(format_args!("[E0903] {msg}")),
+    };
+    let jobs = o.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())).max(1);
+    let started = std::time::Instant::now();
+    let outcomes = run_all(&files, jobs);
+    println!("running {} scenario{}", outcomes.len(), if outcomes.len() == 1 { "" } else { "s" });
+    for out in &outcomes {
+        println!("test {} ... {}", out.name, if out.passed { "ok" } else { "FAILED" });
+    }
+    let failed: Vec<&Outcome> = outcomes.iter().filter(|o| !o.passed).collect();
+    if !failed.is_empty() {
+        println!("\nfailures:\n");
+        for f in &failed {
+            println!("---- {} ----\n{}", f.name, f.details);
+        }
+        println!("failures:");
+        for f in &failed {
+            println!("    {}", f.name);
+        }
+    }
+    let passed = outcomes.len() - failed.len();
+    let verdict = if failed.is_empty() { "ok" } else { "FAILED" };
+    println!("\ntest result: {verdict}. {passed} passed, {} failed", failed.len());
+    eprintln!("linc test: {} scenarios in {:.2}s on {jobs} thread(s)", outcomes.len(), started.elapsed().as_secs_f64());
+    if let Some(path) = &o.junit {
+        if let Err(e) = crate::files::write_atomic(path, crate::test_report::junit(&outcomes).as_bytes()) {
+            eprintln!("{e}");
+            return 2;
+        }
+    }
+    if let Some(path) = &o.vcd {
+        if let Err(status) = crate::test_report::write_vcds(path, &outcomes) {
+            return status;
+        }
+    }
+    u8::from(!failed.is_empty())
+}
+
+/// Runs the scenarios on `jobs` threads; the outcomes come back in file
+/// order whatever order they finish in, so reports are identical.
+pub fn run_all(files: &[PathBuf], jobs: usize) -> Vec<Outcome> {
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let mut slots: Vec<Option<Outcome>> = (0..files.len()).map(|_| None).collect();
+    let results = std::sync::Mutex::new(&mut slots);
+    std::thread::scope(|scope| {
+        for _ in 0..jobs.min(files.len()) {
+            scope.spawn(|| loop {
+                let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(file) = files.get(i) else { break };
+                let out = run_one(file);
+                if let Ok(mut r) = results.lock() {
+                    r[i] = Some(out);
+                }
+            });
+        }
+    });
+    slots.into_iter().flatten().collect()
+}
+
+/// Runs one scenario file; everything it prints is in the outcome.
+pub fn run_one(file: &Path) -> Outcome {
+    let name = file.display().to_string();
+    let fail = |details: String| Outcome { name: name.clone(), passed: false, details, report: Report::default() };
+    let text = match crate::files::read_input_text(file) {
+        Ok(t) => t,
+        Err(e) => return fail(format!("error[E0900]: can't read `{name}`: {e}\n")),
+    };
+    let mut sources = SourceFiles::new();
+    let id = sources.add(name.clone(), text.clone());
+    let (sc, diagnostics) = scenario::parse(&text);
+    if !diagnostics.is_empty() {
+        let shown: String =
+            diagnostics.iter().map(|d| render::render(&sources, &d.clone().in_file(id), Format::Short)).collect();
+        return fail(shown);
+    }
+    let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
+    let mut strategy = match build(&dir, sc.target.as_ref()) {
+        Ok(s) => s,
+        Err(why) => return fail(why),
+    };
+    let (steps, errors) = steps(&sc, &strategy, &sources, id);
+    if !errors.is_empty() {
+        return fail(errors);
+    }
+    let watch = watched(&sc);
+    strategy.store.now = START;
+    let mut console = linc_runtime::console::Console::new(strategy);
+    let report = linc_runtime::scenario::run(&mut console, steps, &watch);
+    let details = details(&name, &report);
+    Outcome { name, passed: report.failures.is_empty(), details, report }
+}
+
+/// The failures as `FILE:LINE: at TIME: message` with the values read.
+fn details(name: &str, r: &Report) -> String {
+    let mut out = String::new();
+    for f in &r.failures {
+        let line = if f.line == 0 { String::new() } else { format!(":{}", f.line) };
+        out.push_str(&format!("{name}{line}: at {}: {}\n", linc_runtime::scenario::time(f.at_us), f.message));
+        for (field, value) in &f.values {
+            out.push_str(&format!("    {field} = {value}\n"));
+        }
+    }
+    out
+}
+
+/// The fields a scenario names in its commands and expectations, for VCD.
+fn watched(sc: &scenario::Scenario) -> Vec<String> {
+    let mut out = Vec::new();
+    for l in &sc.lines {
+        let text = match &l.action {
+            Action::At { command, .. } => command.as_str(),
+            Action::Expect { expr, .. } => expr.as_str(),
+            Action::Run { .. } => continue,
+        };
+        for token in text.split(|c: char| !(c.is_alphanumeric() || c == '_' || c == '.' || c == ' ' || c == '-')) {
+            for part in token.split_whitespace() {
+                if part.contains('.') && !out.iter().any(|o: &String| o.eq_ignore_ascii_case(part)) {
+                    out.push(part.to_string());
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The runtime steps: expectations checked and compiled against the
+/// strategy's database and its sequences' steps.
+fn steps(
+    sc: &scenario::Scenario,
+    s: &Strategy,
+    sources: &SourceFiles,
+    id: linc_compiler::FileId,
+) -> (Vec<Step>, String) {
+    let names = s.step_names();
+    let mut out = Vec::new();
+    let mut errors = String::new();
+    for l in &sc.lines {
+        match &l.action {
+            Action::At { at_us, command } => {
+                out.push(Step::At { line: l.line, at_us: *at_us, command: command.clone() })
+            }
+            Action::Run { for_us } => out.push(Step::Run { line: l.line, for_us: *for_us }),
+            Action::Expect { how, expr, span } => {
+                let compiled = scenario::compile_expectation(expr, &s.store.db, &names)
+                    .and_then(|obj| linc_runtime::verify::verify(obj).map_err(|e| vec![load_error(e)]));
+                match compiled {
+                    Ok(object) => {
+                        let check = match *how {
+                            How::Within(d) => Check::Within(d),
+                            How::After(d) => Check::After(d),
+                            How::Always => Check::Always,
+                            How::Never => Check::Never,
+                        };
+                        out.push(Step::Expect { line: l.line, check, text: expr.clone(), object });
+                    }
+                    Err(diagnostics) => {
+                        for d in diagnostics {
+                            let shifted = linc_compiler::Span::new(d.span.start + span.start, d.span.end + span.start);
+                            let d = linc_compiler::Diagnostic { span: shifted, ..d }.in_file(id);
+                            errors.push_str(&render::render(sources, &d, Format::Short));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    (out, errors)
+}
+
+fn load_error(e: linc_runtime::LoadError) -> linc_compiler::Diagnostic {
+    linc_compiler::Diagnostic::error(e.code(), e.to_string(), linc_compiler::Span::new(0, 0))
+}
+
+/// Builds the strategy (or the single program) a scenario names, quietly:
+/// what goes wrong is returned as text for the scenario's report.
+fn build(dir: &Path, target: Option<&Target>) -> Result<Strategy, String> {
+    let (db_path, single) = match target {
+        Some(Target::Strategy(db)) => (dir.join(db), None),
+        Some(Target::Program { file, db }) => (dir.join(db), Some(dir.join(file))),
+        None => return Err("the scenario names nothing to run\n".into()),
+    };
+    let text =
+        crate::files::read_input_text(&db_path).map_err(|e| format!("can't read `{}`: {e}\n", db_path.display()))?;
+    let db = Database::from_json(&text).map_err(|e| format!("{}: {e}\n", db_path.display()))?;
+    let store = Store::new(db.clone());
+    let wants: Vec<Want> = match &single {
+        None => linc_runtime::strategy::wanted(&store),
+        Some(file) => vec![single_want(&db, file)?],
+    };
+    if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
+        return Err(format!("{}: error[{}]: {}: {}\n", db_path.display(), e.code, e.block, e.message));
+    }
+    let db_dir = db_path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let (objects, pairs) = crate::strategy_cmd::compile_wants(&db_dir, &db, &wants, Format::Short)
+        .map_err(|_| format!("`{}`: its programs do not compile (see above)\n", db_path.display()))?;
+    let vm = Vm::new(linc_runtime::vm::DEFAULT_WATCHDOG, Clock::new(1, 0));
+    Strategy::build(store, objects, &pairs, vm, START)
+        .map_err(|e| format!("{}: error[{}]: {}: {}\n", db_path.display(), e.code, e.block, e.message))
+}
+
+/// The one program of a `program` scenario, run by the only block that can.
+fn single_want(db: &Database, file: &Path) -> Result<Want, String> {
+    let kind = crate::sequence_run::Kind::of(file);
+    let (template, kind) = match kind {
+        crate::sequence_run::Kind::Fst => ("FST", WantKind::Fst),
+        crate::sequence_run::Kind::Sequence => ("SFC_CON", WantKind::Sequence),
+    };
+    let blocks: Vec<usize> =
+        (0..db.blocks.len()).filter(|&b| db.block_template(b).name.eq_ignore_ascii_case(template)).collect();
+    let [block] = blocks[..] else {
+        return Err(format!("the database needs exactly one {template} block to run `{}`\n", file.display()));
+    };
+    let file = std::path::absolute(file).unwrap_or_else(|_| file.to_path_buf());
+    Ok(Want { block, file: file.display().to_string(), action: String::new(), kind })
+}

@@ -1,0 +1,143 @@
+//! `linc test`: the examples' scenarios pass, a broken copy fails with its
+//! file, line, time and values, the JUnit report is valid against
+//! docs/junit.xsd, the VCD trace reads back with a VCD parser, and serial
+//! and parallel runs give the same bytes (docs/testing.md).
+mod common;
+use common::{linc, stderr, stdout, temp_dir};
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// A copy of an example directory in a fresh temporary directory.
+fn copy_example(name: &str, tag: &str) -> PathBuf {
+    let dir = temp_dir(&format!("scen-{tag}"));
+    for entry in std::fs::read_dir(root().join("examples").join(name)).expect("example") {
+        let p = entry.expect("entry").path();
+        std::fs::copy(&p, dir.join(p.file_name().unwrap())).expect("copy");
+    }
+    dir
+}
+
+#[test]
+fn every_example_scenario_passes() {
+    let o = linc(&["test", "examples"]);
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    let out = stdout(&o);
+    for s in ["fst/plant", "ladder/interlock", "sequences/batch", "strategy/plant"] {
+        assert!(out.contains(&format!("test examples/{s}.ltest ... ok")), "{out}");
+    }
+    assert!(out.ends_with("test result: ok. 4 passed, 0 failed\n"), "{out}");
+}
+
+#[test]
+fn a_broken_copy_fails_with_file_line_time_and_values() {
+    let dir = copy_example("strategy", "broken");
+    let text = std::fs::read_to_string(dir.join("plant.ltest")).unwrap();
+    std::fs::write(dir.join("plant.ltest"), text.replace("HighCnt = 17", "HighCnt = 18")).unwrap();
+    let file = dir.join("plant.ltest").display().to_string();
+    let o = linc(&["test", &file]);
+    assert_eq!(o.status.code(), Some(1));
+    let out = stdout(&o);
+    assert!(out.contains(&format!("test {file} ... FAILED")), "{out}");
+    assert!(out.contains(&format!("{file}:7: at 10m: `TANK1.HighCnt = 18` did not hold after 10m\n")), "{out}");
+    assert!(out.contains("    TANK1.HighCnt = 17\n"), "{out}");
+    assert!(out.ends_with("test result: FAILED. 0 passed, 1 failed\n"), "{out}");
+}
+
+#[test]
+fn bad_scenario_lines_are_reported_at_their_place() {
+    let dir = copy_example("strategy", "badline");
+    std::fs::write(dir.join("bad.ltest"), "strategy plant.json\nexpect within 5s TANK1.Nope\nwait 5s\n").unwrap();
+    let file = dir.join("bad.ltest").display().to_string();
+    let o = linc(&["test", &file]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stdout(&o).contains(&format!("{file}:3:1: error[E0463]")), "{}", stdout(&o));
+}
+
+#[test]
+fn the_junit_report_is_valid_against_the_schema() {
+    let dir = copy_example("strategy", "junit");
+    let text = std::fs::read_to_string(dir.join("plant.ltest")).unwrap();
+    std::fs::write(dir.join("bad & <broken>.ltest"), text.replace("HighCnt = 17", "HighCnt = 18")).unwrap();
+    let junit = dir.join("report.xml");
+    let o = linc(&["test", dir.to_str().unwrap(), "--junit", junit.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let xml = std::fs::read_to_string(&junit).expect("written");
+    let xsd = std::fs::read_to_string(root().join("docs/junit.xsd")).expect("schema");
+    let schema = xmlschema::parse_schema(&xsd).expect("the schema parses");
+    let doc = oxml::parse(&xml).expect("well-formed XML");
+    let report = xmlschema::validate(&doc, &schema);
+    assert!(report.is_valid(), "{:?}\n{xml}", report.violations);
+    assert!(xml.contains("tests=\"2\" failures=\"1\""), "{xml}");
+    assert!(xml.contains("bad &amp; &lt;broken&gt;.ltest"), "{xml}");
+    // The validator does reject what the schema forbids.
+    let bad = xml.replacen("<testcase name=", "<testcase nom=", 1);
+    let doc = oxml::parse(&bad).expect("well-formed");
+    assert!(!xmlschema::validate(&doc, &schema).is_valid(), "a test case without a name is invalid");
+}
+
+#[test]
+fn the_vcd_trace_reads_back() {
+    let vcd_path = temp_dir("scen-vcd").join("plant.vcd");
+    let o = linc(&["test", "examples/strategy/plant.ltest", "--vcd", vcd_path.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let bytes = std::fs::read(&vcd_path).expect("written");
+    let mut parser = vcd::Parser::new(&bytes[..]);
+    let header = parser.parse_header().expect("a VCD header");
+    let level = header.find_var(&["linc", "TANK1.Level"]).expect("TANK1.Level is traced").code;
+    let count = header.find_var(&["linc", "TANK1.HighCnt"]).expect("TANK1.HighCnt is traced").code;
+    let (mut time, mut last_level, mut last_count, mut first_level) = (0u64, None, None, None);
+    for command in parser {
+        match command.expect("a VCD command") {
+            vcd::Command::Timestamp(t) => {
+                assert!(t >= time, "time goes forward");
+                time = t;
+            }
+            vcd::Command::ChangeReal(id, v) if id == level => {
+                first_level.get_or_insert(v);
+                last_level = Some(v);
+            }
+            vcd::Command::ChangeVector(id, v) if id == count => {
+                last_count = Some(v.iter().fold(0u32, |n, b| n << 1 | u32::from(b == vcd::Value::V1)));
+            }
+            _ => {}
+        }
+    }
+    assert_eq!(first_level, Some(20.0), "the initial level");
+    assert_eq!(last_count, Some(17), "the count at the end");
+    assert!(last_level.is_some_and(|l| (0.0..=100.0).contains(&l)));
+    assert!(time > 590_000_000 && time <= 600_000_000, "the last change is in the last 10 s: {time}");
+}
+
+/// `n` one-hour scenarios of the example tank with different set-ups.
+pub fn many(dir: &Path, n: usize) {
+    for f in ["plant.json", "actions.stx", "modbus.stx"] {
+        std::fs::copy(root().join("examples/strategy").join(f), dir.join(f)).expect("copy");
+    }
+    for i in 0..n {
+        let rate = 1 + i % 7;
+        let text = format!(
+            "strategy plant.json\nat 0s M TANK1.Inflow={rate}.0\nexpect always TANK1.Level <= 100.0\n\
+             expect within 10m TANK1.Level >= 90.0\nexpect never TANK1.HighCnt > {}\nrun 1h\n",
+            40 + i % 50
+        );
+        std::fs::write(dir.join(format!("s{i:04}.ltest")), text).expect("write");
+    }
+}
+
+#[test]
+fn serial_and_parallel_runs_give_identical_reports() {
+    let dir = temp_dir("scen-par");
+    many(&dir, 12);
+    let run = |jobs: &str, junit: &str| {
+        let j = dir.join(junit);
+        let o = linc(&["test", dir.to_str().unwrap(), "--jobs", jobs, "--junit", j.to_str().unwrap()]);
+        (o.status.code(), stdout(&o), std::fs::read(&j).expect("junit"))
+    };
+    let serial = run("1", "serial.xml");
+    let parallel = run("4", "parallel.xml");
+    assert_eq!(serial, parallel);
+    assert!(serial.1.contains("running 12 scenarios"), "{}", serial.1);
+}
