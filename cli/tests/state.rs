@@ -159,3 +159,28 @@ fn a_restored_strategy_is_deterministic() {
     }
     assert_eq!(outs[0], outs[1]);
 }
+
+#[test]
+fn a_stored_action_stays_stored_through_a_warm_start() {
+    let dir = temp_dir("stored");
+    std::fs::write(dir.join("a.st"), "ACTION Count\n  R.N0 := R.N0 + 1;\n  RUN.Trigger := FALSE;\nEND_ACTION\n")
+        .expect("write");
+    std::fs::write(
+        dir.join("plant.json"),
+        r#"{ "blocks": { "R": { "type": "RECIPE" },
+              "RUN": { "type": "ACTION", "values": { "FileName": "a.st", "ActName": "Count", "Trigger": true,
+                                                     "Qualifier": "S" } } } }"#,
+    )
+    .expect("write");
+    let db = dir.join("plant.json").to_string_lossy().into_owned();
+    let state = dir.join("s.state").to_string_lossy().into_owned();
+    let count = |d: &str, more: &[&str]| {
+        let o = run(&db, d, &[&["--show", "R.N0", "--show", "RUN.Trigger"], more].concat());
+        ok(&o);
+        stdout(&o)
+    };
+    assert_eq!(count("1s", &["--state", &state]), "R.N0 = 10\nRUN.Trigger = FALSE\n");
+    // The trigger is FALSE in the saved values: only the stored S keeps the action running.
+    assert_eq!(count("1s", &["--state", &state]), "R.N0 = 20\nRUN.Trigger = FALSE\n");
+    assert_eq!(count("2s", &[]), "R.N0 = 20\nRUN.Trigger = FALSE\n");
+}

@@ -94,3 +94,44 @@ impl RocState {
         Ok(out)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::db::Database;
+
+    fn state() -> RocState {
+        let db = Database::from_json(
+            r#"{"blocks": {"HIST 9": {"type": "HIST", "values": {"ARCHTYP": "FSTDATA", "PERIODIC": 35}}}}"#,
+        )
+        .expect("database");
+        RocState::new(&db)
+    }
+
+    #[test]
+    fn logs_and_archives_come_back_as_they_were() {
+        let mut s = state();
+        for i in 0..3 {
+            s.alarms.push(LogEntry::new(1_699_920_000 + i, "HIGH LEVEL!", f32::NAN, "FST 1"));
+        }
+        s.events.push(LogEntry::new(1_699_920_060, "PUMP ON", 52.5, "FST 2"));
+        assert_eq!(s.history.write(9.0, 3.0, Some(12.5), 1_699_920_000), Ok(4.0));
+        let fresh = state();
+        let back = fresh.from_state_json(&s.state_json()).expect("fits");
+        // NaN is not equal to itself: compare the saved forms, then a value.
+        assert_eq!(back.state_json(), s.state_json());
+        assert_eq!(back.alarms.total(), 3);
+        assert_eq!(back.history.point(9).map(|p| p.archive(super::super::Archive::Periodic)[3].value), Some(12.5));
+        assert_eq!(back.events.iter().next().map(|e| e.text.as_str()), Some("PUMP ON"));
+    }
+
+    #[test]
+    fn archives_of_another_size_do_not_fit() {
+        let mut saved = state().state_json();
+        saved["points"][0]["periodic"] = json!([[0, 0]]);
+        assert!(state().from_state_json(&saved).is_err());
+        let mut saved = state().state_json();
+        saved["alarms"]["entries"] = Value::Array(vec![json!([0, "X", 0, "F"]); 241]);
+        assert!(state().from_state_json(&saved).is_err(), "more entries than the log holds");
+    }
+}
