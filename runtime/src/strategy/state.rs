@@ -186,7 +186,16 @@ impl Strategy {
             .iter()
             .zip(&self.store.cells)
             .enumerate()
-            .map(|(i, (v, live))| parts::cell_from(v, live, &self.store.describe(i as u32)))
+            .map(|(i, (v, live))| {
+                let at = self.store.describe(i as u32);
+                let cell = parts::cell_from(v, live, &at)?;
+                let fits = match &cell {
+                    Cell::Enum { idx } => usize::from(*idx) < self.store.enum_names(i as u32).len(),
+                    Cell::Bits { v, width } => *width >= 16 || u32::from(*v) >> width == 0,
+                    _ => true,
+                };
+                fits.then_some(cell).ok_or_else(|| misfit(format!("{at} holds a value out of its field's range")))
+            })
             .collect::<Result<Vec<Cell>, _>>()?;
         let members = parts::array(&doc["members"], self.members.len(), "the programs")?;
         let members = members
@@ -194,12 +203,19 @@ impl Strategy {
             .zip(&self.members)
             .map(|(v, m)| member_from(v, m))
             .collect::<Result<Vec<MemberState>, _>>()?;
+        let now_us = uint(&clock["elapsed_us"], "the clock")?;
+        // A task is next due after now and within one period: a schedule
+        // far behind the clock would run every missed scan at once.
+        let due = |(t, next): (&super::TaskRun, &u64)| *next >= now_us && *next - now_us <= t.period_us;
+        if !self.tasks.iter().zip(&tasks).all(due) {
+            return Err(misfit("a task is due outside the period after the clock"));
+        }
         let start = f64::from_bits(uint(&clock["start"], "the clock's start")?);
         if !start.is_finite() {
             return Err(misfit("the clock's start is not a time"));
         }
         Ok(Restored {
-            now_us: uint(&clock["elapsed_us"], "the clock")?,
+            now_us,
             start,
             rng: uint(&clock["rng"], "the random generator")?,
             device_us: uint(&clock["device_us"], "the device clock")?,

@@ -147,10 +147,33 @@ fn a_checksummed_body_that_does_not_fit_is_refused() {
     let e = strategy(DB).restore_state(&sealed(1, &body)).expect_err("an INT in a REAL");
     assert_eq!(e.code, "E0842");
     assert!(e.message.contains("T1.A0"), "{e}");
+    let mode = s.store.cell_of(1, "Mode").expect("mode") as usize;
+    let mut doc = s.state_json();
+    doc["cells"][mode] = json!(["E", 2]);
+    let body = serde_json::to_vec(&doc).expect("json");
+    let e = strategy(DB).restore_state(&sealed(1, &body)).expect_err("a third value of a two-value ENUM");
+    assert!(e.message.contains("T2.Mode") && e.message.contains("range"), "{e}");
     let mut doc = s.state_json();
     doc["cells"] = json!([]);
     let body = serde_json::to_vec(&doc).expect("json");
     assert_eq!(strategy(DB).restore_state(&sealed(1, &body)).map_err(|e| e.code), Err("E0842"));
+}
+
+#[test]
+fn a_schedule_far_behind_the_clock_is_refused() {
+    let db = DB.replace(r#""blocks""#, r#""tasks": { "1": { "period": "T#1s" } }, "blocks""#);
+    let s = {
+        let mut s = strategy(&db);
+        s.run_for(5_000_000, None);
+        s
+    };
+    let mut t = strategy(&db);
+    assert_eq!(t.restore_state(&s.save_state()), Ok(()));
+    let mut doc = s.state_json();
+    doc["clock"]["tasks"][0] = json!(0);
+    let body = serde_json::to_vec(&doc).expect("json");
+    let e = t.restore_state(&sealed(1, &body)).expect_err("a task due 5 s ago");
+    assert_eq!(e.code, "E0842", "{e}");
 }
 
 #[test]
