@@ -184,3 +184,53 @@ fn a_stored_action_stays_stored_through_a_warm_start() {
     assert_eq!(count("1s", &["--state", &state]), "R.N0 = 20\nRUN.Trigger = FALSE\n");
     assert_eq!(count("2s", &[]), "R.N0 = 20\nRUN.Trigger = FALSE\n");
 }
+
+/// Every leaf's path in a JSON document.
+fn leaves(v: &serde_json::Value, path: &mut Vec<serde_json::Value>, out: &mut Vec<Vec<serde_json::Value>>) {
+    match v {
+        serde_json::Value::Array(a) => a.iter().enumerate().for_each(|(i, x)| {
+            path.push(i.into());
+            leaves(x, path, out);
+            path.pop();
+        }),
+        serde_json::Value::Object(o) => o.iter().for_each(|(k, x)| {
+            path.push(k.as_str().into());
+            leaves(x, path, out);
+            path.pop();
+        }),
+        _ => out.push(path.clone()),
+    }
+}
+
+fn at<'a>(v: &'a mut serde_json::Value, path: &[serde_json::Value]) -> &'a mut serde_json::Value {
+    path.iter().fold(v, |v, k| match k {
+        serde_json::Value::String(s) => &mut v[s.as_str()],
+        k => &mut v[k.as_u64().unwrap_or(0) as usize],
+    })
+}
+
+#[test]
+fn a_resealed_state_with_any_value_changed_never_panics() {
+    let state = temp("reseal", "plant.state");
+    ok(&run(SEQ_PLANT, "150s", &["--state", &state]));
+    let bytes = read(&state);
+    let nl = bytes.iter().position(|&b| b == b'\n').expect("header") + 1;
+    let doc: serde_json::Value = serde_json::from_slice(&bytes[nl..]).expect("body");
+    let mut paths = Vec::new();
+    leaves(&doc, &mut Vec::new(), &mut paths);
+    let bad = temp("reseal", "bad.state");
+    let values = [serde_json::json!(null), serde_json::json!(u64::MAX), serde_json::json!("x"), serde_json::json!([])];
+    for (n, path) in paths.iter().enumerate().step_by(paths.len() / 400 + 1) {
+        let mut d = doc.clone();
+        *at(&mut d, path) = values[n % values.len()].clone();
+        let body = serde_json::to_vec(&d).expect("json");
+        let header =
+            serde_json::json!({"linc-state": 1, "crc32": linc_runtime::object::crc32(&body), "length": body.len()});
+        std::fs::write(&bad, [header.to_string().as_bytes(), b"\n", &body].concat()).expect("write");
+        let o = run(SEQ_PLANT, "1s", &["--state", &bad]);
+        assert!(matches!(o.status.code(), Some(0 | 2)), "{path:?}: {}", stderr(&o));
+        if o.status.code() == Some(2) {
+            assert!(stderr(&o).contains("error[E0842]"), "{path:?}: {}", stderr(&o));
+        }
+    }
+}
