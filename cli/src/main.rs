@@ -17,6 +17,7 @@ mod run_cmd;
 mod sequence_run;
 mod sequence_src;
 mod sfc_cmd;
+mod state_file;
 mod strategy_cmd;
 mod test_cmd;
 mod test_report;
@@ -152,6 +153,12 @@ enum Command {
         /// Write the database, with its values after the run, here (atomically).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// A strategy's retentive state: restored at the start when the file exists (a warm start), saved at the end.
+        #[arg(long, value_name = "FILE")]
+        state: Option<PathBuf>,
+        /// Start cold: ignore the --state file (it is still written at the end).
+        #[arg(long)]
+        cold: bool,
         /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
         #[arg(long, value_name = "YYYY-MM-DDTHH:MM:SS", value_parser = now)]
         now: Option<String>,
@@ -360,15 +367,24 @@ fn main() -> ExitCode {
             show,
             trace,
             out,
+            state,
+            cold,
             now,
             seed,
             watchdog,
             message_format,
         } => {
+            let retain = strategy_cmd::Retain { state, cold };
+            let misuse = match (&retain.state, &duration) {
+                (None, _) if retain.cold => Some("--cold ignores a --state file: give --state FILE too"),
+                (Some(_), None) => Some("--state keeps a strategy's state: give --for DURATION"),
+                _ => None,
+            };
             let common = run_cmd::Common { set, show, trace, out, now, seed, watchdog, format: format(message_format) };
             match (db, duration) {
+                _ if misuse.is_some() => report::usage(misuse.unwrap_or_default()),
                 (None, Some(duration)) => {
-                    strategy_cmd::run(&strategy_cmd::Options { db: file, duration, common, single: None })
+                    strategy_cmd::run(&strategy_cmd::Options { db: file, duration, common, single: None, retain })
                 }
                 (Some(db), None) => {
                     let period = period.unwrap_or(1.0);
@@ -379,7 +395,7 @@ fn main() -> ExitCode {
                 {
                     let kind = sequence_run::Kind::of(&file);
                     let single = sequence_run::SequenceRun { file, kind, block, period, hold_steps: hold_step, force };
-                    strategy_cmd::run(&strategy_cmd::Options { db, duration, common, single: Some(single) })
+                    strategy_cmd::run(&strategy_cmd::Options { db, duration, common, single: Some(single), retain })
                 }
                 (Some(_), Some(_)) => report::usage(
                     "--for runs a strategy (PLANT.json without --db), a sequence (FILE.sfc --db PLANT.json) \

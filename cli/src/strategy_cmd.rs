@@ -20,6 +20,14 @@ pub struct Options {
     pub common: Common,
     /// Run only this sequence or FST table (`linc run batch.sfc --db … --for …`).
     pub single: Option<SequenceRun>,
+    pub retain: Retain,
+}
+
+/// `--state FILE` and `--cold`.
+#[derive(Clone, Debug, Default)]
+pub struct Retain {
+    pub state: Option<PathBuf>,
+    pub cold: bool,
 }
 
 /// A duration as an ST time constant, with or without `T#` (`10m`, `T#1h30m`).
@@ -131,6 +139,18 @@ pub fn run(o: &Options) -> u8 {
             return status;
         }
     }
+    if let Some(path) = &o.retain.state {
+        match crate::state_file::warm_start(path, o.retain.cold, &mut s) {
+            // A warm start restored the values: --set applies on top of them.
+            Ok(crate::state_file::Start::Warm) => {
+                if let Err(status) = set_and_show(&mut s.store, &o.common.set, &[]) {
+                    return status;
+                }
+            }
+            Ok(crate::state_file::Start::Cold) => {}
+            Err(status) => return status,
+        }
+    }
     // The trace streams to its file (or standard output) as the run goes.
     let mut sink: Option<Box<dyn std::io::Write>> = match o.common.trace.as_ref() {
         Some(p) if p.as_os_str() == "-" => Some(Box::new(std::io::BufWriter::new(std::io::stdout().lock()))),
@@ -159,6 +179,9 @@ pub fn run(o: &Options) -> u8 {
         eprintln!("error[E0900]: can't write the trace: {e}");
         return 2;
     }
+    if let Some(Err(status)) = o.retain.state.as_ref().map(|p| crate::state_file::save(p, &s)) {
+        return status;
+    }
     match write_outputs(o, &db_text, &s.store) {
         Ok(()) => u8::from(!failures.is_empty()),
         Err(status) => status,
@@ -181,7 +204,8 @@ fn check_outputs(o: &Options, wants: &[Want]) -> Result<(), u8> {
     let dir = o.db.parent().map(Path::to_path_buf).unwrap_or_default();
     let inputs: Vec<PathBuf> = std::iter::once(o.db.clone()).chain(wants.iter().map(|w| dir.join(&w.file))).collect();
     let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
-    for out in [&o.common.out, &o.common.trace].into_iter().flatten().filter(|p| p.as_os_str() != "-") {
+    for out in [&o.common.out, &o.common.trace, &o.retain.state].into_iter().flatten().filter(|p| p.as_os_str() != "-")
+    {
         if let Err(e) = crate::files::check_output(out, &input_refs) {
             eprintln!("{e}");
             return Err(2);

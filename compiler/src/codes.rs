@@ -194,6 +194,9 @@ codes! {
     "E0832" => "error program is not an action-type block",
     "E0833" => "SFC_CON block's file holds no sequence",
     "E0834" => "FST block's file holds no FST table",
+    "E0840" => "state file is damaged or cut short",
+    "E0841" => "state file is of another version",
+    "E0842" => "state file was saved from another strategy",
     "E0900" => "file cannot be read or written",
     "E0901" => "output path is not a regular file",
     "E0902" => "output file is one of the inputs",
@@ -239,6 +242,9 @@ mod tests {
             include_str!("../../runtime/src/roc/mod.rs"),
             include_str!("../../runtime/src/roc/history.rs"),
             include_str!("scenario.rs"),
+            include_str!("../../runtime/src/strategy/state.rs"),
+            include_str!("../../runtime/src/strategy/state_parts.rs"),
+            include_str!("../../cli/src/state_file.rs"),
         ];
         for src in sources {
             let starts = src.match_indices("\"E0").chain(src.match_indices("\"W0")).chain(src.match_indices("\"R0"));

@@ -87,6 +87,17 @@ impl Activation {
         self.resume.is_some()
     }
 
+    /// The resume point and the locals kept with it (a saved state).
+    pub(crate) fn resume_point(&self) -> (Option<u32>, &[u32]) {
+        (self.resume, &self.locals)
+    }
+
+    /// Resumes at `at` with `locals` at the next run (a restored state).
+    pub(crate) fn set_resume_point(&mut self, at: Option<u32>, locals: Vec<u32>) {
+        self.resume = at;
+        self.locals = locals;
+    }
+
     /// Back to the start: no resume point, retained slots cleared.
     pub fn reset(&mut self) {
         self.resume = None;
@@ -127,7 +138,7 @@ pub const DEFAULT_STRING_BUDGET: usize = 16 << 20;
 /// The random generator and clock the library sees.
 #[derive(Clone, Debug)]
 pub struct Clock {
-    state: u64,
+    pub(crate) state: u64,
     /// Seconds to add to system time for local time.
     pub utc_offset: i64,
     now: f64,

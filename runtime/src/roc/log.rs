@@ -51,9 +51,9 @@ impl LogEntry {
 /// A bounded circular log.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Log {
-    capacity: usize,
-    entries: VecDeque<LogEntry>,
-    total: u64,
+    pub(super) capacity: usize,
+    pub(super) entries: VecDeque<LogEntry>,
+    pub(super) total: u64,
 }
 
 impl Log {

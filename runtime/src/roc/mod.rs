@@ -12,6 +12,7 @@ mod clock;
 mod history;
 mod log;
 mod logger;
+mod retain;
 #[cfg(test)]
 mod tests;
 

@@ -65,12 +65,12 @@ pub struct ChartState {
     /// `.T` of each step in µs: time active, kept after it deactivates.
     pub elapsed: Vec<u64>,
     /// E associations that fired since their step activated, per step.
-    e_fired: Vec<Vec<bool>>,
-    stored: Vec<bool>,
+    pub(crate) e_fired: Vec<Vec<bool>>,
+    pub(crate) stored: Vec<bool>,
     /// The state of each chart action's chart while the action runs.
-    children: Vec<Option<ChartState>>,
+    pub(crate) children: Vec<Option<ChartState>>,
     /// The initial steps are activated at the next scan.
-    pending_start: bool,
+    pub(crate) pending_start: bool,
     /// Per-scan working sets, kept to be reused: a scan allocates nothing.
     scratch: Scratch,
 }

@@ -56,7 +56,7 @@ pub struct Sequence {
     pub state: ChartState,
     pub status: Status,
     pub monitor: Monitor,
-    last_us: Option<u64>,
+    pub(crate) last_us: Option<u64>,
 }
 
 impl Sequence {

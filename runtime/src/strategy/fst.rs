@@ -102,6 +102,15 @@ impl FstRun {
     }
 }
 
+impl FstRun {
+    /// A warm start (B.1.6): a running table begins again at step 0 at its
+    /// next cycle, awake; the registers and timers are fields and stay.
+    pub(super) fn warm_start(&mut self) {
+        self.running = false;
+        self.wait_until = 0;
+    }
+}
+
 /// Microseconds of a WT of `secs` seconds: within 0.1 s to 999,999 s, in
 /// whole 100 ms intervals (rounded to the nearest).
 fn wait_us(secs: f32) -> u64 {
@@ -280,7 +289,7 @@ pub(super) struct Device {
     tdo: Vec<(u32, u32)>,
     /// Whether any history point is sampled by the logger.
     logs: bool,
-    last_us: u64,
+    pub(super) last_us: u64,
 }
 
 impl Device {

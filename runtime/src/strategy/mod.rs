@@ -13,10 +13,13 @@ mod fst;
 mod observe;
 pub mod qualifier;
 mod sequences;
+mod state;
+mod state_parts;
 pub mod trace;
 
 pub use errors::{ErrorStatus, StrategyError};
 pub use fst::same_point;
+pub use state::StateError;
 
 use crate::link::{Linked, Program};
 use crate::store::{Cell, Store};
