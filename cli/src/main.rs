@@ -5,6 +5,7 @@
 mod build;
 mod check_cmd;
 mod compile_cmd;
+mod console_cmd;
 mod disasm_cmd;
 mod eval_cmd;
 mod explain_cmd;
@@ -165,6 +166,26 @@ enum Command {
             value_parser = watchdog
         )]
         watchdog: u64,
+        #[arg(long, value_enum, default_value = "human")]
+        message_format: MessageFormat,
+    },
+    /// A command console over a running strategy: display, modify and force fields, start and stop
+    /// programs, control sequences, move the simulated clock (docs/console.md).
+    Console {
+        /// The strategy's database (.json).
+        file: PathBuf,
+        /// Run the commands of this file (default: standard input; a terminal gets a `linc>` prompt).
+        #[arg(long, value_name = "FILE")]
+        script: Option<PathBuf>,
+        /// Set a field before the start: BLOCK.FIELD=VALUE (repeatable).
+        #[arg(long)]
+        set: Vec<String>,
+        /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
+        #[arg(long, value_name = "YYYY-MM-DDTHH:MM:SS", value_parser = now)]
+        now: Option<String>,
+        /// Seed of RANDOM, for repeatable runs.
+        #[arg(long)]
+        seed: Option<u64>,
         #[arg(long, value_enum, default_value = "human")]
         message_format: MessageFormat,
     },
@@ -330,6 +351,19 @@ fn main() -> ExitCode {
             fst_src::list(&file, db.as_deref(), format(message_format))
         }
         Command::Ladder { command } => ladder_cmd::run(command),
+        Command::Console { file, script, set, now, seed, message_format } => {
+            let common = run_cmd::Common {
+                set,
+                show: Vec::new(),
+                trace: None,
+                out: None,
+                now,
+                seed,
+                watchdog: linc_runtime::vm::DEFAULT_WATCHDOG,
+                format: format(message_format),
+            };
+            console_cmd::run(console_cmd::Options { db: file, script, common })
+        }
         Command::Run {
             file,
             db,

@@ -66,6 +66,46 @@ fn objects(o: &Options, db: &Database, wants: &[Want]) -> Result<Plan, u8> {
     Ok((objects, pairs))
 }
 
+/// Compiles the programs `wants` name and builds the strategy over
+/// `store`; errors are printed, `Err` is the exit status.
+fn assemble(
+    o: &Options,
+    files: &SourceFiles,
+    db_text: &str,
+    store: Store,
+    wants: &[Want],
+    now: i64,
+) -> Result<Strategy, u8> {
+    if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
+        report(files, FileId(0), db_text, &e, o.common.format);
+        return Err(2);
+    }
+    let (objects, pairs) = objects(o, &store.db, wants)?;
+    let seed = o.common.seed.unwrap_or(now as u64);
+    let vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
+    Strategy::build(store, objects, &pairs, vm, now as f64).map_err(|e| {
+        report(files, FileId(0), db_text, &e, o.common.format);
+        2
+    })
+}
+
+/// The whole strategy of a database, as `linc run PLANT.json` builds it
+/// (with `--set` applied), for the console.
+pub fn load(o: &Options) -> Result<Strategy, u8> {
+    let now = start_time(o.common.now.as_deref()).map_err(usage)?;
+    let mut files = SourceFiles::new();
+    let db = match load_db(Some(&o.db), &mut files, o.common.format) {
+        Ok(Some(db)) => db,
+        Ok(None) => return Err(2),
+        Err(status) => return Err(status),
+    };
+    let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
+    let mut store = Store::new(db);
+    set_and_show(&mut store, &o.common.set, &[])?;
+    let wants = strategy::wanted(&store);
+    assemble(o, &files, &db_text, store, &wants, now)
+}
+
 pub fn run(o: &Options) -> u8 {
     let duration = match duration(&o.duration) {
         Ok(d) => d,
@@ -101,25 +141,12 @@ pub fn run(o: &Options) -> u8 {
         (Some(q), Some(b)) => vec![sequence_run::want(q, b)],
         _ => strategy::wanted(&store),
     };
-    if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
-        report(&files, FileId(0), &db_text, &e, o.common.format);
-        return 2;
-    }
-    let (objects, pairs) = match objects(o, &db, &wants) {
-        Ok(x) => x,
-        Err(status) => return status,
-    };
     if let Err(status) = check_outputs(o, &wants) {
         return status;
     }
-    let seed = o.common.seed.unwrap_or(now as u64);
-    let vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
-    let mut s = match Strategy::build(store, objects, &pairs, vm, now as f64) {
+    let mut s = match assemble(o, &files, &db_text, store, &wants, now) {
         Ok(s) => s,
-        Err(e) => {
-            report(&files, FileId(0), &db_text, &e, o.common.format);
-            return 2;
-        }
+        Err(status) => return status,
     };
     if let (Some(q), Some(seq)) = (&o.single, seq_block.and_then(|b| s.sequence_mut(b))) {
         if let Err(status) = sequence_run::monitor(seq, q) {

@@ -7,6 +7,7 @@
 //! [`Verified::link`] to a [`Store`] → [`Linked`] → [`vm::Vm::run`] of an
 //! [`vm::Activation`] that the caller owns. [`load`] does the first two.
 
+pub mod console;
 pub mod db;
 pub mod errors;
 pub mod isa;

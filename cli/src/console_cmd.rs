@@ -1,0 +1,114 @@
+//! `linc console PLANT.json`: a command line over a running strategy. The
+//! runtime's console executes commands; this reads lines (interactively
+//! with line editing and history, or from a script) and prints replies.
+
+use crate::run_cmd::Common;
+use crate::strategy_cmd::{self, Options as StrategyOptions};
+use linc_compiler::render::Format;
+use linc_runtime::console::{Console, ConsoleError};
+use std::io::{BufRead, IsTerminal};
+use std::path::PathBuf;
+
+pub struct Options {
+    pub db: PathBuf,
+    pub script: Option<PathBuf>,
+    pub common: Common,
+}
+
+/// Whether a script line holds no command: blank, `#` or `(*` comments.
+fn skipped(line: &str) -> bool {
+    let t = line.trim();
+    t.is_empty() || t.starts_with('#') || t.starts_with("(*")
+}
+
+fn is_quit(line: &str) -> bool {
+    matches!(line.trim().to_ascii_uppercase().as_str(), "QUIT" | "EXIT")
+}
+
+/// An error reply, on standard output between the replies it follows.
+fn error_text(e: &ConsoleError, format: Format) -> String {
+    match format {
+        Format::Json => serde_json::json!({ "severity": "error", "code": e.code, "message": e.message }).to_string(),
+        _ => format!("error[{}]: {}", e.code, linc_compiler::render::escape(&e.message)),
+    }
+}
+
+/// Runs one line and prints its replies; `true` if every command succeeded.
+fn line(console: &mut Console, text: &str, format: Format) -> bool {
+    let mut ok = true;
+    for reply in console.execute(text) {
+        match reply {
+            Ok(r) if r.is_empty() => {}
+            Ok(r) => println!("{r}"),
+            Err(e) => {
+                ok = false;
+                println!("{}", error_text(&e, format));
+            }
+        }
+    }
+    // Runtime errors are shown in the ADVANCE/SCAN reply; they are not
+    // command failures.
+    console.take_failures();
+    ok
+}
+
+pub fn run(o: Options) -> u8 {
+    let format = o.common.format;
+    let so = StrategyOptions { db: o.db, duration: String::new(), common: o.common, single: None };
+    let strategy = match strategy_cmd::load(&so) {
+        Ok(s) => s,
+        Err(status) => return status,
+    };
+    let mut console = Console::new(strategy);
+    let all_ok = match &o.script {
+        Some(p) => match crate::files::read_input_text(p) {
+            Ok(text) => script(&mut console, text.lines().map(str::to_string), format),
+            Err(e) => {
+                eprintln!("error[E0900]: can't read `{}`: {e}", p.display());
+                return 2;
+            }
+        },
+        None if std::io::stdin().is_terminal() => return interactive(&mut console, format),
+        None => {
+            let lines = std::io::stdin().lock().lines().map_while(Result::ok);
+            script(&mut console, lines, format)
+        }
+    };
+    u8::from(!all_ok)
+}
+
+fn script(console: &mut Console, lines: impl Iterator<Item = String>, format: Format) -> bool {
+    let mut ok = true;
+    for l in lines {
+        if skipped(&l) {
+            continue;
+        }
+        if is_quit(&l) {
+            break;
+        }
+        ok &= line(console, &l, format);
+    }
+    ok
+}
+
+/// The prompt `linc> ` with line editing and history (rustyline).
+fn interactive(console: &mut Console, format: Format) -> u8 {
+    let mut editor = match rustyline::DefaultEditor::new() {
+        Ok(e) => e,
+        Err(e) => {
+            eprintln!("error[E0900]: can't open the terminal: {e}");
+            return 2;
+        }
+    };
+    while let Ok(l) = editor.readline("linc> ") {
+        if skipped(&l) {
+            continue;
+        }
+        if is_quit(&l) {
+            break;
+        }
+        let _ = editor.add_history_entry(l.as_str());
+        line(console, &l, format);
+    }
+    0
+}
