@@ -186,7 +186,7 @@ impl Console {
     fn forces(&self) -> String {
         let s = self.store();
         let mut lines: Vec<String> =
-            s.forced_cells().into_iter().map(|c| format!("{} = {} (forced)", s.describe(c), s.show(c))).collect();
+            s.forced_cells().into_iter().map(|c| format!("forced {} = {}", s.describe(c), s.show(c))).collect();
         if lines.is_empty() {
             lines.push("no forces".to_string());
         }
@@ -219,8 +219,12 @@ impl Console {
         if !self.strategy.set_program_state(b, state) {
             return Err(ConsoleError::new("C0006", format!("block `{name}` runs no program")));
         }
-        let now = self.strategy.program_state(b).unwrap_or(state);
-        Ok(format!("{name} {}", now.name()))
+        let done = match state {
+            ProgramState::Running => "started",
+            ProgramState::Suspended => "suspended",
+            ProgramState::Inactive => "stopped",
+        };
+        Ok(format!("{name} {done}"))
     }
 
     fn sequence_of(&mut self, name: &str) -> Result<(usize, &mut Sequence), ConsoleError> {
@@ -256,7 +260,8 @@ impl Console {
                 }
             }
         }
-        Ok(format!("{name} {:?} requested (at its next scan)", control).to_uppercase())
+        let c = format!("{control:?}").to_uppercase();
+        Ok(format!("{name} {c} requested (at its next scan)"))
     }
 
     fn hold_step(&mut self, name: &str, step: &str, hold: bool) -> Result<String, ConsoleError> {
