@@ -6,6 +6,7 @@ use crate::run_cmd::Common;
 use crate::strategy_cmd::{self, Options as StrategyOptions};
 use linc_compiler::render::Format;
 use linc_runtime::console::{Console, ConsoleError};
+use linc_runtime::strategy::trace::Trace;
 use std::io::{BufRead, IsTerminal};
 use std::path::PathBuf;
 
@@ -34,9 +35,9 @@ fn error_text(e: &ConsoleError, format: Format) -> String {
 }
 
 /// Runs one line and prints its replies; `true` if every command succeeded.
-fn line(console: &mut Console, text: &str, format: Format) -> bool {
+fn line(console: &mut Console, text: &str, format: Format, trace: Option<&mut Trace>) -> bool {
     let mut ok = true;
-    for reply in console.execute(text) {
+    for reply in console.execute_traced(text, trace) {
         match reply {
             Ok(r) if r.is_empty() => {}
             Ok(r) => println!("{r}"),
@@ -54,30 +55,51 @@ fn line(console: &mut Console, text: &str, format: Format) -> bool {
 
 pub fn run(o: Options) -> u8 {
     let format = o.common.format;
+    if o.common.trace.as_ref().is_some_and(|p| p.as_os_str() == "-") {
+        return crate::report::usage("--trace of the console takes a FILE (standard output holds the replies)");
+    }
+    let trace_path = o.common.trace.clone();
     let so = StrategyOptions { db: o.db, duration: String::new(), common: o.common, single: None };
     let strategy = match strategy_cmd::load(&so) {
         Ok(s) => s,
         Err(status) => return status,
     };
     let mut console = Console::new(strategy);
-    let all_ok = match &o.script {
+    let mut sink = match strategy_cmd::trace_sink(trace_path.as_deref()) {
+        Ok(s) => s,
+        Err(status) => return status,
+    };
+    let mut trace = sink.as_mut().map(|w| Trace::new(w.as_mut(), &console.strategy.store));
+    let status = match &o.script {
         Some(p) => match crate::files::read_input_text(p) {
-            Ok(text) => script(&mut console, text.lines().map(str::to_string), format),
+            Ok(text) => script(&mut console, text.lines().map(str::to_string), format, trace.as_mut()),
             Err(e) => {
                 eprintln!("error[E0900]: can't read `{}`: {e}", p.display());
                 return 2;
             }
         },
-        None if std::io::stdin().is_terminal() => return interactive(&mut console, format),
+        None if std::io::stdin().is_terminal() => interactive(&mut console, format, trace.as_mut()),
         None => {
             let lines = std::io::stdin().lock().lines().map_while(Result::ok);
-            script(&mut console, lines, format)
+            script(&mut console, lines, format, trace.as_mut())
         }
     };
-    u8::from(!all_ok)
+    let traced = trace.map(Trace::finish);
+    drop(sink);
+    if let Some(Err(e)) = traced {
+        eprintln!("error[E0900]: can't write the trace: {e}");
+        return 2;
+    }
+    status
 }
 
-fn script(console: &mut Console, lines: impl Iterator<Item = String>, format: Format) -> bool {
+/// Runs every line; the exit status: 1 if a command was refused.
+fn script(
+    console: &mut Console,
+    lines: impl Iterator<Item = String>,
+    format: Format,
+    mut trace: Option<&mut Trace>,
+) -> u8 {
     let mut ok = true;
     for l in lines {
         if skipped(&l) {
@@ -86,13 +108,13 @@ fn script(console: &mut Console, lines: impl Iterator<Item = String>, format: Fo
         if is_quit(&l) {
             break;
         }
-        ok &= line(console, &l, format);
+        ok &= line(console, &l, format, trace.as_deref_mut());
     }
-    ok
+    u8::from(!ok)
 }
 
 /// The prompt `linc> ` with line editing and history (rustyline).
-fn interactive(console: &mut Console, format: Format) -> u8 {
+fn interactive(console: &mut Console, format: Format, mut trace: Option<&mut Trace>) -> u8 {
     let mut editor = match rustyline::DefaultEditor::new() {
         Ok(e) => e,
         Err(e) => {
@@ -108,7 +130,7 @@ fn interactive(console: &mut Console, format: Format) -> u8 {
             break;
         }
         let _ = editor.add_history_entry(l.as_str());
-        line(console, &l, format);
+        line(console, &l, format, trace.as_deref_mut());
     }
     0
 }

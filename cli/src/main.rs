@@ -180,6 +180,9 @@ enum Command {
         /// Set a field before the start: BLOCK.FIELD=VALUE (repeatable).
         #[arg(long)]
         set: Vec<String>,
+        /// Trace field writes (and the console's own changes) to FILE as JSON lines.
+        #[arg(long, value_name = "FILE")]
+        trace: Option<PathBuf>,
         /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
         #[arg(long, value_name = "YYYY-MM-DDTHH:MM:SS", value_parser = now)]
         now: Option<String>,
@@ -351,11 +354,11 @@ fn main() -> ExitCode {
             fst_src::list(&file, db.as_deref(), format(message_format))
         }
         Command::Ladder { command } => ladder_cmd::run(command),
-        Command::Console { file, script, set, now, seed, message_format } => {
+        Command::Console { file, script, set, trace, now, seed, message_format } => {
             let common = run_cmd::Common {
                 set,
                 show: Vec::new(),
-                trace: None,
+                trace,
                 out: None,
                 now,
                 seed,

@@ -103,6 +103,7 @@ pub fn load(o: &Options) -> Result<Strategy, u8> {
     let mut store = Store::new(db);
     set_and_show(&mut store, &o.common.set, &[])?;
     let wants = strategy::wanted(&store);
+    check_outputs(o, &wants)?;
     assemble(o, &files, &db_text, store, &wants, now)
 }
 
@@ -154,16 +155,9 @@ pub fn run(o: &Options) -> u8 {
         }
     }
     // The trace streams to its file (or standard output) as the run goes.
-    let mut sink: Option<Box<dyn std::io::Write>> = match o.common.trace.as_ref() {
-        Some(p) if p.as_os_str() == "-" => Some(Box::new(std::io::BufWriter::new(std::io::stdout().lock()))),
-        Some(p) => match crate::files::AtomicFile::create(p) {
-            Ok(f) => Some(Box::new(TraceFile(Some(f)))),
-            Err(e) => {
-                eprintln!("{e}");
-                return 2;
-            }
-        },
-        None => None,
+    let mut sink = match trace_sink(o.common.trace.as_deref()) {
+        Ok(s) => s,
+        Err(status) => return status,
     };
     let mut trace = sink.as_mut().map(|w| Trace::new(w.as_mut(), &s.store));
     let failures = s.run_for(duration, trace.as_mut());
@@ -210,6 +204,22 @@ fn check_outputs(o: &Options, wants: &[Want]) -> Result<(), u8> {
         }
     }
     Ok(())
+}
+
+/// Where `--trace` goes: standard output for `-`, else a file committed
+/// when the trace is finished.
+pub fn trace_sink(path: Option<&Path>) -> Result<Option<Box<dyn std::io::Write>>, u8> {
+    match path {
+        Some(p) if p.as_os_str() == "-" => Ok(Some(Box::new(std::io::BufWriter::new(std::io::stdout().lock())))),
+        Some(p) => match crate::files::AtomicFile::create(p) {
+            Ok(f) => Ok(Some(Box::new(TraceFile(Some(f))))),
+            Err(e) => {
+                eprintln!("{e}");
+                Err(2)
+            }
+        },
+        None => Ok(None),
+    }
 }
 
 /// A trace file: committed (renamed into place) when the trace is

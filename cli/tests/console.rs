@@ -284,3 +284,36 @@ fn json_errors_and_a_missing_script() {
     let o = linc(&["console", "examples/strategy/plant.json", "--script", dir.join("none.txt").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn the_trace_shows_console_changes_and_dropped_writes() {
+    let dir = temp_dir("console-trace");
+    let script = dir.join("s.txt");
+    std::fs::write(&script, "F TANK1.Valve=1\nM TANK1.Inflow=3\nADVANCE 1s\n").expect("script");
+    let trace = dir.join("trace.jsonl");
+    let o = linc(&[
+        "console",
+        "examples/strategy/plant.json",
+        "--now",
+        NOW,
+        "--script",
+        script.to_str().unwrap(),
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&trace).expect("trace");
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        &lines[..4],
+        [
+            r#"{"time":0.0,"task":0,"program":"(console)","field":"TANK1.Valve","old":"FALSE","new":"TRUE"}"#,
+            r#"{"time":0.0,"task":0,"program":"(console)","field":"TANK1.Inflow","old":"4.0","new":"3.0"}"#,
+            r#"{"time":0.0,"task":1,"program":"FILL","field":"FILL.Active","old":"FALSE","new":"TRUE"}"#,
+            r#"{"time":0.0,"task":1,"program":"FILL","field":"TANK1.Valve","forced":true}"#,
+        ]
+    );
+    // Standard output holds the replies: the trace can't go there.
+    let o = linc(&["console", "examples/strategy/plant.json", "--script", script.to_str().unwrap(), "--trace", "-"]);
+    assert_eq!(o.status.code(), Some(2));
+}

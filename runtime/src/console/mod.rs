@@ -9,6 +9,7 @@ pub mod parse;
 
 use crate::sequence::Sequence;
 use crate::store::Store;
+use crate::strategy::trace::Trace;
 use crate::strategy::{ProgramState, Strategy};
 use fields::{address, parse_value, show_value, Addr};
 use parse::{Command, SeqControl, TransForce};
@@ -79,7 +80,32 @@ impl Console {
     /// one reply per command. A failed command changes nothing and does
     /// not stop the later ones on the line.
     pub fn execute(&mut self, line: &str) -> Vec<Result<String, ConsoleError>> {
-        line.split(';').filter(|c| !c.trim().is_empty()).map(|c| self.one(c)).collect()
+        self.execute_traced(line, None)
+    }
+
+    /// [`Console::execute`] with the strategy trace: the runs of
+    /// ADVANCE/SCAN are traced as `linc run --trace` traces them, and the
+    /// fields a command changed are lines of program `(console)`.
+    pub fn execute_traced(&mut self, line: &str, mut trace: Option<&mut Trace>) -> Vec<Result<String, ConsoleError>> {
+        let mut replies = Vec::new();
+        for c in line.split(';').filter(|c| !c.trim().is_empty()) {
+            let reply = self.one(c, trace.as_deref_mut());
+            if let (Ok(_), Some(t)) = (&reply, trace.as_deref_mut()) {
+                self.note_changes(t);
+            }
+            replies.push(reply);
+        }
+        replies
+    }
+
+    /// Trace lines for every field whose value differs from what the trace
+    /// last saw: what the command itself wrote (M, F, START, RUN …).
+    fn note_changes(&self, t: &mut Trace) {
+        let store = &self.strategy.store;
+        let now = self.strategy.elapsed_us();
+        for cell in 0..store.cells.len() as u32 {
+            t.write(store, now, 0, "(console)", cell);
+        }
     }
 
     /// Runtime errors of programs that happened during ADVANCE/SCAN since
@@ -88,7 +114,7 @@ impl Console {
         std::mem::take(&mut self.failures)
     }
 
-    fn one(&mut self, text: &str) -> Result<String, ConsoleError> {
+    fn one(&mut self, text: &str, trace: Option<&mut Trace>) -> Result<String, ConsoleError> {
         match parse::parse(text, &duration)? {
             Command::Display(paths) => self.display(&paths),
             Command::Modify { path, value } => self.modify(&path, &value),
@@ -99,12 +125,12 @@ impl Console {
             Command::Sequence { block, control } => self.sequence(&block, control),
             Command::HoldStep { block, step, hold } => self.hold_step(&block, &step, hold),
             Command::ForceTrans { block, transition, force } => self.force_trans(&block, &transition, force),
-            Command::Advance(us) => Ok(self.advance(us)),
+            Command::Advance(us) => Ok(self.advance(us, trace)),
             Command::Scan => {
                 let us = self.strategy.fastest_period_us().ok_or_else(|| {
                     ConsoleError::new("C0006", "the strategy has no task to scan: use ADVANCE to move the clock")
                 })?;
-                Ok(self.advance(us))
+                Ok(self.advance(us, trace))
             }
             Command::Now => Ok(self.strategy.now_text()),
             Command::ErrorShow => Ok(self.error_text()),
@@ -293,8 +319,8 @@ impl Console {
     }
 
     /// Runs the tasks; the reply is the clock after, and any runtime errors.
-    fn advance(&mut self, us: u64) -> String {
-        let failed = self.strategy.run_for(us, None);
+    fn advance(&mut self, us: u64, trace: Option<&mut Trace>) -> String {
+        let failed = self.strategy.run_for(us, trace);
         let mut lines = vec![self.strategy.now_text()];
         lines.extend(failed.iter().map(|e| format!("runtime error[{}]: {e}", e.code)));
         self.failures.extend(failed);
