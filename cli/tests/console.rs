@@ -317,3 +317,44 @@ fn the_trace_shows_console_changes_and_dropped_writes() {
     let o = linc(&["console", "examples/strategy/plant.json", "--script", script.to_str().unwrap(), "--trace", "-"]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn a_terminal_gets_the_prompt() {
+    // util-linux `script` gives the console a terminal; skipped without it.
+    if !std::path::Path::new("/usr/bin/script").exists() {
+        return;
+    }
+    let cmd = format!("{} console examples/strategy/plant.json", env!("CARGO_BIN_EXE_linc"));
+    let mut child = Command::new("/usr/bin/script")
+        .args(["-qec", &cmd, "/dev/null"])
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    child.stdin.take().expect("stdin").write_all(b"D TANK1.Level\nQUIT\n").expect("write");
+    let o = child.wait_with_output().expect("wait");
+    let out = stdout(&o);
+    assert!(out.contains("linc> "), "{out}");
+    assert!(out.contains("TANK1.Level = 20.0"), "{out}");
+}
+
+#[test]
+fn a_failed_sequence_starts_again() {
+    let plant = example_copy("sequences", "seq-error", |db| {
+        db["blocks"]["BATCH"]["values"]["FileName"] = serde_json::json!("boom.sfc");
+    });
+    let dir = std::path::Path::new(&plant).parent().expect("dir");
+    let sfc = "INITIAL_STEP A: Boom(N); END_STEP\nSTEP B: END_STEP\n\
+               TRANSITION FROM A TO B := R1.Batches > 2; END_TRANSITION\n\
+               ACTION Boom\n    R1.Batches := R1.Batches + 10 / R1.Log;\nEND_ACTION\n";
+    std::fs::write(dir.join("boom.sfc"), sfc).expect("sfc");
+    let script = "ADVANCE 2s\nP?\nERR?\nM R1.Log=10\nERRCLR\nSTART BATCH\nADVANCE 5s\nP?\nD R1.Batches\n";
+    let (code, out) = console(&plant, "seq-error", script);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("BATCH sequence task 1 inactive ERROR: A\n"), "{out}");
+    assert!(out.contains("error 1 [R0001] in BATCH line 5 at 0.0s"), "{out}");
+    assert!(out.contains("BATCH started\n"), "{out}");
+    assert!(out.ends_with("BATCH sequence task 1 running RUNNING: B\nR1.Batches = 3\n"), "{out}");
+}

@@ -76,7 +76,7 @@ fn a_line_runs_every_command_and_failures_are_taken_once() {
     // BAD divides by zero at its first scan: the runtime error is in the
     // reply and in take_failures, once.
     let advanced = lines(&mut c, "ADVANCE 1s");
-    assert!(advanced[0].contains("runtime error[R0001]"), "{advanced:?}");
+    assert!(advanced[0].contains("error[R0001]: in `Bad`: division by zero"), "{advanced:?}");
     let failures = c.take_failures();
     assert_eq!(failures.iter().map(|e| e.code).collect::<Vec<_>>(), ["R0001"]);
     assert!(c.take_failures().is_empty());

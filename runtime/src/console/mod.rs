@@ -322,7 +322,7 @@ impl Console {
     fn advance(&mut self, us: u64, trace: Option<&mut Trace>) -> String {
         let failed = self.strategy.run_for(us, trace);
         let mut lines = vec![self.strategy.now_text()];
-        lines.extend(failed.iter().map(|e| format!("runtime error[{}]: {e}", e.code)));
+        lines.extend(failed.iter().map(|e| e.to_string()));
         self.failures.extend(failed);
         lines.join("\n")
     }

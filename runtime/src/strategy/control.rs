@@ -114,9 +114,15 @@ impl Strategy {
         match state {
             ProgramState::Suspended => self.members[m].suspended = true,
             ProgramState::Running => {
-                if self.members[m].stopped {
-                    self.members[m].act.reset();
-                    self.members[m].qual = Default::default();
+                let member = &mut self.members[m];
+                if member.stopped {
+                    member.act.reset();
+                    member.qual = Default::default();
+                }
+                // A failed sequence stays in ERROR until reset: a start resets it.
+                if let Some(seq) = member.seq.as_deref_mut().filter(|s| s.status == Status::Error) {
+                    seq.command(crate::sequence::Command::Reset);
+                    member.act.reset();
                 }
                 self.members[m].stopped = false;
                 self.members[m].suspended = false;
