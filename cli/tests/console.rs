@@ -358,3 +358,23 @@ fn a_failed_sequence_starts_again() {
     assert!(out.contains("BATCH started\n"), "{out}");
     assert!(out.ends_with("BATCH sequence task 1 running RUNNING: B\nR1.Batches = 3\n"), "{out}");
 }
+
+#[test]
+fn read_only_fields_unknown_steps_and_quoted_semicolons() {
+    let plant = example_copy("sequences", "readonly", |db| {
+        db["blocks"]["PIC1"] = serde_json::json!({ "type": "PID", "values": { "PV": 42.5 } });
+    });
+    let script = "M PIC1.SP=5\nF PIC1.SP=5\nD PIC1.SP, PIC1.PV\nHOLDSTEP BATCH Fil\nFORCETRANS BATCH Fulll HOLD\n\
+                  HOLDSTEP SIM Fill\nM BATCH.FileName='x;y'; D BATCH.FileName\nF?\n";
+    let (code, out) = console(&plant, "readonly", script);
+    assert_eq!(code, Some(1), "{out}");
+    let expect = "error[C0005]: PIC1.SP is read-only: the block computes it\n\
+        error[C0005]: PIC1.SP is read-only: the block computes it\n\
+        PIC1.SP = 0.0\nPIC1.PV = 42.5\n\
+        error[C0007]: the sequence of `BATCH` has no step `Fil`\n\
+        error[C0007]: the sequence of `BATCH` has no transition `Fulll`\n\
+        error[C0006]: block `SIM` runs no sequence\n\
+        BATCH.FileName = 'x;y'\nBATCH.FileName = 'x;y'\n\
+        no forces\nwrites ignored: 0\n";
+    assert_eq!(out, expect);
+}

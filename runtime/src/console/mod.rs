@@ -76,7 +76,7 @@ impl Console {
         Console { strategy, failures: Vec::new() }
     }
 
-    /// One input line: commands separated by `;`, each executed in order;
+    /// One input line: commands separated by `;` (outside quotes), each executed in order;
     /// one reply per command. A failed command changes nothing and does
     /// not stop the later ones on the line.
     pub fn execute(&mut self, line: &str) -> Vec<Result<String, ConsoleError>> {
@@ -88,7 +88,7 @@ impl Console {
     /// fields a command changed are lines of program `(console)`.
     pub fn execute_traced(&mut self, line: &str, mut trace: Option<&mut Trace>) -> Vec<Result<String, ConsoleError>> {
         let mut replies = Vec::new();
-        for c in line.split(';').filter(|c| !c.trim().is_empty()) {
+        for c in commands(line).into_iter().filter(|c| !c.trim().is_empty()) {
             let reply = self.one(c, trace.as_deref_mut());
             if let (Ok(_), Some(t)) = (&reply, trace.as_deref_mut()) {
                 self.note_changes(t);
@@ -363,10 +363,52 @@ impl Console {
     }
 }
 
+/// The commands of a line: split at `;` outside quotes (`M X.S='a;b'`).
+fn commands(line: &str) -> Vec<&str> {
+    let mut out = Vec::new();
+    let (mut start, mut quote) = (0, None);
+    for (i, ch) in line.char_indices() {
+        match (ch, quote) {
+            ('\'' | '"', None) => quote = Some(ch),
+            (c, Some(q)) if c == q => quote = None,
+            (';', None) => {
+                out.push(&line[start..i]);
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    out.push(&line[start..]);
+    out
+}
+
 fn has_transition(chart: &crate::sequence::chart::Chart, name: &str) -> bool {
     chart.transitions.iter().any(|t| t.name.eq_ignore_ascii_case(name))
         || chart.actions.iter().any(|a| match &a.body {
             crate::sequence::chart::Body::Chart(sub) => has_transition(sub, name),
             crate::sequence::chart::Body::Code(_) => false,
         })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_line_splits_at_semicolons_outside_quotes() {
+        assert_eq!(commands("M X.S='a;b'; D X.S"), ["M X.S='a;b'", " D X.S"]);
+        assert_eq!(commands(r#"M X.S="x;'y"; NOW"#), [r#"M X.S="x;'y""#, " NOW"]);
+        assert_eq!(commands("NOW"), ["NOW"]);
+    }
+
+    #[test]
+    fn durations_are_st_time_constants() {
+        assert_eq!(duration("10s"), Ok(10_000_000));
+        assert_eq!(duration("T#1h30m"), Ok(5_400_000_000));
+        assert_eq!(duration("250ms"), Ok(250_000));
+        assert!(duration("0s").is_err());
+        assert!(duration("367d").is_err());
+        assert!(duration("soon").is_err());
+        assert!(duration("é").is_err());
+    }
 }
