@@ -5,6 +5,7 @@
 mod build;
 mod check_cmd;
 mod compile_cmd;
+mod console_cmd;
 mod disasm_cmd;
 mod eval_cmd;
 mod explain_cmd;
@@ -191,6 +192,35 @@ enum Command {
         #[arg(long, value_name = "PATH")]
         vcd: Option<PathBuf>,
     },
+    /// A command console over a running strategy: display, modify and force fields, start and stop
+    /// programs, control sequences, move the simulated clock (docs/console.md).
+    Console {
+        /// The strategy's database (.json).
+        file: PathBuf,
+        /// Run the commands of this file (default: standard input; a terminal gets a `linc>` prompt).
+        #[arg(long, value_name = "FILE")]
+        script: Option<PathBuf>,
+        /// Set a field before the start: BLOCK.FIELD=VALUE (repeatable).
+        #[arg(long)]
+        set: Vec<String>,
+        /// Trace field writes (and the console's own changes) to FILE as JSON lines.
+        #[arg(long, value_name = "FILE")]
+        trace: Option<PathBuf>,
+        /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
+        #[arg(long, value_name = "YYYY-MM-DDTHH:MM:SS", value_parser = now)]
+        now: Option<String>,
+        /// Seed of RANDOM, for repeatable runs.
+        #[arg(long)]
+        seed: Option<u64>,
+        #[arg(long, value_enum, default_value = "human")]
+        /// Restore the retentive state from FILE at the start (a warm start) and save it there on SAVE and at the end.
+        #[arg(long, value_name = "FILE")]
+        state: Option<PathBuf>,
+        /// With --state: ignore the state file and start cold (it is still saved).
+        #[arg(long, requires = "state")]
+        cold: bool,
+        message_format: MessageFormat,
+    },
     /// Evaluate one ST expression and print its value.
     Eval {
         /// The expression; it may start with `-`.
@@ -353,6 +383,20 @@ fn main() -> ExitCode {
             fst_src::list(&file, db.as_deref(), format(message_format))
         }
         Command::Ladder { command } => ladder_cmd::run(command),
+        Command::Console { file, script, set, trace, now, seed, state, cold, message_format } => {
+            let common = run_cmd::Common {
+                set,
+                show: Vec::new(),
+                trace,
+                out: None,
+                now,
+                seed,
+                watchdog: linc_runtime::vm::DEFAULT_WATCHDOG,
+                format: format(message_format),
+            };
+            let retain = strategy_cmd::Retain { state, cold };
+            console_cmd::run(console_cmd::Options { db: file, script, common, retain })
+        }
         Command::Run {
             file,
             db,

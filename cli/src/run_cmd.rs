@@ -4,10 +4,9 @@ use crate::build::{compile, Failed};
 use crate::check_cmd::load_db;
 use crate::report::usage;
 use linc_compiler::render::{Format, SourceFiles};
-use linc_runtime::store::{Cell, Store};
+use linc_runtime::store::Store;
 use linc_runtime::vm::{Activation, Clock, Vm};
 use linc_runtime::{text, Database, Linked, Program, Verified};
-use linc_stdlib::value::decode_dollar;
 use std::path::{Path, PathBuf};
 
 /// What running one action and running a strategy have in common.
@@ -33,56 +32,7 @@ pub struct Options {
     pub common: Common,
 }
 
-/// Where `--set` and `--show` point: a cell and maybe a bit.
-#[derive(Clone, Copy)]
-pub struct Addr {
-    cell: u32,
-    bit: Option<u8>,
-}
-
-/// Resolves `BLOCK.FIELD[.BitN]` (or an alias) against the store.
-pub fn address(store: &Store, path: &str) -> Result<Addr, String> {
-    let mut parts: Vec<String> = path.split('.').map(str::to_string).collect();
-    if let Some(a) = parts.first().and_then(|p| store.db.alias(p)) {
-        let mut expanded = a.target.clone();
-        expanded.extend(parts.drain(1..));
-        parts = expanded;
-    }
-    let (Some(b), Some(f)) = (parts.first(), parts.get(1)) else {
-        return Err(format!("`{path}` is not BLOCK.FIELD"));
-    };
-    let block = store.db.block(b).ok_or_else(|| format!("the database has no block `{b}`"))?;
-    let cell = store.cell_of(block, f).ok_or_else(|| format!("`{b}` has no field `{f}`"))?;
-    let t = store.db.block_template(block);
-    let bit = match parts.get(2) {
-        None => None,
-        Some(sub) => {
-            let field = t.field(f).map(|i| &t.fields[i].ty);
-            let n = field.and_then(|ty| ty.bit_index(sub)).ok_or_else(|| format!("`{b}.{f}` has no bit `{sub}`"))?;
-            Some(n)
-        }
-    };
-    if parts.len() > 3 {
-        return Err(format!("`{path}` has too many parts"));
-    }
-    Ok(Addr { cell, bit })
-}
-
-pub fn show_value(store: &Store, a: Addr) -> String {
-    match (a.bit, store.cells.get(a.cell as usize)) {
-        (Some(b), Some(Cell::Bits { v, .. })) => if (v >> b) & 1 == 1 { "TRUE" } else { "FALSE" }.to_string(),
-        _ => store.show(a.cell),
-    }
-}
-
-fn unquote(s: &str) -> &str {
-    let b = s.as_bytes();
-    if b.len() >= 2 && (b[0] == b'\'' || b[0] == b'"') && b[b.len() - 1] == b[0] {
-        &s[1..s.len() - 1]
-    } else {
-        s
-    }
-}
+pub use linc_runtime::console::fields::{address, set, show_value, Addr};
 
 /// Applies every `--set` and resolves every `--show` (printing the first
 /// problem; `Err` is the exit status).
@@ -95,59 +45,6 @@ pub fn set_and_show(store: &mut Store, sets: &[String], shows: &[String]) -> Res
         .map(|p| address(store, p).map(|a| (p.clone(), a)))
         .collect::<Result<_, _>>()
         .map_err(|msg| usage(format_args!("--show: {msg}")))
-}
-
-/// Applies `BLOCK.FIELD=VALUE`.
-pub fn set(store: &mut Store, assignment: &str) -> Result<(), String> {
-    let (path, value) = assignment.split_once('=').ok_or_else(|| format!("`{assignment}` is not BLOCK.FIELD=VALUE"))?;
-    let a = address(store, path.trim())?;
-    let value = value.trim();
-    let truth = |v: &str| match v.to_ascii_uppercase().as_str() {
-        "TRUE" | "1" => Ok(true),
-        "FALSE" | "0" => Ok(false),
-        _ => Err(format!("`{v}` is not TRUE or FALSE")),
-    };
-    let int = |v: &str| {
-        v.parse::<i64>()
-            .map(|i| i.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32)
-            .map_err(|_| format!("`{v}` is not an integer"))
-    };
-    let names = store.enum_names(a.cell).to_vec();
-    let cell = store.cells.get_mut(a.cell as usize).ok_or("no such cell")?;
-    match (cell, a.bit) {
-        (Cell::Bits { v, .. }, Some(b)) => {
-            if truth(value)? {
-                *v |= 1 << b;
-            } else {
-                *v &= !(1 << b);
-            }
-        }
-        (Cell::Real(r), _) => {
-            let x: f32 = value.parse().map_err(|_| format!("`{value}` is not a number"))?;
-            if !x.is_finite() {
-                return Err(format!("`{value}` is not a finite number"));
-            }
-            *r = x;
-        }
-        (Cell::Int(i), _) => *i = int(value)?,
-        (Cell::Bool(b), _) => *b = truth(value)?,
-        (Cell::Bits { v, width }, None) => {
-            let x = int(value)?;
-            *v = if *width == 8 { (x as u16) & 0xFF } else { x as u16 };
-        }
-        (Cell::Enum { idx }, _) => {
-            let text = unquote(value);
-            let i = names
-                .iter()
-                .position(|n| n.eq_ignore_ascii_case(text))
-                .ok_or_else(|| format!("`{text}` is not one of {}", names.join(", ")))?;
-            *idx = i as u16;
-        }
-        (Cell::Text(t), _) => *t = unquote(value).as_bytes().to_vec(),
-        (Cell::Bseq(t) | Cell::Wstr(t), _) => *t = decode_dollar(unquote(value).as_bytes()),
-        (Cell::Alarms(_), _) => return Err("alarm states can't be set with --set".into()),
-    }
-    Ok(())
 }
 
 /// Loads a program file: a `.sto` object as is (verified), anything else

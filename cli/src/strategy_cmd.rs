@@ -79,6 +79,47 @@ pub fn compile_wants(dir: &Path, db: &Database, wants: &[Want], format: Format) 
     Ok((objects, pairs))
 }
 
+/// Compiles the programs `wants` name and builds the strategy over
+/// `store`; errors are printed, `Err` is the exit status.
+fn assemble(
+    o: &Options,
+    files: &SourceFiles,
+    db_text: &str,
+    store: Store,
+    wants: &[Want],
+    now: i64,
+) -> Result<Strategy, u8> {
+    if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
+        report(files, FileId(0), db_text, &e, o.common.format);
+        return Err(2);
+    }
+    let (objects, pairs) = objects(o, &store.db, wants)?;
+    let seed = o.common.seed.unwrap_or(now as u64);
+    let vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
+    Strategy::build(store, objects, &pairs, vm, now as f64).map_err(|e| {
+        report(files, FileId(0), db_text, &e, o.common.format);
+        2
+    })
+}
+
+/// The whole strategy of a database, as `linc run PLANT.json` builds it
+/// (with `--set` applied), for the console.
+pub fn load(o: &Options) -> Result<Strategy, u8> {
+    let now = start_time(o.common.now.as_deref()).map_err(usage)?;
+    let mut files = SourceFiles::new();
+    let db = match load_db(Some(&o.db), &mut files, o.common.format) {
+        Ok(Some(db)) => db,
+        Ok(None) => return Err(2),
+        Err(status) => return Err(status),
+    };
+    let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
+    let mut store = Store::new(db);
+    set_and_show(&mut store, &o.common.set, &[])?;
+    let wants = strategy::wanted(&store);
+    check_outputs(o, &wants)?;
+    assemble(o, &files, &db_text, store, &wants, now)
+}
+
 pub fn run(o: &Options) -> u8 {
     let duration = match duration(&o.duration) {
         Ok(d) => d,
@@ -114,25 +155,12 @@ pub fn run(o: &Options) -> u8 {
         (Some(q), Some(b)) => vec![sequence_run::want(q, b)],
         _ => strategy::wanted(&store),
     };
-    if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
-        report(&files, FileId(0), &db_text, &e, o.common.format);
-        return 2;
-    }
-    let (objects, pairs) = match objects(o, &db, &wants) {
-        Ok(x) => x,
-        Err(status) => return status,
-    };
     if let Err(status) = check_outputs(o, &wants) {
         return status;
     }
-    let seed = o.common.seed.unwrap_or(now as u64);
-    let vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
-    let mut s = match Strategy::build(store, objects, &pairs, vm, now as f64) {
+    let mut s = match assemble(o, &files, &db_text, store, &wants, now) {
         Ok(s) => s,
-        Err(e) => {
-            report(&files, FileId(0), &db_text, &e, o.common.format);
-            return 2;
-        }
+        Err(status) => return status,
     };
     if let (Some(q), Some(seq)) = (&o.single, seq_block.and_then(|b| s.sequence_mut(b))) {
         if let Err(status) = sequence_run::monitor(seq, q) {
@@ -152,16 +180,9 @@ pub fn run(o: &Options) -> u8 {
         }
     }
     // The trace streams to its file (or standard output) as the run goes.
-    let mut sink: Option<Box<dyn std::io::Write>> = match o.common.trace.as_ref() {
-        Some(p) if p.as_os_str() == "-" => Some(Box::new(std::io::BufWriter::new(std::io::stdout().lock()))),
-        Some(p) => match crate::files::AtomicFile::create(p) {
-            Ok(f) => Some(Box::new(TraceFile(Some(f)))),
-            Err(e) => {
-                eprintln!("{e}");
-                return 2;
-            }
-        },
-        None => None,
+    let mut sink = match trace_sink(o.common.trace.as_deref()) {
+        Ok(s) => s,
+        Err(status) => return status,
     };
     let mut trace = sink.as_mut().map(|w| Trace::new(w.as_mut(), &s.store));
     let failures = s.run_for(duration, trace.as_mut());
@@ -212,6 +233,22 @@ fn check_outputs(o: &Options, wants: &[Want]) -> Result<(), u8> {
         }
     }
     Ok(())
+}
+
+/// Where `--trace` goes: standard output for `-`, else a file committed
+/// when the trace is finished.
+pub fn trace_sink(path: Option<&Path>) -> Result<Option<Box<dyn std::io::Write>>, u8> {
+    match path {
+        Some(p) if p.as_os_str() == "-" => Ok(Some(Box::new(std::io::BufWriter::new(std::io::stdout().lock())))),
+        Some(p) => match crate::files::AtomicFile::create(p) {
+            Ok(f) => Ok(Some(Box::new(TraceFile(Some(f))))),
+            Err(e) => {
+                eprintln!("{e}");
+                Err(2)
+            }
+        },
+        None => Ok(None),
+    }
 }
 
 /// A trace file: committed (renamed into place) when the trace is

@@ -170,6 +170,18 @@ codes! {
     "R0010" => "FST table: invalid point reference",
     "R0011" => "FST table: invalid history point or index",
     "R0099" => "object and database disagree at run time",
+    "C0001" => "console: unknown command",
+    "C0002" => "console: command written wrongly",
+    "C0003" => "console: no such block or field",
+    "C0004" => "console: not a value of the field's type",
+    "C0005" => "console: the field is read-only",
+    "C0006" => "console: the block runs no such program",
+    "C0007" => "console: the sequence has no such step or transition",
+    "C0008" => "console: not a duration",
+    "C0009" => "console: the field is forced, or not forced",
+    "C0010" => "console: not a runtime error code",
+    "C0011" => "console: the error status already holds an error",
+    "C0012" => "console: SAVE without a state file",
     "E0800" => "database file is not valid JSON",
     "E0801" => "database file has the wrong shape",
     "E0802" => "unknown field type in a template",
@@ -245,9 +257,17 @@ mod tests {
             include_str!("../../runtime/src/strategy/state.rs"),
             include_str!("../../runtime/src/strategy/state_parts.rs"),
             include_str!("../../cli/src/state_file.rs"),
+            include_str!("../../runtime/src/console/mod.rs"),
+            include_str!("../../runtime/src/console/parse.rs"),
+            include_str!("../../runtime/src/console/fields.rs"),
+            include_str!("../../runtime/src/strategy/control.rs"),
         ];
         for src in sources {
-            let starts = src.match_indices("\"E0").chain(src.match_indices("\"W0")).chain(src.match_indices("\"R0"));
+            let starts = src
+                .match_indices("\"E0")
+                .chain(src.match_indices("\"W0"))
+                .chain(src.match_indices("\"R0"))
+                .chain(src.match_indices("\"C0"));
             for (i, _) in starts {
                 let code = &src[i + 1..i + 6];
                 assert!(lookup(code).is_some(), "{code} is emitted but not registered");

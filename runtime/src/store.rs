@@ -76,7 +76,17 @@ pub struct Store {
     pub now: f64,
     /// The ROC device's logs and history archives, which FST tables write.
     pub roc: crate::roc::RocState,
+    /// For each cell, whether the console forced it: writes by programs
+    /// and the engine are dropped. Never retentive.
+    forced: Vec<bool>,
+    /// Writes dropped because their cell was forced, since the start.
+    pub ignored_writes: u64,
+    /// Cells of dropped writes not yet traced (at most [`MAX_PENDING_IGNORED`]).
+    ignored: Vec<u32>,
 }
+
+/// Dropped writes kept for the trace between two drains; more are only counted.
+pub const MAX_PENDING_IGNORED: usize = 1024;
 
 impl Store {
     /// Lays out every block with its initial values.
@@ -103,7 +113,45 @@ impl Store {
             run_end.extend(ends);
         }
         let roc = crate::roc::RocState::new(&db);
-        Store { db, cells, first, run_end, readonly, now: 0.0, roc }
+        let forced = vec![false; cells.len()];
+        Store { db, cells, first, run_end, readonly, now: 0.0, roc, forced, ignored_writes: 0, ignored: Vec::new() }
+    }
+
+    /// Whether a write to `cell` must be dropped because the cell is forced
+    /// (and then counts it). Every write path of the VM and the engine asks
+    /// this: one byte lookup, so forcing costs nothing on reads.
+    #[inline]
+    pub fn refuse_forced(&mut self, cell: u32) -> bool {
+        if !self.forced.get(cell as usize).copied().unwrap_or(false) {
+            return false;
+        }
+        self.ignored_writes += 1;
+        if self.ignored.len() < MAX_PENDING_IGNORED {
+            self.ignored.push(cell);
+        }
+        true
+    }
+
+    /// Whether the console forced this cell.
+    pub fn is_forced(&self, cell: u32) -> bool {
+        self.forced.get(cell as usize).copied().unwrap_or(false)
+    }
+
+    /// Forces a cell (its value is set by the caller first) or releases it.
+    pub fn set_forced(&mut self, cell: u32, on: bool) {
+        if let Some(f) = self.forced.get_mut(cell as usize) {
+            *f = on;
+        }
+    }
+
+    /// Every forced cell, in cell order.
+    pub fn forced_cells(&self) -> Vec<u32> {
+        (0..self.forced.len() as u32).filter(|&c| self.is_forced(c)).collect()
+    }
+
+    /// The cells of the writes dropped since the last call, for the trace.
+    pub fn take_ignored(&mut self) -> Vec<u32> {
+        std::mem::take(&mut self.ignored)
     }
 
     /// Whether programs may not write this cell.

@@ -406,6 +406,9 @@ impl Vm {
                     if !v.is_finite() {
                         break Err(Fault::new("R0005", format!("the result is {v}, which can't be stored")));
                     }
+                    if store.refuse_forced(c) {
+                        continue;
+                    }
                     match store.cells.get_mut(c as usize) {
                         Some(Cell::Real(r)) => *r = v,
                         _ => break Err(corrupt()),
@@ -434,7 +437,7 @@ impl Vm {
                 Op::StoreRKeep { sym } => {
                     let v = self.pop_r();
                     let c = cell(l, sym);
-                    if v.is_finite() {
+                    if v.is_finite() && !store.refuse_forced(c) {
                         match store.cells.get_mut(c as usize) {
                             Some(Cell::Real(r)) => *r = v,
                             _ => break Err(corrupt()),

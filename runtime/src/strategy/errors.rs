@@ -82,6 +82,12 @@ impl Strategy {
         if self.error.is_some() {
             return;
         }
+        self.enter_status(e, name, task, trace);
+    }
+
+    /// Enters an error in the free error status, shows it in the SYSTEM
+    /// block and runs the error program.
+    pub(super) fn enter_status(&mut self, e: RuntimeError, name: String, task: u8, mut trace: Option<&mut Trace>) {
         self.error = Some(ErrorStatus { error: e, block: name, at_us: self.now_us, double: false });
         self.mirror(task, trace.as_deref_mut());
         if let Some(ep) = self.error_program {
@@ -115,7 +121,7 @@ impl Strategy {
     }
 
     /// Copies the error status into the SYSTEM block's fields.
-    fn mirror(&mut self, task: u8, mut trace: Option<&mut Trace>) {
+    pub(super) fn mirror(&mut self, task: u8, mut trace: Option<&mut Trace>) {
         let Some(sys) = self.system else { return };
         let e = self.error.clone();
         let text = |s: &str| Cell::Text(s.as_bytes().to_vec());

@@ -8,6 +8,7 @@
 //! the failing program; the strategy keeps the first error in its error
 //! status, as a PLC kernel's error word does, and may run an error program.
 
+mod control;
 mod errors;
 mod fst;
 mod observe;
@@ -17,6 +18,7 @@ mod state;
 mod state_parts;
 pub mod trace;
 
+pub use control::{ProgramInfo, ProgramState};
 pub use errors::{ErrorStatus, StrategyError};
 pub use fst::same_point;
 pub use state::StateError;
@@ -142,6 +144,8 @@ struct Member {
     act: Activation,
     qual: QualState,
     stopped: bool,
+    /// Kept as it is but not scanned (the console's SUSPEND).
+    suspended: bool,
     cells: BlockCells,
     /// The sequence an SFC_CON block runs.
     seq: Option<Box<crate::sequence::Sequence>>,
@@ -222,6 +226,7 @@ impl Strategy {
                 act,
                 qual: QualState::default(),
                 stopped: false,
+                suspended: false,
                 cells,
                 seq: None,
                 fst: None,
@@ -322,6 +327,7 @@ impl Strategy {
         while let Some(next) = self.tasks.iter().map(|t| t.next_us).min().filter(|&n| n < end) {
             self.set_time(next);
             self.device_tick(trace.as_deref_mut());
+            self.trace_ignored(usize::MAX, 0, trace.as_deref_mut());
             for t in 0..self.tasks.len() {
                 if self.tasks[t].next_us == next {
                     self.run_task(t, trace.as_deref_mut());
@@ -345,29 +351,35 @@ impl Strategy {
             if self.halted {
                 return;
             }
-            if Some(m) == self.error_program || self.members[m].stopped {
+            if Some(m) == self.error_program || self.members[m].stopped || self.members[m].suspended {
                 continue;
             }
-            if self.members[m].seq.is_some() || self.members[m].fst.is_some() {
-                let scanned = if self.members[m].fst.is_some() {
-                    self.scan_fst(m, number, trace.as_deref_mut())
-                } else {
-                    self.scan_sequence(m, number, trace.as_deref_mut())
-                };
-                if let Err(e) = scanned {
-                    self.enter_error(m, number, e, trace.as_deref_mut());
-                }
-                self.check_clear(number, trace.as_deref_mut());
-                continue;
-            }
-            let runs = self.scan_qualifier(m, number, trace.as_deref_mut());
-            if runs {
-                if let Err(e) = self.run_member(m, number, trace.as_deref_mut()) {
-                    self.enter_error(m, number, e, trace.as_deref_mut());
-                }
+            self.scan_member(m, number, trace.as_deref_mut());
+            self.trace_ignored(m, number, trace.as_deref_mut());
+        }
+    }
+
+    /// One scan of one program: a sequence, an FST table or an action block.
+    fn scan_member(&mut self, m: usize, number: u8, mut trace: Option<&mut Trace>) {
+        if self.members[m].seq.is_some() || self.members[m].fst.is_some() {
+            let scanned = if self.members[m].fst.is_some() {
+                self.scan_fst(m, number, trace.as_deref_mut())
+            } else {
+                self.scan_sequence(m, number, trace.as_deref_mut())
+            };
+            if let Err(e) = scanned {
+                self.enter_error(m, number, e, trace.as_deref_mut());
             }
             self.check_clear(number, trace.as_deref_mut());
+            return;
         }
+        let runs = self.scan_qualifier(m, number, trace.as_deref_mut());
+        if runs {
+            if let Err(e) = self.run_member(m, number, trace.as_deref_mut()) {
+                self.enter_error(m, number, e, trace.as_deref_mut());
+            }
+        }
+        self.check_clear(number, trace);
     }
 
     /// Applies the block's qualifier to its trigger; shows the result in `Active`.
@@ -417,6 +429,12 @@ impl Strategy {
 
     /// A write by the engine itself (Active, Status, alarms), traced like a program's.
     fn host_write(&mut self, m: usize, task: u8, cell: u32, v: Cell, trace: Option<&mut Trace>) {
+        if self.store.is_forced(cell) {
+            if self.store.cells.get(cell as usize) != Some(&v) {
+                self.store.refuse_forced(cell);
+            }
+            return;
+        }
         if let Some(slot) = self.store.cells.get_mut(cell as usize) {
             if *slot == v {
                 return;

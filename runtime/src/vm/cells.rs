@@ -51,6 +51,9 @@ pub(super) fn load_bit(store: &Store, c: u32, bit: u8) -> Result<i32, Fault> {
 
 /// An INT into an INT, BOOL (non-zero is TRUE) or bitfield (its low 8 or 16 bits).
 pub(super) fn store_int(store: &mut Store, c: u32, v: i32) -> Result<(), Fault> {
+    if store.refuse_forced(c) {
+        return Ok(());
+    }
     match store.cells.get_mut(c as usize) {
         Some(Cell::Int(i)) => *i = v,
         Some(Cell::Bool(b)) => *b = v != 0,
@@ -61,6 +64,9 @@ pub(super) fn store_int(store: &mut Store, c: u32, v: i32) -> Result<(), Fault> 
 }
 
 pub(super) fn store_bit(store: &mut Store, c: u32, bit: u8, v: i32) -> Result<(), Fault> {
+    if store.refuse_forced(c) {
+        return Ok(());
+    }
     match store.cells.get_mut(c as usize) {
         Some(Cell::Bits { v: bits, width }) if bit < *width => {
             if v != 0 {
@@ -75,6 +81,9 @@ pub(super) fn store_bit(store: &mut Store, c: u32, bit: u8, v: i32) -> Result<()
 }
 
 pub(super) fn store_str(store: &mut Store, c: u32, s: Vec<u8>) -> Result<(), Fault> {
+    if store.refuse_forced(c) {
+        return Ok(());
+    }
     if let Some(Cell::Enum { .. }) = store.cells.get(c as usize) {
         let names = store.enum_names(c);
         let Some(idx) = names.iter().position(|n| n.as_bytes().eq_ignore_ascii_case(&s)) else {
