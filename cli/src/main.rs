@@ -212,13 +212,13 @@ enum Command {
         /// Seed of RANDOM, for repeatable runs.
         #[arg(long)]
         seed: Option<u64>,
-        #[arg(long, value_enum, default_value = "human")]
         /// Restore the retentive state from FILE at the start (a warm start) and save it there on SAVE and at the end.
         #[arg(long, value_name = "FILE")]
         state: Option<PathBuf>,
         /// With --state: ignore the state file and start cold (it is still saved).
         #[arg(long, requires = "state")]
         cold: bool,
+        #[arg(long, value_enum, default_value = "human")]
         message_format: MessageFormat,
     },
     /// Evaluate one ST expression and print its value.

@@ -108,8 +108,8 @@ fn forcing_an_input_seen_by_a_sequence_transition() {
     let script = "ADVANCE 2s\nP?\nF R1.Level=85\nSCAN\nSCAN\nP?\nD R1.Level\n";
     let (code, out) = console("examples/sequences/plant.json", "force-sfc", script);
     assert_eq!(code, Some(0), "{out}");
-    assert!(out.contains("BATCH sequence task 1 running RUNNING: Fill\n"), "{out}");
-    assert!(out.contains("BATCH sequence task 1 running RUNNING: Heat, Agitate\n"), "{out}");
+    assert!(out.contains("BATCH sequence task 1 running RUNNING: Fill 0s\n"), "{out}");
+    assert!(out.contains("BATCH sequence task 1 running RUNNING: Heat 1s, Agitate 1s\n"), "{out}");
     assert_eq!(shown(&out, "R1.Level"), ["R1.Level = 85.0 (forced)", "R1.Level = 85.0"]);
 }
 
@@ -180,16 +180,16 @@ fn each_sequence_control() {
     assert_eq!(
         seq,
         [
-            "BATCH sequence task 1 inactive STOPPED: Fill",
+            "BATCH sequence task 1 inactive STOPPED: Fill 5s",
             "BATCH sequence task 1 inactive RESET",
             // Held, Fill stays active though the level passed 80 %.
-            "BATCH sequence task 1 running RUNNING: Fill",
-            "BATCH sequence task 1 running RUNNING: Heat, Agitate",
+            "BATCH sequence task 1 running RUNNING: Fill 18s",
+            "BATCH sequence task 1 running RUNNING: Heat 19s, Agitate 19s",
             // Full held: filling goes on to 100 % and stays in Fill.
-            "BATCH sequence task 1 running RUNNING: Fill",
-            "BATCH sequence task 1 running RUNNING: Heat, Agitate",
+            "BATCH sequence task 1 running RUNNING: Fill 18s",
+            "BATCH sequence task 1 running RUNNING: Heat 19s, Agitate 19s",
             // Full forced to continue: it fires at once.
-            "BATCH sequence task 1 running RUNNING: Heat, Agitate",
+            "BATCH sequence task 1 running RUNNING: Heat 0s, Agitate 0s",
         ],
         "{out}"
     );
@@ -353,10 +353,10 @@ fn a_failed_sequence_starts_again() {
     let script = "ADVANCE 2s\nP?\nERR?\nM R1.Log=10\nERRCLR\nSTART BATCH\nADVANCE 5s\nP?\nD R1.Batches\n";
     let (code, out) = console(&plant, "seq-error", script);
     assert_eq!(code, Some(0), "{out}");
-    assert!(out.contains("BATCH sequence task 1 inactive ERROR: A\n"), "{out}");
+    assert!(out.contains("BATCH sequence task 1 inactive ERROR: A 0s\n"), "{out}");
     assert!(out.contains("error 1 [R0001] in BATCH line 5 at 0.0s"), "{out}");
     assert!(out.contains("BATCH started\n"), "{out}");
-    assert!(out.ends_with("BATCH sequence task 1 running RUNNING: B\nR1.Batches = 3\n"), "{out}");
+    assert!(out.ends_with("BATCH sequence task 1 running RUNNING: B 1s\nR1.Batches = 3\n"), "{out}");
 }
 
 #[test]

@@ -53,7 +53,7 @@ fn bad_scenario_lines_are_reported_at_their_place() {
     let file = dir.join("bad.ltest").display().to_string();
     let o = linc(&["test", &file]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stdout(&o).contains(&format!("{file}:3:1: error[E0463]")), "{}", stdout(&o));
+    assert!(stdout(&o).contains(&format!("{file}:3:1: error[E0503]")), "{}", stdout(&o));
 }
 
 #[test]

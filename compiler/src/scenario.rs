@@ -124,7 +124,7 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
     let (blanked, unclosed) = blank_comments(text);
     if let Some(at) = unclosed {
         diags.push(
-            error("E0463", "a comment is not closed", Span::new(at, at + 2), "opened here").help("close it with `*)`"),
+            error("E0503", "a comment is not closed", Span::new(at, at + 2), "opened here").help("close it with `*)`"),
         );
     }
     let text = blanked.as_str();
@@ -146,7 +146,7 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
         let rest_span = Span::new(span.end - rest.len(), span.end);
         match keyword.to_ascii_lowercase().as_str() {
             "strategy" | "db" | "program" if rest.is_empty() => {
-                diags.push(error("E0460", format!("`{keyword}` names a file"), span, "no file given"));
+                diags.push(error("E0500", format!("`{keyword}` names a file"), span, "no file given"));
             }
             "strategy" => set_target(&mut s, Target::Strategy(rest.to_string()), span, &mut diags),
             "db" => db = Some(rest.to_string()),
@@ -158,20 +158,20 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
                         line: number,
                         action: Action::At { at_us, command: command.trim_end().to_string() },
                     }),
-                    Ok(_) => diags.push(error("E0461", "`at` needs a time and a console command", span, "no command")),
-                    Err(why) => diags.push(error("E0462", why, rest_span, "not a time")),
+                    Ok(_) => diags.push(error("E0501", "`at` needs a time and a console command", span, "no command")),
+                    Err(why) => diags.push(error("E0502", why, rest_span, "not a time")),
                 }
             }
             "run" => match duration(rest) {
                 Ok(for_us) => s.lines.push(Line { line: number, action: Action::Run { for_us } }),
-                Err(why) => diags.push(error("E0462", why, rest_span, "not a time")),
+                Err(why) => diags.push(error("E0502", why, rest_span, "not a time")),
             },
             "expect" => match expect(rest, rest_span) {
                 Ok(action) => s.lines.push(Line { line: number, action }),
                 Err(d) => diags.push(*d),
             },
             _ => diags.push(
-                error("E0463", format!("`{keyword}` does not start a scenario line"), span, "unknown line")
+                error("E0503", format!("`{keyword}` does not start a scenario line"), span, "unknown line")
                     .help("a line is `strategy`, `program`, `db`, `at TIME COMMAND`, `expect …` or `run TIME`"),
             ),
         }
@@ -182,12 +182,12 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
             set_target(&mut s, Target::Program { file, db }, span, &mut diags);
         }
         (Some((_, span)), None) => {
-            diags.push(error("E0460", "`program` needs a `db` line naming its database", span, "no database"))
+            diags.push(error("E0500", "`program` needs a `db` line naming its database", span, "no database"))
         }
         _ => {}
     }
     if s.target.is_none() && diags.is_empty() {
-        let d = error("E0460", "the scenario names nothing to run", Span::new(0, 0), "no `strategy` line")
+        let d = error("E0500", "the scenario names nothing to run", Span::new(0, 0), "no `strategy` line")
             .help("start with `strategy PLANT.json`, or `program FILE` and `db DB.json`");
         diags.push(d);
     }
@@ -196,7 +196,7 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
 
 fn set_target(s: &mut Scenario, t: Target, span: Span, diags: &mut Vec<Diagnostic>) {
     if s.target.is_some() {
-        diags.push(error("E0460", "a scenario runs one strategy or program", span, "second target"));
+        diags.push(error("E0500", "a scenario runs one strategy or program", span, "second target"));
     } else {
         s.target = Some(t);
     }
@@ -207,7 +207,7 @@ fn expect(rest: &str, span: Span) -> Result<Action, Box<Diagnostic>> {
     let (how, tail) = word(rest);
     let timed = |make: fn(u64) -> How| -> Result<(How, &str), Box<Diagnostic>> {
         let (time, expr) = word(tail);
-        let d = duration(time).map_err(|why| Box::new(error("E0462", why, span, "not a time")))?;
+        let d = duration(time).map_err(|why| Box::new(error("E0502", why, span, "not a time")))?;
         Ok((make(d), expr))
     };
     let (how, expr) = match how.to_ascii_lowercase().as_str() {
@@ -218,12 +218,12 @@ fn expect(rest: &str, span: Span) -> Result<Action, Box<Diagnostic>> {
         _ => {
             let hint =
                 "write `expect within 5m EXPR`, `expect after 10s EXPR`, `expect always EXPR` or `expect never EXPR`";
-            let e = error("E0464", format!("`expect {how}` is not a kind of expectation"), span, "unknown kind");
+            let e = error("E0504", format!("`expect {how}` is not a kind of expectation"), span, "unknown kind");
             return Err(Box::new(e.help(hint)));
         }
     };
     if expr.is_empty() {
-        return Err(Box::new(error("E0464", "the expectation has no expression", span, "nothing to check")));
+        return Err(Box::new(error("E0504", "the expectation has no expression", span, "nothing to check")));
     }
     let at = span.end - expr.len();
     Ok(Action::Expect { how, expr: expr.to_string(), span: Span::new(at, span.end) })
@@ -281,18 +281,18 @@ mod tests {
         assert_eq!(s.target, Some(Target::Strategy("p.json".into())));
         assert_eq!(s.lines, vec![Line { line: 4, action: Action::Run { for_us: 1_000_000 } }]);
         let (_, d) = parse("strategy p.json\n(* open\nrun 1s\n");
-        assert_eq!(d[0].code, "E0463");
+        assert_eq!(d[0].code, "E0503");
     }
 
     #[test]
     fn bad_lines_are_located_and_reading_goes_on() {
         let (_, d) = parse("strategy p.json\nat soon M A.B=1\nexpect sometimes X\nwait 5s\nrun 1x\n");
         let codes: Vec<_> = d.iter().map(|d| d.code).collect();
-        assert_eq!(codes, ["E0462", "E0464", "E0463", "E0462"]);
+        assert_eq!(codes, ["E0502", "E0504", "E0503", "E0502"]);
         let (_, d) = parse("at 0s NOW\n");
-        assert_eq!(d[0].code, "E0460", "nothing to run");
+        assert_eq!(d[0].code, "E0500", "nothing to run");
         let (_, d) = parse("program x.sfc\n");
-        assert_eq!(d[0].code, "E0460", "a program needs its database");
+        assert_eq!(d[0].code, "E0500", "a program needs its database");
     }
 
     #[test]

@@ -76,7 +76,16 @@ impl Strategy {
         let block = self.store.db.blocks[member.block].name.clone();
         let task = self.store.db.blocks[member.block].task;
         let (kind, at_rest, position) = if let Some(seq) = member.seq.as_deref() {
-            let steps = seq.active_steps().join(", ");
+            // Each active step with its time (`.T`), as the monitor shows it.
+            let steps = seq
+                .active_steps()
+                .iter()
+                .map(|n| match seq.step(n) {
+                    Some((_, us)) => format!("{n} {}s", us as f64 / 1e6),
+                    None => n.to_string(),
+                })
+                .collect::<Vec<_>>()
+                .join(", ");
             let rest = matches!(seq.status, Status::Reset | Status::Stopped | Status::Error);
             let pos = if steps.is_empty() {
                 seq_status(seq.status).to_string()
