@@ -17,9 +17,9 @@ fn write_scenarios(dir: &Path) {
     for i in 0..SCENARIOS {
         let text = format!(
             "strategy plant.json\nat 0s M TANK1.Inflow={}.0\nexpect always TANK1.Level <= 100.0\n\
-             expect within 10m TANK1.Level >= 90.0\nexpect never TANK1.HighCnt > {}\nrun 1h\n",
+             expect within 10m TANK1.Level >= 50.0\nexpect never TANK1.HighCnt > {}\nrun 1h\n",
             1 + i % 7,
-            40 + i % 50
+            1000 + i
         );
         std::fs::write(dir.join(format!("s{i:04}.ltest")), text).expect("write a scenario");
     }

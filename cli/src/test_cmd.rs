@@ -75,7 +75,7 @@ pub fn run(o: &Options) -> u8 {
     };
     let jobs = o.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())).max(1);
     let started = std::time::Instant::now();
-    let outcomes = run_all(&files, jobs);
+    let outcomes = run_all(&files, jobs, o.vcd.is_some());
     println!("running {} scenario{}", outcomes.len(), if outcomes.len() == 1 { "" } else { "s" });
     for out in &outcomes {
         println!("test {} ... {}", out.name, if out.passed { "ok" } else { "FAILED" });
@@ -111,7 +111,7 @@ pub fn run(o: &Options) -> u8 {
 
 /// Runs the scenarios on `jobs` threads; the outcomes come back in file
 /// order whatever order they finish in, so reports are identical.
-pub fn run_all(files: &[PathBuf], jobs: usize) -> Vec<Outcome> {
+pub fn run_all(files: &[PathBuf], jobs: usize, vcd: bool) -> Vec<Outcome> {
     let next = std::sync::atomic::AtomicUsize::new(0);
     let mut slots: Vec<Option<Outcome>> = (0..files.len()).map(|_| None).collect();
     let results = std::sync::Mutex::new(&mut slots);
@@ -120,7 +120,7 @@ pub fn run_all(files: &[PathBuf], jobs: usize) -> Vec<Outcome> {
             scope.spawn(|| loop {
                 let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                 let Some(file) = files.get(i) else { break };
-                let out = run_one(file);
+                let out = run_one(file, vcd);
                 if let Ok(mut r) = results.lock() {
                     r[i] = Some(out);
                 }
@@ -130,8 +130,9 @@ pub fn run_all(files: &[PathBuf], jobs: usize) -> Vec<Outcome> {
     slots.into_iter().flatten().collect()
 }
 
-/// Runs one scenario file; everything it prints is in the outcome.
-pub fn run_one(file: &Path) -> Outcome {
+/// Runs one scenario file; everything it prints is in the outcome. The
+/// fields it names are sampled only for a VCD (`vcd`).
+pub fn run_one(file: &Path, vcd: bool) -> Outcome {
     let name = file.display().to_string();
     let fail = |details: String| Outcome { name: name.clone(), passed: false, details, report: Report::default() };
     let text = match crate::files::read_input_text(file) {
@@ -155,7 +156,7 @@ pub fn run_one(file: &Path) -> Outcome {
     if !errors.is_empty() {
         return fail(errors);
     }
-    let watch = watched(&sc);
+    let watch = if vcd { watched(&sc) } else { Vec::new() };
     strategy.store.now = START;
     let mut console = linc_runtime::console::Console::new(strategy);
     let report = linc_runtime::scenario::run(&mut console, steps, &watch);

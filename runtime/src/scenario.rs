@@ -87,6 +87,8 @@ struct Runner {
     slots: Vec<u32>,
     pending: Vec<Pending>,
     report: Report,
+    /// The watched cells as last sampled.
+    last: Vec<Option<crate::store::Cell>>,
 }
 
 /// Runs `steps` against the driver's strategy. `watch` names the fields to
@@ -97,6 +99,7 @@ pub fn run(driver: &mut dyn Driver, steps: Vec<Step>, watch: &[String]) -> Repor
         slots: Vec::new(),
         pending: Vec::new(),
         report: Report::default(),
+        last: Vec::new(),
     };
     r.report.samples = samples(driver.strategy(), watch);
     r.sample(driver.strategy());
@@ -198,14 +201,17 @@ impl Runner {
         }
     }
 
+    /// Records the watched fields that changed since the last sample
+    /// (compared as cells, so an unchanged field costs no formatting).
     fn sample(&mut self, s: &Strategy) {
         let now = s.elapsed_us();
         let smp = &mut self.report.samples;
+        self.last.resize(smp.cells.len(), None);
         for (i, &cell) in smp.cells.iter().enumerate() {
-            let v = s.store.show(cell);
-            let last = smp.changes.iter().rev().find(|(_, var, _)| *var == i).map(|(_, _, v)| v);
-            if last != Some(&v) {
-                smp.changes.push((now, i, v));
+            let current = s.store.cells.get(cell as usize);
+            if self.last[i].as_ref() != current {
+                self.last[i] = current.cloned();
+                smp.changes.push((now, i, s.store.show(cell)));
             }
         }
     }
