@@ -250,17 +250,8 @@ fn bad_commands_are_errors_that_change_nothing() {
 
 #[test]
 fn standard_input_is_a_script_and_quit_ends_it() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_linc"))
-        .args(["console", "examples/strategy/plant.json", "--now", NOW])
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawn");
     let input = "(* a comment *)\n# another\n\nD TANK1.Level; SCAN\nQUIT\nD TANK1.Nope\n";
-    child.stdin.take().expect("stdin").write_all(input.as_bytes()).expect("write");
-    let o = child.wait_with_output().expect("wait");
+    let o = common::linc_with_input(&["console", "examples/strategy/plant.json", "--now", NOW], input);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert_eq!(stdout(&o), "TANK1.Level = 20.0\n2026-01-05T06:00:00.100\n");
 }

@@ -3,25 +3,13 @@
 //! the initial steps; a state file cut short is refused and the console
 //! starts cold only when asked (docs/console.md, docs/state.md).
 mod common;
-use common::{stdout, temp_dir};
-use std::io::Write;
-use std::process::{Command, Stdio};
+use common::{linc_with_input, stdout, temp_dir};
 
 const PLANT: &str = "examples/sequences/plant.json";
 
 /// Runs the console with `script` on standard input and `args`.
 fn console(args: &[&str], script: &str) -> (Option<i32>, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_linc"))
-        .arg("console")
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("run linc console");
-    child.stdin.take().expect("stdin").write_all(script.as_bytes()).expect("script");
-    let o = child.wait_with_output().expect("output");
+    let o = linc_with_input(&[&["console"], args].concat(), script);
     (o.status.code(), format!("{}{}", stdout(&o), String::from_utf8_lossy(&o.stderr)))
 }
 

@@ -39,6 +39,19 @@ pub enum Status {
     Error,
 }
 
+impl Status {
+    /// The status as SFC_CON's `Status` field, the console and state files name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Reset => "RESET",
+            Status::Running => "RUNNING",
+            Status::Held => "HELD",
+            Status::Stopped => "STOPPED",
+            Status::Error => "ERROR",
+        }
+    }
+}
+
 /// SFC_CON's commands. A command written in a scan takes effect at the
 /// start of the next one: the caller applies it before [`Sequence::scan`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

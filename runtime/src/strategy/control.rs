@@ -43,16 +43,6 @@ pub struct ProgramInfo {
     pub position: String,
 }
 
-fn seq_status(s: Status) -> &'static str {
-    match s {
-        Status::Reset => "RESET",
-        Status::Running => "RUNNING",
-        Status::Held => "HELD",
-        Status::Stopped => "STOPPED",
-        Status::Error => "ERROR",
-    }
-}
-
 impl Strategy {
     fn member_of(&self, block: usize) -> Option<usize> {
         self.members.iter().position(|m| m.block == block)
@@ -88,9 +78,9 @@ impl Strategy {
                 .join(", ");
             let rest = matches!(seq.status, Status::Reset | Status::Stopped | Status::Error);
             let pos = if steps.is_empty() {
-                seq_status(seq.status).to_string()
+                seq.status.name().to_string()
             } else {
-                format!("{}: {steps}", seq_status(seq.status))
+                format!("{}: {steps}", seq.status.name())
             };
             (WantKind::Sequence, rest, pos)
         } else if member.fst.is_some() {

@@ -95,13 +95,7 @@ impl Strategy {
             Status::Held => (true, true, false),
             Status::Stopped | Status::Error => (false, false, false),
         };
-        let status_name = match status {
-            Status::Reset => "RESET",
-            Status::Running => "RUNNING",
-            Status::Held => "HELD",
-            Status::Stopped => "STOPPED",
-            Status::Error => "ERROR",
-        };
+        let status_name = status.name();
         let c = self.members[m].cells;
         // Hold is only ever set here: a Hold written while the sequence is
         // not yet running stays pending for the next scan.

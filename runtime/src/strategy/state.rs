@@ -267,7 +267,7 @@ fn member_json(m: &super::Member) -> Value {
     let q = &m.qual;
     let seq = m.seq.as_deref().map_or(Value::Null, |s| {
         json!({
-            "status": parts::status_name(s.status),
+            "status": s.status.name(),
             "last_us": s.last_us,
             "chart": parts::chart_json(&s.chart, &s.state),
         })

@@ -156,19 +156,9 @@ pub(super) fn chart_from(chart: &Chart, v: &Value) -> Result<ChartState, StateEr
     Ok(st)
 }
 
-pub(super) fn status_name(s: Status) -> &'static str {
-    match s {
-        Status::Reset => "RESET",
-        Status::Running => "RUNNING",
-        Status::Held => "HELD",
-        Status::Stopped => "STOPPED",
-        Status::Error => "ERROR",
-    }
-}
-
 pub(super) fn status_from(v: &Value) -> Result<Status, StateError> {
     let all = [Status::Reset, Status::Running, Status::Held, Status::Stopped, Status::Error];
-    all.into_iter().find(|s| v.as_str() == Some(status_name(*s))).ok_or_else(|| misfit("a sequence's status"))
+    all.into_iter().find(|s| v.as_str() == Some(s.name())).ok_or_else(|| misfit("a sequence's status"))
 }
 
 /// Runtime error codes a strategy can hold in its error status (the
