@@ -83,7 +83,14 @@ fn error(code: &'static str, message: impl Into<String>, span: Span, label: &str
     Diagnostic::error(code, message, span).label(label)
 }
 
-/// The first word of `s` and the rest (both trimmed).
+/// Where `part`, a slice of `text`, lies in it (so a span always falls on
+/// character boundaries, whatever was trimmed around it).
+fn span_of(text: &str, part: &str) -> Span {
+    let start = (part.as_ptr() as usize).saturating_sub(text.as_ptr() as usize).min(text.len());
+    Span::new(start, (start + part.len()).min(text.len()))
+}
+
+/// The first word of `s` and the rest (both trimmed; slices of `s`).
 fn word(s: &str) -> (&str, &str) {
     let s = s.trim_start();
     let end = s.find(char::is_whitespace).unwrap_or(s.len());
@@ -143,7 +150,7 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
         }
         let (keyword, rest) = word(trimmed);
         let number = i as u32 + 1;
-        let rest_span = Span::new(span.end - rest.len(), span.end);
+        let rest_span = span_of(text, rest);
         match keyword.to_ascii_lowercase().as_str() {
             "strategy" | "db" | "program" if rest.is_empty() => {
                 diags.push(error("E0500", format!("`{keyword}` names a file"), span, "no file given"));
@@ -166,7 +173,7 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
                 Ok(for_us) => s.lines.push(Line { line: number, action: Action::Run { for_us } }),
                 Err(why) => diags.push(error("E0502", why, rest_span, "not a time")),
             },
-            "expect" => match expect(rest, rest_span) {
+            "expect" => match expect(text, rest) {
                 Ok(action) => s.lines.push(Line { line: number, action }),
                 Err(d) => diags.push(*d),
             },
@@ -203,7 +210,8 @@ fn set_target(s: &mut Scenario, t: Target, span: Span, diags: &mut Vec<Diagnosti
 }
 
 /// `within D EXPR`, `after D EXPR`, `always EXPR`, `never EXPR`.
-fn expect(rest: &str, span: Span) -> Result<Action, Box<Diagnostic>> {
+fn expect(text: &str, rest: &str) -> Result<Action, Box<Diagnostic>> {
+    let span = span_of(text, rest);
     let (how, tail) = word(rest);
     let timed = |make: fn(u64) -> How| -> Result<(How, &str), Box<Diagnostic>> {
         let (time, expr) = word(tail);
@@ -225,8 +233,7 @@ fn expect(rest: &str, span: Span) -> Result<Action, Box<Diagnostic>> {
     if expr.is_empty() {
         return Err(Box::new(error("E0504", "the expectation has no expression", span, "nothing to check")));
     }
-    let at = span.end - expr.len();
-    Ok(Action::Expect { how, expr: expr.to_string(), span: Span::new(at, span.end) })
+    Ok(Action::Expect { how, expr: expr.to_string(), span: span_of(text, expr) })
 }
 
 /// Checks `expr` as a BOOL expression in which the step variables of
