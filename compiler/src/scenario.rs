@@ -310,6 +310,10 @@ mod tests {
         let code = &obj.units[0].blocks[0].ops.0;
         assert!(code.contains(&Op::LoadRet { n: 2 }), "Heat is slot 1: .X at 2");
         assert_eq!(obj.units[0].retained, 4);
+        // Two sequences with a step `Fill`: the first one's is meant.
+        let twice = vec!["Fill".to_string(), "Heat".to_string(), "Fill".to_string()];
+        let obj = compile_expectation("Fill.X", &db, &twice).expect("compiles");
+        assert!(obj.units[0].blocks[0].ops.0.contains(&Op::LoadRet { n: 0 }), "slot 0, not 2");
         let e = compile_expectation("R.A0 + 1.0", &db, &steps).unwrap_err();
         assert!(!e.is_empty(), "not BOOL");
         let e = compile_expectation("Nope.X", &db, &steps).unwrap_err();

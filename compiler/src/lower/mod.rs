@@ -212,7 +212,10 @@ pub fn lower_eval(e: &hir::Expr, lines: &Lines) -> Result<ObjectFile, Vec<LowerE
 /// scenario can evaluate it over a copy of the sequences' slots.
 pub fn lower_expectation(e: &hir::Expr, lines: &Lines, steps: &[String]) -> Result<ObjectFile, Vec<LowerError>> {
     let mut l = Lowerer { lines: lines.clone(), ..Lowerer::default() };
-    l.steps = steps.iter().enumerate().map(|(i, s)| (s.to_ascii_uppercase(), i as u16)).collect();
+    // A step name two sequences share means the first one's step.
+    for (i, s) in steps.iter().enumerate() {
+        l.steps.entry(s.to_ascii_uppercase()).or_insert(i as u16);
+    }
     l.mark(e.span);
     l.expr_as(e, Ty::Bool);
     l.emit(Op::Return { kind: expr::kind_of(Ty::Bool) as u8 });
