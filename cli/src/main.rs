@@ -31,7 +31,7 @@ use std::process::ExitCode;
 #[command(
     name = "linc",
     version,
-    about = "A toolchain for LIN Structured Text: check actions against a function-block database"
+    about = "A toolchain for control logic — LIN ST actions, sequences and ladder, ROC FST tables: check, compile, run and test strategies headless"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -49,7 +49,7 @@ enum MessageFormat {
 #[allow(clippy::large_enum_variant)]
 #[derive(Subcommand)]
 enum Command {
-    /// Check action files (.st/.stx) for syntax, names and types.
+    /// Check action (.st/.stx), sequence (.sfc), ladder (.ld) and FST table (.csv) files.
     Check {
         /// Files to check.
         #[arg(required = true)]
@@ -82,7 +82,7 @@ enum Command {
         #[arg(long, value_enum, default_value = "small", requires = "resources")]
         instrument: InstrumentSize,
     },
-    /// Compile action files into one .sto object file.
+    /// Compile action files (or one sequence or FST table) into a .sto object file.
     Compile {
         #[arg(required = true)]
         files: Vec<PathBuf>,
@@ -113,8 +113,8 @@ enum Command {
         #[command(subcommand)]
         command: ladder_cmd::LadderCommand,
     },
-    /// Run an action (source or .sto) against a database, once per cycle.
-    /// Run a strategy (PLANT.json --for DURATION) or one action (FILE --db DB.json).
+    /// Run a strategy (PLANT.json --for DURATION), one sequence or FST table (FILE --db DB.json --for DURATION),
+    /// or one action once per cycle (FILE --db DB.json).
     Run {
         /// A strategy's database (.json), or an action file (.st/.stx, compiled first) or object file (.sto).
         file: PathBuf,
