@@ -147,11 +147,15 @@ fn ratios() {
         let mut r = ready(k, false);
         let vm = median(|| run_vm(&mut r));
         let mut r = ready(k, true);
+        let start = Instant::now();
+        let translated = linc_runtime::jit::compile(&r.linked, &r.store, 0, 0).is_some();
+        let compile = start.elapsed();
         let compiled = median(|| run_vm(&mut r));
         let native = median(k.native);
         let ratio = |t: Duration| t.as_secs_f64() / native.as_secs_f64().max(1e-12);
         println!("  {:<45} VM {:>10.1?}  native {:>10.1?}  ratio {:>6.1}x", k.name, vm, native, ratio(vm));
-        println!("  {:<45} compiled {:>10.1?}  ratio {:>6.1}x", "", compiled, ratio(compiled));
+        let how = if translated { format!("compiled in {compile:.1?}") } else { "not compiled: interpreter".into() };
+        println!("  {:<45} compiled {:>10.1?}  ratio {:>6.1}x  ({how})", "", compiled, ratio(compiled));
     }
 }
 
