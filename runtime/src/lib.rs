@@ -11,6 +11,7 @@ pub mod console;
 pub mod db;
 pub mod errors;
 pub mod isa;
+pub mod jit;
 pub mod link;
 pub mod object;
 pub mod roc;

@@ -68,6 +68,8 @@ impl Target {
 pub struct Linked {
     verified: Verified,
     programs: Vec<LinkedProgram>,
+    /// Machine code of the blocks the compiling tier has translated.
+    pub(crate) jit: crate::jit::Cache,
 }
 
 impl Linked {
@@ -106,7 +108,8 @@ impl Verified {
             })?;
             linked.push(link_program(&self, unit, p, store).map_err(|e| (i, e))?);
         }
-        Ok(Linked { verified: self, programs: linked })
+        let jit = crate::jit::Cache::new(linked.iter().map(|p| p.blocks.len()));
+        Ok(Linked { verified: self, programs: linked, jit })
     }
 }
 

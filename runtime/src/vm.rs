@@ -12,6 +12,7 @@ mod fst_ops;
 
 use crate::errors::{Fault, RuntimeError};
 use crate::isa::{Kind, Op};
+use crate::jit::JitRun;
 use crate::link::{Linked, LinkedBlock, LinkedProgram};
 use crate::object::{CodeBlock, Unit};
 use crate::store::{Cell, Store};
@@ -181,6 +182,10 @@ pub struct Vm {
     string_used: usize,
     result: Option<Value>,
     pub clock: Clock,
+    /// Runs numeric blocks through the compiling tier (ADR 0011) when set.
+    pub jit: bool,
+    /// The compiled tier's scratch copy of the cells.
+    jit_mem: Vec<u32>,
 }
 
 impl Vm {
@@ -195,6 +200,8 @@ impl Vm {
             string_used: 0,
             result: None,
             clock,
+            jit: false,
+            jit_mem: Vec::new(),
         }
     }
 
@@ -267,7 +274,20 @@ impl Vm {
             }
         };
         self.clock.now = store.now;
-        let result = self.exec(&l, act, store, &mut pc, &mut trace);
+        let (mut budget, mut ref_cell) = (self.watchdog, 0);
+        if self.jit && pc == 0 && trace.is_none() {
+            if let Some(c) = linked.jit.get(linked, store, act.program, act.block) {
+                match c.run(store, &mut act.retained, budget, &mut self.jit_mem, &mut self.num, &mut self.locals) {
+                    JitRun::Done => {
+                        act.result = None;
+                        return Ok(Outcome::Done);
+                    }
+                    JitRun::Bail { pc: at, ref_cell: r, budget: b } => (pc, ref_cell, budget) = (at, r, b),
+                    JitRun::Refused => {}
+                }
+            }
+        }
+        let result = self.exec(&l, act, store, &mut pc, &mut trace, (budget, ref_cell));
         act.result = self.result.take();
         match result {
             Ok(Outcome::Suspended) => {
@@ -287,13 +307,14 @@ impl Vm {
         store: &mut Store,
         pc_out: &mut usize,
         trace: &mut Tracer,
+        (mut budget, mut ref_cell): (u64, u32),
     ) -> Result<Outcome, Fault> {
         let ops = &l.block.ops[..];
-        let (mut ref_cell, mut ref_bit) = (0u32, 0u8);
+        let mut ref_bit = 0u8;
         // The program counter and budget live in locals (registers) and are
-        // written back only when the run stops.
+        // written back only when the run stops. A run the compiled tier
+        // handed back starts with its pc, budget, reference and stack.
         let mut pc = *pc_out;
-        let mut budget = self.watchdog;
         let result = loop {
             let Some(&op) = ops.get(pc) else {
                 break Err(Fault::new("E0708", "ran past the end of the code"));

@@ -3,7 +3,8 @@
 //! Each kernel is an action from the guide's world run by `linc`'s VM
 //! (compiled once, linked once; the measurement is `Vm::run`), and the same
 //! computation written natively over the same data. After criterion's
-//! measurements the bench prints the VM/native ratio of each kernel.
+//! measurements the bench prints the VM/native ratio of each kernel, on the
+//! interpreter and on the compiling tier (ADR 0011).
 
 use criterion::{criterion_group, Criterion};
 use linc_conformance::exec::compile;
@@ -94,12 +95,14 @@ struct Ready {
     vm: Vm,
 }
 
-fn ready(k: &Kernel) -> Ready {
+fn ready(k: &Kernel, jit: bool) -> Ready {
     let verified = linc_runtime::load(&compile(k.source, guide_db())).expect("kernel loads");
     let store = Store::new(guide_db().clone());
     let linked = verified.link(&store, &[Program { unit: 0, own: None }]).expect("kernel links");
     let act = Activation::new(&linked, 0, 0);
-    Ready { linked, act, store, vm: Vm::new(DEFAULT_WATCHDOG * 10, Clock::new(1, 0)) }
+    let mut vm = Vm::new(DEFAULT_WATCHDOG * 10, Clock::new(1, 0));
+    vm.jit = jit;
+    Ready { linked, act, store, vm }
 }
 
 fn run_vm(r: &mut Ready) -> f64 {
@@ -113,8 +116,12 @@ fn run_vm(r: &mut Ready) -> f64 {
 fn bench(c: &mut Criterion) {
     for k in KERNELS {
         let mut g = c.benchmark_group(k.name);
-        let mut r = ready(k);
+        let mut r = ready(k, false);
         g.bench_function("linc VM", |b| b.iter(|| r.vm.run(&r.linked, &mut r.act, &mut r.store, None).map(|_| ())));
+        let mut r = ready(k, true);
+        g.bench_function("linc compiled", |b| {
+            b.iter(|| r.vm.run(&r.linked, &mut r.act, &mut r.store, None).map(|_| ()))
+        });
         g.bench_function("native Rust", |b| b.iter(k.native));
         g.finish();
     }
@@ -137,11 +144,18 @@ fn median(mut f: impl FnMut() -> f64) -> Duration {
 fn ratios() {
     println!("\nVM / native, median of 15 × 20 runs:");
     for k in KERNELS {
-        let mut r = ready(k);
+        let mut r = ready(k, false);
         let vm = median(|| run_vm(&mut r));
+        let mut r = ready(k, true);
+        let start = Instant::now();
+        let translated = linc_runtime::jit::compile(&r.linked, &r.store, 0, 0).is_some();
+        let compile = start.elapsed();
+        let compiled = median(|| run_vm(&mut r));
         let native = median(k.native);
-        let ratio = vm.as_secs_f64() / native.as_secs_f64().max(1e-12);
-        println!("  {:<45} VM {:>10.1?}  native {:>10.1?}  ratio {ratio:>6.1}x", k.name, vm, native);
+        let ratio = |t: Duration| t.as_secs_f64() / native.as_secs_f64().max(1e-12);
+        println!("  {:<45} VM {:>10.1?}  native {:>10.1?}  ratio {:>6.1}x", k.name, vm, native, ratio(vm));
+        let how = if translated { format!("compiled in {compile:.1?}") } else { "not compiled: interpreter".into() };
+        println!("  {:<45} compiled {:>10.1?}  ratio {:>6.1}x  ({how})", "", compiled, ratio(compiled));
     }
 }
 

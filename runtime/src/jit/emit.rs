@@ -1,0 +1,428 @@
+//! Translating a numeric code block to Cranelift IR.
+//!
+//! The operand stack lives in Cranelift variables (one per depth and type,
+//! so REAL arithmetic stays in float registers); its shape before every
+//! instruction is computed first, as the verifier does. Every point where
+//! the interpreter could fault, and every block entry where the watchdog
+//! budget would run out inside the block, leads to a cold *bail-out* that
+//! writes the stack, locals, promoted cells, reference and budget into the
+//! [`Frame`] and returns 1, so the interpreter resumes at that instruction.
+
+use super::plan::{Plan, REAL};
+use super::{Entry, Frame};
+use crate::isa::Op;
+use cranelift_codegen::ir::condcodes::IntCC;
+use cranelift_codegen::ir::{types, AbiParam, Block, InstBuilder, MemFlags, Type, Value};
+use cranelift_codegen::isa::CallConv;
+use cranelift_codegen::settings::{self, Configurable};
+use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext, Variable};
+use cranelift_jit::{JITBuilder, JITModule};
+use cranelift_module::{default_libcall_names, Linkage, Module};
+use std::mem::offset_of;
+
+/// The type of a stack entry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Ty {
+    I,
+    F,
+}
+
+/// Deepest numeric stack the tier compiles.
+const MAX_DEPTH: usize = 256;
+
+fn result_ty(op: &Op) -> Ty {
+    match op {
+        Op::PushR { .. }
+        | Op::LoadR { .. }
+        | Op::LoadRefR { .. }
+        | Op::IToR {}
+        | Op::AddR {}
+        | Op::SubR {}
+        | Op::MulR {}
+        | Op::DivR {}
+        | Op::NegR {} => Ty::F,
+        _ => Ty::I,
+    }
+}
+
+/// What may follow an instruction.
+fn successors(op: &Op, pc: usize) -> Vec<usize> {
+    match *op {
+        Op::Jump { to } => vec![to as usize],
+        Op::JumpIfFalse { to } | Op::JumpIfTrue { to } => vec![pc + 1, to as usize],
+        Op::Ret {} => vec![],
+        _ => vec![pc + 1],
+    }
+}
+
+/// The stack types before each instruction (`None`: unreachable); index
+/// `ops.len()` is "ran off the end". `None` overall when the shapes do not
+/// agree at a join or a jump leaves the code.
+fn analyse(ops: &[Op]) -> Option<Vec<Option<Vec<Ty>>>> {
+    let mut states: Vec<Option<Vec<Ty>>> = vec![None; ops.len() + 1];
+    states[0] = Some(Vec::new());
+    let mut work = vec![0usize];
+    while let Some(pc) = work.pop() {
+        let Some(op) = ops.get(pc) else { continue };
+        let mut st = states[pc].clone()?;
+        let e = op.effect();
+        for _ in 0..e.num_pop {
+            st.pop()?;
+        }
+        if e.num_push == 1 {
+            st.push(result_ty(op));
+        }
+        if st.len() > MAX_DEPTH {
+            return None;
+        }
+        for t in successors(op, pc) {
+            let slot = states.get_mut(t)?;
+            match slot {
+                None => {
+                    *slot = Some(st.clone());
+                    work.push(t);
+                }
+                Some(s) if *s == st => {}
+                Some(_) => return None,
+            }
+        }
+    }
+    Some(states)
+}
+
+fn new_module() -> Option<JITModule> {
+    let mut flags = settings::builder();
+    flags.set("opt_level", "speed").ok()?;
+    flags.set("use_colocated_libcalls", "false").ok()?;
+    flags.set("is_pic", "false").ok()?;
+    let isa = cranelift_native::builder().ok()?.finish(settings::Flags::new(flags)).ok()?;
+    Some(JITModule::new(JITBuilder::with_isa(isa, default_libcall_names())))
+}
+
+/// Compiles `ops`; returns the entry point, the module owning its code and
+/// the deepest stack a bail-out can write.
+pub(super) fn emit(ops: &[Op], plan: &Plan, locals: usize, retained: usize) -> Option<(Entry, JITModule, usize)> {
+    let states = analyse(ops)?;
+    let max_depth = states.iter().flatten().map(Vec::len).max().unwrap_or(0);
+    let mut module = new_module()?;
+    let ptr = module.target_config().pointer_type();
+    let call_conv = module.isa().default_call_conv();
+    let mut ctx = module.make_context();
+    ctx.func.signature.params.push(AbiParam::new(ptr));
+    ctx.func.signature.returns.push(AbiParam::new(types::I32));
+    let mut fbc = FunctionBuilderContext::new();
+    {
+        let b = FunctionBuilder::new(&mut ctx.func, &mut fbc);
+        let shape = Shape { ops, plan, states: &states, locals, retained, max_depth, ptr, call_conv };
+        let mut e = Emitter::new(b, shape);
+        e.body()?;
+        e.b.seal_all_blocks();
+        e.b.finalize();
+    }
+    let id = module.declare_function("block", Linkage::Local, &ctx.func.signature).ok()?;
+    module.define_function(id, &mut ctx).ok()?;
+    module.clear_context(&mut ctx);
+    module.finalize_definitions().ok()?;
+    let code = module.get_finalized_function(id);
+    // SAFETY: the function was declared with exactly `Entry`'s signature
+    // in the platform's default calling convention.
+    let entry = unsafe { std::mem::transmute::<*const u8, Entry>(code) };
+    Some((entry, module, max_depth))
+}
+
+/// The REAL-to-INT conversion, called from compiled code so that it is
+/// the interpreter's own rounding.
+extern "C" fn real_to_int(v: f32) -> i32 {
+    linc_stdlib::value::round_to_i32(v)
+}
+
+/// What the emitter translates.
+struct Shape<'a> {
+    ops: &'a [Op],
+    plan: &'a Plan,
+    states: &'a [Option<Vec<Ty>>],
+    locals: usize,
+    retained: usize,
+    max_depth: usize,
+    ptr: Type,
+    call_conv: CallConv,
+}
+
+struct Emitter<'a, 'f> {
+    b: FunctionBuilder<'f>,
+    s: Shape<'a>,
+    /// The Cranelift block starting at each reachable leader.
+    blocks: Vec<Option<Block>>,
+    /// For each leader, the index just past its block.
+    ends: Vec<usize>,
+    vi: Vec<Variable>,
+    vf: Vec<Variable>,
+    locals: Vec<Variable>,
+    /// Variables of promoted slots.
+    slots: Vec<Option<Variable>>,
+    ref_slot: Variable,
+    budget: Variable,
+    frame: Option<Value>,
+    mem: Option<Value>,
+    kinds: Option<Value>,
+    retained: Option<Value>,
+    /// Stack types at the instruction being translated.
+    stack: Vec<Ty>,
+    block_end: usize,
+}
+
+fn frame_off(off: usize) -> i32 {
+    off as i32
+}
+
+impl<'a, 'f> Emitter<'a, 'f> {
+    fn new(mut b: FunctionBuilder<'f>, s: Shape<'a>) -> Emitter<'a, 'f> {
+        let vi = (0..s.max_depth).map(|_| b.declare_var(types::I32)).collect();
+        let vf = (0..s.max_depth).map(|_| b.declare_var(types::F32)).collect();
+        let locals = (0..s.locals).map(|_| b.declare_var(types::I32)).collect();
+        let slots = s
+            .plan
+            .promoted
+            .iter()
+            .zip(&s.plan.kinds)
+            .map(|(&p, &k)| p.then(|| b.declare_var(if k & 3 == REAL { types::F32 } else { types::I32 })))
+            .collect();
+        let ref_slot = b.declare_var(types::I32);
+        let budget = b.declare_var(types::I64);
+        Emitter {
+            b,
+            s,
+            blocks: Vec::new(),
+            ends: Vec::new(),
+            vi,
+            vf,
+            locals,
+            slots,
+            ref_slot,
+            budget,
+            frame: None,
+            mem: None,
+            kinds: None,
+            retained: None,
+            stack: Vec::new(),
+            block_end: 0,
+        }
+    }
+
+    fn frame(&self) -> Value {
+        self.frame.unwrap_or_else(|| unreachable!("set at entry"))
+    }
+
+    fn load_ptr(&mut self, off: usize) -> Value {
+        let f = self.frame();
+        self.b.ins().load(self.s.ptr, MemFlags::trusted(), f, frame_off(off))
+    }
+
+    /// Marks the leaders and creates their blocks.
+    fn layout(&mut self) {
+        let n = self.s.ops.len();
+        let mut leader = vec![false; n + 1];
+        leader[0] = true;
+        leader[n] = true;
+        for (pc, op) in self.s.ops.iter().enumerate() {
+            if let Some(to) = op.target() {
+                if let Some(l) = leader.get_mut(to as usize) {
+                    *l = true;
+                }
+            }
+            if matches!(op, Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {}) {
+                leader[pc + 1] = true;
+            }
+        }
+        self.ends = vec![n; n + 1];
+        let mut next = n;
+        for pc in (0..n).rev() {
+            self.ends[pc] = next;
+            if leader[pc] {
+                next = pc;
+            }
+        }
+        self.blocks =
+            (0..=n).map(|pc| (leader[pc] && self.s.states[pc].is_some()).then(|| self.b.create_block())).collect();
+    }
+
+    fn body(&mut self) -> Option<()> {
+        self.layout();
+        let entry = self.b.create_block();
+        self.b.append_block_params_for_function_params(entry);
+        self.b.switch_to_block(entry);
+        self.frame = Some(self.b.block_params(entry)[0]);
+        self.mem = Some(self.load_ptr(offset_of!(Frame, mem)));
+        self.kinds = Some(self.load_ptr(offset_of!(Frame, kinds)));
+        self.retained = Some(self.load_ptr(offset_of!(Frame, retained)));
+        let f = self.frame();
+        let budget = self.b.ins().load(types::I64, MemFlags::trusted(), f, frame_off(offset_of!(Frame, budget)));
+        self.b.def_var(self.budget, budget);
+        let none = self.b.ins().iconst(types::I32, -1);
+        self.b.def_var(self.ref_slot, none);
+        let zero = self.b.ins().iconst(types::I32, 0);
+        for &l in &self.locals {
+            self.b.def_var(l, zero);
+        }
+        let mem = self.mem?;
+        for (slot, var) in self.slots.iter().enumerate() {
+            if let Some(var) = *var {
+                let ty = if self.s.plan.kinds[slot] & 3 == REAL { types::F32 } else { types::I32 };
+                let v = self.b.ins().load(ty, MemFlags::trusted(), mem, (slot * 4) as i32);
+                self.b.def_var(var, v);
+            }
+        }
+        let first = self.blocks[0]?;
+        self.b.ins().jump(first, &[]);
+        for pc in 0..=self.s.ops.len() {
+            if let Some(blk) = self.blocks[pc] {
+                self.b.switch_to_block(blk);
+                self.block(pc)?;
+            }
+        }
+        Some(())
+    }
+
+    /// One basic block: the budget check, then its instructions.
+    fn block(&mut self, start: usize) -> Option<()> {
+        self.stack = self.s.states[start].clone()?;
+        if start == self.s.ops.len() {
+            // Ran off the end: the interpreter reports it.
+            self.bail(start, 0);
+            return Some(());
+        }
+        let end = self.ends[start];
+        self.block_end = end;
+        let n = (end - start) as i64;
+        let bud = self.b.use_var(self.budget);
+        let enough = self.b.ins().icmp_imm(IntCC::UnsignedGreaterThanOrEqual, bud, n);
+        let (cont, out) = (self.b.create_block(), self.b.create_block());
+        self.b.set_cold_block(out);
+        self.b.ins().brif(enough, cont, &[], out, &[]);
+        self.b.switch_to_block(out);
+        self.bail(start, 0);
+        self.b.switch_to_block(cont);
+        let left = self.b.ins().iadd_imm(bud, -n);
+        self.b.def_var(self.budget, left);
+        for pc in start..end {
+            self.op(pc)?;
+        }
+        let last = self.s.ops.get(end - 1)?;
+        if !matches!(last, Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {}) {
+            let next = self.blocks.get(end).copied().flatten()?;
+            self.b.ins().jump(next, &[]);
+        }
+        Some(())
+    }
+
+    fn var(&self, d: usize, ty: Ty) -> Variable {
+        match ty {
+            Ty::I => self.vi[d],
+            Ty::F => self.vf[d],
+        }
+    }
+
+    fn push(&mut self, ty: Ty, v: Value) {
+        let var = self.var(self.stack.len(), ty);
+        self.b.def_var(var, v);
+        self.stack.push(ty);
+    }
+
+    /// Pops the top entry as `want`, reinterpreting the bits if it was
+    /// pushed as the other type (locals and retained slots are untyped).
+    fn pop(&mut self, want: Ty) -> Option<Value> {
+        let ty = self.stack.pop()?;
+        let v = self.b.use_var(self.var(self.stack.len(), ty));
+        Some(match (ty, want) {
+            (Ty::I, Ty::F) => self.b.ins().bitcast(types::F32, MemFlags::new(), v),
+            (Ty::F, Ty::I) => self.b.ins().bitcast(types::I32, MemFlags::new(), v),
+            _ => v,
+        })
+    }
+
+    /// Stores promoted slots back to memory (at every exit).
+    fn flush(&mut self) {
+        let Some(mem) = self.mem else { return };
+        for slot in 0..self.slots.len() {
+            if let Some(var) = self.slots[slot] {
+                let v = self.b.use_var(var);
+                self.b.ins().store(MemFlags::trusted(), v, mem, (slot * 4) as i32);
+            }
+        }
+    }
+
+    /// Leaves with the interpreter's state before instruction `pc`;
+    /// `refund` is the budget charged for instructions not run.
+    fn bail(&mut self, pc: usize, refund: usize) {
+        let st = self.s.states.get(pc).cloned().flatten().unwrap_or_default();
+        let stack = self.load_ptr(offset_of!(Frame, stack));
+        for (d, &ty) in st.iter().enumerate() {
+            let v = self.b.use_var(self.var(d, ty));
+            self.b.ins().store(MemFlags::trusted(), v, stack, (d * 4) as i32);
+        }
+        let locals = self.load_ptr(offset_of!(Frame, locals));
+        for i in 0..self.locals.len() {
+            let v = self.b.use_var(self.locals[i]);
+            self.b.ins().store(MemFlags::trusted(), v, locals, (i * 4) as i32);
+        }
+        self.flush();
+        let f = self.frame();
+        let r = self.b.use_var(self.ref_slot);
+        self.b.ins().store(MemFlags::trusted(), r, f, frame_off(offset_of!(Frame, ref_slot)));
+        let bud = self.b.use_var(self.budget);
+        let bud = self.b.ins().iadd_imm(bud, refund as i64);
+        self.b.ins().store(MemFlags::trusted(), bud, f, frame_off(offset_of!(Frame, budget)));
+        let pcv = self.b.ins().iconst(types::I32, pc as i64);
+        self.b.ins().store(MemFlags::trusted(), pcv, f, frame_off(offset_of!(Frame, pc)));
+        let depth = self.b.ins().iconst(types::I32, st.len() as i64);
+        self.b.ins().store(MemFlags::trusted(), depth, f, frame_off(offset_of!(Frame, depth)));
+        let one = self.b.ins().iconst(types::I32, 1);
+        self.b.ins().return_(&[one]);
+    }
+
+    /// Bails out before `pc` when `fault` is true.
+    fn check(&mut self, pc: usize, fault: Value) {
+        let (out, cont) = (self.b.create_block(), self.b.create_block());
+        self.b.set_cold_block(out);
+        self.b.ins().brif(fault, out, &[], cont, &[]);
+        self.b.switch_to_block(out);
+        let refund = self.block_end - pc;
+        self.bail(pc, refund);
+        self.b.switch_to_block(cont);
+    }
+
+    fn bool32(&mut self, c: Value) -> Value {
+        self.b.ins().uextend(types::I32, c)
+    }
+
+    fn non_finite(&mut self, v: Value) -> Value {
+        let bits = self.b.ins().bitcast(types::I32, MemFlags::new(), v);
+        let e = self.b.ins().band_imm(bits, 0x7f80_0000);
+        self.b.ins().icmp_imm(IntCC::Equal, e, 0x7f80_0000)
+    }
+
+    fn op(&mut self, pc: usize) -> Option<()> {
+        let op = *self.s.ops.get(pc)?;
+        match op {
+            Op::PushI { v } => {
+                let c = self.b.ins().iconst(types::I32, i64::from(v));
+                self.push(Ty::I, c);
+            }
+            Op::PushR { v } => {
+                let c = self.b.ins().f32const(v);
+                self.push(Ty::F, c);
+            }
+            Op::LoadLoc { .. } | Op::StoreLoc { .. } | Op::LoadRet { .. } | Op::StoreRet { .. } => self.local(op)?,
+            Op::LoadI { .. } | Op::LoadR { .. } | Op::StoreI { .. } | Op::StoreR { .. } => self.direct(pc, op)?,
+            Op::Ref { .. } | Op::RefOff { .. } => self.reference(pc, op)?,
+            Op::LoadRefI { .. } | Op::LoadRefR { .. } | Op::StoreRefI { .. } | Op::StoreRefR { .. } => {
+                self.through_ref(pc, op)?
+            }
+            Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {} => self.flow(pc, op)?,
+            _ => self.arith(pc, op)?,
+        }
+        Some(())
+    }
+}
+
+mod ops;

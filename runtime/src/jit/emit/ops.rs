@@ -1,0 +1,352 @@
+//! The translation of each instruction group, mirroring `vm.rs`.
+
+use super::{real_to_int, Emitter, Ty};
+use crate::isa::Op;
+use crate::jit::plan::{BOOL, READONLY, REAL};
+use cranelift_codegen::ir::condcodes::{FloatCC, IntCC};
+use cranelift_codegen::ir::{types, AbiParam, InstBuilder, MemFlags, Signature, Value};
+
+impl Emitter<'_, '_> {
+    /// Locals and retained slots: raw 32-bit words, out-of-range reads 0
+    /// and out-of-range writes dropped, as in the interpreter.
+    pub(super) fn local(&mut self, op: Op) -> Option<()> {
+        match op {
+            Op::LoadLoc { n } => {
+                let v = match self.locals.get(usize::from(n)) {
+                    Some(&var) => self.b.use_var(var),
+                    None => self.b.ins().iconst(types::I32, 0),
+                };
+                self.push(Ty::I, v);
+            }
+            Op::StoreLoc { n } => {
+                let v = self.pop(Ty::I)?;
+                if let Some(&var) = self.locals.get(usize::from(n)) {
+                    self.b.def_var(var, v);
+                }
+            }
+            Op::LoadRet { n } => {
+                let v = if usize::from(n) < self.s.retained {
+                    let r = self.retained?;
+                    self.b.ins().load(types::I32, MemFlags::trusted(), r, i32::from(n) * 4)
+                } else {
+                    self.b.ins().iconst(types::I32, 0)
+                };
+                self.push(Ty::I, v);
+            }
+            Op::StoreRet { n } => {
+                let v = self.pop(Ty::I)?;
+                if usize::from(n) < self.s.retained {
+                    let r = self.retained?;
+                    self.b.ins().store(MemFlags::trusted(), v, r, i32::from(n) * 4);
+                }
+            }
+            _ => return None,
+        }
+        Some(())
+    }
+
+    fn slot_load(&mut self, slot: u32, ty: Ty) -> Option<Value> {
+        if let Some(var) = self.slots.get(slot as usize).copied().flatten() {
+            return Some(self.b.use_var(var));
+        }
+        let t = if ty == Ty::F { types::F32 } else { types::I32 };
+        Some(self.b.ins().load(t, MemFlags::trusted(), self.mem?, (slot * 4) as i32))
+    }
+
+    fn slot_store(&mut self, slot: u32, v: Value) -> Option<()> {
+        if let Some(var) = self.slots.get(slot as usize).copied().flatten() {
+            self.b.def_var(var, v);
+            return Some(());
+        }
+        self.b.ins().store(MemFlags::trusted(), v, self.mem?, (slot * 4) as i32);
+        Some(())
+    }
+
+    /// Fields named directly; their kinds were checked by the plan.
+    pub(super) fn direct(&mut self, pc: usize, op: Op) -> Option<()> {
+        let slot = self.s.plan.slot(op.symbol()?)?;
+        let kind = *self.s.plan.kinds.get(slot as usize)?;
+        match op {
+            Op::LoadI { .. } => {
+                let v = self.slot_load(slot, Ty::I)?;
+                self.push(Ty::I, v);
+            }
+            Op::LoadR { .. } => {
+                let v = self.slot_load(slot, Ty::F)?;
+                self.push(Ty::F, v);
+            }
+            Op::StoreI { .. } => {
+                let mut v = self.pop(Ty::I)?;
+                if kind & 3 == BOOL {
+                    let c = self.b.ins().icmp_imm(IntCC::NotEqual, v, 0);
+                    v = self.bool32(c);
+                }
+                self.slot_store(slot, v)?;
+            }
+            Op::StoreR { .. } => {
+                let v = self.pop(Ty::F)?;
+                let bad = self.non_finite(v);
+                self.check(pc, bad);
+                self.slot_store(slot, v)?;
+            }
+            _ => return None,
+        }
+        Some(())
+    }
+
+    pub(super) fn reference(&mut self, pc: usize, op: Op) -> Option<()> {
+        let sym = op.symbol()?;
+        let slot = self.s.plan.slot(sym)?;
+        let r = match op {
+            Op::Ref { .. } => self.b.ins().iconst(types::I32, i64::from(slot)),
+            _ => {
+                let room = *self.s.plan.sym_room.get(usize::from(sym))?;
+                let n = self.pop(Ty::I)?;
+                let bad = self.b.ins().icmp_imm(IntCC::UnsignedGreaterThan, n, i64::from(room));
+                self.check(pc, bad);
+                self.b.ins().iadd_imm(n, i64::from(slot))
+            }
+        };
+        self.b.def_var(self.ref_slot, r);
+        Some(())
+    }
+
+    /// Loads and stores through the reference: the slot is checked against
+    /// the plan and the slot's kind against the instruction (anything
+    /// unexpected is left to the interpreter, which reports it).
+    pub(super) fn through_ref(&mut self, pc: usize, op: Op) -> Option<()> {
+        let slot = self.b.use_var(self.ref_slot);
+        let n = self.s.plan.cells.len() as i64;
+        let out = self.b.ins().icmp_imm(IntCC::UnsignedGreaterThanOrEqual, slot, n);
+        let value = match op {
+            Op::StoreRefI { .. } => Some(self.pop(Ty::I)?),
+            Op::StoreRefR { .. } => Some(self.pop(Ty::F)?),
+            _ => None,
+        };
+        self.check(pc, out);
+        let wide = self.b.ins().uextend(self.s.ptr, slot);
+        let kaddr = self.b.ins().iadd(self.kinds?, wide);
+        let kind = self.b.ins().uload8(types::I32, MemFlags::trusted(), kaddr, 0);
+        let off = self.b.ins().ishl_imm(wide, 2);
+        let addr = self.b.ins().iadd(self.mem?, off);
+        let (mask, want) = match op {
+            Op::LoadRefI { .. } => (i64::from(REAL), 0),
+            Op::StoreRefI { .. } => (i64::from(REAL | READONLY), 0),
+            Op::LoadRefR { .. } => (3, i64::from(REAL)),
+            _ => (i64::from(3 | READONLY), i64::from(REAL)),
+        };
+        let masked = self.b.ins().band_imm(kind, mask);
+        let mut bad = self.b.ins().icmp_imm(IntCC::NotEqual, masked, want);
+        if let (Op::StoreRefR { .. }, Some(v)) = (op, value) {
+            let nf = self.non_finite(v);
+            bad = self.b.ins().bor(bad, nf);
+        }
+        self.check(pc, bad);
+        match (op, value) {
+            (Op::LoadRefI { .. }, _) => {
+                let v = self.b.ins().load(types::I32, MemFlags::trusted(), addr, 0);
+                self.push(Ty::I, v);
+            }
+            (Op::LoadRefR { .. }, _) => {
+                let v = self.b.ins().load(types::F32, MemFlags::trusted(), addr, 0);
+                self.push(Ty::F, v);
+            }
+            (Op::StoreRefI { .. }, Some(v)) => {
+                let is_bool = self.b.ins().band_imm(kind, i64::from(BOOL));
+                let nz = self.b.ins().icmp_imm(IntCC::NotEqual, v, 0);
+                let nz = self.bool32(nz);
+                let v = self.b.ins().select(is_bool, nz, v);
+                self.b.ins().store(MemFlags::trusted(), v, addr, 0);
+            }
+            (_, Some(v)) => {
+                self.b.ins().store(MemFlags::trusted(), v, addr, 0);
+            }
+            _ => return None,
+        }
+        Some(())
+    }
+
+    pub(super) fn flow(&mut self, _pc: usize, op: Op) -> Option<()> {
+        let target = |e: &Self, to: u32| e.blocks.get(to as usize).copied().flatten();
+        match op {
+            Op::Jump { to } => {
+                let t = target(self, to)?;
+                self.b.ins().jump(t, &[]);
+            }
+            Op::JumpIfFalse { to } | Op::JumpIfTrue { to } => {
+                let c = self.pop(Ty::I)?;
+                let t = target(self, to)?;
+                let next = self.blocks.get(self.block_end).copied().flatten()?;
+                if matches!(op, Op::JumpIfTrue { .. }) {
+                    self.b.ins().brif(c, t, &[], next, &[]);
+                } else {
+                    self.b.ins().brif(c, next, &[], t, &[]);
+                }
+            }
+            Op::Ret {} => {
+                self.flush();
+                let zero = self.b.ins().iconst(types::I32, 0);
+                self.b.ins().return_(&[zero]);
+            }
+            _ => return None,
+        }
+        Some(())
+    }
+
+    fn int2(&mut self) -> Option<(Value, Value)> {
+        let b = self.pop(Ty::I)?;
+        let a = self.pop(Ty::I)?;
+        Some((a, b))
+    }
+
+    fn real2(&mut self) -> Option<(Value, Value)> {
+        let b = self.pop(Ty::F)?;
+        let a = self.pop(Ty::F)?;
+        Some((a, b))
+    }
+
+    /// A 16-bit logical result, sign-extended as `i32::from(x as i16)`.
+    fn word(&mut self, v: Value) -> Value {
+        let w = self.b.ins().ireduce(types::I16, v);
+        self.b.ins().sextend(types::I32, w)
+    }
+
+    pub(super) fn arith(&mut self, pc: usize, op: Op) -> Option<()> {
+        if let Some(cc) = int_cc(op) {
+            let (a, b) = self.int2()?;
+            let c = self.b.ins().icmp(cc, a, b);
+            let v = self.bool32(c);
+            self.push(Ty::I, v);
+            return Some(());
+        }
+        if let Some(cc) = float_cc(op) {
+            let (a, b) = self.real2()?;
+            let c = self.b.ins().fcmp(cc, a, b);
+            let v = self.bool32(c);
+            self.push(Ty::I, v);
+            return Some(());
+        }
+        match op {
+            Op::AddI {} | Op::SubI {} | Op::MulI {} | Op::And {} | Op::Or {} | Op::Xor {} => {
+                let (a, b) = self.int2()?;
+                let v = match op {
+                    Op::AddI {} => self.b.ins().iadd(a, b),
+                    Op::SubI {} => self.b.ins().isub(a, b),
+                    Op::MulI {} => self.b.ins().imul(a, b),
+                    Op::And {} => self.b.ins().band(a, b),
+                    Op::Or {} => self.b.ins().bor(a, b),
+                    _ => self.b.ins().bxor(a, b),
+                };
+                let v = if matches!(op, Op::And {} | Op::Or {} | Op::Xor {}) { self.word(v) } else { v };
+                self.push(Ty::I, v);
+            }
+            Op::DivI {} | Op::ModI {} => self.divide(pc, op)?,
+            Op::AddR {} | Op::SubR {} | Op::MulR {} | Op::DivR {} => {
+                let (a, b) = self.real2()?;
+                let v = match op {
+                    Op::AddR {} => self.b.ins().fadd(a, b),
+                    Op::SubR {} => self.b.ins().fsub(a, b),
+                    Op::MulR {} => self.b.ins().fmul(a, b),
+                    _ => {
+                        let zero = self.b.ins().f32const(0.0);
+                        let bad = self.b.ins().fcmp(FloatCC::Equal, b, zero);
+                        self.check(pc, bad);
+                        self.b.ins().fdiv(a, b)
+                    }
+                };
+                self.push(Ty::F, v);
+            }
+            _ => self.unary(pc, op)?,
+        }
+        Some(())
+    }
+
+    /// `wrapping_div` / `wrapping_rem`: a divisor of -1 is made 1 so that
+    /// `i32::MIN / -1` wraps instead of trapping.
+    fn divide(&mut self, pc: usize, op: Op) -> Option<()> {
+        let (a, b) = self.int2()?;
+        let zero = self.b.ins().icmp_imm(IntCC::Equal, b, 0);
+        self.check(pc, zero);
+        let m1 = self.b.ins().icmp_imm(IntCC::Equal, b, -1);
+        let one = self.b.ins().iconst(types::I32, 1);
+        let safe = self.b.ins().select(m1, one, b);
+        let v = if matches!(op, Op::DivI {}) {
+            let q = self.b.ins().sdiv(a, safe);
+            let neg = self.b.ins().ineg(a);
+            self.b.ins().select(m1, neg, q)
+        } else {
+            self.b.ins().srem(a, safe)
+        };
+        self.push(Ty::I, v);
+        Some(())
+    }
+
+    fn unary(&mut self, pc: usize, op: Op) -> Option<()> {
+        match op {
+            Op::NegI {} | Op::Truth {} | Op::Not {} => {
+                let a = self.pop(Ty::I)?;
+                let v = match op {
+                    Op::NegI {} => self.b.ins().ineg(a),
+                    Op::Truth {} => {
+                        let c = self.b.ins().icmp_imm(IntCC::NotEqual, a, 0);
+                        self.bool32(c)
+                    }
+                    _ => {
+                        let c = self.b.ins().icmp_imm(IntCC::Equal, a, 0);
+                        self.bool32(c)
+                    }
+                };
+                self.push(Ty::I, v);
+            }
+            Op::NegR {} => {
+                let a = self.pop(Ty::F)?;
+                let v = self.b.ins().fneg(a);
+                self.push(Ty::F, v);
+            }
+            Op::IToR {} => {
+                let a = self.pop(Ty::I)?;
+                let v = self.b.ins().fcvt_from_sint(types::F32, a);
+                self.push(Ty::F, v);
+            }
+            Op::RToI {} => {
+                let a = self.pop(Ty::F)?;
+                let bad = self.non_finite(a);
+                self.check(pc, bad);
+                let mut sig = Signature::new(self.s.call_conv);
+                sig.params.push(AbiParam::new(types::F32));
+                sig.returns.push(AbiParam::new(types::I32));
+                let sig = self.b.import_signature(sig);
+                let f = self.b.ins().iconst(self.s.ptr, real_to_int as *const () as usize as i64);
+                let call = self.b.ins().call_indirect(sig, f, &[a]);
+                let v = *self.b.inst_results(call).first()?;
+                self.push(Ty::I, v);
+            }
+            _ => return None,
+        }
+        Some(())
+    }
+}
+
+fn int_cc(op: Op) -> Option<IntCC> {
+    Some(match op {
+        Op::EqI {} => IntCC::Equal,
+        Op::NeI {} => IntCC::NotEqual,
+        Op::LtI {} => IntCC::SignedLessThan,
+        Op::GtI {} => IntCC::SignedGreaterThan,
+        Op::LeI {} => IntCC::SignedLessThanOrEqual,
+        Op::GeI {} => IntCC::SignedGreaterThanOrEqual,
+        _ => return None,
+    })
+}
+
+fn float_cc(op: Op) -> Option<FloatCC> {
+    Some(match op {
+        Op::EqR {} => FloatCC::Equal,
+        Op::NeR {} => FloatCC::NotEqual,
+        Op::LtR {} => FloatCC::LessThan,
+        Op::GtR {} => FloatCC::GreaterThan,
+        Op::LeR {} => FloatCC::LessThanOrEqual,
+        _ => FloatCC::GreaterThanOrEqual,
+    })
+    .filter(|_| matches!(op, Op::EqR {} | Op::NeR {} | Op::LtR {} | Op::GtR {} | Op::LeR {} | Op::GeR {}))
+}

@@ -1,0 +1,256 @@
+//! The compiling tier: numeric code blocks translated to machine code with
+//! Cranelift (ADR 0011).
+//!
+//! Only blocks whose every instruction is in the numeric subset compile;
+//! anything else is left to the interpreter, which stays the reference. The
+//! compiled code works on a scratch copy of the program's cells and, where
+//! the interpreter could fault or the watchdog could fire, it stops and
+//! hands its exact state (pc, stack, locals, reference, budget) back to the
+//! interpreter, which finishes the run. Faults and their positions are
+//! therefore the interpreter's own by construction.
+
+mod emit;
+mod plan;
+
+use crate::isa::Op;
+use crate::link::Linked;
+use crate::store::{Cell, Store};
+use cranelift_jit::JITModule;
+use std::sync::{Arc, OnceLock};
+
+pub(crate) use plan::{Plan, BOOL, INT, READONLY, REAL};
+
+/// The state handed between the VM and compiled code; the layout is read
+/// by the generated code at fixed offsets.
+#[repr(C)]
+pub(crate) struct Frame {
+    pub mem: *mut u32,
+    pub kinds: *const u8,
+    pub retained: *mut u32,
+    pub stack: *mut u32,
+    pub locals: *mut u32,
+    pub budget: u64,
+    pub pc: u32,
+    pub depth: u32,
+    pub ref_slot: u32,
+}
+
+type Entry = unsafe extern "C" fn(*mut Frame) -> u32;
+
+/// One compiled code block.
+pub struct Compiled {
+    entry: Entry,
+    /// Kept so that the code's memory can be freed with the block.
+    module: Option<JITModule>,
+    plan: Plan,
+    /// Numeric stack capacity a bail-out may need.
+    max_depth: usize,
+    locals: usize,
+    retained: usize,
+}
+
+// SAFETY: the module is only touched when the `Compiled` is dropped, and
+// the code it holds is immutable once finalised; calling it from several
+// threads at once is safe because each call brings its own `Frame`.
+unsafe impl Send for Compiled {}
+unsafe impl Sync for Compiled {}
+
+impl Drop for Compiled {
+    fn drop(&mut self) {
+        if let Some(m) = self.module.take() {
+            // SAFETY: no pointer into the code outlives `self`.
+            unsafe { m.free_memory() };
+        }
+    }
+}
+
+/// A block's compiled code once tried (`None`: not in the subset); clones
+/// of a `Linked` share it.
+type Slot = Arc<OnceLock<Option<Arc<Compiled>>>>;
+
+/// Compiled code per (program, block), made on first use.
+#[derive(Clone, Default)]
+pub struct Cache {
+    blocks: Vec<Vec<Slot>>,
+}
+
+impl std::fmt::Debug for Cache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Cache({} programs)", self.blocks.len())
+    }
+}
+
+impl Cache {
+    pub(crate) fn new(blocks_per_program: impl Iterator<Item = usize>) -> Cache {
+        Cache { blocks: blocks_per_program.map(|n| (0..n).map(|_| Arc::default()).collect()).collect() }
+    }
+
+    /// The compiled code of a block, compiling it the first time.
+    pub(crate) fn get(&self, linked: &Linked, store: &Store, program: usize, block: usize) -> Option<Arc<Compiled>> {
+        let slot = self.blocks.get(program)?.get(block)?;
+        slot.get_or_init(|| compile(linked, store, program, block).map(Arc::new)).clone()
+    }
+}
+
+/// Compiles block `block` of `program`, or `None` when it uses anything
+/// outside the numeric subset (the interpreter then runs it).
+pub fn compile(linked: &Linked, store: &Store, program: usize, block: usize) -> Option<Compiled> {
+    let prog = linked.program(program)?;
+    let unit = linked.unit(program)?;
+    let ops = &prog.blocks.get(block)?.ops;
+    let code = unit.blocks.get(block)?;
+    if !ops.iter().all(in_subset) {
+        return None;
+    }
+    let plan = Plan::new(ops, &prog.targets, store)?;
+    let locals = usize::from(code.locals);
+    let retained = usize::from(unit.retained);
+    let (entry, module, max_depth) = emit::emit(ops, &plan, locals, retained)?;
+    Some(Compiled { entry, module: Some(module), plan, max_depth, locals, retained })
+}
+
+/// Whether the compiled tier translates this instruction.
+fn in_subset(op: &Op) -> bool {
+    use Op::*;
+    matches!(
+        op,
+        PushI { .. }
+            | PushR { .. }
+            | LoadLoc { .. }
+            | StoreLoc { .. }
+            | LoadRet { .. }
+            | StoreRet { .. }
+            | LoadI { .. }
+            | LoadR { .. }
+            | StoreI { .. }
+            | StoreR { .. }
+            | Ref { .. }
+            | RefOff { .. }
+            | LoadRefI { .. }
+            | LoadRefR { .. }
+            | StoreRefI { .. }
+            | StoreRefR { .. }
+            | IToR {}
+            | RToI {}
+            | Truth {}
+            | AddI {}
+            | SubI {}
+            | MulI {}
+            | DivI {}
+            | ModI {}
+            | NegI {}
+            | AddR {}
+            | SubR {}
+            | MulR {}
+            | DivR {}
+            | NegR {}
+            | EqI {}
+            | NeI {}
+            | LtI {}
+            | GtI {}
+            | LeI {}
+            | GeI {}
+            | EqR {}
+            | NeR {}
+            | LtR {}
+            | GtR {}
+            | LeR {}
+            | GeR {}
+            | And {}
+            | Or {}
+            | Xor {}
+            | Not {}
+            | Jump { .. }
+            | JumpIfFalse { .. }
+            | JumpIfTrue { .. }
+            | Ret {}
+    )
+}
+
+/// How a compiled run ended.
+pub(crate) enum JitRun {
+    /// Ran to `Ret`; the store holds the results.
+    Done,
+    /// Stopped before instruction `pc`: the interpreter goes on from there
+    /// with the stack and locals left in the VM's buffers.
+    Bail { pc: usize, ref_cell: u32, budget: u64 },
+    /// Not used for this run (a forced cell, a store that does not match).
+    Refused,
+}
+
+impl Compiled {
+    /// Runs the code against `store`. `mem` is scratch; `stack` and
+    /// `locals` receive the interpreter's state on a bail-out.
+    pub(crate) fn run(
+        &self,
+        store: &mut Store,
+        retained: &mut [u32],
+        budget: u64,
+        mem: &mut Vec<u32>,
+        stack: &mut Vec<u32>,
+        locals: &mut Vec<u32>,
+    ) -> JitRun {
+        if retained.len() != self.retained || !self.copy_in(store, mem) {
+            return JitRun::Refused;
+        }
+        stack.clear();
+        stack.resize(self.max_depth.max(1), 0);
+        locals.clear();
+        locals.resize(self.locals.max(1), 0);
+        let mut frame = Frame {
+            mem: mem.as_mut_ptr(),
+            kinds: self.plan.kinds.as_ptr(),
+            retained: retained.as_mut_ptr(),
+            stack: stack.as_mut_ptr(),
+            locals: locals.as_mut_ptr(),
+            budget,
+            pc: 0,
+            depth: 0,
+            ref_slot: u32::MAX,
+        };
+        // SAFETY: the code only touches `mem` below the plan's slot count
+        // (it checks every computed slot), `kinds` likewise, `retained`
+        // below `self.retained`, `stack` below `max_depth` and `locals`
+        // below `self.locals`: all sized above.
+        let status = unsafe { (self.entry)(&mut frame) };
+        self.copy_out(store, mem);
+        locals.truncate(self.locals);
+        if status == 0 {
+            return JitRun::Done;
+        }
+        stack.truncate(frame.depth as usize);
+        let ref_cell = self.plan.cells.get(frame.ref_slot as usize).copied().unwrap_or(0);
+        JitRun::Bail { pc: frame.pc as usize, ref_cell, budget: frame.budget }
+    }
+
+    /// Copies the program's cells into `mem`; false when a cell is forced
+    /// or does not have the kind the code was compiled for.
+    fn copy_in(&self, store: &Store, mem: &mut Vec<u32>) -> bool {
+        mem.clear();
+        mem.reserve(self.plan.cells.len());
+        for (&c, &k) in self.plan.cells.iter().zip(&self.plan.kinds) {
+            if store.is_forced(c) || store.is_readonly(c) != (k & READONLY != 0) {
+                return false;
+            }
+            let v = match (store.cells.get(c as usize), k & 3) {
+                (Some(Cell::Int(i)), INT) => *i as u32,
+                (Some(Cell::Bool(b)), BOOL) => u32::from(*b),
+                (Some(Cell::Real(r)), REAL) => r.to_bits(),
+                _ => return false,
+            };
+            mem.push(v);
+        }
+        true
+    }
+
+    fn copy_out(&self, store: &mut Store, mem: &[u32]) {
+        for (&c, &v) in self.plan.cells.iter().zip(mem) {
+            match store.cells.get_mut(c as usize) {
+                Some(Cell::Int(i)) => *i = v as i32,
+                Some(Cell::Bool(b)) => *b = v != 0,
+                Some(Cell::Real(r)) => *r = f32::from_bits(v),
+                _ => {}
+            }
+        }
+    }
+}

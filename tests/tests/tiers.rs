@@ -1,0 +1,397 @@
+//! The compiling tier against the interpreter (ADR 0011): every program
+//! the conformance suite writes that compiles against the guide database,
+//! the guide's example actions, and generated numeric programs run on both
+//! tiers, which must leave identical stores, retained slots and errors
+//! (code, message, line, column). 2,400 generated cases by default (about
+//! 2,000 compile); `TIER_CASES=100000` for a long run.
+
+use linc_compiler::check::Context;
+use linc_compiler::lower::{self, Lines};
+use linc_conformance::guide_db;
+use linc_conformance::rng::Rng;
+use linc_runtime::store::Store;
+use linc_runtime::vm::{Activation, Clock, Vm};
+use linc_runtime::{Linked, Program, RuntimeError};
+
+/// Compiles `src` against the guide database, or `None` if it does not.
+fn compile(src: &str) -> Option<Vec<u8>> {
+    let ctx = Context { db: guide_db(), resolve_blocks: true, steps: None };
+    let r = linc_compiler::check_source(src, "case", ctx);
+    let program = r.program?;
+    let obj = lower::lower_program(&program, "case.st", &Lines::new(src)).ok()?;
+    Some(obj.to_bytes())
+}
+
+/// What one tier leaves behind after some cycles.
+#[derive(Debug, PartialEq)]
+struct Ending {
+    cells: String,
+    retained: Vec<u32>,
+    ignored: u64,
+    error: Option<RuntimeError>,
+}
+
+struct Case {
+    linked: Linked,
+    watchdog: u64,
+    force: Option<u32>,
+}
+
+impl Case {
+    fn new(src: &str, watchdog: u64, force: Option<u32>) -> Option<Case> {
+        let verified = linc_runtime::load(&compile(src)?).ok()?;
+        let store = Store::new(guide_db().clone());
+        let linked = verified.link(&store, &[Program { unit: 0, own: None }]).ok()?;
+        Some(Case { linked, watchdog, force })
+    }
+
+    /// Whether the compiling tier translates the program at all.
+    fn compiles(&self) -> bool {
+        let store = Store::new(guide_db().clone());
+        linc_runtime::jit::compile(&self.linked, &store, 0, 0).is_some()
+    }
+
+    fn run(&self, jit: bool, cycles: u32) -> Ending {
+        let mut store = Store::new(guide_db().clone());
+        store.now = 1_000_000.0;
+        if let Some(c) = self.force {
+            store.set_forced(c, true);
+        }
+        let mut vm = Vm::new(self.watchdog, Clock::new(1, 0));
+        vm.jit = jit;
+        let mut act = Activation::new(&self.linked, 0, 0);
+        let mut error = None;
+        for _ in 0..cycles {
+            if let Err(e) = vm.run(&self.linked, &mut act, &mut store, None) {
+                error = Some(e);
+                break;
+            }
+            store.now += 1.0;
+        }
+        Ending {
+            cells: format!("{:?}", store.cells),
+            retained: act.retained.clone(),
+            ignored: store.ignored_writes,
+            error,
+        }
+    }
+
+    fn assert_tiers_agree(&self, what: &str) {
+        let a = self.run(false, 3);
+        let b = self.run(true, 3);
+        assert_eq!(a, b, "tiers differ on {what}");
+    }
+}
+
+/// Every string literal of a Rust source (normal and raw), roughly: enough
+/// to find the ST programs the test files write.
+fn string_literals(text: &str) -> Vec<String> {
+    let b = text.as_bytes();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < b.len() {
+        match b[i] {
+            b'/' if b.get(i + 1) == Some(&b'/') => {
+                while i < b.len() && b[i] != b'\n' {
+                    i += 1;
+                }
+            }
+            b'\'' => {
+                i += match (b.get(i + 1), b.get(i + 2)) {
+                    (Some(b'\\'), _) => text[i + 2..].find('\'').map_or(1, |n| n + 3),
+                    (Some(_), Some(b'\'')) => 3,
+                    _ => 1,
+                };
+                continue;
+            }
+            b'r' if matches!(b.get(i + 1), Some(b'"' | b'#')) && (i == 0 || !b[i - 1].is_ascii_alphanumeric()) => {
+                let hashes = b[i + 1..].iter().take_while(|&&c| c == b'#').count();
+                let open = i + 1 + hashes;
+                if b.get(open) == Some(&b'"') {
+                    let close = format!("\"{}", "#".repeat(hashes));
+                    if let Some(n) = text[open + 1..].find(&close) {
+                        out.push(text[open + 1..open + 1 + n].to_string());
+                        i = open + 1 + n + close.len();
+                        continue;
+                    }
+                }
+            }
+            b'"' => {
+                let (s, next) = normal_literal(text, i + 1);
+                out.push(s);
+                i = next;
+                continue;
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    out
+}
+
+/// A `"..."` literal's value from just after its quote; returns the index
+/// after the closing quote.
+fn normal_literal(text: &str, start: usize) -> (String, usize) {
+    let mut s = String::new();
+    let mut chars = text[start..].char_indices();
+    while let Some((k, c)) = chars.next() {
+        match c {
+            '"' => return (s, start + k + 1),
+            '\\' => match chars.next().map(|(_, e)| e) {
+                Some('n') => s.push('\n'),
+                Some('t') => s.push('\t'),
+                Some('r') => s.push('\r'),
+                Some('0') => s.push('\0'),
+                Some('\n') => {
+                    // A line continuation: skip the next line's indentation.
+                    let rest = chars.as_str();
+                    let skip = rest.len() - rest.trim_start().len();
+                    for _ in 0..rest[..skip].chars().count() {
+                        chars.next();
+                    }
+                }
+                Some(e) => s.push(e),
+                None => break,
+            },
+            c => s.push(c),
+        }
+    }
+    (s, text.len())
+}
+
+#[test]
+fn literal_scanner_reads_escapes_and_raw_strings() {
+    let src = "let a = \"x := 1;\\nY\"; let c = '\"'; let b = r#\"q \"z\"\"#; // \"no\"\n";
+    assert_eq!(string_literals(src), ["x := 1;\nY", "q \"z\""]);
+}
+
+#[test]
+fn conformance_programs_agree_on_both_tiers() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests");
+    let mut sources: Vec<String> = Vec::new();
+    let mut files: Vec<_> = std::fs::read_dir(dir).expect("tests dir").flatten().map(|e| e.path()).collect();
+    files.sort();
+    for path in files.iter().filter(|p| p.extension().is_some_and(|e| e == "rs")) {
+        let text = std::fs::read_to_string(path).expect("test file reads");
+        sources.extend(string_literals(&text));
+    }
+    let guide = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/guide");
+    for name in ["shift.st", "broken.st"] {
+        sources.push(std::fs::read_to_string(format!("{guide}/{name}")).expect("example reads"));
+    }
+    sources.sort();
+    sources.dedup();
+    let (mut ran, mut compiled) = (0, 0);
+    for src in &sources {
+        for watchdog in [10_000_000, 57] {
+            let Some(case) = Case::new(src, watchdog, None) else { break };
+            ran += 1;
+            compiled += usize::from(case.compiles());
+            case.assert_tiers_agree(src);
+        }
+    }
+    eprintln!("{ran} conformance runs (programs × 2 watchdogs), {compiled} on compiled code");
+    assert!(ran >= 100, "only {ran} conformance programs compiled");
+    assert!(compiled >= 40, "only {compiled} conformance programs use the compiling tier");
+}
+
+/// Random numeric ST over the RECIPE fields of the guide database.
+struct Gen {
+    rng: Rng,
+    depth: u32,
+}
+
+const BLOCKS: [&str; 2] = ["Recipe", "Counters"];
+
+impl Gen {
+    fn pick<'a>(&mut self, xs: &[&'a str]) -> &'a str {
+        xs[self.rng.below(xs.len())]
+    }
+
+    fn int_var(&mut self) -> String {
+        let b = self.pick(&BLOCKS);
+        if self.rng.one_in(6) {
+            let i = self.offset();
+            return format!("{b}.N0{{{i}}}");
+        }
+        format!("{b}.N{}", self.rng.below(8))
+    }
+
+    fn real_var(&mut self) -> String {
+        let b = self.pick(&BLOCKS);
+        if self.rng.one_in(6) {
+            let i = self.offset();
+            return format!("{b}.A0{{{i}}}");
+        }
+        format!("{b}.A{}", self.rng.below(8))
+    }
+
+    /// An offset: mostly a field, so that it is checked when the program
+    /// runs (a constant out of the run is refused when compiling).
+    fn offset(&mut self) -> String {
+        match self.rng.below(3) {
+            0 => format!("{} + 1", self.int_var()),
+            1 => self.int_expr(1),
+            _ => format!("{}.N{}", self.pick(&BLOCKS), self.rng.below(8)),
+        }
+    }
+
+    /// A REAL field that starts a run of eight, for offsets.
+    fn real_var_base(&mut self) -> String {
+        format!("{}.A0", self.pick(&BLOCKS))
+    }
+
+    fn int_expr(&mut self, d: u32) -> String {
+        if d == 0 || self.rng.one_in(3) {
+            return match self.rng.below(4) {
+                0 => format!("{}", self.rng.below(10) as i32 - 2),
+                1 => ["2147483647", "-2147483647", "65535", "40000"][self.rng.below(4)].to_string(),
+                _ => self.int_var(),
+            };
+        }
+        let a = self.int_expr(d - 1);
+        let b = self.int_expr(d - 1);
+        match self.rng.below(9) {
+            0 => format!("({a} + {b})"),
+            1 => format!("({a} - {b})"),
+            2 => format!("({a} * {b})"),
+            3 => format!("({a} / {b})"),
+            4 => format!("({a} MOD {b})"),
+            5 => format!("(-{a})"),
+            6 => format!("({a} AND {b})"),
+            7 => format!("({a} XOR {b})"),
+            _ => format!("({a} OR {b})"),
+        }
+    }
+
+    fn real_expr(&mut self, d: u32) -> String {
+        if d == 0 || self.rng.one_in(3) {
+            return match self.rng.below(5) {
+                0 => ["0.0", "1.5", "-2.25", "1.0E30", "0.001"][self.rng.below(5)].to_string(),
+                1 => self.int_expr(0),
+                _ => self.real_var(),
+            };
+        }
+        let a = self.real_expr(d - 1);
+        let b = self.real_expr(d - 1);
+        match self.rng.below(5) {
+            0 => format!("({a} + {b})"),
+            1 => format!("({a} - {b})"),
+            2 => format!("({a} * {b})"),
+            3 => format!("({a} / {b})"),
+            _ => format!("(-{a})"),
+        }
+    }
+
+    fn cond(&mut self, d: u32) -> String {
+        let c = match self.rng.below(6) {
+            0 => format!("{} < {}", self.real_expr(d), self.real_expr(d)),
+            1 => format!("{} >= {}", self.real_expr(d), self.real_expr(d)),
+            2 => format!("{} = {}", self.int_expr(d), self.int_expr(d)),
+            3 => format!("{} <> {}", self.int_expr(d), self.int_expr(d)),
+            4 => format!("{} > {}", self.int_expr(d), self.int_expr(d)),
+            _ => format!("{} <= {}", self.int_expr(d), self.int_expr(d)),
+        };
+        match self.rng.below(5) {
+            0 => format!("NOT ({c})"),
+            1 => format!("({c}) AND ({})", self.cond(0)),
+            2 => format!("({c}) OR ({})", self.cond(0)),
+            _ => c,
+        }
+    }
+
+    fn stmts(&mut self, n: usize) -> String {
+        (0..n).map(|_| self.stmt()).collect()
+    }
+
+    fn stmt(&mut self) -> String {
+        let nested = self.depth < 3;
+        let kind = if nested { self.rng.below(10) } else { self.rng.below(4) };
+        self.depth += 1;
+        let s = match kind {
+            0 | 1 => format!("{} := {};\n", self.int_var(), self.int_expr(2)),
+            2 | 3 => format!("{} := {};\n", self.real_var(), self.real_expr(2)),
+            4 | 5 => {
+                let (c, t) = (self.cond(1), self.stmts(2));
+                let e = if self.rng.one_in(2) { format!("ELSE\n{}", self.stmts(1)) } else { String::new() };
+                format!("IF {c} THEN\n{t}{e}END_IF;\n")
+            }
+            6 | 7 => {
+                let v = format!("{}.N{}", self.pick(&BLOCKS), self.rng.below(8));
+                let hi = self.rng.below(9);
+                let by =
+                    if self.rng.one_in(3) { format!(" BY {}", [1, 2, -1][self.rng.below(3)]) } else { String::new() };
+                let body = format!("{}{{{v}}} := {};\n{}", self.real_var_base(), self.real_expr(1), self.stmts(1));
+                format!("FOR {v} := 0 TO {hi}{by} DO\n{body}END_FOR;\n")
+            }
+            8 => format!("WHILE {} DO\n{}END_WHILE;\n", self.cond(1), self.stmts(2)),
+            _ if self.rng.one_in(2) => format!("{} := {};\n", self.real_var(), self.int_expr(1)),
+            _ => format!("{} := {};\n", self.int_var(), self.real_expr(1)),
+        };
+        self.depth -= 1;
+        s
+    }
+}
+
+/// A random program and a watchdog budget for case `seed`.
+fn generated(seed: u64) -> (String, u64, Option<u32>) {
+    let mut g = Gen { rng: Rng::new(seed), depth: 0 };
+    let n = 1 + g.rng.below(5);
+    let src = g.stmts(n);
+    let watchdog = match g.rng.below(3) {
+        0 => 1 + g.rng.below(300) as u64,
+        _ => 20_000,
+    };
+    let store = Store::new(guide_db().clone());
+    let force = g.rng.one_in(20).then(|| {
+        let b = guide_db().block("Recipe").unwrap_or(0);
+        store.cell_of(b, "N1").unwrap_or(0)
+    });
+    (src, watchdog, force)
+}
+
+#[test]
+fn generated_programs_agree_on_both_tiers() {
+    let cases: u64 = std::env::var("TIER_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(2_400);
+    let (mut ran, mut compiled, mut failed) = (0u64, 0u64, 0u64);
+    for seed in 0..cases {
+        let (src, watchdog, force) = generated(seed);
+        let Some(case) = Case::new(&src, watchdog, force) else { continue };
+        ran += 1;
+        compiled += u64::from(case.compiles());
+        let a = case.run(false, 2);
+        let b = case.run(true, 2);
+        failed += u64::from(a.error.is_some());
+        assert_eq!(a, b, "tiers differ on case {seed}:\n{src}");
+    }
+    eprintln!("{ran} generated programs ran, {compiled} on compiled code, {failed} stopped by an error");
+    assert!(ran * 10 >= cases * 7, "only {ran} of {cases} generated programs compiled");
+    assert!(compiled * 10 >= ran * 9, "only {compiled} of {ran} use the compiling tier");
+    assert!(failed * 10 >= ran, "too few faults to exercise the bail-outs: {failed}");
+}
+
+#[test]
+fn only_numeric_blocks_compile() {
+    let numeric = Case::new("Recipe.A1 := Recipe.A0 * 2.0;\n", 1000, None).expect("compiles");
+    assert!(numeric.compiles());
+    let strings = Case::new("RAW_COM.Buffer1 := 'x';\n", 1000, None).expect("compiles");
+    assert!(!strings.compiles(), "a string store is left to the interpreter");
+    let call = Case::new("Recipe.A1 := SQRT(Recipe.A0);\n", 1000, None).expect("compiles");
+    assert!(!call.compiles(), "a library call is left to the interpreter");
+}
+
+#[test]
+fn a_trace_runs_on_the_interpreter() {
+    // The compiled code reports no writes as they happen, so a traced run
+    // must be the interpreter's: every write is seen.
+    let case = Case::new("Recipe.N1 := 1;\nRecipe.N2 := 2;\n", 1000, None).expect("compiles");
+    assert!(case.compiles());
+    let mut store = Store::new(guide_db().clone());
+    let mut vm = Vm::new(1000, Clock::new(1, 0));
+    vm.jit = true;
+    let mut act = Activation::new(&case.linked, 0, 0);
+    let mut seen = Vec::new();
+    let mut note = |_: &Store, c: u32| seen.push(c);
+    vm.run(&case.linked, &mut act, &mut store, Some(&mut note)).expect("runs");
+    assert_eq!(seen.len(), 2);
+}
