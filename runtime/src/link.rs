@@ -73,6 +73,11 @@ pub struct Linked {
 }
 
 impl Linked {
+    /// Whether the compiling tier has compiled block `block` of `program` yet.
+    pub fn is_compiled(&self, program: usize, block: usize) -> bool {
+        self.jit.is_compiled((program, block))
+    }
+
     pub fn object(&self) -> &ObjectFile {
         self.verified.object()
     }

@@ -36,6 +36,10 @@ macro_rules! tri {
 /// by a runaway loop in well under a second.
 pub const DEFAULT_WATCHDOG: u64 = 10_000_000;
 
+/// Instructions a block runs on the interpreter before the compiling tier
+/// compiles it: about as long as compiling takes (ADR 0011).
+pub const JIT_AFTER: u64 = 1_000_000;
+
 /// How a run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Outcome {
@@ -182,10 +186,16 @@ pub struct Vm {
     string_used: usize,
     result: Option<Value>,
     pub clock: Clock,
-    /// Runs numeric blocks through the compiling tier (ADR 0011) when set.
+    /// Runs numeric blocks through the compiling tier (ADR 0011) when set
+    /// (the default; a trace or a forced cell runs the interpreter).
     pub jit: bool,
+    /// Instructions a block runs on the interpreter before it is compiled
+    /// (0: compile at first use).
+    pub jit_after: u64,
     /// The compiled tier's scratch copy of the cells.
     jit_mem: Vec<u32>,
+    /// The budget the last interpreted run left (how much it ran, for the tier).
+    budget_left: u64,
 }
 
 impl Vm {
@@ -200,8 +210,10 @@ impl Vm {
             string_used: 0,
             result: None,
             clock,
-            jit: false,
+            jit: true,
+            jit_after: JIT_AFTER,
             jit_mem: Vec::new(),
+            budget_left: 0,
         }
     }
 
@@ -275,8 +287,9 @@ impl Vm {
         };
         self.clock.now = store.now;
         let (mut budget, mut ref_cell) = (self.watchdog, 0);
+        let interpreted_from = budget;
         if self.jit && pc == 0 && trace.is_none() {
-            if let Some(c) = linked.jit.get(linked, store, act.program, act.block) {
+            if let Some(c) = linked.jit.get(linked, store, (act.program, act.block), self.jit_after) {
                 match c.run(store, &mut act.retained, budget, &mut self.jit_mem, &mut self.num, &mut self.locals) {
                     JitRun::Done => {
                         act.result = None;
@@ -288,6 +301,9 @@ impl Vm {
             }
         }
         let result = self.exec(&l, act, store, &mut pc, &mut trace, (budget, ref_cell));
+        if self.jit {
+            linked.jit.note_interpreted((act.program, act.block), interpreted_from.saturating_sub(self.budget_left));
+        }
         act.result = self.result.take();
         match result {
             Ok(Outcome::Suspended) => {
@@ -664,6 +680,7 @@ impl Vm {
             }
         };
         *pc_out = pc;
+        self.budget_left = budget;
         result
     }
 

@@ -102,6 +102,7 @@ fn ready(k: &Kernel, jit: bool) -> Ready {
     let act = Activation::new(&linked, 0, 0);
     let mut vm = Vm::new(DEFAULT_WATCHDOG * 10, Clock::new(1, 0));
     vm.jit = jit;
+    vm.jit_after = 0;
     Ready { linked, act, store, vm }
 }
 

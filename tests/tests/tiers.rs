@@ -59,6 +59,7 @@ impl Case {
         }
         let mut vm = Vm::new(self.watchdog, Clock::new(1, 0));
         vm.jit = jit;
+        vm.jit_after = 0;
         let mut act = Activation::new(&self.linked, 0, 0);
         let mut error = None;
         for _ in 0..cycles {
@@ -389,9 +390,34 @@ fn a_trace_runs_on_the_interpreter() {
     let mut store = Store::new(guide_db().clone());
     let mut vm = Vm::new(1000, Clock::new(1, 0));
     vm.jit = true;
+    vm.jit_after = 0;
     let mut act = Activation::new(&case.linked, 0, 0);
     let mut seen = Vec::new();
     let mut note = |_: &Store, c: u32| seen.push(c);
     vm.run(&case.linked, &mut act, &mut store, Some(&mut note)).expect("runs");
     assert_eq!(seen.len(), 2);
+}
+
+#[test]
+fn a_block_is_compiled_once_it_has_run_about_as_long_as_compiling_takes() {
+    // 10 iterations of about 12 instructions: ~130 instructions a run, so
+    // the default threshold (1,000,000) is reached after some 7,700 runs.
+    let case = Case::new("FOR Counters.N0 := 1 TO 10 DO\n  Recipe.A1 := Recipe.A1 + 1.0;\nEND_FOR;\n", 1000, None)
+        .expect("compiles");
+    assert!(case.compiles());
+    let mut store = Store::new(guide_db().clone());
+    let mut vm = Vm::new(1_000_000, Clock::new(1, 0));
+    assert!(vm.jit, "the tier is on by default");
+    let mut act = Activation::new(&case.linked, 0, 0);
+    let mut runs = 0;
+    while !case.linked.is_compiled(0, 0) {
+        vm.run(&case.linked, &mut act, &mut store, None).expect("runs");
+        runs += 1;
+        assert!(runs < 20_000, "never compiled");
+    }
+    assert!((5_000..10_000).contains(&runs), "compiled after {runs} runs");
+    // Compiled or not, the runs add up the same.
+    vm.run(&case.linked, &mut act, &mut store, None).expect("runs");
+    let a1 = store.cell_of(store.db.block("Recipe").unwrap(), "A1").unwrap();
+    assert_eq!(store.cells[a1 as usize], linc_runtime::store::Cell::Real(10.0 * (runs + 1) as f32));
 }

@@ -64,9 +64,16 @@ impl Drop for Compiled {
     }
 }
 
-/// A block's compiled code once tried (`None`: not in the subset); clones
-/// of a `Linked` share it.
-type Slot = Arc<OnceLock<Option<Arc<Compiled>>>>;
+/// A block's compiled code once tried (`None`: not in the subset), and the
+/// instructions the interpreter has run of it so far; clones of a `Linked`
+/// share it.
+#[derive(Default)]
+pub(crate) struct SlotState {
+    code: OnceLock<Option<Arc<Compiled>>>,
+    interpreted: std::sync::atomic::AtomicU64,
+}
+
+type Slot = Arc<SlotState>;
 
 /// Compiled code per (program, block), made on first use.
 #[derive(Clone, Default)]
@@ -85,10 +92,39 @@ impl Cache {
         Cache { blocks: blocks_per_program.map(|n| (0..n).map(|_| Arc::default()).collect()).collect() }
     }
 
-    /// The compiled code of a block, compiling it the first time.
-    pub(crate) fn get(&self, linked: &Linked, store: &Store, program: usize, block: usize) -> Option<Arc<Compiled>> {
+    /// The compiled code of a block once the interpreter has run `after`
+    /// instructions of it (0: at once), compiling it then. Compiling takes
+    /// about 2 ms, so a block is compiled only when it has run about as
+    /// long: short runs and one-off programs stay on the interpreter.
+    pub(crate) fn get(
+        &self,
+        linked: &Linked,
+        store: &Store,
+        (program, block): (usize, usize),
+        after: u64,
+    ) -> Option<Arc<Compiled>> {
         let slot = self.blocks.get(program)?.get(block)?;
-        slot.get_or_init(|| compile(linked, store, program, block).map(Arc::new)).clone()
+        if let Some(code) = slot.code.get() {
+            return code.clone();
+        }
+        if slot.interpreted.load(std::sync::atomic::Ordering::Relaxed) < after {
+            return None;
+        }
+        slot.code.get_or_init(|| compile(linked, store, program, block).map(Arc::new)).clone()
+    }
+
+    /// Whether a block has been compiled (for tests and listings).
+    pub fn is_compiled(&self, (program, block): (usize, usize)) -> bool {
+        self.blocks.get(program).and_then(|p| p.get(block)).is_some_and(|s| s.code.get().is_some_and(Option::is_some))
+    }
+
+    /// Counts instructions the interpreter ran of a block not yet compiled.
+    pub(crate) fn note_interpreted(&self, (program, block): (usize, usize), instructions: u64) {
+        if let Some(slot) = self.blocks.get(program).and_then(|p| p.get(block)) {
+            if slot.code.get().is_none() {
+                slot.interpreted.fetch_add(instructions, std::sync::atomic::Ordering::Relaxed);
+            }
+        }
     }
 }
 
