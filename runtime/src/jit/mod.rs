@@ -71,6 +71,8 @@ impl Drop for Compiled {
 pub(crate) struct SlotState {
     code: OnceLock<Option<Arc<Compiled>>>,
     interpreted: std::sync::atomic::AtomicU64,
+    /// Whether the block has a backward jump (a loop), once looked at.
+    looping: OnceLock<bool>,
 }
 
 type Slot = Arc<SlotState>;
@@ -92,10 +94,11 @@ impl Cache {
         Cache { blocks: blocks_per_program.map(|n| (0..n).map(|_| Arc::default()).collect()).collect() }
     }
 
-    /// The compiled code of a block once the interpreter has run `after`
-    /// instructions of it (0: at once), compiling it then. Compiling takes
-    /// about 2 ms, so a block is compiled only when it has run about as
-    /// long: short runs and one-off programs stay on the interpreter.
+    /// The compiled code of a block with a loop, or of a straight block once
+    /// the interpreter has run `after` instructions of it (0: at once),
+    /// compiling it then. Compiling takes about 2 ms, so a straight block is
+    /// compiled only when it has run about as long: short one-off programs
+    /// stay on the interpreter.
     pub(crate) fn get(
         &self,
         linked: &Linked,
@@ -107,7 +110,15 @@ impl Cache {
         if let Some(code) = slot.code.get() {
             return code.clone();
         }
-        if slot.interpreted.load(std::sync::atomic::Ordering::Relaxed) < after {
+        // A loop is where a run spends its time, and one run may be long
+        // (a whole `linc run`): a block with a loop is compiled at once.
+        let looping = *slot.looping.get_or_init(|| {
+            linked
+                .program(program)
+                .and_then(|p| p.blocks.get(block))
+                .is_some_and(|b| b.ops.iter().enumerate().any(|(i, op)| op.target().is_some_and(|t| (t as usize) <= i)))
+        });
+        if !looping && slot.interpreted.load(std::sync::atomic::Ordering::Relaxed) < after {
             return None;
         }
         slot.code.get_or_init(|| compile(linked, store, program, block).map(Arc::new)).clone()
