@@ -145,6 +145,18 @@ pub mod exec {
         obj.to_bytes()
     }
 
+    /// A strategy of the database `db` (JSON) whose action-type blocks all
+    /// name actions of the one action file `actions`, its clock at 10^6 s.
+    pub fn strategy(db: &str, actions: &str) -> linc_runtime::strategy::Strategy {
+        let db = Database::from_json(db).unwrap_or_else(|e| panic!("db: {e}"));
+        let object = linc_runtime::load(&compile(actions, &db)).expect("loads");
+        let store = Store::new(db);
+        let wants: Vec<_> = linc_runtime::strategy::wanted(&store).into_iter().map(|w| (w, 0)).collect();
+        let vm = Vm::new(100_000, Clock::new(1, 0));
+        linc_runtime::strategy::Strategy::build(store, vec![object], &wants, vm, 1_000_000.0)
+            .unwrap_or_else(|e| panic!("build: {e}"))
+    }
+
     /// The outcome of running an action for some cycles.
     pub struct Run {
         pub store: Store,

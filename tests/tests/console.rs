@@ -1,20 +1,10 @@
 //! The console over a strategy (docs/console.md): forced fields hold
 //! against every write path of the VM and the engine, dropped writes are
 //! traced, and the console's contract (`;` lines, failures, programs).
-use linc_conformance::exec::compile;
 use linc_runtime::console::Console;
-use linc_runtime::strategy::{micros, trace::Trace, wanted, ProgramState, Strategy};
-use linc_runtime::vm::{Clock, Vm};
-use linc_runtime::{Database, Store};
+use linc_runtime::strategy::{micros, trace::Trace, ProgramState};
 
-fn strategy(db: &str, actions: &str) -> Strategy {
-    let db = Database::from_json(db).unwrap_or_else(|e| panic!("db: {e}"));
-    let object = linc_runtime::load(&compile(actions, &db)).expect("loads");
-    let store = Store::new(db);
-    let wants: Vec<_> = wanted(&store).into_iter().map(|w| (w, 0)).collect();
-    Strategy::build(store, vec![object], &wants, Vm::new(100_000, Clock::new(1, 0)), 1_000_000.0)
-        .unwrap_or_else(|e| panic!("build: {e}"))
-}
+use linc_conformance::exec::strategy;
 
 const DB: &str = r#"{
   "templates": { "T": { "fields": {

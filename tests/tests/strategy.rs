@@ -5,16 +5,7 @@ use linc_runtime::strategy::{micros, trace::Trace, wanted, Strategy};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::{Database, Store};
 
-/// Builds a strategy from a database and one action file `a.st` that every
-/// action-type block names.
-fn strategy(db: &str, actions: &str) -> Strategy {
-    let db = Database::from_json(db).unwrap_or_else(|e| panic!("db: {e}"));
-    let object = linc_runtime::load(&compile(actions, &db)).expect("loads");
-    let store = Store::new(db);
-    let wants: Vec<_> = wanted(&store).into_iter().map(|w| (w, 0)).collect();
-    Strategy::build(store, vec![object], &wants, Vm::new(100_000, Clock::new(1, 0)), 1_000_000.0)
-        .unwrap_or_else(|e| panic!("build: {e}"))
-}
+use linc_conformance::exec::strategy;
 
 fn get(s: &Strategy, path: &str) -> String {
     let (b, f) = path.split_once('.').expect("BLOCK.FIELD");
