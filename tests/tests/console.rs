@@ -1,10 +1,9 @@
 //! The console over a strategy (docs/console.md): forced fields hold
 //! against every write path of the VM and the engine, dropped writes are
 //! traced, and the console's contract (`;` lines, failures, programs).
+use linc_conformance::exec::strategy;
 use linc_runtime::console::Console;
 use linc_runtime::strategy::{micros, trace::Trace, ProgramState};
-
-use linc_conformance::exec::strategy;
 
 const DB: &str = r#"{
   "templates": { "T": { "fields": {

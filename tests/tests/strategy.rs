@@ -1,11 +1,10 @@
 //! Strategies (docs/strategies.md): tasks, qualifiers of action-type
 //! blocks, the error status and the error program, determinism.
 use linc_conformance::exec::compile;
+use linc_conformance::exec::strategy;
 use linc_runtime::strategy::{micros, trace::Trace, wanted, Strategy};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::{Database, Store};
-
-use linc_conformance::exec::strategy;
 
 fn get(s: &Strategy, path: &str) -> String {
     let (b, f) = path.split_once('.').expect("BLOCK.FIELD");
