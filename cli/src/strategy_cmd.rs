@@ -32,9 +32,7 @@ pub struct Retain {
 
 /// A duration as an ST time constant, with or without `T#` (`10m`, `T#1h30m`).
 pub fn duration(text: &str) -> Result<u64, String> {
-    let t = text.trim();
-    let with_prefix = if t.len() > 2 && t[..2].eq_ignore_ascii_case("t#") { t.to_string() } else { format!("T#{t}") };
-    let secs = linc_runtime::db::time_constant(&with_prefix)
+    let secs = linc_runtime::db::duration_seconds(text)
         .map_err(|why| format!("--for `{text}` is not a duration like 10m, 1h30m or T#2.5s: {why}"))?;
     if !secs.is_finite() || secs <= 0.0 || secs > 366.0 * 86_400.0 {
         return Err(format!("--for `{text}`: the duration must be more than 0 and at most 366 days"));

@@ -69,9 +69,7 @@ pub struct Scenario {
 
 /// A duration or time like `5m`, `1h30m`, `2.5s`, `T#100ms`, in µs.
 pub fn duration(text: &str) -> Result<u64, String> {
-    let t = text.trim();
-    let with_prefix = if t.len() > 2 && t[..2].eq_ignore_ascii_case("t#") { t.to_string() } else { format!("T#{t}") };
-    let secs = linc_runtime::db::time_constant(&with_prefix)
+    let secs = linc_runtime::db::duration_seconds(text)
         .map_err(|why| format!("`{text}` is not a time like 10s, 5m or 1h30m: {why}"))?;
     if !secs.is_finite() || !(0.0..=366.0 * 86_400.0).contains(&secs) {
         return Err(format!("`{text}`: times are from 0 to 366 days"));

@@ -46,13 +46,7 @@ impl std::fmt::Display for ConsoleError {
 
 /// A duration as an ST time constant, with or without `T#` (`10m`, `T#1h30m`).
 pub fn duration(text: &str) -> Result<u64, String> {
-    let t = text.trim();
-    let with_prefix = if t.len() > 2 && t.is_char_boundary(2) && t[..2].eq_ignore_ascii_case("t#") {
-        t.to_string()
-    } else {
-        format!("T#{t}")
-    };
-    let secs = crate::db::time_constant(&with_prefix)
+    let secs = crate::db::duration_seconds(text)
         .map_err(|why| format!("`{text}` is not a duration like 10s, 1h30m or T#2.5s: {why}"))?;
     let us = crate::strategy::micros(secs);
     if !secs.is_finite() || us == 0 || us > MAX_ADVANCE_US {

@@ -13,6 +13,6 @@ mod schema;
 pub mod tree;
 
 pub use json::DbError;
-pub use period::{time_constant, MAX_PERIOD, MIN_PERIOD};
+pub use period::{duration_seconds, time_constant, MAX_PERIOD, MIN_PERIOD};
 pub use roc::{Device, Tlp};
 pub use schema::{Alias, Block, Database, FieldDef, FieldType, InitValue, Task, Template};

@@ -9,6 +9,19 @@ pub const MAX_PERIOD: f64 = 86_400.0;
 /// Units from largest to smallest; a constant lists them in this order.
 const UNITS: [(&str, f64); 5] = [("d", 86_400.0), ("h", 3_600.0), ("m", 60.0), ("s", 1.0), ("ms", 0.001)];
 
+/// Seconds in a duration written on a command line, console or scenario
+/// line: a time constant with or without its `T#` (`10m`, `T#1h30m`),
+/// around spaces ignored. Bounds are the caller's.
+pub fn duration_seconds(text: &str) -> Result<f64, String> {
+    let t = text.trim();
+    let prefixed = t.get(..2).is_some_and(|p| p.eq_ignore_ascii_case("t#"));
+    if prefixed {
+        time_constant(t)
+    } else {
+        time_constant(&format!("T#{t}"))
+    }
+}
+
 /// Seconds in a time constant `T#…` (or `t#…`): one or more parts
 /// `<number><unit>`, units `d h m s ms` (any case) each at most once and
 /// from largest to smallest, numbers with an optional decimal part. As in
@@ -63,6 +76,14 @@ pub fn check_period(seconds: f64) -> Result<f64, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn durations_take_the_prefix_or_not_and_never_split_a_character() {
+        assert_eq!(duration_seconds(" 1h30m "), Ok(5_400.0));
+        assert_eq!(duration_seconds("t#2.5s"), Ok(2.5));
+        assert!(duration_seconds("€5s").is_err(), "a multi-byte first character is an error, not a panic");
+        assert!(duration_seconds("T").is_err());
+    }
 
     #[test]
     fn guide_forms_and_milliseconds() {
