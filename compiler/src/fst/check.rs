@@ -240,7 +240,7 @@ impl Checker<'_> {
         // The template decides before the parameter: `SFP 1` is the wrong
         // point, not a point that lacks a parameter.
         if let (Some(db), Ok(Syntax::Text { point, .. })) = (self.db, tlp::parse(&cell.text)) {
-            if let Some(b) = tlp::find_point(db, point) {
+            if let Some(b) = db.point(point) {
                 let found = db.block_template(b).name.as_str();
                 if !found.eq_ignore_ascii_case(template) {
                     self.push(errors::wrong_point_type(cell.span, cmd.text(), point, found, template));

@@ -90,27 +90,13 @@ pub fn default_param(template: &str) -> Option<&'static str> {
     }
 }
 
-/// Compares point names the way ROCLINK writes them: `DIN4-1` is `DIN 4-1`.
-fn same_point(a: &str, b: &str) -> bool {
-    fn squeeze(s: &str) -> impl Iterator<Item = char> + '_ {
-        s.chars().filter(|c| !c.is_whitespace()).map(|c| c.to_ascii_uppercase())
-    }
-    squeeze(a).eq(squeeze(b))
-}
-
-/// A block by point name, ignoring case and spaces.
-pub fn find_point(db: &Database, point: &str) -> Option<usize> {
-    db.blocks.iter().position(|b| same_point(&b.name, point))
-}
-
 /// The block and field a parsed TLP names.
 pub fn resolve(db: &Database, syntax: &Syntax<'_>) -> Result<(usize, usize), ResolveError> {
     match syntax {
         Syntax::Number(_) => Err(ResolveError::UnknownPoint { suggestion: None }),
         Syntax::Numeric(tlp) => resolve_numeric(db, *tlp),
         Syntax::Text { point, param } => {
-            let block =
-                find_point(db, point).ok_or_else(|| ResolveError::UnknownPoint { suggestion: suggest(db, point) })?;
+            let block = db.point(point).ok_or_else(|| ResolveError::UnknownPoint { suggestion: suggest(db, point) })?;
             let template = db.block_template(block);
             let name = match param {
                 Some(p) => *p,

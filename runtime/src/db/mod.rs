@@ -14,5 +14,5 @@ pub mod tree;
 
 pub use json::DbError;
 pub use period::{duration_seconds, time_constant, MAX_PERIOD, MIN_PERIOD};
-pub use roc::{Device, Tlp};
+pub use roc::{same_point, Device, Tlp};
 pub use schema::{Alias, Block, Database, FieldDef, FieldType, InitValue, Task, Template};

@@ -49,7 +49,21 @@ impl fmt::Display for Tlp {
     }
 }
 
+/// Whether two ROC point names are the same the way ROCLINK writes them,
+/// ignoring case and spaces (`DIN4-1` is `DIN 4-1`).
+pub fn same_point(a: &str, b: &str) -> bool {
+    fn squeeze(s: &str) -> impl Iterator<Item = char> + '_ {
+        s.chars().filter(|c| !c.is_whitespace()).map(|c| c.to_ascii_uppercase())
+    }
+    squeeze(a).eq(squeeze(b))
+}
+
 impl Database {
+    /// The block a ROC point name names (see [`same_point`]).
+    pub fn point(&self, name: &str) -> Option<usize> {
+        self.blocks.iter().position(|b| same_point(&b.name, name))
+    }
+
     /// The template whose point type number on this database's family is `t`.
     pub fn point_template(&self, t: u16) -> Option<usize> {
         self.templates.iter().position(|tp| tp.point_type(self.device) == Some(t))

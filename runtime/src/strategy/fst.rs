@@ -328,9 +328,9 @@ impl Strategy {
             let local = self.store.now.floor() as i64 + self.vm.clock.utc_offset;
             let crate::store::Store { db, cells, first, roc, .. } = &mut self.store;
             let mut value_of = |point: &str| {
-                let (block, field) = point.split_once(',')?;
-                let b = db.blocks.iter().position(|x| same_point(&x.name, block))?;
-                let f = db.block_template(b).field(field.trim())?;
+                let (block, field) = crate::roc::split_archpt(point)?;
+                let b = db.point(block)?;
+                let f = db.block_template(b).field(field)?;
                 match cells.get(first[b] as usize + f)? {
                     Cell::Real(r) => Some(*r),
                     Cell::Int(i) => Some(*i as f32),
@@ -342,12 +342,4 @@ impl Strategy {
             roc.history.sample(local, &mut value_of);
         }
     }
-}
-
-/// Whether two ROC point names are the same, ignoring case and spaces
-/// (`DIN4-1` is `DIN 4-1`).
-pub fn same_point(a: &str, b: &str) -> bool {
-    let squeeze =
-        |s: &str| s.chars().filter(|c| !c.is_whitespace()).map(|c| c.to_ascii_uppercase()).collect::<String>();
-    squeeze(a) == squeeze(b)
 }

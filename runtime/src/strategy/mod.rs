@@ -20,7 +20,6 @@ pub mod trace;
 
 pub use control::{ProgramInfo, ProgramState};
 pub use errors::{ErrorStatus, StrategyError};
-pub use fst::same_point;
 pub use state::StateError;
 
 use crate::link::{Linked, Program};
