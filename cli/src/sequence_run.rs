@@ -52,6 +52,11 @@ impl Kind {
 /// The block that runs the program: an SFC_CON block for a sequence, an
 /// FST block for a table (`--block`, or the only one).
 pub fn block(db: &Database, named: Option<&str>, kind: Kind) -> Result<usize, u8> {
+    find_block(db, named, kind).map_err(usage)
+}
+
+/// [`block`], the refusal as text (E0904) for callers that report it their way.
+pub fn find_block(db: &Database, named: Option<&str>, kind: Kind) -> Result<usize, String> {
     let (template, what) = match kind {
         Kind::Sequence => ("SFC_CON", "the sequence"),
         Kind::Fst => ("FST", "the table"),
@@ -60,15 +65,15 @@ pub fn block(db: &Database, named: Option<&str>, kind: Kind) -> Result<usize, u8
     if let Some(n) = named {
         return match db.block(n) {
             Some(b) if runs(b) => Ok(b),
-            Some(_) => Err(usage(format_args!("[E0904] --block {n} is not an {template} block"))),
-            None => Err(usage(format_args!("[E0904] --block: the database has no block `{n}`"))),
+            Some(_) => Err(format!("[E0904] --block {n} is not an {template} block")),
+            None => Err(format!("[E0904] --block: the database has no block `{n}`")),
         };
     }
     let all: Vec<usize> = (0..db.blocks.len()).filter(|&b| runs(b)).collect();
     match all.as_slice() {
         [b] => Ok(*b),
-        [] => Err(usage(format_args!("[E0904] the database has no {template} block to run {what}; add one"))),
-        _ => Err(usage(format_args!("[E0904] the database has several {template} blocks; choose one with --block"))),
+        [] => Err(format!("[E0904] the database has no {template} block to run {what}; add one")),
+        _ => Err(format!("[E0904] the database has several {template} blocks; choose one with --block")),
     }
 }
 
@@ -83,8 +88,13 @@ pub fn set_period(db: &mut Database, block: usize, seconds: f64) {
 /// The one program to run: the sequence file, by its absolute path (the
 /// strategy resolves `FileName` against the database's folder).
 pub fn want(seq: &SequenceRun, block: usize) -> Want {
-    let file = std::path::absolute(&seq.file).unwrap_or_else(|_| seq.file.clone());
-    let kind = match seq.kind {
+    want_for(&seq.file, seq.kind, block)
+}
+
+/// The program `file` of `kind` run by `block`, by absolute path.
+pub fn want_for(file: &std::path::Path, kind: Kind, block: usize) -> Want {
+    let file = std::path::absolute(file).unwrap_or_else(|_| file.to_path_buf());
+    let kind = match kind {
         Kind::Sequence => WantKind::Sequence,
         Kind::Fst => WantKind::Fst,
     };

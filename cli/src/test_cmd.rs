@@ -8,7 +8,7 @@ use crate::report::usage;
 use linc_compiler::render::{self, Format, SourceFiles};
 use linc_compiler::scenario::{self, Action, How, Target};
 use linc_runtime::scenario::{Check, Report, Step};
-use linc_runtime::strategy::{Strategy, Want, WantKind};
+use linc_runtime::strategy::{Strategy, Want};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::{Database, Store};
 use std::path::{Path, PathBuf};
@@ -275,15 +275,7 @@ fn build(dir: &Path, target: Option<&Target>) -> Result<Strategy, String> {
 /// The one program of a `program` scenario, run by the only block that can.
 fn single_want(db: &Database, file: &Path) -> Result<Want, String> {
     let kind = crate::sequence_run::Kind::of(file);
-    let (template, kind) = match kind {
-        crate::sequence_run::Kind::Fst => ("FST", WantKind::Fst),
-        crate::sequence_run::Kind::Sequence => ("SFC_CON", WantKind::Sequence),
-    };
-    let blocks: Vec<usize> =
-        (0..db.blocks.len()).filter(|&b| db.block_template(b).name.eq_ignore_ascii_case(template)).collect();
-    let [block] = blocks[..] else {
-        return Err(format!("the database needs exactly one {template} block to run `{}`\n", file.display()));
-    };
-    let file = std::path::absolute(file).unwrap_or_else(|_| file.to_path_buf());
-    Ok(Want { block, file: file.display().to_string(), action: String::new(), kind })
+    let block =
+        crate::sequence_run::find_block(db, None, kind).map_err(|why| format!("`{}`: {why}\n", file.display()))?;
+    Ok(crate::sequence_run::want_for(file, kind, block))
 }

@@ -141,3 +141,23 @@ fn serial_and_parallel_runs_give_identical_reports() {
     assert_eq!(serial, parallel);
     assert!(serial.1.contains("running 12 scenarios"), "{}", serial.1);
 }
+
+#[test]
+fn a_program_scenario_runs_one_sequence_in_its_only_sfc_con_block() {
+    let dir = copy_example("sequences", "program");
+    // Only the sequence runs, not the SIM action that fills the vessel: the
+    // batch starts filling and stays in Fill.
+    let text =
+        "program batch.sfc\ndb plant.json\nexpect within 5s Fill.X\nexpect after 5m Fill.X AND NOT Heat.X\nrun 5m\n";
+    std::fs::write(dir.join("one.ltest"), text).unwrap();
+    let file = dir.join("one.ltest").display().to_string();
+    let o = linc(&["test", &file]);
+    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+    // A database with no SFC_CON block can't run it.
+    std::fs::write(dir.join("none.json"), r#"{"blocks": {}}"#).unwrap();
+    std::fs::write(dir.join("two.ltest"), "program batch.sfc\ndb none.json\nrun 1s\n").unwrap();
+    let file = dir.join("two.ltest").display().to_string();
+    let o = linc(&["test", &file]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stdout(&o).contains("[E0904] the database has no SFC_CON block to run the sequence"), "{}", stdout(&o));
+}
