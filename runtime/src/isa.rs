@@ -122,6 +122,7 @@ instructions! {
     0x19 StoreBit { sym: u16, bit: u8 } [1 0 0 0] "Pop an INT into one bit (non-zero is 1).";
     0x1A StoreSuppress { sym: u16 }  [1 0 0 0] "Pop seconds of suppression (§18.3.1).";
     0x1B StoreRKeep { sym: u16 }     [1 0 0 0] "Pop a REAL into a REAL field; a non-finite one leaves the field as it was (FST math).";
+    0x1C AppendS { sym: u16 }        [0 0 1 0] "Pop bytes and append them to a BSEQ or WSTR field: `X := CONCAT(X, s)` without copying X.";
     0x20 Ref { sym: u16 }            [0 0 0 0] "Point the reference register at a field.";
     0x21 RefOff { sym: u16 }         [1 0 0 0] "Pop n; point at the field n places after `sym`, within its run.";
     0x22 RefBit { bit: u8 }          [0 0 0 0] "Select a bit of the referenced bitfield.";
@@ -279,6 +280,7 @@ impl Op {
             Op::StoreBit { bit, .. } => Op::StoreBit { sym: n, bit },
             Op::StoreSuppress { .. } => Op::StoreSuppress { sym: n },
             Op::StoreRKeep { .. } => Op::StoreRKeep { sym: n },
+            Op::AppendS { .. } => Op::AppendS { sym: n },
             Op::Ref { .. } => Op::Ref { sym: n },
             Op::RefOff { .. } => Op::RefOff { sym: n },
             Op::LoadRefI { .. } => Op::LoadRefI { sym: n },
@@ -303,6 +305,7 @@ impl Op {
                 | Op::StoreBit { .. }
                 | Op::StoreSuppress { .. }
                 | Op::StoreRKeep { .. }
+                | Op::AppendS { .. }
                 | Op::StoreRefI { .. }
                 | Op::StoreRefR { .. }
                 | Op::StoreRefS { .. }
@@ -325,6 +328,7 @@ impl Op {
             | Op::StoreBit { sym, .. }
             | Op::StoreSuppress { sym }
             | Op::StoreRKeep { sym }
+            | Op::AppendS { sym }
             | Op::Ref { sym }
             | Op::RefOff { sym }
             | Op::LoadRefI { sym }

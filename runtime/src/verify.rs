@@ -196,6 +196,7 @@ fn symbol_fits(op: &Op, sym: &Symbol) -> bool {
             field && c == Class::Real
         }
         Op::LoadS { .. } | Op::StoreS { .. } | Op::LoadRefS { .. } | Op::StoreRefS { .. } => field && c.is_string(),
+        Op::AppendS { .. } => field && matches!(c, Class::Bseq | Class::Wstr),
         Op::LoadBit { bit, .. } | Op::StoreBit { bit, .. } => field && c.bits().is_some_and(|w| bit < w),
         Op::LoadRefBit { .. } | Op::StoreRefBit { .. } => field && c.bits().is_some(),
         Op::LoadAlarm { .. } => matches!(sym.sub, Sub::Alarm(_)) && c == Class::Alarms,

@@ -9,17 +9,19 @@
 
 mod cells;
 mod fst_ops;
+mod strings;
 
 use crate::errors::{Fault, RuntimeError};
 use crate::isa::{Kind, Op};
-use crate::jit::JitRun;
+use crate::jit::{Buffers, JitRun};
 use crate::link::{Linked, LinkedBlock, LinkedProgram};
 use crate::object::{CodeBlock, Unit};
 use crate::store::{Cell, Store};
-use cells::{cell, corrupt, load_bit, load_int, locate, note, store_bit, store_int, store_str, target, writable};
+use cells::{cell, corrupt, load_bit, load_int, locate, note, store_bit, store_int, target, writable};
 use fst_ops::FstFlow;
-use linc_stdlib::value::{decode_dollar, round_to_i32};
-use linc_stdlib::{Env, FnError, Value};
+use linc_stdlib::value::round_to_i32;
+use linc_stdlib::{Env, Value};
+use std::mem::take;
 
 /// `?` for the dispatch loop: a fault leaves the loop, so the program
 /// counter is written back.
@@ -177,6 +179,9 @@ impl Env for Clock {
 pub struct Vm {
     num: Vec<u32>,
     strs: Vec<Vec<u8>>,
+    /// String buffers kept from earlier values for later ones, so that a
+    /// loop building a string does not allocate at every pass.
+    spare: Vec<Vec<u8>>,
     locals: Vec<u32>,
     args: Vec<Value>,
     /// Instructions one run may execute.
@@ -196,6 +201,8 @@ pub struct Vm {
     jit_mem: Vec<u32>,
     /// The budget the last interpreted run left (how much it ran, for the tier).
     budget_left: u64,
+    /// A fault of a runtime service called by compiled code.
+    pub(crate) jit_fault: Option<Fault>,
 }
 
 impl Vm {
@@ -203,6 +210,7 @@ impl Vm {
         Vm {
             num: Vec::new(),
             strs: Vec::new(),
+            spare: Vec::new(),
             locals: Vec::new(),
             args: Vec::new(),
             watchdog,
@@ -214,21 +222,8 @@ impl Vm {
             jit_after: JIT_AFTER,
             jit_mem: Vec::new(),
             budget_left: 0,
+            jit_fault: None,
         }
-    }
-
-    /// Pushes a string value produced by this run, within the budgets.
-    fn push_s(&mut self, s: Vec<u8>) -> Result<(), Fault> {
-        if s.len() > MAX_STRING {
-            return Err(Fault::new("R0007", format!("a string of {} bytes; the limit is {MAX_STRING}", s.len())));
-        }
-        self.string_used += s.len();
-        if self.string_used > self.string_budget {
-            let what = format!("more than {} bytes of strings made in one run", self.string_budget);
-            return Err(Fault::new("R0007", what));
-        }
-        self.strs.push(s);
-        Ok(())
     }
 
     fn pop(&mut self) -> u32 {
@@ -251,10 +246,6 @@ impl Vm {
         self.num.push(v.to_bits());
     }
 
-    fn pop_s(&mut self) -> Vec<u8> {
-        self.strs.pop().unwrap_or_default()
-    }
-
     /// Runs an activation from its start or its resume point. A fault stops
     /// it (the activation is back at its start; writes made stay).
     pub fn run(
@@ -269,7 +260,7 @@ impl Vm {
             return Err(RuntimeError::unlocated(f));
         };
         self.num.clear();
-        self.strs.clear();
+        self.clear_strs();
         self.num.reserve(l.block.limits.max_num);
         self.strs.reserve(l.block.limits.max_str);
         self.string_used = 0;
@@ -290,12 +281,22 @@ impl Vm {
         let interpreted_from = budget;
         if self.jit && pc == 0 && trace.is_none() {
             if let Some(c) = linked.jit.get(linked, store, (act.program, act.block), self.jit_after) {
-                match c.run(store, &mut act.retained, budget, &mut self.jit_mem, &mut self.num, &mut self.locals) {
+                let (mut mem, mut stack, mut locals) =
+                    (take(&mut self.jit_mem), take(&mut self.num), take(&mut self.locals));
+                let buf = Buffers { mem: &mut mem, stack: &mut stack, locals: &mut locals };
+                let ran = c.run(self, store, &mut act.retained, budget, buf, &linked.object().strings);
+                (self.jit_mem, self.num, self.locals) = (mem, stack, locals);
+                match ran {
                     JitRun::Done => {
                         act.result = None;
                         return Ok(Outcome::Done);
                     }
                     JitRun::Bail { pc: at, ref_cell: r, budget: b } => (pc, ref_cell, budget) = (at, r, b),
+                    JitRun::Fault { pc: at } => {
+                        act.result = None;
+                        let f = self.jit_fault.take().unwrap_or_else(corrupt);
+                        return Err(locate(&l, at, f));
+                    }
                     JitRun::Refused => {}
                 }
             }
@@ -349,10 +350,7 @@ impl Vm {
             match op {
                 Op::PushI { v } => self.push_i(v),
                 Op::PushR { v } => self.push_r(v),
-                Op::PushS { k } => {
-                    let s = l.linked.object().strings.get(k as usize).map(|b| b.0.clone()).unwrap_or_default();
-                    tri!(self.push_s(s));
-                }
+                Op::PushS { k } => tri!(self.push_const(&l.linked.object().strings, k)),
                 Op::LoadRet { n } => {
                     let v = act.retained.get(usize::from(n)).copied().unwrap_or(0);
                     self.num.push(v);
@@ -387,16 +385,7 @@ impl Vm {
                 }
                 Op::LoadS { sym } | Op::LoadRefS { sym } => {
                     let c = if matches!(op, Op::LoadS { .. }) { cell(l, sym) } else { ref_cell };
-                    let s = match store.cells.get(c as usize) {
-                        Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => t.clone(),
-                        Some(Cell::Enum { idx }) => store
-                            .enum_names(c)
-                            .get(usize::from(*idx))
-                            .map(|n| n.as_bytes().to_vec())
-                            .unwrap_or_default(),
-                        _ => break Err(corrupt()),
-                    };
-                    tri!(self.push_s(s));
+                    tri!(self.load_s(store, c));
                 }
                 Op::LoadBit { sym, bit } => {
                     let v = tri!(load_bit(store, cell(l, sym), bit));
@@ -455,8 +444,12 @@ impl Vm {
                 Op::StoreS { sym } | Op::StoreRefS { sym } => {
                     let c =
                         if matches!(op, Op::StoreS { .. }) { cell(l, sym) } else { tri!(writable(store, ref_cell)) };
-                    let s = self.pop_s();
-                    tri!(store_str(store, c, s));
+                    tri!(self.store_s(store, c));
+                    note(trace, store, c);
+                }
+                Op::AppendS { sym } => {
+                    let c = cell(l, sym);
+                    tri!(self.append_s(store, c));
                     note(trace, store, c);
                 }
                 Op::StoreBit { sym, bit } => {
@@ -550,10 +543,7 @@ impl Vm {
                     }
                     self.push_i(round_to_i32(v));
                 }
-                Op::Decode {} => {
-                    let s = self.pop_s();
-                    tri!(self.push_s(decode_dollar(&s)));
-                }
+                Op::Decode {} => tri!(self.decode()),
                 Op::Truth {} => {
                     let v = self.pop_i();
                     self.push_i(i32::from(v != 0));
@@ -621,17 +611,8 @@ impl Vm {
                 Op::LeR {} => self.cmp_r(|a, b| a <= b),
                 Op::GeR {} => self.cmp_r(|a, b| a >= b),
                 Op::EqS {} | Op::NeS {} | Op::LtS {} | Op::GtS {} | Op::LeS {} | Op::GeS {} => {
-                    let b = self.pop_s();
-                    let a = self.pop_s();
-                    let v = match op {
-                        Op::EqS {} => a.eq_ignore_ascii_case(&b),
-                        Op::NeS {} => a != b,
-                        Op::LtS {} => a < b,
-                        Op::GtS {} => a > b,
-                        Op::LeS {} => a <= b,
-                        _ => a >= b,
-                    };
-                    self.push_i(i32::from(v));
+                    let v = self.compare_s(op);
+                    self.push_i(v);
                 }
                 Op::And {} => self.int2(|a, b| i32::from((a & b) as i16)),
                 Op::Or {} => self.int2(|a, b| i32::from((a | b) as i16)),
@@ -676,7 +657,11 @@ impl Vm {
                     });
                     break Ok(Outcome::Done);
                 }
-                Op::Call { func, argc, ret, types } => tri!(self.call(func, argc, ret, types)),
+                Op::Call { func, argc, ret, types } => {
+                    if let Some(v) = tri!(self.call(func, argc, ret, types, Vm::pop)) {
+                        self.num.push(v);
+                    }
+                }
             }
         };
         *pc_out = pc;
@@ -706,34 +691,6 @@ impl Vm {
         let b = self.pop_r();
         let a = self.pop_r();
         self.push_i(i32::from(f(a, b)));
-    }
-
-    fn call(&mut self, func: u8, argc: u8, ret: u8, types: u32) -> Result<(), Fault> {
-        let n = usize::from(argc);
-        let mut args = std::mem::take(&mut self.args);
-        args.clear();
-        args.resize(n, Value::Int(0));
-        for i in (0..n).rev() {
-            args[i] = match Kind::arg(types, i) {
-                Kind::Int => Value::Int(self.pop_i()),
-                Kind::Real => Value::Real(self.pop_r()),
-                Kind::Bool => Value::Bool(self.pop() != 0),
-                Kind::Bytes => Value::Bytes(self.pop_s()),
-            };
-        }
-        let result = linc_stdlib::call::call(usize::from(func), &args, &mut self.clock);
-        self.args = args;
-        let v = result.map_err(|FnError::Domain(why)| Fault::new("R0005", why))?;
-        match Kind::from_bits(u32::from(ret)) {
-            Kind::Int => self.push_i(v.as_int()),
-            Kind::Real => self.push_r(v.as_real()),
-            Kind::Bool => self.push_i(i32::from(v.as_bool())),
-            Kind::Bytes => self.push_s(match v {
-                Value::Bytes(b) => b,
-                _ => Vec::new(),
-            })?,
-        }
-        Ok(())
     }
 }
 

@@ -505,7 +505,18 @@ impl Lowerer {
     /// Evaluates `value` converted to the place's type and stores it.
     fn store_value(&mut self, place: &Place, value: &hir::Expr) {
         match place.class {
-            Some(Class::Bseq | Class::Wstr) if !matches!(place.target, Target::Suppress { .. }) => {
+            Some(class @ (Class::Bseq | Class::Wstr)) if !matches!(place.target, Target::Suppress { .. }) => {
+                if let (Some(tail), Target::Field { block, field, offset: None }) =
+                    (appended(place, value), &place.target)
+                {
+                    self.expr(tail);
+                    if tail.ty == Ty::Text {
+                        self.emit(Op::Decode {});
+                    }
+                    let sym = self.symbol(block, field, Sub::Field, class, place.span);
+                    self.emit(Op::AppendS { sym });
+                    return;
+                }
                 self.expr(value);
                 if value.ty == Ty::Text {
                     self.emit(Op::Decode {});
@@ -614,4 +625,14 @@ impl Lowerer {
         };
         self.emit(op);
     }
+}
+
+/// `e` when `value` is `CONCAT(X, e)` and `place` is the field X itself
+/// (named directly): the assignment appends in place (`AppendS`).
+fn appended<'a>(place: &Place, value: &'a hir::Expr) -> Option<&'a hir::Expr> {
+    let hir::ExprKind::Call { index, args } = &value.kind else { return None };
+    let [head, tail] = &args[..] else { return None };
+    let hir::ExprKind::Load(from) = &head.kind else { return None };
+    let same = matches!(place.target, Target::Field { offset: None, .. }) && from.target == place.target;
+    (Some(*index) == linc_stdlib::signatures::index_of("CONCAT") && same).then_some(tail)
 }

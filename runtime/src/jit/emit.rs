@@ -10,7 +10,8 @@
 
 use super::plan::{Plan, REAL};
 use super::{Entry, Frame};
-use crate::isa::Op;
+use crate::isa::{Kind, Op};
+use crate::wire::Bytes;
 use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{types, AbiParam, Block, InstBuilder, MemFlags, Type, Value};
 use cranelift_codegen::isa::CallConv;
@@ -32,6 +33,7 @@ const MAX_DEPTH: usize = 256;
 
 fn result_ty(op: &Op) -> Ty {
     match op {
+        Op::Call { ret, .. } if Kind::from_bits(u32::from(*ret)) == Kind::Real => Ty::F,
         Op::PushR { .. }
         | Op::LoadR { .. }
         | Op::LoadRefR { .. }
@@ -101,7 +103,12 @@ fn new_module() -> Option<JITModule> {
 
 /// Compiles `ops`; returns the entry point, the module owning its code and
 /// the deepest stack a bail-out can write.
-pub(super) fn emit(ops: &[Op], plan: &Plan, locals: usize, retained: usize) -> Option<(Entry, JITModule, usize)> {
+pub(super) fn emit(
+    ops: &[Op],
+    plan: &Plan,
+    (locals, retained): (usize, usize),
+    consts: &[Bytes],
+) -> Option<(Entry, JITModule, usize)> {
     let states = analyse(ops)?;
     let max_depth = states.iter().flatten().map(Vec::len).max().unwrap_or(0);
     let mut module = new_module()?;
@@ -113,7 +120,7 @@ pub(super) fn emit(ops: &[Op], plan: &Plan, locals: usize, retained: usize) -> O
     let mut fbc = FunctionBuilderContext::new();
     {
         let b = FunctionBuilder::new(&mut ctx.func, &mut fbc);
-        let shape = Shape { ops, plan, states: &states, locals, retained, max_depth, ptr, call_conv };
+        let shape = Shape { ops, plan, consts, states: &states, locals, retained, max_depth, ptr, call_conv };
         let mut e = Emitter::new(b, shape);
         e.body()?;
         e.b.seal_all_blocks();
@@ -140,6 +147,8 @@ extern "C" fn real_to_int(v: f32) -> i32 {
 struct Shape<'a> {
     ops: &'a [Op],
     plan: &'a Plan,
+    /// The object's string constants.
+    consts: &'a [Bytes],
     states: &'a [Option<Vec<Ty>>],
     locals: usize,
     retained: usize,
@@ -419,6 +428,18 @@ impl<'a, 'f> Emitter<'a, 'f> {
                 self.through_ref(pc, op)?
             }
             Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {} => self.flow(pc, op)?,
+            Op::PushS { .. }
+            | Op::LoadS { .. }
+            | Op::StoreS { .. }
+            | Op::AppendS { .. }
+            | Op::Decode {}
+            | Op::EqS {}
+            | Op::NeS {}
+            | Op::LtS {}
+            | Op::GtS {}
+            | Op::LeS {}
+            | Op::GeS {} => self.string(pc, op)?,
+            Op::Call { .. } => self.call(pc, op)?,
             _ => self.arith(pc, op)?,
         }
         Some(())
@@ -426,3 +447,4 @@ impl<'a, 'f> Emitter<'a, 'f> {
 }
 
 mod ops;
+mod services;

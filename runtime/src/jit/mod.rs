@@ -1,4 +1,4 @@
-//! The compiling tier: numeric code blocks translated to machine code with
+//! The compiling tier: code blocks translated to machine code with
 //! Cranelift (ADR 0011).
 //!
 //! Only blocks whose every instruction is in the numeric subset compile;
@@ -10,11 +10,14 @@
 //! therefore the interpreter's own by construction.
 
 mod emit;
+mod host;
 mod plan;
 
 use crate::isa::Op;
 use crate::link::Linked;
 use crate::store::{Cell, Store};
+use crate::vm::Vm;
+use crate::wire::Bytes;
 use cranelift_jit::JITModule;
 use std::sync::{Arc, OnceLock};
 
@@ -33,6 +36,12 @@ pub(crate) struct Frame {
     pub pc: u32,
     pub depth: u32,
     pub ref_slot: u32,
+    /// A numeric result of a runtime service ([`host`]).
+    pub ret: u32,
+    pub vm: *mut Vm,
+    pub store: *mut Store,
+    pub consts: *const Bytes,
+    pub nconsts: usize,
 }
 
 type Entry = unsafe extern "C" fn(*mut Frame) -> u32;
@@ -152,7 +161,7 @@ pub fn compile(linked: &Linked, store: &Store, program: usize, block: usize) -> 
     let plan = Plan::new(ops, &prog.targets, store)?;
     let locals = usize::from(code.locals);
     let retained = usize::from(unit.retained);
-    let (entry, module, max_depth) = emit::emit(ops, &plan, locals, retained)?;
+    let (entry, module, max_depth) = emit::emit(ops, &plan, (locals, retained), &linked.object().strings)?;
     Some(Compiled { entry, module: Some(module), plan, max_depth, locals, retained })
 }
 
@@ -211,6 +220,18 @@ fn in_subset(op: &Op) -> bool {
             | JumpIfFalse { .. }
             | JumpIfTrue { .. }
             | Ret {}
+            | PushS { .. }
+            | LoadS { .. }
+            | StoreS { .. }
+            | AppendS { .. }
+            | Decode {}
+            | EqS {}
+            | NeS {}
+            | LtS {}
+            | GtS {}
+            | LeS {}
+            | GeS {}
+            | Call { .. }
     )
 }
 
@@ -221,22 +242,34 @@ pub(crate) enum JitRun {
     /// Stopped before instruction `pc`: the interpreter goes on from there
     /// with the stack and locals left in the VM's buffers.
     Bail { pc: usize, ref_cell: u32, budget: u64 },
+    /// Instruction `pc` faulted in a runtime service (the fault is in
+    /// `Vm::jit_fault`); what ran before it is in the store.
+    Fault { pc: usize },
     /// Not used for this run (a forced cell, a store that does not match).
     Refused,
 }
 
+/// The VM's buffers a compiled run uses: scratch cells, and the numeric
+/// stack and locals that a bail-out hands to the interpreter.
+pub(crate) struct Buffers<'a> {
+    pub mem: &'a mut Vec<u32>,
+    pub stack: &'a mut Vec<u32>,
+    pub locals: &'a mut Vec<u32>,
+}
+
 impl Compiled {
-    /// Runs the code against `store`. `mem` is scratch; `stack` and
-    /// `locals` receive the interpreter's state on a bail-out.
+    /// Runs the code against `store`; the runtime services it calls use
+    /// `vm`'s string stack and budgets and the object's constants.
     pub(crate) fn run(
         &self,
+        vm: &mut Vm,
         store: &mut Store,
         retained: &mut [u32],
         budget: u64,
-        mem: &mut Vec<u32>,
-        stack: &mut Vec<u32>,
-        locals: &mut Vec<u32>,
+        buf: Buffers<'_>,
+        consts: &[Bytes],
     ) -> JitRun {
+        let Buffers { mem, stack, locals } = buf;
         if retained.len() != self.retained || !self.copy_in(store, mem) {
             return JitRun::Refused;
         }
@@ -254,20 +287,29 @@ impl Compiled {
             pc: 0,
             depth: 0,
             ref_slot: u32::MAX,
+            ret: 0,
+            vm,
+            store,
+            consts: consts.as_ptr(),
+            nconsts: consts.len(),
         };
         // SAFETY: the code only touches `mem` below the plan's slot count
         // (it checks every computed slot), `kinds` likewise, `retained`
         // below `self.retained`, `stack` below `max_depth` and `locals`
-        // below `self.locals`: all sized above.
+        // below `self.locals`: all sized above. The services reach the VM
+        // and the store only through the frame while the code runs.
         let status = unsafe { (self.entry)(&mut frame) };
         self.copy_out(store, mem);
         locals.truncate(self.locals);
-        if status == 0 {
-            return JitRun::Done;
+        match status {
+            0 => JitRun::Done,
+            1 => {
+                stack.truncate(frame.depth as usize);
+                let ref_cell = self.plan.cells.get(frame.ref_slot as usize).copied().unwrap_or(0);
+                JitRun::Bail { pc: frame.pc as usize, ref_cell, budget: frame.budget }
+            }
+            _ => JitRun::Fault { pc: frame.pc as usize },
         }
-        stack.truncate(frame.depth as usize);
-        let ref_cell = self.plan.cells.get(frame.ref_slot as usize).copied().unwrap_or(0);
-        JitRun::Bail { pc: frame.pc as usize, ref_cell, budget: frame.budget }
     }
 
     /// Copies the program's cells into `mem`; false when a cell is forced

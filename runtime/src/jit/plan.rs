@@ -30,6 +30,8 @@ pub(crate) struct Plan {
     pub sym_slot: Vec<u32>,
     /// Cells after each symbol's cell in its run (for `RefOff`).
     pub sym_room: Vec<u32>,
+    /// Each symbol's store cell (for strings, which have no slot).
+    pub sym_cell: Vec<u32>,
 }
 
 impl Plan {
@@ -43,6 +45,13 @@ impl Plan {
             let t = targets.get(usize::from(sym))?;
             if t.is_absent() {
                 return None;
+            }
+            if matches!(op, Op::LoadS { .. } | Op::StoreS { .. } | Op::AppendS { .. }) {
+                // Strings stay in the store; the runtime services reach them.
+                if !is_string(store, t.cell) {
+                    return None;
+                }
+                continue;
             }
             let kind = kind_of(store, t.cell)?;
             match op {
@@ -73,6 +82,7 @@ impl Plan {
             promoted: Vec::new(),
             sym_slot: Vec::new(),
             sym_room: Vec::new(),
+            sym_cell: targets.iter().map(|t| t.cell).collect(),
         };
         let mut promoted = 0;
         for (a, b, r) in merged {
@@ -104,6 +114,11 @@ fn kind_of(store: &Store, c: u32) -> Option<u8> {
         _ => return None,
     };
     Some(k | if store.is_readonly(c) { READONLY } else { 0 })
+}
+
+/// Whether cell `c` holds a string (or an enumeration, read by name).
+fn is_string(store: &Store, c: u32) -> bool {
+    matches!(store.cells.get(c as usize), Some(Cell::Text(_) | Cell::Bseq(_) | Cell::Wstr(_) | Cell::Enum { .. }))
 }
 
 /// Room after the cell of `t` in its run (for `RefOff`).

@@ -80,9 +80,12 @@ pub(super) fn store_bit(store: &mut Store, c: u32, bit: u8, v: i32) -> Result<()
     }
 }
 
-pub(super) fn store_str(store: &mut Store, c: u32, s: Vec<u8>) -> Result<(), Fault> {
+/// Stores `s` into string cell `c`, giving back the buffer no longer
+/// needed (the cell's old value, or `s` itself when the cell is forced or
+/// enumerated) for the next string value to reuse.
+pub(super) fn store_str(store: &mut Store, c: u32, s: Vec<u8>) -> Result<Vec<u8>, Fault> {
     if store.refuse_forced(c) {
-        return Ok(());
+        return Ok(s);
     }
     if let Some(Cell::Enum { .. }) = store.cells.get(c as usize) {
         let names = store.enum_names(c);
@@ -98,13 +101,12 @@ pub(super) fn store_str(store: &mut Store, c: u32, s: Vec<u8>) -> Result<(), Fau
         if let Some(Cell::Enum { idx: i }) = store.cells.get_mut(c as usize) {
             *i = idx as u16;
         }
-        return Ok(());
+        return Ok(s);
     }
     match store.cells.get_mut(c as usize) {
-        Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => *t = s,
-        _ => return Err(corrupt()),
+        Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => Ok(std::mem::replace(t, s)),
+        _ => Err(corrupt()),
     }
-    Ok(())
 }
 
 /// Adds the action name and source position to a fault: the statement

@@ -38,59 +38,75 @@ use crate::Value;
 
 /// FORMAT: `value` converted as `fmt` says, or the null sequence.
 pub fn format(fmt: &[u8], value: &Value) -> Vec<u8> {
+    let mut out = Vec::new();
+    format_into(fmt, value, &mut out);
+    out
+}
+
+/// [`format`] written into `out` (emptied first), so that a caller that
+/// keeps a buffer formats without allocating.
+pub fn format_into(fmt: &[u8], value: &Value, out: &mut Vec<u8>) {
+    out.clear();
     let Some(mut spec) = parse(fmt) else {
-        return Vec::new();
+        return;
     };
     // A real format without a decimal point still counts a column for the
     // point: the text is laid out as with `W.` and the point then removed
     // (the guide's FORMAT("6F", 1000/3) = '  333').
     let drop_point = spec.conv.is_real() && !spec.point;
     spec.point |= drop_point;
-    let Some(text) = render(&spec, value) else {
-        return Vec::new();
-    };
-    match fit(&spec, text) {
-        Fitted::Text(mut out) => {
-            if drop_point {
-                if let Some(at) = out.iter().position(|&c| c == b'.') {
-                    out.remove(at);
-                }
-            }
-            out
+    if render(&spec, value, out).is_none() {
+        out.clear();
+        return;
+    }
+    if fit(&spec, out) && drop_point {
+        if let Some(at) = out.iter().position(|&c| c == b'.') {
+            out.remove(at);
         }
-        Fitted::Overflow(fill) => fill,
     }
 }
 
-/// A text laid out in its width.
-enum Fitted {
-    Text(Vec<u8>),
-    /// The value did not fit: the override character across the width.
-    Overflow(Vec<u8>),
-}
-
-/// Pads `text` to the width, or fills the width with the override
-/// character when it does not fit.
-fn fit(spec: &Spec, text: Vec<u8>) -> Fitted {
+/// Pads the text in `out` to the width, or fills the width with the
+/// override character when it does not fit (false).
+fn fit(spec: &Spec, out: &mut Vec<u8>) -> bool {
     let Some(width) = spec.width.map(|w| w.min(MAX_LEN)) else {
-        return Fitted::Text(if text.len() > MAX_LEN { Vec::new() } else { text });
+        if out.len() > MAX_LEN {
+            out.clear();
+        }
+        return true;
     };
-    if text.len() > width {
-        return Fitted::Overflow(vec![spec.fill; width]);
+    if out.len() > width {
+        out.clear();
+        out.resize(width, spec.fill);
+        return false;
     }
-    let pad = width - text.len();
-    let mut out = Vec::with_capacity(width);
-    if spec.zero {
-        let sign = usize::from(text.first() == Some(&b'-'));
-        let (sign, digits) = text.split_at(sign.min(text.len()));
-        out.extend_from_slice(sign);
-        out.resize(out.len() + pad, b'0');
-        out.extend_from_slice(digits);
-    } else {
-        out.resize(pad, b' ');
-        out.extend_from_slice(&text);
+    let pad = width - out.len();
+    let (at, with) = if spec.zero { (usize::from(out.first() == Some(&b'-')), b'0') } else { (0, b' ') };
+    let end = out.len();
+    out.resize(width, with);
+    out.copy_within(at..end, at + pad);
+    out[at..at + pad].fill(with);
+    true
+}
+
+/// Writes `v` in decimal (the hot case of FORMAT, kept off the general
+/// formatting machinery).
+fn decimal(v: i64, out: &mut Vec<u8>) {
+    if v < 0 {
+        out.push(b'-');
     }
-    Fitted::Text(out)
+    let mut digits = [0u8; 20];
+    let mut n = v.unsigned_abs();
+    let mut i = digits.len();
+    loop {
+        i -= 1;
+        digits[i] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    out.extend_from_slice(&digits[i..]);
 }
 
 /// The value as an integer for the integer conversions.
@@ -114,32 +130,48 @@ fn real(v: &Value) -> Option<f64> {
     x.is_finite().then_some(x)
 }
 
-/// The text of the value before padding, or `None` if it cannot be
-/// converted.
-fn render(spec: &Spec, v: &Value) -> Option<Vec<u8>> {
-    let text = match spec.conv {
-        Conv::Int => integer(v)?.to_string(),
-        Conv::Unsigned => (integer(v)? as u32).to_string(),
-        Conv::HexLower => format!("{:x}", integer(v)? as u32),
-        Conv::HexUpper => format!("{:X}", integer(v)? as u32),
-        Conv::Binary => format!("{:b}", integer(v)? as u32),
-        Conv::Octal => format!("{:o}", integer(v)? as u32),
-        Conv::Fixed => fixed(real(v)?, spec),
-        Conv::ExpLower => scientific(real(v)?, spec, 'e')?,
-        Conv::ExpUpper => scientific(real(v)?, spec, 'E')?,
+/// Writes the text of the value before padding into `out`, or gives
+/// `None` if it cannot be converted.
+fn render(spec: &Spec, v: &Value, out: &mut Vec<u8>) -> Option<()> {
+    use std::io::Write;
+    let written = match spec.conv {
+        Conv::Int => {
+            decimal(i64::from(integer(v)?), out);
+            Ok(())
+        }
+        Conv::Unsigned => {
+            decimal(i64::from(integer(v)? as u32), out);
+            Ok(())
+        }
+        Conv::HexLower => write!(out, "{:x}", integer(v)? as u32),
+        Conv::HexUpper => write!(out, "{:X}", integer(v)? as u32),
+        Conv::Binary => write!(out, "{:b}", integer(v)? as u32),
+        Conv::Octal => write!(out, "{:o}", integer(v)? as u32),
+        Conv::Fixed => {
+            write!(out, "{:.*}", spec.precision.min(MAX_LEN), real(v)?).ok()?;
+            if spec.point && spec.precision == 0 {
+                out.push(b'.');
+            }
+            Ok(())
+        }
+        Conv::ExpLower => return scientific(real(v)?, spec, b'e', out),
+        Conv::ExpUpper => return scientific(real(v)?, spec, b'E', out),
         Conv::General => return None,
-        Conv::Char => return u8::try_from(integer(v)?).ok().map(|b| vec![b]),
+        Conv::Char => {
+            out.push(u8::try_from(integer(v)?).ok()?);
+            Ok(())
+        }
         Conv::IsoTime => {
             let t = integer(v)?;
             let (h, m, s) = (t / 10_000, t / 100 % 100, t % 100);
             if t < 0 || h > 23 || m > 59 || s > 59 {
                 return None;
             }
-            return Some(clock(i64::from(h), i64::from(m), i64::from(s), spec.sep));
+            clock(i64::from(h), i64::from(m), i64::from(s), spec.sep, out)
         }
         Conv::PosixTime => {
             let t = i64::from(integer(v)?).rem_euclid(DAY);
-            return Some(clock(t / 3600, t / 60 % 60, t % 60, spec.sep));
+            clock(t / 3600, t / 60 % 60, t % 60, spec.sep, out)
         }
         Conv::IsoDate => {
             let t = integer(v)?;
@@ -148,48 +180,40 @@ fn render(spec: &Spec, v: &Value) -> Option<Vec<u8>> {
             if t < 0 || !valid_date(i64::from(y), m, d) {
                 return None;
             }
-            format!("{d:02}/{m:02}/{y:04}")
+            write!(out, "{d:02}/{m:02}/{y:04}")
         }
         Conv::PosixDate => {
             let days = i64::from(integer(v)?).div_euclid(DAY);
             let (y, m, d) = civil_from_days(days);
-            format!("{d:02}/{m:02}/{:02}", y.rem_euclid(100))
+            write!(out, "{d:02}/{m:02}/{:02}", y.rem_euclid(100))
         }
     };
-    Some(text.into_bytes())
+    written.ok()
 }
 
 /// `hh<sep>mm<sep>ss`; the separator may be any byte.
-fn clock(h: i64, m: i64, s: i64, sep: u8) -> Vec<u8> {
-    let mut out = format!("{h:02}").into_bytes();
+fn clock(h: i64, m: i64, s: i64, sep: u8, out: &mut Vec<u8>) -> std::io::Result<()> {
+    use std::io::Write;
+    write!(out, "{h:02}")?;
     out.push(sep);
-    out.extend_from_slice(format!("{m:02}").as_bytes());
+    write!(out, "{m:02}")?;
     out.push(sep);
-    out.extend_from_slice(format!("{s:02}").as_bytes());
-    out
-}
-
-fn fixed(x: f64, spec: &Spec) -> String {
-    let mut text = format!("{:.*}", spec.precision.min(MAX_LEN), x);
-    if spec.point && spec.precision == 0 {
-        text.push('.');
-    }
-    text
+    write!(out, "{s:02}")
 }
 
 /// Scientific notation with a signed exponent of at least two digits.
-fn scientific(x: f64, spec: &Spec, letter: char) -> Option<String> {
-    let raw = format!("{:.*e}", spec.precision.min(MAX_LEN), x);
+fn scientific(x: f64, spec: &Spec, letter: u8, out: &mut Vec<u8>) -> Option<()> {
+    use std::io::Write;
+    let raw = std::format!("{:.*e}", spec.precision.min(MAX_LEN), x);
     let (mantissa, exp) = raw.split_once('e')?;
     let exp: i32 = exp.parse().ok()?;
-    let mut text = mantissa.to_string();
+    out.extend_from_slice(mantissa.as_bytes());
     if spec.point && spec.precision == 0 {
-        text.push('.');
+        out.push(b'.');
     }
-    text.push(letter);
-    text.push(if exp < 0 { '-' } else { '+' });
-    text.push_str(&format!("{:02}", exp.unsigned_abs()));
-    Some(text)
+    out.push(letter);
+    out.push(if exp < 0 { b'-' } else { b'+' });
+    write!(out, "{:02}", exp.unsigned_abs()).ok()
 }
 
 #[cfg(test)]
@@ -211,6 +235,16 @@ mod tests {
         assert_eq!(f("2000I", Value::Int(1)).len(), MAX_LEN);
         assert_eq!(f("3C", Value::Int(65)), "  A");
         assert_eq!(f("03C", Value::Int(65)), "00A");
+    }
+
+    #[test]
+    fn decimals_at_the_edges() {
+        for v in [0, 7, -7, 10, -10, 99, 100, i32::MAX, i32::MIN, i32::MIN + 1] {
+            assert_eq!(f("I", Value::Int(v)), v.to_string());
+            assert_eq!(f("U", Value::Int(v)), (v as u32).to_string());
+            assert_eq!(f("012I", Value::Int(v)), std::format!("{v:012}"));
+            assert_eq!(f("12I", Value::Int(v)), std::format!("{v:>12}"));
+        }
     }
 
     #[test]

@@ -1,0 +1,112 @@
+//! Instructions the compiled code hands to the runtime's services
+//! ([`crate::jit::host`]): strings and library calls.
+
+use super::{frame_off, Emitter, Ty};
+use crate::isa::{Kind, Op};
+use crate::jit::host::{self, Service};
+use crate::jit::Frame;
+use cranelift_codegen::ir::{types, AbiParam, InstBuilder, MemFlags, Signature, Value};
+use std::mem::offset_of;
+
+impl Emitter<'_, '_> {
+    /// Calls service `f` with three immediate words; a nonzero status
+    /// leaves through [`Emitter::fault_exit`] at `pc`.
+    fn serve(&mut self, pc: usize, f: Service, words: [u32; 3]) -> Option<()> {
+        let mut sig = Signature::new(self.s.call_conv);
+        sig.params.push(AbiParam::new(self.s.ptr));
+        sig.params.extend([AbiParam::new(types::I32); 3]);
+        sig.returns.push(AbiParam::new(types::I32));
+        let sig = self.b.import_signature(sig);
+        let callee = self.b.ins().iconst(self.s.ptr, f as usize as i64);
+        let mut args = vec![self.frame()];
+        for w in words {
+            args.push(self.b.ins().iconst(types::I32, i64::from(w as i32)));
+        }
+        let call = self.b.ins().call_indirect(sig, callee, &args);
+        let status = *self.b.inst_results(call).first()?;
+        let (out, cont) = (self.b.create_block(), self.b.create_block());
+        self.b.set_cold_block(out);
+        self.b.ins().brif(status, out, &[], cont, &[]);
+        self.b.switch_to_block(out);
+        self.fault_exit(pc);
+        self.b.switch_to_block(cont);
+        Some(())
+    }
+
+    /// Leaves after a service faulted at `pc`: the cells written so far go
+    /// back to the store, as the interpreter's writes stay when it faults.
+    fn fault_exit(&mut self, pc: usize) {
+        self.flush();
+        let f = self.frame();
+        let pcv = self.b.ins().iconst(types::I32, pc as i64);
+        self.b.ins().store(MemFlags::trusted(), pcv, f, frame_off(offset_of!(Frame, pc)));
+        let two = self.b.ins().iconst(types::I32, 2);
+        self.b.ins().return_(&[two]);
+    }
+
+    /// The numeric result a service left in the frame.
+    fn service_result(&mut self, ty: Ty) -> Value {
+        let f = self.frame();
+        let t = if ty == Ty::F { types::F32 } else { types::I32 };
+        self.b.ins().load(t, MemFlags::trusted(), f, frame_off(offset_of!(Frame, ret)))
+    }
+
+    pub(super) fn string(&mut self, pc: usize, op: Op) -> Option<()> {
+        match op {
+            Op::PushS { k } => self.serve(pc, host::push_const, [k, 0, 0]),
+            Op::LoadS { sym } | Op::StoreS { sym } | Op::AppendS { sym } => {
+                let cell = *self.s.plan.sym_cell.get(usize::from(sym))?;
+                let f: Service = match op {
+                    Op::LoadS { .. } => host::load_s,
+                    Op::StoreS { .. } => host::store_s,
+                    _ => host::append_s,
+                };
+                self.serve(pc, f, [cell, 0, 0])
+            }
+            // A constant without `$` just pushed needs no decoding.
+            Op::Decode {} if self.plain_constant_before(pc) => Some(()),
+            Op::Decode {} => self.serve(pc, host::decode, [0, 0, 0]),
+            _ => {
+                self.serve(pc, host::compare, [host::compare_code(op)?, 0, 0])?;
+                let v = self.service_result(Ty::I);
+                self.push(Ty::I, v);
+                Some(())
+            }
+        }
+    }
+
+    /// Whether instruction `pc` always follows a `PushS` of a constant
+    /// without `$` (it is no jump target).
+    fn plain_constant_before(&self, pc: usize) -> bool {
+        let leader = self.blocks.get(pc).copied().flatten().is_some();
+        let Some(Op::PushS { k }) = pc.checked_sub(1).and_then(|p| self.s.ops.get(p)) else { return false };
+        !leader && self.s.consts.get(*k as usize).is_some_and(|c| !c.0.contains(&b'$'))
+    }
+
+    /// `Call`: the numeric arguments go to the frame's stack buffer in
+    /// order, the string arguments are already on the VM's string stack.
+    pub(super) fn call(&mut self, pc: usize, op: Op) -> Option<()> {
+        let Op::Call { func, argc, ret, types: tys } = op else { return None };
+        let n = usize::from(argc);
+        let numeric: Vec<Kind> = (0..n).map(|i| Kind::arg(tys, i)).filter(|k| *k != Kind::Bytes).collect();
+        let stack = self.load_ptr(offset_of!(Frame, stack));
+        for (j, k) in numeric.iter().enumerate().rev() {
+            let v = self.pop(if *k == Kind::Real { Ty::F } else { Ty::I })?;
+            self.b.ins().store(MemFlags::trusted(), v, stack, (j * 4) as i32);
+        }
+        let packed = u32::from(func) | u32::from(argc) << 8 | u32::from(ret) << 16;
+        self.serve(pc, host::call, [packed, tys, numeric.len() as u32])?;
+        match Kind::from_bits(u32::from(ret)) {
+            Kind::Bytes => {}
+            Kind::Real => {
+                let v = self.service_result(Ty::F);
+                self.push(Ty::F, v);
+            }
+            _ => {
+                let v = self.service_result(Ty::I);
+                self.push(Ty::I, v);
+            }
+        }
+        Some(())
+    }
+}

@@ -1,0 +1,123 @@
+//! The runtime's services that compiled code calls: strings and library
+//! functions, run by the interpreter's own methods on the VM.
+//!
+//! Each service has one signature, `(frame, a, b, c) -> status`: status 0
+//! is success (a numeric result is left in `Frame::ret`), 1 a fault, which
+//! the service leaves in `Vm::jit_fault` and the compiled code reports at
+//! its instruction. Because the interpreter's methods do the work, values,
+//! string budgets and faults are the interpreter's by construction.
+
+use super::Frame;
+use crate::errors::Fault;
+use crate::isa::Op;
+use crate::store::Store;
+use crate::vm::Vm;
+use crate::wire::Bytes;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+/// The shape of every service.
+pub(crate) type Service = extern "C" fn(*mut Frame, u32, u32, u32) -> u32;
+
+/// What the services reach, read from the frame.
+struct Host<'a> {
+    vm: &'a mut Vm,
+    store: &'a mut Store,
+    consts: &'a [Bytes],
+    stack: *const u32,
+}
+
+/// Runs `f` on the frame's host; a fault or a panic becomes status 1.
+fn serve(frame: *mut Frame, f: impl FnOnce(&mut Host<'_>) -> Result<u32, Fault>) -> u32 {
+    // SAFETY: compiled code passes the frame `Compiled::run` built, whose
+    // pointers are to the running VM, store and constants; nothing else
+    // uses them while the compiled code runs.
+    let frame = unsafe { &mut *frame };
+    let mut host = unsafe {
+        Host {
+            vm: &mut *frame.vm,
+            store: &mut *frame.store,
+            consts: std::slice::from_raw_parts(frame.consts, frame.nconsts),
+            stack: frame.stack,
+        }
+    };
+    let result = catch_unwind(AssertUnwindSafe(|| f(&mut host)))
+        .unwrap_or_else(|_| Err(Fault::new("R0099", "internal error in a runtime service")));
+    match result {
+        Ok(v) => {
+            frame.ret = v;
+            0
+        }
+        Err(fault) => {
+            host.vm.jit_fault = Some(fault);
+            1
+        }
+    }
+}
+
+/// `PushS k`.
+pub(crate) extern "C" fn push_const(frame: *mut Frame, k: u32, _: u32, _: u32) -> u32 {
+    serve(frame, |h| h.vm.push_const(h.consts, k).map(|()| 0))
+}
+
+/// `LoadS` of cell `c`.
+pub(crate) extern "C" fn load_s(frame: *mut Frame, c: u32, _: u32, _: u32) -> u32 {
+    serve(frame, |h| h.vm.load_s(h.store, c).map(|()| 0))
+}
+
+/// `StoreS` to cell `c`.
+pub(crate) extern "C" fn store_s(frame: *mut Frame, c: u32, _: u32, _: u32) -> u32 {
+    serve(frame, |h| h.vm.store_s(h.store, c).map(|()| 0))
+}
+
+/// `AppendS` to cell `c`.
+pub(crate) extern "C" fn append_s(frame: *mut Frame, c: u32, _: u32, _: u32) -> u32 {
+    serve(frame, |h| h.vm.append_s(h.store, c).map(|()| 0))
+}
+
+/// `Decode`.
+pub(crate) extern "C" fn decode(frame: *mut Frame, _: u32, _: u32, _: u32) -> u32 {
+    serve(frame, |h| h.vm.decode().map(|()| 0))
+}
+
+/// The string comparisons, numbered as [`compare_code`] numbers them.
+pub(crate) extern "C" fn compare(frame: *mut Frame, code: u32, _: u32, _: u32) -> u32 {
+    let op = match code {
+        0 => Op::EqS {},
+        1 => Op::NeS {},
+        2 => Op::LtS {},
+        3 => Op::GtS {},
+        4 => Op::LeS {},
+        _ => Op::GeS {},
+    };
+    serve(frame, |h| Ok(h.vm.compare_s(op) as u32))
+}
+
+/// The number [`compare`] takes for a string comparison.
+pub(crate) fn compare_code(op: Op) -> Option<u32> {
+    Some(match op {
+        Op::EqS {} => 0,
+        Op::NeS {} => 1,
+        Op::LtS {} => 2,
+        Op::GtS {} => 3,
+        Op::LeS {} => 4,
+        Op::GeS {} => 5,
+        _ => return None,
+    })
+}
+
+/// `Call`: `packed` is func | argc << 8 | ret << 16; the compiled code
+/// has written the `nnum` numeric arguments, in order, at the start of the
+/// frame's stack buffer.
+pub(crate) extern "C" fn call(frame: *mut Frame, packed: u32, types: u32, nnum: u32) -> u32 {
+    serve(frame, |h| {
+        let (func, argc, ret) = (packed as u8, (packed >> 8) as u8, (packed >> 16) as u8);
+        let (stack, mut left) = (h.stack, nnum as usize);
+        let pop_num = |_: &mut Vm| {
+            // SAFETY: the compiled code wrote `nnum` words there, within
+            // the buffer sized for its deepest stack.
+            left = left.saturating_sub(1);
+            unsafe { *stack.add(left) }
+        };
+        Ok(h.vm.call(func, argc, ret, types, pop_num)?.unwrap_or(0))
+    })
+}

@@ -1,0 +1,204 @@
+//! The VM's string stack and library calls.
+//!
+//! String values are byte buffers. Buffers a run is done with (operands of
+//! a comparison or call, a cell's old value after a store) are kept as
+//! spares and refilled by the next string pushed, so a loop that builds a
+//! string (`S := CONCAT(S, FORMAT(...))`) settles to no allocation per pass.
+//! Reuse changes nothing that a program can see: every value pushed is still
+//! counted against the string budget as if it were new.
+
+use super::cells::{corrupt, store_str};
+use super::Vm;
+use crate::errors::Fault;
+use crate::isa::{Kind, Op};
+use crate::store::{Cell, Store};
+use crate::vm::MAX_STRING;
+use crate::wire::Bytes;
+use linc_stdlib::value::decode_dollar;
+use linc_stdlib::{FnError, Value};
+
+/// Spare buffers kept at most; with strings of at most [`MAX_STRING`]
+/// bytes that bounds what the spares hold to about 1 MiB.
+const SPARES: usize = 16;
+
+impl Vm {
+    /// Pushes a string value produced by this run, within the budgets.
+    pub(super) fn push_s(&mut self, s: Vec<u8>) -> Result<(), Fault> {
+        self.count(s.len())?;
+        self.strs.push(s);
+        Ok(())
+    }
+
+    /// Counts a string value of `len` bytes made by this run against the
+    /// limits.
+    fn count(&mut self, len: usize) -> Result<(), Fault> {
+        if len > MAX_STRING {
+            return Err(Fault::new("R0007", format!("a string of {len} bytes; the limit is {MAX_STRING}")));
+        }
+        self.string_used += len;
+        if self.string_used > self.string_budget {
+            let what = format!("more than {} bytes of strings made in one run", self.string_budget);
+            return Err(Fault::new("R0007", what));
+        }
+        Ok(())
+    }
+
+    /// `AppendS`: `X := CONCAT(X, s)` for string cell `c` and the top
+    /// string `s`, appending in place. The budgets count what the long form
+    /// (`LoadS`, `Call CONCAT`, `StoreS`) makes: a copy of X and the result.
+    pub(crate) fn append_s(&mut self, store: &mut Store, c: u32) -> Result<(), Fault> {
+        let tail = self.pop_s();
+        let len = match store.cells.get(c as usize) {
+            Some(Cell::Bseq(t) | Cell::Wstr(t)) => t.len(),
+            _ => return Err(corrupt()),
+        };
+        self.count(len)?;
+        self.count(len + tail.len())?;
+        if !store.refuse_forced(c) {
+            if let Some(Cell::Bseq(t) | Cell::Wstr(t)) = store.cells.get_mut(c as usize) {
+                t.extend_from_slice(&tail);
+            }
+        }
+        self.recycle(tail);
+        Ok(())
+    }
+
+    /// Pushes a copy of `s` (a constant or a field's value) in a spare buffer.
+    fn push_copy(&mut self, s: &[u8]) -> Result<(), Fault> {
+        let mut buf = self.spare_for(s.len());
+        buf.clear();
+        buf.extend_from_slice(s);
+        self.push_s(buf)
+    }
+
+    /// `PushS`: string constant `k` of the object.
+    pub(crate) fn push_const(&mut self, consts: &[Bytes], k: u32) -> Result<(), Fault> {
+        self.push_copy(consts.get(k as usize).map_or(&[][..], |b| &b.0[..]))
+    }
+
+    /// `LoadS`: the value of string cell `c` (an enumerated field reads as
+    /// its value's name).
+    pub(crate) fn load_s(&mut self, store: &Store, c: u32) -> Result<(), Fault> {
+        let s = match store.cells.get(c as usize) {
+            Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => &t[..],
+            Some(Cell::Enum { idx }) => store.enum_names(c).get(usize::from(*idx)).map_or(&[][..], |n| n.as_bytes()),
+            _ => return Err(corrupt()),
+        };
+        self.push_copy(s)
+    }
+
+    /// `StoreS`: the top string into cell `c`.
+    pub(crate) fn store_s(&mut self, store: &mut Store, c: u32) -> Result<(), Fault> {
+        let s = self.pop_s();
+        let old = store_str(store, c, s)?;
+        self.recycle(old);
+        Ok(())
+    }
+
+    /// `EqS` … `GeS`: compares the two top strings (`=` ignores case, as
+    /// EQUAL does between STRING items).
+    pub(crate) fn compare_s(&mut self, op: Op) -> i32 {
+        let b = self.pop_s();
+        let a = self.pop_s();
+        let v = match op {
+            Op::EqS {} => a.eq_ignore_ascii_case(&b),
+            Op::NeS {} => a != b,
+            Op::LtS {} => a < b,
+            Op::GtS {} => a > b,
+            Op::LeS {} => a <= b,
+            _ => a >= b,
+        };
+        self.recycle(a);
+        self.recycle(b);
+        i32::from(v)
+    }
+
+    pub(super) fn pop_s(&mut self) -> Vec<u8> {
+        self.strs.pop().unwrap_or_default()
+    }
+
+    /// A spare buffer that holds `len` bytes without growing if there is
+    /// one, else the last one kept (or a new one).
+    fn spare_for(&mut self, len: usize) -> Vec<u8> {
+        match self.spare.iter().rposition(|b| b.capacity() >= len) {
+            Some(i) => self.spare.swap_remove(i),
+            None => self.spare.pop().unwrap_or_default(),
+        }
+    }
+
+    /// Keeps a buffer the run no longer needs for a later string.
+    pub(super) fn recycle(&mut self, buf: Vec<u8>) {
+        if self.spare.len() < SPARES && buf.capacity() > 0 && buf.capacity() <= MAX_STRING + 1 {
+            self.spare.push(buf);
+        }
+    }
+
+    /// Empties the string stack at the start of a run, keeping its buffers.
+    pub(super) fn clear_strs(&mut self) {
+        while let Some(buf) = self.strs.pop() {
+            self.recycle(buf);
+        }
+    }
+
+    /// `Decode`: the `$`-sequences of the top string decoded. Without a `$`
+    /// the text is already decoded: it stays as it is and, being no new
+    /// string, is not counted again against the string budget.
+    pub(crate) fn decode(&mut self) -> Result<(), Fault> {
+        if self.strs.last().is_some_and(|s| !s.contains(&b'$')) {
+            return Ok(());
+        }
+        let s = self.pop_s();
+        let decoded = decode_dollar(&s);
+        self.recycle(s);
+        self.push_s(decoded)
+    }
+
+    /// `Call`: pops the arguments (numeric ones through `pop_num`, so that
+    /// compiled code can hand over its own), calls library function `func`
+    /// and pushes a string result or returns a numeric one as bits. A
+    /// domain error is R0005.
+    pub(crate) fn call(
+        &mut self,
+        func: u8,
+        argc: u8,
+        ret: u8,
+        types: u32,
+        mut pop_num: impl FnMut(&mut Vm) -> u32,
+    ) -> Result<Option<u32>, Fault> {
+        let n = usize::from(argc);
+        let mut args = std::mem::take(&mut self.args);
+        args.clear();
+        // Popped last argument first, then put in order.
+        for i in (0..n).rev() {
+            args.push(match Kind::arg(types, i) {
+                Kind::Int => Value::Int(pop_num(self) as i32),
+                Kind::Real => Value::Real(f32::from_bits(pop_num(self))),
+                Kind::Bool => Value::Bool(pop_num(self) != 0),
+                Kind::Bytes => Value::Bytes(self.pop_s()),
+            });
+        }
+        args.reverse();
+        let mut spare = if Kind::from_bits(u32::from(ret)) == Kind::Bytes { self.spare_for(0) } else { Vec::new() };
+        let result = linc_stdlib::call::call_owned(usize::from(func), &mut args, &mut self.clock, &mut spare);
+        self.recycle(spare);
+        for a in args.drain(..) {
+            if let Value::Bytes(b) = a {
+                self.recycle(b);
+            }
+        }
+        self.args = args;
+        let v = result.map_err(|FnError::Domain(why)| Fault::new("R0005", why))?;
+        Ok(match Kind::from_bits(u32::from(ret)) {
+            Kind::Int => Some(v.as_int() as u32),
+            Kind::Real => Some(v.as_real().to_bits()),
+            Kind::Bool => Some(u32::from(v.as_bool())),
+            Kind::Bytes => {
+                self.push_s(match v {
+                    Value::Bytes(b) => b,
+                    _ => Vec::new(),
+                })?;
+                None
+            }
+        })
+    }
+}
