@@ -39,6 +39,23 @@ struct Cli {
 }
 
 #[derive(Clone, Copy, ValueEnum)]
+enum TierArg {
+    Auto,
+    Compiled,
+    Interpreter,
+}
+
+impl From<TierArg> for linc_runtime::vm::Tier {
+    fn from(t: TierArg) -> Self {
+        match t {
+            TierArg::Auto => Self::Auto,
+            TierArg::Compiled => Self::Compiled,
+            TierArg::Interpreter => Self::Interpreter,
+        }
+    }
+}
+
+#[derive(Clone, Copy, ValueEnum)]
 enum MessageFormat {
     Human,
     Short,
@@ -175,6 +192,10 @@ enum Command {
             value_parser = watchdog
         )]
         watchdog: u64,
+        /// Which tier runs the code: `auto` compiles loops at once and other code once it has run long
+        /// (ADR 0011); `compiled` compiles every block at its first run; `interpreter` never compiles.
+        #[arg(long, value_enum, default_value = "auto")]
+        tier: TierArg,
         #[arg(long, value_enum, default_value = "human")]
         message_format: MessageFormat,
     },
@@ -392,6 +413,7 @@ fn main() -> ExitCode {
                 now,
                 seed,
                 watchdog: linc_runtime::vm::DEFAULT_WATCHDOG,
+                tier: linc_runtime::vm::Tier::Auto,
                 format: format(message_format),
             };
             let retain = strategy_cmd::Retain { state, cold };
@@ -416,6 +438,7 @@ fn main() -> ExitCode {
             now,
             seed,
             watchdog,
+            tier,
             message_format,
         } => {
             let retain = strategy_cmd::Retain { state, cold };
@@ -424,7 +447,8 @@ fn main() -> ExitCode {
                 (Some(_), None) => Some("--state keeps a strategy's state: give --for DURATION"),
                 _ => None,
             };
-            let common = run_cmd::Common { set, show, trace, out, now, seed, watchdog, format: format(message_format) };
+            let format = format(message_format);
+            let common = run_cmd::Common { set, show, trace, out, now, seed, watchdog, tier: tier.into(), format };
             match (db, duration) {
                 _ if misuse.is_some() => report::usage(misuse.unwrap_or_default()),
                 (None, Some(duration)) => {

@@ -19,6 +19,8 @@ pub struct Common {
     pub now: Option<String>,
     pub seed: Option<u64>,
     pub watchdog: u64,
+    /// Which tier runs the code (interpreter, compiled, or the default mix).
+    pub tier: linc_runtime::vm::Tier,
     pub format: Format,
 }
 
@@ -148,6 +150,7 @@ pub fn run(o: &Options) -> u8 {
 fn cycles(o: &Options, linked: &Linked, store: &mut Store, seed: u64, to_stdout: bool) -> (u8, String) {
     let mut act = Activation::new(linked, 0, 0);
     let mut vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
+    vm.set_tier(o.common.tier);
     let mut traced = String::new();
     for cycle in 1..=o.cycles {
         let mut tracer = |s: &Store, cell: u32| {

@@ -93,7 +93,8 @@ fn assemble(
     }
     let (objects, pairs) = objects(o, &store.db, wants)?;
     let seed = o.common.seed.unwrap_or(now as u64);
-    let vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
+    let mut vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
+    vm.set_tier(o.common.tier);
     Strategy::build(store, objects, &pairs, vm, now as f64).map_err(|e| {
         report(files, FileId(0), db_text, &e, o.common.format);
         2
@@ -188,6 +189,10 @@ pub fn run(o: &Options) -> u8 {
     drop(sink);
     for e in &failures {
         eprint!("{}", crate::report::runtime(e, o.common.format));
+    }
+    if o.common.tier == linc_runtime::vm::Tier::Compiled {
+        let (compiled, all) = s.compiled_blocks();
+        eprintln!("linc: {compiled} of {all} code blocks ran compiled");
     }
     for path in &o.common.show {
         let step = seq_block.and_then(|b| s.sequence_mut(b)).and_then(|q| sequence_run::step_flag(q, path));

@@ -78,6 +78,11 @@ impl Linked {
         self.jit.is_compiled((program, block))
     }
 
+    /// Whether the compiling tier has compiled the traced variant of a block.
+    pub fn is_compiled_traced(&self, program: usize, block: usize) -> bool {
+        self.jit.is_compiled_traced((program, block))
+    }
+
     pub fn object(&self) -> &ObjectFile {
         self.verified.object()
     }

@@ -13,7 +13,7 @@ mod strings;
 
 use crate::errors::{Fault, RuntimeError};
 use crate::isa::{Kind, Op};
-use crate::jit::{Buffers, JitRun};
+use crate::jit::{Buffers, JitRun, Services};
 use crate::link::{Linked, LinkedBlock, LinkedProgram};
 use crate::object::{CodeBlock, Unit};
 use crate::store::{Cell, Store};
@@ -41,6 +41,19 @@ pub const DEFAULT_WATCHDOG: u64 = 10_000_000;
 /// Instructions a block runs on the interpreter before the compiling tier
 /// compiles it: about as long as compiling takes (ADR 0011).
 pub const JIT_AFTER: u64 = 1_000_000;
+
+/// Which tier runs code blocks (ADR 0011; `linc run --tier`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Tier {
+    /// A block with a loop compiled at its first run, a straight block once
+    /// it has run [`JIT_AFTER`] instructions on the interpreter.
+    #[default]
+    Auto,
+    /// Every block compiled at its first run (those the tier translates).
+    Compiled,
+    /// The interpreter alone.
+    Interpreter,
+}
 
 /// How a run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -226,6 +239,15 @@ impl Vm {
         }
     }
 
+    /// Chooses the tier that runs this machine's code blocks.
+    pub fn set_tier(&mut self, tier: Tier) {
+        (self.jit, self.jit_after) = match tier {
+            Tier::Auto => (true, JIT_AFTER),
+            Tier::Compiled => (true, 0),
+            Tier::Interpreter => (false, JIT_AFTER),
+        };
+    }
+
     fn pop(&mut self) -> u32 {
         self.num.pop().unwrap_or(0)
     }
@@ -279,16 +301,22 @@ impl Vm {
         self.clock.now = store.now;
         let (mut budget, mut ref_cell) = (self.watchdog, 0);
         let interpreted_from = budget;
-        if self.jit && pc == 0 && trace.is_none() {
-            if let Some(c) = linked.jit.get(linked, store, (act.program, act.block), self.jit_after) {
+        if self.jit && pc == 0 {
+            let traced = trace.is_some();
+            if let Some(c) = linked.jit.get(linked, store, (act.program, act.block), self.jit_after, traced) {
                 let (mut mem, mut stack, mut locals) =
                     (take(&mut self.jit_mem), take(&mut self.num), take(&mut self.locals));
                 let buf = Buffers { mem: &mut mem, stack: &mut stack, locals: &mut locals };
-                let ran = c.run(self, store, &mut act.retained, budget, buf, &linked.object().strings);
+                let services = Services { vm: self, consts: &linked.object().strings, trace: &mut trace };
+                let ran = c.run(store, &mut act.retained, budget, buf, services);
                 (self.jit_mem, self.num, self.locals) = (mem, stack, locals);
                 match ran {
                     JitRun::Done => {
                         act.result = None;
+                        return Ok(Outcome::Done);
+                    }
+                    JitRun::Returned(v) => {
+                        act.result = Some(v);
                         return Ok(Outcome::Done);
                     }
                     JitRun::Bail { pc: at, ref_cell: r, budget: b } => (pc, ref_cell, budget) = (at, r, b),

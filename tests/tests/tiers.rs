@@ -29,6 +29,23 @@ struct Ending {
     retained: Vec<u32>,
     ignored: u64,
     error: Option<RuntimeError>,
+    /// The writes the run reported to its tracer: the cell, its value, and
+    /// (for the first few) a digest of the whole store at that moment; past
+    /// [`TRACED`] writes only their number.
+    trace: Vec<(u32, String, u64)>,
+    notes: u64,
+}
+
+/// Writes of a run whose values a traced case keeps, and of those the ones
+/// with a digest of the store (formatting it is slow in a debug build).
+const TRACED: usize = 2_000;
+const DIGESTS: usize = 50;
+
+fn digest(store: &Store) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    format!("{:?}", store.cells).hash(&mut h);
+    h.finish()
 }
 
 struct Case {
@@ -51,7 +68,8 @@ impl Case {
         linc_runtime::jit::compile(&self.linked, &store, 0, 0).is_some()
     }
 
-    fn run(&self, jit: bool, cycles: u32) -> Ending {
+    /// A run; `traced` runs report every write (the trace is compared too).
+    fn run_traced(&self, jit: bool, cycles: u32, traced: bool) -> Ending {
         let mut store = Store::new(guide_db().clone());
         store.now = 1_000_000.0;
         if let Some(c) = self.force {
@@ -62,8 +80,17 @@ impl Case {
         vm.jit_after = 0;
         let mut act = Activation::new(&self.linked, 0, 0);
         let mut error = None;
+        let (mut trace, mut notes) = (Vec::new(), 0);
         for _ in 0..cycles {
-            if let Err(e) = vm.run(&self.linked, &mut act, &mut store, None) {
+            let mut note = |s: &Store, c: u32| {
+                notes += 1;
+                if trace.len() < TRACED {
+                    let d = if trace.len() < DIGESTS { digest(s) } else { 0 };
+                    trace.push((c, s.show(c), d));
+                }
+            };
+            let tracer: linc_runtime::vm::Tracer = if traced { Some(&mut note) } else { None };
+            if let Err(e) = vm.run(&self.linked, &mut act, &mut store, tracer) {
                 error = Some(e);
                 break;
             }
@@ -74,13 +101,17 @@ impl Case {
             retained: act.retained.clone(),
             ignored: store.ignored_writes,
             error,
+            trace,
+            notes,
         }
     }
 
     fn assert_tiers_agree(&self, what: &str) {
-        let a = self.run(false, 3);
-        let b = self.run(true, 3);
-        assert_eq!(a, b, "tiers differ on {what}");
+        for traced in [false, true] {
+            let a = self.run_traced(false, 3, traced);
+            let b = self.run_traced(true, 3, traced);
+            assert_eq!(a, b, "tiers differ on {what} (traced: {traced})");
+        }
     }
 }
 
@@ -416,8 +447,10 @@ fn generated_programs_agree_on_both_tiers() {
         let Some(case) = Case::new(&src, watchdog, force) else { continue };
         ran += 1;
         compiled += u64::from(case.compiles());
-        let a = case.run(false, 2);
-        let b = case.run(true, 2);
+        // One case in four is traced: every write and the store at it.
+        let traced = seed % 4 == 0;
+        let a = case.run_traced(false, 2, traced);
+        let b = case.run_traced(true, 2, traced);
         failed += u64::from(a.error.is_some());
         assert_eq!(a, b, "tiers differ on case {seed}:\n{src}");
     }
@@ -440,20 +473,26 @@ fn what_compiles_and_what_is_left_to_the_interpreter() {
 }
 
 #[test]
-fn a_trace_runs_on_the_interpreter() {
-    // The compiled code reports no writes as they happen, so a traced run
-    // must be the interpreter's: every write is seen.
-    let case = Case::new("Recipe.N1 := 1;\nRecipe.N2 := 2;\n", 1000, None).expect("compiles");
-    assert!(case.compiles());
-    let mut store = Store::new(guide_db().clone());
+fn a_traced_run_is_compiled_and_reports_every_write() {
+    // Traced code keeps cells in memory and reports each write after
+    // copying the cells out, so a tracer sees the store as the interpreter
+    // leaves it at that write, intermediate values included.
+    let src = "Recipe.N1 := 1;\nRecipe.N1 := 2;\nRecipe.A0{Recipe.N1} := 1.5;\nRAW_COM.Buffer1 := 'x';\n";
+    let case = Case::new(src, 1000, None).expect("compiles");
+    let a = case.run_traced(false, 1, true);
+    let b = case.run_traced(true, 1, true);
+    assert_eq!(a, b);
+    let values: Vec<&str> = a.trace.iter().map(|(_, v, _)| v.as_str()).collect();
+    assert_eq!(values, ["1", "2", "1.5", "'x'"]);
+    assert_eq!(a.trace[0].0, a.trace[1].0, "the same cell twice");
+    let store = Store::new(guide_db().clone());
     let mut vm = Vm::new(1000, Clock::new(1, 0));
-    vm.jit = true;
-    vm.jit_after = 0;
+    (vm.jit, vm.jit_after) = (true, 0);
     let mut act = Activation::new(&case.linked, 0, 0);
-    let mut seen = Vec::new();
-    let mut note = |_: &Store, c: u32| seen.push(c);
+    let mut store = store;
+    let mut note = |_: &Store, _: u32| {};
     vm.run(&case.linked, &mut act, &mut store, Some(&mut note)).expect("runs");
-    assert_eq!(seen.len(), 2);
+    assert!(case.linked.is_compiled_traced(0, 0), "the traced run used compiled code");
 }
 
 #[test]

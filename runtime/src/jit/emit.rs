@@ -52,7 +52,7 @@ fn successors(op: &Op, pc: usize) -> Vec<usize> {
     match *op {
         Op::Jump { to } => vec![to as usize],
         Op::JumpIfFalse { to } | Op::JumpIfTrue { to } => vec![pc + 1, to as usize],
-        Op::Ret {} => vec![],
+        Op::Ret {} | Op::Return { .. } => vec![],
         _ => vec![pc + 1],
     }
 }
@@ -108,6 +108,7 @@ pub(super) fn emit(
     plan: &Plan,
     (locals, retained): (usize, usize),
     consts: &[Bytes],
+    traced: bool,
 ) -> Option<(Entry, JITModule, usize)> {
     let states = analyse(ops)?;
     let max_depth = states.iter().flatten().map(Vec::len).max().unwrap_or(0);
@@ -120,7 +121,7 @@ pub(super) fn emit(
     let mut fbc = FunctionBuilderContext::new();
     {
         let b = FunctionBuilder::new(&mut ctx.func, &mut fbc);
-        let shape = Shape { ops, plan, consts, states: &states, locals, retained, max_depth, ptr, call_conv };
+        let shape = Shape { ops, plan, consts, traced, states: &states, locals, retained, max_depth, ptr, call_conv };
         let mut e = Emitter::new(b, shape);
         e.body()?;
         e.b.seal_all_blocks();
@@ -149,6 +150,8 @@ struct Shape<'a> {
     plan: &'a Plan,
     /// The object's string constants.
     consts: &'a [Bytes],
+    /// Whether every write is reported to the run's tracer.
+    traced: bool,
     states: &'a [Option<Vec<Ty>>],
     locals: usize,
     retained: usize,
@@ -239,7 +242,10 @@ impl<'a, 'f> Emitter<'a, 'f> {
                     *l = true;
                 }
             }
-            if matches!(op, Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {}) {
+            if matches!(
+                op,
+                Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {} | Op::Return { .. }
+            ) {
                 leader[pc + 1] = true;
             }
         }
@@ -317,7 +323,10 @@ impl<'a, 'f> Emitter<'a, 'f> {
             self.op(pc)?;
         }
         let last = self.s.ops.get(end - 1)?;
-        if !matches!(last, Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {}) {
+        if !matches!(
+            last,
+            Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {} | Op::Return { .. }
+        ) {
             let next = self.blocks.get(end).copied().flatten()?;
             self.b.ins().jump(next, &[]);
         }
@@ -427,7 +436,9 @@ impl<'a, 'f> Emitter<'a, 'f> {
             Op::LoadRefI { .. } | Op::LoadRefR { .. } | Op::StoreRefI { .. } | Op::StoreRefR { .. } => {
                 self.through_ref(pc, op)?
             }
-            Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {} => self.flow(pc, op)?,
+            Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {} | Op::Return { .. } => {
+                self.flow(pc, op)?
+            }
             Op::PushS { .. }
             | Op::LoadS { .. }
             | Op::StoreS { .. }

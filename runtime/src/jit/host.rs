@@ -121,3 +121,23 @@ pub(crate) extern "C" fn call(frame: *mut Frame, packed: u32, types: u32, nnum: 
         Ok(h.vm.call(func, argc, ret, types, pop_num)?.unwrap_or(0))
     })
 }
+
+/// After a write in traced code: the cells go back to the store and the
+/// run's tracer sees `what` (a slot when `is_slot` is 1, else a store cell),
+/// as the interpreter reports each write.
+pub(crate) extern "C" fn note(frame: *mut Frame, what: u32, is_slot: u32, _: u32) -> u32 {
+    // SAFETY: as in `serve`; `code` is the running `Compiled`, `mem` holds
+    // `mem_len` slots and `trace` points at the run's `Tracer`.
+    let frame = unsafe { &mut *frame };
+    let (store, code) = unsafe { (&mut *frame.store, &*frame.code) };
+    let mem = unsafe { std::slice::from_raw_parts(frame.mem, frame.mem_len) };
+    let trace = unsafe { &mut *frame.trace.cast::<crate::vm::Tracer<'_>>() };
+    let noted = catch_unwind(AssertUnwindSafe(|| {
+        code.copy_out(store, mem);
+        let cell = if is_slot == 1 { code.cell_of_slot(what) } else { Some(what) };
+        if let (Some(t), Some(c)) = (trace.as_mut(), cell) {
+            t(store, c);
+        }
+    }));
+    u32::from(noted.is_err())
+}

@@ -13,7 +13,7 @@ mod emit;
 mod host;
 mod plan;
 
-use crate::isa::Op;
+use crate::isa::{Kind, Op};
 use crate::link::Linked;
 use crate::store::{Cell, Store};
 use crate::vm::Vm;
@@ -42,6 +42,11 @@ pub(crate) struct Frame {
     pub store: *mut Store,
     pub consts: *const Bytes,
     pub nconsts: usize,
+    /// The run's tracer (`*mut Tracer`), for traced code.
+    pub trace: *mut std::ffi::c_void,
+    /// The code running, whose plan the trace service copies out.
+    pub code: *const Compiled,
+    pub mem_len: usize,
 }
 
 type Entry = unsafe extern "C" fn(*mut Frame) -> u32;
@@ -79,6 +84,8 @@ impl Drop for Compiled {
 #[derive(Default)]
 pub(crate) struct SlotState {
     code: OnceLock<Option<Arc<Compiled>>>,
+    /// The same block compiled to report its writes (for traced runs).
+    traced: OnceLock<Option<Arc<Compiled>>>,
     interpreted: std::sync::atomic::AtomicU64,
     /// Whether the block has a backward jump (a loop), once looked at.
     looping: OnceLock<bool>,
@@ -114,9 +121,11 @@ impl Cache {
         store: &Store,
         (program, block): (usize, usize),
         after: u64,
+        traced: bool,
     ) -> Option<Arc<Compiled>> {
         let slot = self.blocks.get(program)?.get(block)?;
-        if let Some(code) = slot.code.get() {
+        let cell = if traced { &slot.traced } else { &slot.code };
+        if let Some(code) = cell.get() {
             return code.clone();
         }
         // A loop is where a run spends its time, and one run may be long
@@ -130,7 +139,7 @@ impl Cache {
         if !looping && slot.interpreted.load(std::sync::atomic::Ordering::Relaxed) < after {
             return None;
         }
-        slot.code.get_or_init(|| compile(linked, store, program, block).map(Arc::new)).clone()
+        cell.get_or_init(|| compile_as(linked, store, (program, block), traced).map(Arc::new)).clone()
     }
 
     /// Whether a block has been compiled (for tests and listings).
@@ -138,10 +147,15 @@ impl Cache {
         self.blocks.get(program).and_then(|p| p.get(block)).is_some_and(|s| s.code.get().is_some_and(Option::is_some))
     }
 
+    /// Whether a block's traced variant has been compiled (for tests).
+    pub fn is_compiled_traced(&self, (program, block): (usize, usize)) -> bool {
+        self.blocks.get(program).and_then(|p| p.get(block)).is_some_and(|s| s.traced.get().is_some_and(Option::is_some))
+    }
+
     /// Counts instructions the interpreter ran of a block not yet compiled.
     pub(crate) fn note_interpreted(&self, (program, block): (usize, usize), instructions: u64) {
         if let Some(slot) = self.blocks.get(program).and_then(|p| p.get(block)) {
-            if slot.code.get().is_none() {
+            if slot.code.get().is_none() || slot.traced.get().is_none() {
                 slot.interpreted.fetch_add(instructions, std::sync::atomic::Ordering::Relaxed);
             }
         }
@@ -149,8 +163,14 @@ impl Cache {
 }
 
 /// Compiles block `block` of `program`, or `None` when it uses anything
-/// outside the numeric subset (the interpreter then runs it).
+/// outside the subset (the interpreter then runs it).
 pub fn compile(linked: &Linked, store: &Store, program: usize, block: usize) -> Option<Compiled> {
+    compile_as(linked, store, (program, block), false)
+}
+
+/// Compiles a block; `traced` code reports every write to the run's
+/// tracer as the interpreter does.
+fn compile_as(linked: &Linked, store: &Store, (program, block): (usize, usize), traced: bool) -> Option<Compiled> {
     let prog = linked.program(program)?;
     let unit = linked.unit(program)?;
     let ops = &prog.blocks.get(block)?.ops;
@@ -158,10 +178,10 @@ pub fn compile(linked: &Linked, store: &Store, program: usize, block: usize) -> 
     if !ops.iter().all(in_subset) {
         return None;
     }
-    let plan = Plan::new(ops, &prog.targets, store)?;
+    let plan = Plan::new(ops, &prog.targets, store, traced)?;
     let locals = usize::from(code.locals);
     let retained = usize::from(unit.retained);
-    let (entry, module, max_depth) = emit::emit(ops, &plan, (locals, retained), &linked.object().strings)?;
+    let (entry, module, max_depth) = emit::emit(ops, &plan, (locals, retained), &linked.object().strings, traced)?;
     Some(Compiled { entry, module: Some(module), plan, max_depth, locals, retained })
 }
 
@@ -232,13 +252,15 @@ fn in_subset(op: &Op) -> bool {
             | LeS {}
             | GeS {}
             | Call { .. }
-    )
+    ) || matches!(op, Return { kind } if Kind::from_bits(u32::from(*kind)) != Kind::Bytes)
 }
 
 /// How a compiled run ended.
 pub(crate) enum JitRun {
     /// Ran to `Ret`; the store holds the results.
     Done,
+    /// Ran to `Return`: the value.
+    Returned(linc_stdlib::Value),
     /// Stopped before instruction `pc`: the interpreter goes on from there
     /// with the stack and locals left in the VM's buffers.
     Bail { pc: usize, ref_cell: u32, budget: u64 },
@@ -257,19 +279,26 @@ pub(crate) struct Buffers<'a> {
     pub locals: &'a mut Vec<u32>,
 }
 
+/// What the runtime services a compiled run calls use: the VM's string
+/// stack and budgets, the object's constants and the run's tracer.
+pub(crate) struct Services<'a, 't> {
+    pub vm: &'a mut Vm,
+    pub consts: &'a [Bytes],
+    pub trace: &'a mut crate::vm::Tracer<'t>,
+}
+
 impl Compiled {
-    /// Runs the code against `store`; the runtime services it calls use
-    /// `vm`'s string stack and budgets and the object's constants.
+    /// Runs the code against `store`.
     pub(crate) fn run(
         &self,
-        vm: &mut Vm,
         store: &mut Store,
         retained: &mut [u32],
         budget: u64,
         buf: Buffers<'_>,
-        consts: &[Bytes],
+        services: Services<'_, '_>,
     ) -> JitRun {
         let Buffers { mem, stack, locals } = buf;
+        let Services { vm, consts, trace } = services;
         if retained.len() != self.retained || !self.copy_in(store, mem) {
             return JitRun::Refused;
         }
@@ -292,6 +321,9 @@ impl Compiled {
             store,
             consts: consts.as_ptr(),
             nconsts: consts.len(),
+            trace: (trace as *mut crate::vm::Tracer<'_>).cast(),
+            code: self,
+            mem_len: mem.len(),
         };
         // SAFETY: the code only touches `mem` below the plan's slot count
         // (it checks every computed slot), `kinds` likewise, `retained`
@@ -303,6 +335,9 @@ impl Compiled {
         locals.truncate(self.locals);
         match status {
             0 => JitRun::Done,
+            4 => JitRun::Returned(linc_stdlib::Value::Int(frame.ret as i32)),
+            5 => JitRun::Returned(linc_stdlib::Value::Real(f32::from_bits(frame.ret))),
+            6 => JitRun::Returned(linc_stdlib::Value::Bool(frame.ret != 0)),
             1 => {
                 stack.truncate(frame.depth as usize);
                 let ref_cell = self.plan.cells.get(frame.ref_slot as usize).copied().unwrap_or(0);
@@ -332,7 +367,12 @@ impl Compiled {
         true
     }
 
-    fn copy_out(&self, store: &mut Store, mem: &[u32]) {
+    /// The store cell of scratch slot `slot`.
+    pub(crate) fn cell_of_slot(&self, slot: u32) -> Option<u32> {
+        self.plan.cells.get(slot as usize).copied()
+    }
+
+    pub(crate) fn copy_out(&self, store: &mut Store, mem: &[u32]) {
         for (&c, &v) in self.plan.cells.iter().zip(mem) {
             match store.cells.get_mut(c as usize) {
                 Some(Cell::Int(i)) => *i = v as i32,

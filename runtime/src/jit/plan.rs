@@ -38,7 +38,7 @@ impl Plan {
     /// The layout for `ops`, or `None` when a cell is absent or of a kind
     /// the compiled tier does not handle, or an instruction meets a cell of
     /// the wrong kind (the interpreter reports those).
-    pub fn new(ops: &[Op], targets: &[Target], store: &Store) -> Option<Plan> {
+    pub fn new(ops: &[Op], targets: &[Target], store: &Store, traced: bool) -> Option<Plan> {
         let mut ranges: Vec<(u32, u32, bool)> = Vec::new();
         for op in ops {
             let Some(sym) = op.symbol() else { continue };
@@ -89,7 +89,9 @@ impl Plan {
             for c in a..=b {
                 plan.cells.push(c);
                 plan.kinds.push(kind_of(store, c)?);
-                plan.promoted.push(!r && promoted < MAX_PROMOTED);
+                // Traced code keeps every cell in memory, where the trace
+                // reads it after each write.
+                plan.promoted.push(!r && !traced && promoted < MAX_PROMOTED);
                 promoted += usize::from(!r);
             }
         }

@@ -1,9 +1,25 @@
 //! What a scenario test reads from a running strategy without changing it:
-//! its fastest task, and its sequences' step variables (`docs/testing.md`).
+//! its fastest task, its sequences' step variables (`docs/testing.md`), and
+//! how much of its code the compiling tier runs.
 
 use super::Strategy;
 
 impl Strategy {
+    /// Code blocks of the strategy's programs: how many the compiling tier
+    /// has compiled so far (for a traced run or not) and how many there are.
+    pub fn compiled_blocks(&self) -> (usize, usize) {
+        let (mut compiled, mut all) = (0, 0);
+        for linked in &self.objects {
+            for (p, prog) in linked.programs().iter().enumerate() {
+                all += prog.blocks.len();
+                compiled += (0..prog.blocks.len())
+                    .filter(|&b| linked.is_compiled(p, b) || linked.is_compiled_traced(p, b))
+                    .count();
+            }
+        }
+        (compiled, all)
+    }
+
     /// The period of the fastest task, µs: one scan of the strategy.
     pub fn scan_us(&self) -> u64 {
         self.tasks.iter().map(|t| t.period_us).min().unwrap_or(100_000).max(1)

@@ -1,10 +1,12 @@
 //! The translation of each instruction group, mirroring `vm.rs`.
 
-use super::{real_to_int, Emitter, Ty};
-use crate::isa::Op;
+use super::{frame_off, real_to_int, Emitter, Ty};
+use crate::isa::{Kind, Op};
 use crate::jit::plan::{BOOL, READONLY, REAL};
+use crate::jit::Frame;
 use cranelift_codegen::ir::condcodes::{FloatCC, IntCC};
 use cranelift_codegen::ir::{types, AbiParam, InstBuilder, MemFlags, Signature, Value};
+use std::mem::offset_of;
 
 impl Emitter<'_, '_> {
     /// Locals and retained slots: raw 32-bit words, out-of-range reads 0
@@ -82,12 +84,14 @@ impl Emitter<'_, '_> {
                     v = self.bool32(c);
                 }
                 self.slot_store(slot, v)?;
+                self.note_slot(pc, None, slot)?;
             }
             Op::StoreR { .. } => {
                 let v = self.pop(Ty::F)?;
                 let bad = self.non_finite(v);
                 self.check(pc, bad);
                 self.slot_store(slot, v)?;
+                self.note_slot(pc, None, slot)?;
             }
             _ => return None,
         }
@@ -157,9 +161,11 @@ impl Emitter<'_, '_> {
                 let nz = self.bool32(nz);
                 let v = self.b.ins().select(is_bool, nz, v);
                 self.b.ins().store(MemFlags::trusted(), v, addr, 0);
+                self.note_slot(pc, Some(slot), 0)?;
             }
             (_, Some(v)) => {
                 self.b.ins().store(MemFlags::trusted(), v, addr, 0);
+                self.note_slot(pc, Some(slot), 0)?;
             }
             _ => return None,
         }
@@ -187,6 +193,17 @@ impl Emitter<'_, '_> {
                 self.flush();
                 let zero = self.b.ins().iconst(types::I32, 0);
                 self.b.ins().return_(&[zero]);
+            }
+            Op::Return { kind } => {
+                // The value's bits go to the frame; status 4 + kind says
+                // "returned a value of this kind".
+                let kind = Kind::from_bits(u32::from(kind));
+                let v = self.pop(if kind == Kind::Real { Ty::F } else { Ty::I })?;
+                let f = self.frame();
+                self.b.ins().store(MemFlags::trusted(), v, f, frame_off(offset_of!(Frame, ret)));
+                self.flush();
+                let status = self.b.ins().iconst(types::I32, 4 + kind as i64);
+                self.b.ins().return_(&[status]);
             }
             _ => return None,
         }

@@ -12,6 +12,12 @@ impl Emitter<'_, '_> {
     /// Calls service `f` with three immediate words; a nonzero status
     /// leaves through [`Emitter::fault_exit`] at `pc`.
     fn serve(&mut self, pc: usize, f: Service, words: [u32; 3]) -> Option<()> {
+        let words = words.map(|w| self.b.ins().iconst(types::I32, i64::from(w as i32)));
+        self.serve_values(pc, f, words)
+    }
+
+    /// [`Emitter::serve`] with words computed at run time.
+    fn serve_values(&mut self, pc: usize, f: Service, words: [Value; 3]) -> Option<()> {
         let mut sig = Signature::new(self.s.call_conv);
         sig.params.push(AbiParam::new(self.s.ptr));
         sig.params.extend([AbiParam::new(types::I32); 3]);
@@ -19,9 +25,7 @@ impl Emitter<'_, '_> {
         let sig = self.b.import_signature(sig);
         let callee = self.b.ins().iconst(self.s.ptr, f as usize as i64);
         let mut args = vec![self.frame()];
-        for w in words {
-            args.push(self.b.ins().iconst(types::I32, i64::from(w as i32)));
-        }
+        args.extend(words);
         let call = self.b.ins().call_indirect(sig, callee, &args);
         let status = *self.b.inst_results(call).first()?;
         let (out, cont) = (self.b.create_block(), self.b.create_block());
@@ -30,6 +34,28 @@ impl Emitter<'_, '_> {
         self.b.switch_to_block(out);
         self.fault_exit(pc);
         self.b.switch_to_block(cont);
+        Some(())
+    }
+
+    /// In traced code, reports the write to slot `dynamic` (a value) or
+    /// `slot` just made by instruction `pc`.
+    pub(super) fn note_slot(&mut self, pc: usize, dynamic: Option<Value>, slot: u32) -> Option<()> {
+        if !self.s.traced {
+            return Some(());
+        }
+        let what = match dynamic {
+            Some(v) => v,
+            None => self.b.ins().iconst(types::I32, i64::from(slot as i32)),
+        };
+        let (one, zero) = (self.b.ins().iconst(types::I32, 1), self.b.ins().iconst(types::I32, 0));
+        self.serve_values(pc, host::note, [what, one, zero])
+    }
+
+    /// In traced code, reports the write to store cell `cell`.
+    fn note_cell(&mut self, pc: usize, cell: u32) -> Option<()> {
+        if self.s.traced {
+            self.serve(pc, host::note, [cell, 0, 0])?;
+        }
         Some(())
     }
 
@@ -57,11 +83,12 @@ impl Emitter<'_, '_> {
             Op::LoadS { sym } | Op::StoreS { sym } | Op::AppendS { sym } => {
                 let cell = *self.s.plan.sym_cell.get(usize::from(sym))?;
                 let f: Service = match op {
-                    Op::LoadS { .. } => host::load_s,
+                    Op::LoadS { .. } => return self.serve(pc, host::load_s, [cell, 0, 0]),
                     Op::StoreS { .. } => host::store_s,
                     _ => host::append_s,
                 };
-                self.serve(pc, f, [cell, 0, 0])
+                self.serve(pc, f, [cell, 0, 0])?;
+                self.note_cell(pc, cell)
             }
             // A constant without `$` just pushed needs no decoding.
             Op::Decode {} if self.plain_constant_before(pc) => Some(()),
