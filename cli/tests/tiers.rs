@@ -70,3 +70,15 @@ fn the_fst_plant_is_the_same_with_its_st_action_compiled() {
     let (compiled, _) = same_on_both_tiers("fst", &["run", "examples/fst/plant.json", "--for", "10m"]);
     assert!(compiled >= 1);
 }
+
+#[test]
+fn the_semantics_page_example_prints_what_it_says() {
+    // docs/semantics.md §24.
+    let args = ["run", "examples/strategy/plant.json", "--for", "10m", "--now", "2026-01-05T06:00:00"];
+    for tier in ["compiled", "interpreter", "auto"] {
+        let r = linc(&[&args[..], &["--tier", tier, "--show", "TANK1.HighCnt"]].concat());
+        assert_eq!(stdout(&r), "TANK1.HighCnt = 17\n", "{tier}");
+        let said = if tier == "compiled" { "linc: 5 of 5 code blocks ran compiled\n" } else { "" };
+        assert_eq!(stderr(&r), said, "{tier}");
+    }
+}

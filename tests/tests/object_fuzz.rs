@@ -9,7 +9,8 @@
 //! and the peak of live heap bytes is asserted below a budget.
 //!
 //! `LINC_OBJECT_FUZZ_CASES=N` sets the number of cases (default 20,000, a
-//! few seconds in a debug build); `LINC_OBJECT_FUZZ_ONLY=N` reruns case N.
+//! few seconds in a debug build); `LINC_OBJECT_FUZZ_ONLY=N` reruns case N;
+//! `LINC_TIER=compiled|interpreter` chooses the tier (default: as `linc run`).
 use linc_conformance::rng::Rng;
 use linc_runtime::isa::{Op, OPCODES};
 use linc_runtime::object::{crc32, Class, CodeBlock, LineEntry, LoopEntry, ObjectFile, Sub};
@@ -629,6 +630,7 @@ fn exercise(case: u64, bytes: &[u8], base: &Store, t: &mut Tally) {
     };
     t.accepted += 1;
     let mut vm = Vm::new(WATCHDOG, Clock::new(case, 0));
+    vm.set_tier(tier());
     for unit in 0..verified.object().units.len().min(16) {
         let mut store = base.clone();
         let own = own_block(&store, &verified.object().units[unit].block_type);
@@ -654,6 +656,17 @@ fn exercise(case: u64, bytes: &[u8], base: &Store, t: &mut Tally) {
                 store.now += 1.0;
             }
         }
+    }
+}
+
+/// The tier the objects run on: `LINC_TIER=compiled` compiles every block
+/// at its first run, `interpreter` none; by default, as `linc run` does.
+fn tier() -> linc_runtime::vm::Tier {
+    use linc_runtime::vm::Tier;
+    match std::env::var("LINC_TIER").as_deref() {
+        Ok("compiled") => Tier::Compiled,
+        Ok("interpreter") => Tier::Interpreter,
+        _ => Tier::Auto,
     }
 }
 

@@ -47,6 +47,11 @@ fn result_ty(op: &Op) -> Ty {
     }
 }
 
+/// Whether control never falls through to the next instruction.
+fn ends_block(op: &Op) -> bool {
+    matches!(op, Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {} | Op::Return { .. })
+}
+
 /// What may follow an instruction.
 fn successors(op: &Op, pc: usize) -> Vec<usize> {
     match *op {
@@ -242,10 +247,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
                     *l = true;
                 }
             }
-            if matches!(
-                op,
-                Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {} | Op::Return { .. }
-            ) {
+            if ends_block(op) {
                 leader[pc + 1] = true;
             }
         }
@@ -323,10 +325,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
             self.op(pc)?;
         }
         let last = self.s.ops.get(end - 1)?;
-        if !matches!(
-            last,
-            Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {} | Op::Return { .. }
-        ) {
+        if !ends_block(last) {
             let next = self.blocks.get(end).copied().flatten()?;
             self.b.ins().jump(next, &[]);
         }
