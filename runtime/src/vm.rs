@@ -204,8 +204,8 @@ pub struct Vm {
     string_used: usize,
     result: Option<Value>,
     pub clock: Clock,
-    /// Runs numeric blocks through the compiling tier (ADR 0011) when set
-    /// (the default; a trace or a forced cell runs the interpreter).
+    /// Runs blocks through the compiling tier (ADR 0011) when set (the
+    /// default; a run touching a forced cell uses the interpreter).
     pub jit: bool,
     /// Instructions a block runs on the interpreter before it is compiled
     /// (0: compile at first use).
