@@ -525,3 +525,18 @@ fn a_block_is_compiled_once_it_has_run_about_as_long_as_compiling_takes() {
     let a1 = store.cell_of(store.db.block("Recipe").unwrap(), "A1").unwrap();
     assert_eq!(store.cells[a1 as usize], linc_runtime::store::Cell::Real(10.0 * (runs + 1) as f32));
 }
+
+#[test]
+fn a_tracer_that_panics_in_compiled_code_is_an_internal_error_not_an_abort() {
+    // Unwinding through machine code would abort the process; the service
+    // catches the panic and the run ends with R0099 at the write.
+    let case = Case::new("Recipe.N1 := 1;\n", 1000, None).expect("compiles");
+    let mut store = Store::new(guide_db().clone());
+    let mut vm = Vm::new(1000, Clock::new(1, 0));
+    (vm.jit, vm.jit_after) = (true, 0);
+    let mut act = Activation::new(&case.linked, 0, 0);
+    let mut note = |_: &Store, _: u32| panic!("a broken tracer");
+    let e = vm.run(&case.linked, &mut act, &mut store, Some(&mut note)).expect_err("stops");
+    assert_eq!((e.code, e.line), ("R0099", 1), "{e}");
+    assert!(case.linked.is_compiled_traced(0, 0));
+}

@@ -139,5 +139,11 @@ pub(crate) extern "C" fn note(frame: *mut Frame, what: u32, is_slot: u32, _: u32
             t(store, c);
         }
     }));
-    u32::from(noted.is_err())
+    if noted.is_err() {
+        // SAFETY: as above; the tracer's borrow of the store has ended.
+        let vm = unsafe { &mut *frame.vm };
+        vm.jit_fault = Some(Fault::new("R0099", "internal error while tracing a write"));
+        return 1;
+    }
+    0
 }
