@@ -190,6 +190,17 @@ impl Lowerer {
         }
     }
 
+    /// Evaluates `e` where bytes are wanted: a STRING value has its
+    /// `$`-sequences decoded (`Decode`), except a literal without `$`, which
+    /// is its bytes already.
+    pub(super) fn expr_as_bytes(&mut self, e: &Expr) {
+        self.expr(e);
+        let plain = matches!(&e.kind, ExprKind::Str(s) if !s.contains(&b'$'));
+        if e.ty == Ty::Text && !plain {
+            self.emit(Op::Decode {});
+        }
+    }
+
     fn binary(&mut self, op: BinOp, a: &Expr, b: &Expr) {
         let stringy = a.ty.is_stringy() && a.ty != Ty::Any && b.ty.is_stringy() && b.ty != Ty::Any;
         if stringy {
@@ -197,9 +208,10 @@ impl Lowerer {
             // would be when passed to EQUAL or STRCOMP.
             let decode = a.ty != b.ty && (a.ty == Ty::Text || b.ty == Ty::Text);
             for x in [a, b] {
-                self.expr(x);
-                if decode && x.ty == Ty::Text {
-                    self.emit(Op::Decode {});
+                if decode {
+                    self.expr_as_bytes(x);
+                } else {
+                    self.expr(x);
                 }
             }
             // `=` ignores case only between STRING items (§12.6, EQUAL);
@@ -267,10 +279,7 @@ impl Lowerer {
         for (i, a) in args.iter().enumerate() {
             let kind = match sig.param(i) {
                 Some(Param::Bytes) => {
-                    self.expr(a);
-                    if a.ty == Ty::Text {
-                        self.emit(Op::Decode {});
-                    }
+                    self.expr_as_bytes(a);
                     Kind::Bytes
                 }
                 Some(Param::Int) => {

@@ -509,18 +509,12 @@ impl Lowerer {
                 if let (Some(tail), Target::Field { block, field, offset: None }) =
                     (appended(place, value), &place.target)
                 {
-                    self.expr(tail);
-                    if tail.ty == Ty::Text {
-                        self.emit(Op::Decode {});
-                    }
+                    self.expr_as_bytes(tail);
                     let sym = self.symbol(block, field, Sub::Field, class, place.span);
                     self.emit(Op::AppendS { sym });
                     return;
                 }
-                self.expr(value);
-                if value.ty == Ty::Text {
-                    self.emit(Op::Decode {});
-                }
+                self.expr_as_bytes(value);
             }
             _ => self.expr_as(value, place.ty),
         }

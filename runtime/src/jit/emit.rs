@@ -11,7 +11,6 @@
 use super::plan::{Plan, REAL};
 use super::{Entry, Frame};
 use crate::isa::{Kind, Op};
-use crate::wire::Bytes;
 use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{types, AbiParam, Block, InstBuilder, MemFlags, Type, Value};
 use cranelift_codegen::isa::CallConv;
@@ -112,7 +111,6 @@ pub(super) fn emit(
     ops: &[Op],
     plan: &Plan,
     (locals, retained): (usize, usize),
-    consts: &[Bytes],
     traced: bool,
 ) -> Option<(Entry, JITModule, usize)> {
     let states = analyse(ops)?;
@@ -126,7 +124,7 @@ pub(super) fn emit(
     let mut fbc = FunctionBuilderContext::new();
     {
         let b = FunctionBuilder::new(&mut ctx.func, &mut fbc);
-        let shape = Shape { ops, plan, consts, traced, states: &states, locals, retained, max_depth, ptr, call_conv };
+        let shape = Shape { ops, plan, traced, states: &states, locals, retained, max_depth, ptr, call_conv };
         let mut e = Emitter::new(b, shape);
         e.body()?;
         e.b.seal_all_blocks();
@@ -153,8 +151,6 @@ extern "C" fn real_to_int(v: f32) -> i32 {
 struct Shape<'a> {
     ops: &'a [Op],
     plan: &'a Plan,
-    /// The object's string constants.
-    consts: &'a [Bytes],
     /// Whether every write is reported to the run's tracer.
     traced: bool,
     states: &'a [Option<Vec<Ty>>],

@@ -181,7 +181,7 @@ fn compile_as(linked: &Linked, store: &Store, (program, block): (usize, usize), 
     let plan = Plan::new(ops, &prog.targets, store, traced)?;
     let locals = usize::from(code.locals);
     let retained = usize::from(unit.retained);
-    let (entry, module, max_depth) = emit::emit(ops, &plan, (locals, retained), &linked.object().strings, traced)?;
+    let (entry, module, max_depth) = emit::emit(ops, &plan, (locals, retained), traced)?;
     Some(Compiled { entry, module: Some(module), plan, max_depth, locals, retained })
 }
 

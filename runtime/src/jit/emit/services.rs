@@ -90,8 +90,6 @@ impl Emitter<'_, '_> {
                 self.serve(pc, f, [cell, 0, 0])?;
                 self.note_cell(pc, cell)
             }
-            // A constant without `$` just pushed needs no decoding.
-            Op::Decode {} if self.plain_constant_before(pc) => Some(()),
             Op::Decode {} => self.serve(pc, host::decode, [0, 0, 0]),
             _ => {
                 self.serve(pc, host::compare, [host::compare_code(op)?, 0, 0])?;
@@ -100,14 +98,6 @@ impl Emitter<'_, '_> {
                 Some(())
             }
         }
-    }
-
-    /// Whether instruction `pc` always follows a `PushS` of a constant
-    /// without `$` (it is no jump target).
-    fn plain_constant_before(&self, pc: usize) -> bool {
-        let leader = self.blocks.get(pc).copied().flatten().is_some();
-        let Some(Op::PushS { k }) = pc.checked_sub(1).and_then(|p| self.s.ops.get(p)) else { return false };
-        !leader && self.s.consts.get(*k as usize).is_some_and(|c| !c.0.contains(&b'$'))
     }
 
     /// `Call`: the numeric arguments go to the frame's stack buffer in
