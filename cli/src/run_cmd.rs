@@ -126,6 +126,7 @@ pub fn run(o: &Options) -> u8 {
     let seed = o.common.seed.unwrap_or_else(|| now as u64 ^ u64::from(std::process::id()));
     let to_stdout = o.common.trace.as_ref().is_some_and(|p| p.as_os_str() == "-");
     let (status, traced) = cycles(o, &linked, &mut store, seed, to_stdout);
+    say_compiled(o.common.tier, linked.compiled_blocks());
     for (path, a) in &shows {
         println!("{path} = {}", show_value(&store, *a));
     }
@@ -142,6 +143,14 @@ pub fn run(o: &Options) -> u8 {
         }
     }
     status
+}
+
+/// `--tier compiled` says how many of the (compiled, all) code blocks ran
+/// compiled, so a user can see what the compiling tier took.
+pub fn say_compiled(tier: linc_runtime::vm::Tier, (compiled, all): (usize, usize)) {
+    if tier == linc_runtime::vm::Tier::Compiled {
+        eprintln!("linc: {compiled} of {all} code blocks ran compiled");
+    }
 }
 
 /// Runs the action `--cycles` times, `--period` apart; returns the exit

@@ -190,10 +190,7 @@ pub fn run(o: &Options) -> u8 {
     for e in &failures {
         eprint!("{}", crate::report::runtime(e, o.common.format));
     }
-    if o.common.tier == linc_runtime::vm::Tier::Compiled {
-        let (compiled, all) = s.compiled_blocks();
-        eprintln!("linc: {compiled} of {all} code blocks ran compiled");
-    }
+    crate::run_cmd::say_compiled(o.common.tier, s.compiled_blocks());
     for path in &o.common.show {
         let step = seq_block.and_then(|b| s.sequence_mut(b)).and_then(|q| sequence_run::step_flag(q, path));
         let field = shows.iter().find(|(p, _)| p == path).map(|(_, a)| show_value(&s.store, *a));

@@ -82,3 +82,9 @@ fn the_semantics_page_example_prints_what_it_says() {
         assert_eq!(stderr(&r), said, "{tier}");
     }
 }
+
+#[test]
+fn a_single_action_is_the_same_compiled() {
+    let args = ["run", "examples/guide/shift.st", "--db", "examples/guide/plant.db.json", "--cycles", "5"];
+    assert_eq!(same_on_both_tiers("shift", &args), (1, 1));
+}

@@ -83,6 +83,17 @@ impl Linked {
         self.jit.is_compiled_traced((program, block))
     }
 
+    /// Code blocks of the linked programs: how many the compiling tier has
+    /// compiled so far (for a traced run or not), and how many there are.
+    pub fn compiled_blocks(&self) -> (usize, usize) {
+        let all = self.programs.iter().map(|p| p.blocks.len()).sum();
+        let compiled = (self.programs.iter().enumerate())
+            .flat_map(|(p, prog)| (0..prog.blocks.len()).map(move |b| (p, b)))
+            .filter(|&(p, b)| self.is_compiled(p, b) || self.is_compiled_traced(p, b))
+            .count();
+        (compiled, all)
+    }
+
     pub fn object(&self) -> &ObjectFile {
         self.verified.object()
     }

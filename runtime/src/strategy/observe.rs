@@ -3,21 +3,13 @@
 //! how much of its code the compiling tier runs.
 
 use super::Strategy;
+use crate::Linked;
 
 impl Strategy {
     /// Code blocks of the strategy's programs: how many the compiling tier
     /// has compiled so far (for a traced run or not) and how many there are.
     pub fn compiled_blocks(&self) -> (usize, usize) {
-        let (mut compiled, mut all) = (0, 0);
-        for linked in &self.objects {
-            for (p, prog) in linked.programs().iter().enumerate() {
-                all += prog.blocks.len();
-                compiled += (0..prog.blocks.len())
-                    .filter(|&b| linked.is_compiled(p, b) || linked.is_compiled_traced(p, b))
-                    .count();
-            }
-        }
-        (compiled, all)
+        self.objects.iter().map(Linked::compiled_blocks).fold((0, 0), |(c, a), (c2, a2)| (c + c2, a + a2))
     }
 
     /// The period of the fastest task, µs: one scan of the strategy.
