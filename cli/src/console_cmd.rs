@@ -69,7 +69,14 @@ pub fn run(o: Options) -> u8 {
     }
     let trace_path = o.common.trace.clone();
     let state = o.retain.state.clone();
-    let so = StrategyOptions { db: o.db, duration: String::new(), common: o.common, single: None, retain: o.retain };
+    let so = StrategyOptions {
+        db: o.db,
+        duration: String::new(),
+        common: o.common,
+        single: None,
+        retain: o.retain,
+        script: o.script.clone(),
+    };
     let mut strategy = match strategy_cmd::load(&so) {
         Ok(s) => s,
         Err(status) => return status,

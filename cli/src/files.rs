@@ -7,7 +7,8 @@
 use std::fmt;
 use std::fs::{self, Metadata};
 use std::io::{self, Read, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 /// The largest input file `linc` reads: far above any real action file or
 /// database (the guide's largest are kilobytes; 50 MB of generated source
@@ -53,11 +54,65 @@ fn too_large(limit: u64) -> io::Error {
     io::Error::new(io::ErrorKind::InvalidInput, format!("the file is larger than the {} MiB input limit", limit >> 20))
 }
 
+/// Every file this process has read as an input, by identity, with the
+/// name it was read by. No output may replace one of them, whichever
+/// command, option or spelling names it: an output is checked against this
+/// list when it is created ([`AtomicFile::create`]), besides the checks a
+/// command makes before it starts ([`check_output`]).
+static READ: Mutex<Vec<(Identity, PathBuf)>> = Mutex::new(Vec::new());
+
+/// What makes two names one file: device and inode (hard links and
+/// symlinks included); elsewhere the canonical path.
+#[derive(Clone, Debug, PartialEq, Eq)]
+enum Identity {
+    #[cfg(unix)]
+    Inode(u64, u64),
+    #[cfg(not(unix))]
+    Path(PathBuf),
+}
+
+fn identity(path: &Path, meta: &Metadata) -> Identity {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let _ = path;
+        Identity::Inode(meta.dev(), meta.ino())
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = meta;
+        Identity::Path(fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf()))
+    }
+}
+
+fn remember_input(path: &Path, meta: &Metadata) {
+    if let Ok(mut read) = READ.lock() {
+        let id = identity(path, meta);
+        if !read.iter().any(|(i, _)| *i == id) {
+            read.push((id, path.to_path_buf()));
+        }
+    }
+}
+
+/// The input (as it was named when read) that `meta` is, if any.
+fn read_as_input(path: &Path, meta: &Metadata) -> Option<PathBuf> {
+    let id = identity(path, meta);
+    READ.lock().ok()?.iter().find(|(i, _)| *i == id).map(|(_, p)| p.clone())
+}
+
 /// Reads an input file: a regular file (symlinks to one are followed) of at
 /// most [`MAX_INPUT_BYTES`]. Anything else is an error the callers print as
 /// E0900 (file cannot be read), so `linc check /dev/zero` fails at once.
+/// The file is remembered as an input, which no output may replace.
 pub fn read_input(path: &Path) -> io::Result<Vec<u8>> {
-    read_limited(path, MAX_INPUT_BYTES)
+    read_limited(path, MAX_INPUT_BYTES, true)
+}
+
+/// Reads a file that the same command writes again by design (the
+/// retentive state of `--state`): like [`read_input`], but not remembered
+/// as an input, so it may be saved over.
+pub fn read_in_out(path: &Path) -> io::Result<Vec<u8>> {
+    read_limited(path, MAX_INPUT_BYTES, false)
 }
 
 /// [`read_input`] for text: the bytes must be UTF-8.
@@ -66,7 +121,7 @@ pub fn read_input_text(path: &Path) -> io::Result<String> {
         .map_err(|_| io::Error::new(io::ErrorKind::InvalidData, "stream did not contain valid UTF-8"))
 }
 
-fn read_limited(path: &Path, limit: u64) -> io::Result<Vec<u8>> {
+fn read_limited(path: &Path, limit: u64, remember: bool) -> io::Result<Vec<u8>> {
     // Checked before opening: opening a FIFO would block until a writer came.
     if let Some(what) = kind(&fs::metadata(path)?) {
         return Err(not_regular(what));
@@ -79,6 +134,9 @@ fn read_limited(path: &Path, limit: u64) -> io::Result<Vec<u8>> {
     }
     if meta.len() > limit {
         return Err(too_large(limit));
+    }
+    if remember {
+        remember_input(path, &meta);
     }
     let mut bytes = Vec::with_capacity(meta.len() as usize);
     // The length can grow while reading (or lie, as in /proc): read one
@@ -139,9 +197,17 @@ fn same_file(a: &Metadata, b: &Metadata) -> bool {
     }
 }
 
+fn is_input(out: &Path, input: &Path) -> Refused {
+    Refused {
+        code: "E0902",
+        message: format!("won't write `{}`: it is the input `{}`", out.display(), input.display()),
+    }
+}
+
 /// Checks, before any work is done, that `out` may be written: E0901 if it
-/// exists and is not a regular file, E0902 if it is one of `inputs` under
-/// any spelling, hard link or symlink (writing it would destroy the input).
+/// exists and is not a regular file, E0902 if it is one of `inputs`, or a
+/// file already read, under any spelling, hard link or symlink (writing it
+/// would destroy the input).
 pub fn check_output(out: &Path, inputs: &[&Path]) -> Result<(), Refused> {
     let Ok(target) = fs::metadata(out) else {
         // Nothing there (or a dangling link): no input can be overwritten.
@@ -152,13 +218,51 @@ pub fn check_output(out: &Path, inputs: &[&Path]) -> Result<(), Refused> {
         let same = fs::metadata(input).is_ok_and(|m| same_file(&m, &target))
             || (canonical.is_some() && fs::canonicalize(input).ok() == canonical);
         if same {
-            return Err(Refused {
-                code: "E0902",
-                message: format!("won't write `{}`: it is the input `{}`", out.display(), input.display()),
-            });
+            return Err(is_input(out, input));
         }
     }
+    if let Some(input) = read_as_input(out, &target) {
+        return Err(is_input(out, &input));
+    }
     existing_output(out).map(|_| ())
+}
+
+/// Where a name would be written: its directory resolved (links, `..`,
+/// `.`) and its file name, so `out.json`, `./out.json` and
+/// `dir/../out.json` are one place even before the file exists.
+fn destination(path: &Path) -> PathBuf {
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    match (fs::canonicalize(dir), path.file_name()) {
+        (Ok(dir), Some(name)) => dir.join(name),
+        _ => path.to_path_buf(),
+    }
+}
+
+/// Checks, before any work is done, that no two outputs of one command
+/// name the same file (E0902): the second write would replace the first,
+/// and two atomic writers racing for one name lose one of them. Each output
+/// comes with the option that names it; `-` (standard output) is no file.
+pub fn check_distinct(outputs: &[(&str, &Path)]) -> Result<(), Refused> {
+    let files: Vec<(&str, &Path)> = outputs.iter().copied().filter(|(_, p)| p.as_os_str() != "-").collect();
+    for (i, (flag_a, a)) in files.iter().enumerate() {
+        for (flag_b, b) in &files[i + 1..] {
+            let same = match (fs::metadata(a), fs::metadata(b)) {
+                (Ok(ma), Ok(mb)) => same_file(&ma, &mb),
+                _ => false,
+            } || destination(a) == destination(b);
+            if same {
+                return Err(Refused {
+                    code: "E0902",
+                    message: format!(
+                        "won't write `{}` for {flag_b}: {flag_a} writes the same file `{}`",
+                        b.display(),
+                        a.display()
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 /// An output written atomically: into a new temporary file beside `path`
@@ -179,6 +283,9 @@ pub struct AtomicFile {
 impl AtomicFile {
     pub fn create(path: &Path) -> Result<AtomicFile, Refused> {
         let existing = existing_output(path)?;
+        if let Some(input) = existing.as_ref().and_then(|meta| read_as_input(path, meta)) {
+            return Err(is_input(path, &input));
+        }
         let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
         let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("out");
         let prefix = format!(".{name}.");
@@ -259,8 +366,8 @@ mod tests {
         let dir = scratch("limit");
         let p = dir.join("f");
         fs::write(&p, [7u8; 100]).expect("write");
-        assert_eq!(read_limited(&p, 100).expect("at the limit").len(), 100);
-        let e = read_limited(&p, 99).expect_err("over the limit");
+        assert_eq!(read_limited(&p, 100, false).expect("at the limit").len(), 100);
+        let e = read_limited(&p, 99, false).expect_err("over the limit");
         assert_eq!(e.kind(), io::ErrorKind::InvalidInput);
         assert_eq!(MAX_INPUT_BYTES, 256 * 1024 * 1024);
         assert!(too_large(MAX_INPUT_BYTES).to_string().contains("256 MiB"));

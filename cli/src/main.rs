@@ -451,9 +451,14 @@ fn main() -> ExitCode {
             let common = run_cmd::Common { set, show, trace, out, now, seed, watchdog, tier: tier.into(), format };
             match (db, duration) {
                 _ if misuse.is_some() => report::usage(misuse.unwrap_or_default()),
-                (None, Some(duration)) => {
-                    strategy_cmd::run(&strategy_cmd::Options { db: file, duration, common, single: None, retain })
-                }
+                (None, Some(duration)) => strategy_cmd::run(&strategy_cmd::Options {
+                    db: file,
+                    duration,
+                    common,
+                    single: None,
+                    retain,
+                    script: None,
+                }),
                 (Some(db), None) => {
                     let period = period.unwrap_or(1.0);
                     run_cmd::run(&run_cmd::Options { file, db, action, block, cycles, period, common })
@@ -463,7 +468,14 @@ fn main() -> ExitCode {
                 {
                     let kind = sequence_run::Kind::of(&file);
                     let single = sequence_run::SequenceRun { file, kind, block, period, hold_steps: hold_step, force };
-                    strategy_cmd::run(&strategy_cmd::Options { db, duration, common, single: Some(single), retain })
+                    strategy_cmd::run(&strategy_cmd::Options {
+                        db,
+                        duration,
+                        common,
+                        single: Some(single),
+                        retain,
+                        script: None,
+                    })
                 }
                 (Some(_), Some(_)) => report::usage(
                     "--for runs a strategy (PLANT.json without --db), a sequence (FILE.sfc --db PLANT.json) \

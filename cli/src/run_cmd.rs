@@ -69,7 +69,13 @@ pub fn program_object(path: &Path, db: &Database, format: Format) -> Result<Veri
 pub fn run(o: &Options) -> u8 {
     // `--out` and `--trace FILE` may not replace an input or anything but a
     // regular file; checked before the run, so a refused run changes nothing.
-    for out in [&o.common.out, &o.common.trace].into_iter().flatten().filter(|p| p.as_os_str() != "-") {
+    let outputs = [("--out", &o.common.out), ("--trace", &o.common.trace)];
+    let outputs: Vec<(&str, &Path)> = outputs.iter().filter_map(|(f, p)| Some((*f, p.as_deref()?))).collect();
+    if let Err(e) = crate::files::check_distinct(&outputs) {
+        eprintln!("{e}");
+        return 2;
+    }
+    for (_, out) in outputs.iter().filter(|(_, p)| p.as_os_str() != "-") {
         if let Err(e) = crate::files::check_output(out, &[&o.file, &o.db]) {
             eprintln!("{e}");
             return 2;

@@ -23,7 +23,7 @@ pub fn warm_start(path: &Path, cold: bool, s: &mut Strategy) -> Result<Start, u8
     if cold {
         return Ok(Start::Cold);
     }
-    let bytes = match crate::files::read_input(path) {
+    let bytes = match crate::files::read_in_out(path) {
         Ok(b) => b,
         Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(Start::Cold),
         Err(e) => {

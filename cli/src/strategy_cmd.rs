@@ -21,6 +21,8 @@ pub struct Options {
     /// Run only this sequence or FST table (`linc run batch.sfc --db … --for …`).
     pub single: Option<SequenceRun>,
     pub retain: Retain,
+    /// The console's script, an input no output may replace.
+    pub script: Option<PathBuf>,
 }
 
 /// `--state FILE` and `--cold`.
@@ -221,18 +223,28 @@ fn is_step_show(store: &Store, seq_block: Option<usize>, path: &str) -> bool {
 
 /// Outputs may not replace an input or anything but a regular file;
 /// checked before the run, so a refused run changes nothing.
+/// No two outputs may name one file (E0902), and the console's `--script`
+/// is an input too.
 fn check_outputs(o: &Options, wants: &[Want]) -> Result<(), u8> {
     let dir = o.db.parent().map(Path::to_path_buf).unwrap_or_default();
-    let inputs: Vec<PathBuf> = std::iter::once(o.db.clone()).chain(wants.iter().map(|w| dir.join(&w.file))).collect();
+    let inputs: Vec<PathBuf> =
+        std::iter::once(o.db.clone()).chain(o.script.clone()).chain(wants.iter().map(|w| dir.join(&w.file))).collect();
     let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
-    for out in [&o.common.out, &o.common.trace, &o.retain.state].into_iter().flatten().filter(|p| p.as_os_str() != "-")
-    {
-        if let Err(e) = crate::files::check_output(out, &input_refs) {
+    let outputs = [("--out", &o.common.out), ("--trace", &o.common.trace), ("--state", &o.retain.state)];
+    let outputs: Vec<(&str, &Path)> = outputs.iter().filter_map(|(f, p)| Some((*f, p.as_deref()?))).collect();
+    let refused = crate::files::check_distinct(&outputs).err().or_else(|| {
+        outputs
+            .iter()
+            .filter(|(_, p)| p.as_os_str() != "-")
+            .find_map(|(_, out)| crate::files::check_output(out, &input_refs).err())
+    });
+    match refused {
+        Some(e) => {
             eprintln!("{e}");
-            return Err(2);
+            Err(2)
         }
+        None => Ok(()),
     }
-    Ok(())
 }
 
 /// Where `--trace` goes: standard output for `-`, else a file committed

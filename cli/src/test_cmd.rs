@@ -73,6 +73,10 @@ pub fn run(o: &Options) -> u8 {
         Ok(f) => f,
         Err(msg) => return usage(format_args!("[E0903] {msg}")),
     };
+    if let Err(e) = check_outputs(o, &files) {
+        eprintln!("{e}");
+        return 2;
+    }
     let jobs = o.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())).max(1);
     let started = std::time::Instant::now();
     let outcomes = run_all(&files, jobs, o.vcd.is_some());
@@ -107,6 +111,32 @@ pub fn run(o: &Options) -> u8 {
         }
     }
     u8::from(!failed.is_empty())
+}
+
+/// `--junit` and `--vcd` may not name one file, nor a scenario or a file a
+/// scenario names (its strategy or program and database); checked before
+/// any scenario runs. Files read later (a strategy's action files) are
+/// protected when the report is written (`files::AtomicFile`).
+fn check_outputs(o: &Options, files: &[PathBuf]) -> Result<(), crate::files::Refused> {
+    let outputs = [("--junit", &o.junit), ("--vcd", &o.vcd)];
+    let outputs: Vec<(&str, &Path)> = outputs.iter().filter_map(|(f, p)| Some((*f, p.as_deref()?))).collect();
+    crate::files::check_distinct(&outputs)?;
+    let mut inputs: Vec<PathBuf> = files.to_vec();
+    for file in files {
+        let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
+        let Ok(text) = crate::files::read_input_text(file) else { continue };
+        match scenario::parse(&text).0.target {
+            Some(Target::Strategy(db)) => inputs.push(dir.join(db)),
+            Some(Target::Program { file, db }) => inputs.extend([dir.join(file), dir.join(db)]),
+            None => {}
+        }
+    }
+    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    let mut targets: Vec<PathBuf> = o.junit.iter().cloned().collect();
+    if let Some(vcd) = &o.vcd {
+        targets.extend(crate::test_report::vcd_targets(vcd, files));
+    }
+    targets.iter().try_for_each(|t| crate::files::check_output(t, &inputs))
 }
 
 /// Runs the scenarios on `jobs` threads; the outcomes come back in file

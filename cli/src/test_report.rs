@@ -119,6 +119,30 @@ pub fn vcd(o: &Outcome) -> std::io::Result<Vec<u8>> {
     Ok(w.writer().clone())
 }
 
+/// The VCD file of each scenario: `path` itself for one scenario; for
+/// several, `NAME.vcd` in the directory `path`, numbered where two
+/// scenarios share a file name.
+pub fn vcd_targets(path: &Path, scenarios: &[PathBuf]) -> Vec<PathBuf> {
+    if scenarios.len() == 1 {
+        return vec![path.to_path_buf()];
+    }
+    let mut names: Vec<String> = Vec::new();
+    scenarios
+        .iter()
+        .map(|file| {
+            let stem = file.file_stem().map_or("scenario".into(), |s| s.to_string_lossy().into_owned());
+            let mut name = stem.clone();
+            let mut k = 2;
+            while names.contains(&name) {
+                name = format!("{stem}-{k}");
+                k += 1;
+            }
+            names.push(name.clone());
+            path.join(format!("{name}.vcd"))
+        })
+        .collect()
+}
+
 /// `--vcd PATH`: the file itself for one scenario; for several, a
 /// directory of `NAME.vcd` files (made if missing).
 pub fn write_vcds(path: &Path, outcomes: &[Outcome]) -> Result<(), u8> {
@@ -126,28 +150,11 @@ pub fn write_vcds(path: &Path, outcomes: &[Outcome]) -> Result<(), u8> {
         eprintln!("error[E0900]: can't write `{}`: {e}", path.display());
         2
     };
-    let targets: Vec<PathBuf> = if outcomes.len() == 1 {
-        vec![path.to_path_buf()]
-    } else {
+    if outcomes.len() > 1 {
         std::fs::create_dir_all(path).map_err(|e| fail(&e))?;
-        let mut names: Vec<String> = Vec::new();
-        outcomes
-            .iter()
-            .map(|o| {
-                let stem =
-                    Path::new(&o.name).file_stem().map_or("scenario".into(), |s| s.to_string_lossy().into_owned());
-                let mut name = stem.clone();
-                let mut k = 2;
-                while names.contains(&name) {
-                    name = format!("{stem}-{k}");
-                    k += 1;
-                }
-                names.push(name.clone());
-                path.join(format!("{name}.vcd"))
-            })
-            .collect()
-    };
-    for (o, target) in outcomes.iter().zip(targets) {
+    }
+    let names: Vec<PathBuf> = outcomes.iter().map(|o| PathBuf::from(&o.name)).collect();
+    for (o, target) in outcomes.iter().zip(vcd_targets(path, &names)) {
         let bytes = vcd(o).map_err(|e| fail(&e))?;
         crate::files::write_atomic(&target, &bytes).map_err(|e| fail(&e))?;
     }

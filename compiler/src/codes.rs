@@ -211,7 +211,7 @@ codes! {
     "E0842" => "state file was saved from another strategy",
     "E0900" => "file cannot be read or written",
     "E0901" => "output path is not a regular file",
-    "E0902" => "output file is one of the inputs",
+    "E0902" => "output file is one of the inputs, or another output",
     "E0903" => "invalid command-line value",
     "E0904" => "--block names a block of another type",
 }
