@@ -3,10 +3,9 @@
 //! The compiler's session does the work; this only reads the files and
 //! prints what the session reports.
 
-use crate::check_cmd::io_error;
 use linc_compiler::check::Context;
-use linc_compiler::render::{self, Format};
 use linc_compiler::session::{CheckOptions, Session};
+use linc_driver::Reporter;
 use linc_runtime::{Database, ObjectFile};
 use std::path::PathBuf;
 
@@ -18,11 +17,11 @@ pub struct Failed(pub u8);
 pub fn compile(
     paths: &[PathBuf],
     db: Option<&Database>,
-    format: Format,
+    r: &mut Reporter,
     errors_status: u8,
 ) -> Result<ObjectFile, Failed> {
     if let Some(table) = paths.iter().find(|p| crate::fst_src::is_fst(p)) {
-        return compile_fst(paths, table, db, format, errors_status);
+        return compile_fst(paths, table, db, r, errors_status);
     }
     let builtin;
     let (db, resolve_blocks) = match db {
@@ -36,31 +35,27 @@ pub fn compile(
     if let Some(seq) = paths.iter().find(|p| crate::sequence_src::is_sequence(p)) {
         // A sequence is one unit of its own (its steps and actions are its).
         if paths.len() > 1 {
-            crate::report::usage(format_args!("[E0903] `{}` is a sequence: compile it on its own", seq.display()));
+            crate::report::usage(r, format_args!("`{}` is a sequence: compile it on its own", seq.display()));
             return Err(Failed(2));
         }
-        let c = crate::sequence_src::check(seq, ctx, true, false, format).map_err(|()| Failed(2))?;
+        let c = crate::sequence_src::check(seq, ctx, true, false, r).map_err(|()| Failed(2))?;
         return c.object.ok_or(Failed(errors_status));
     }
     let mut session = Session::compiling(ctx);
     for path in paths {
-        let bytes = crate::files::read_input(path).map_err(|e| {
-            io_error(path, &e, format);
+        let bytes = linc_driver::files::read_input(path).map_err(|e| {
+            r.unreadable(path, &e);
             Failed(2)
         })?;
         let id = session.add(path.display().to_string(), bytes);
         let checked = session.check(id, CheckOptions::default());
-        for d in &checked.diagnostics {
-            print!("{}", render::render(session.files(), d, format));
-        }
+        r.emit_all(session.files(), &checked.diagnostics);
     }
     if session.has_errors() {
         return Err(Failed(errors_status));
     }
     session.compile().map_err(|errors| {
-        for d in &errors {
-            print!("{}", render::render(session.files(), d, format));
-        }
+        r.emit_all(session.files(), &errors);
         Failed(errors_status)
     })
 }
@@ -71,18 +66,18 @@ fn compile_fst(
     paths: &[PathBuf],
     table: &std::path::Path,
     db: Option<&Database>,
-    format: Format,
+    r: &mut Reporter,
     errors_status: u8,
 ) -> Result<ObjectFile, Failed> {
     if paths.len() > 1 {
-        crate::report::usage(format_args!("[E0903] `{}` is an FST table: compile it on its own", table.display()));
+        crate::report::usage(r, format_args!("`{}` is an FST table: compile it on its own", table.display()));
         return Err(Failed(2));
     }
     let Some(db) = db else {
-        let what = format!("[E0903] compiling the FST table `{}` needs its point database: pass --db", table.display());
-        crate::report::usage(what);
+        let what = format!("compiling the FST table `{}` needs its point database: pass --db", table.display());
+        crate::report::usage(r, what);
         return Err(Failed(2));
     };
-    let c = crate::fst_src::check(table, Some(db), true, format).map_err(|()| Failed(2))?;
+    let c = crate::fst_src::check(table, Some(db), true, r).map_err(|()| Failed(2))?;
     c.object.ok_or(Failed(errors_status))
 }

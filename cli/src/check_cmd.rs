@@ -1,17 +1,17 @@
 //! `linc check`: check files in one session, printing diagnostics.
 
 use linc_compiler::check::Context;
-use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::render::{Format, SourceFiles};
 use linc_compiler::session::{CheckOptions, Input, Session};
 use linc_compiler::sfc::resources::Instrument;
 use linc_compiler::Diagnostic;
+use linc_driver::Reporter;
 use linc_runtime::Database;
 use std::path::{Path, PathBuf};
 
 pub struct Options {
     pub files: Vec<PathBuf>,
     pub db: Option<PathBuf>,
-    pub format: Format,
     pub tree: bool,
     pub transition: bool,
     pub sequence: bool,
@@ -22,37 +22,31 @@ pub struct Options {
     pub resources: Option<Instrument>,
 }
 
-/// Prints one diagnostic that has no source location (I/O problems).
-pub fn io_error(path: &Path, e: &std::io::Error, format: Format) {
-    let name = path.display().to_string();
-    let text = crate::report::file_error(&name, "E0900", format!("can't read `{name}`: {e}"), format);
-    match format {
-        // JSON diagnostics all go to standard output, one per line.
-        Format::Json => print!("{text}"),
-        _ => eprint!("{text}"),
-    }
-}
-
 /// Loads `--db`, printing its diagnostics. `Err` carries the exit status.
-pub fn load_db(path: Option<&Path>, files: &mut SourceFiles, format: Format) -> Result<Option<Database>, u8> {
+pub fn load_db(path: Option<&Path>, files: &mut SourceFiles, r: &mut Reporter) -> Result<Option<Database>, u8> {
     let Some(path) = path else { return Ok(None) };
-    let text = crate::files::read_input_text(path).map_err(|e| {
-        io_error(path, &e, format);
+    let text = linc_driver::files::read_input_text(path).map_err(|e| {
+        r.unreadable(path, &e);
         2u8
     })?;
-    let loaded = Database::from_json(&text);
+    // A byte order mark is ignored, as in sources: three spaces keep every
+    // offset that of the file.
+    let loaded = match text.strip_prefix('\u{feff}') {
+        Some(rest) => Database::from_json(&format!("   {rest}")),
+        None => Database::from_json(&text),
+    };
     let id = files.add(path.display().to_string(), text);
     loaded.map(Some).map_err(|e| {
         let span = e.span.map(|(s, e)| linc_compiler::Span::new(s, e)).unwrap_or_default();
         let d = Diagnostic::error(e.code, e.message, span).label("here").in_file(id);
-        print!("{}", render::render(files, &d, format));
+        r.emit(files, &d);
         2u8
     })
 }
 
-pub fn run(o: &Options) -> u8 {
+pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     let mut dbfiles = SourceFiles::new();
-    let db = match load_db(o.db.as_deref(), &mut dbfiles, o.format) {
+    let db = match load_db(o.db.as_deref(), &mut dbfiles, r) {
         Ok(db) => db,
         Err(status) => return status,
     };
@@ -63,7 +57,7 @@ pub fn run(o: &Options) -> u8 {
     let mut session = Session::new(Context { db: &db, resolve_blocks, steps });
     let (mut errors, mut warnings, mut status) = (0usize, 0usize, 0u8);
     let bound = match &o.map {
-        Some(m) => match crate::sfc_cmd::load_map(m, &db, resolve_blocks, o.format) {
+        Some(m) => match crate::sfc_cmd::load_map(m, &db, resolve_blocks, r) {
             Ok(b) => {
                 errors += b.errors;
                 Some(b)
@@ -77,7 +71,7 @@ pub fn run(o: &Options) -> u8 {
     let input = if o.transition { Input::Transition } else { Input::Actions };
     for path in &o.files {
         if crate::fst_src::is_fst(path) {
-            match crate::fst_src::check(path, resolve_blocks.then_some(&db), false, o.format) {
+            match crate::fst_src::check(path, resolve_blocks.then_some(&db), false, r) {
                 Ok(c) => {
                     errors += c.errors;
                     warnings += c.warnings;
@@ -89,7 +83,7 @@ pub fn run(o: &Options) -> u8 {
         if crate::sequence_src::is_sequence(path) {
             let seq_db = bound.as_ref().map_or(&db, |b| &b.db);
             let ctx = Context { db: seq_db, resolve_blocks, steps: None };
-            match crate::sequence_src::check_with(path, ctx, &extra, (false, o.tree), o.format) {
+            match crate::sequence_src::check_with(path, ctx, &extra, (false, o.tree), r) {
                 Ok(c) => {
                     errors += c.errors;
                     warnings += c.warnings;
@@ -98,10 +92,10 @@ pub fn run(o: &Options) -> u8 {
             }
             continue;
         }
-        let bytes = match crate::files::read_input(path) {
+        let bytes = match linc_driver::files::read_input(path) {
             Ok(b) => b,
             Err(e) => {
-                io_error(path, &e, o.format);
+                r.unreadable(path, &e);
                 status = 2;
                 continue;
             }
@@ -117,10 +111,10 @@ pub fn run(o: &Options) -> u8 {
             } else {
                 warnings += 1;
             }
-            print!("{}", render::render(session.files(), d, o.format));
+            r.emit(session.files(), d);
         }
     }
-    if o.format == Format::Human && (errors > 0 || warnings > 0) {
+    if r.format() == Format::Human && (errors > 0 || warnings > 0) {
         eprintln!("linc: {errors} error{}, {warnings} warning{}", plural(errors), plural(warnings));
     }
     if status == 0 && errors > 0 {

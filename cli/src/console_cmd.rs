@@ -4,10 +4,10 @@
 
 use crate::run_cmd::Common;
 use crate::strategy_cmd::{self, Options as StrategyOptions};
-use linc_compiler::render::Format;
+use linc_driver::Reporter;
 use linc_runtime::console::{Console, ConsoleError};
 use linc_runtime::strategy::trace::Trace;
-use std::io::{BufRead, IsTerminal};
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 pub struct Options {
@@ -28,44 +28,92 @@ fn is_quit(line: &str) -> bool {
     matches!(line.trim().to_ascii_uppercase().as_str(), "QUIT" | "EXIT")
 }
 
-/// An error reply, on standard output between the replies it follows.
-fn error_text(e: &ConsoleError, format: Format) -> String {
-    match format {
-        Format::Json => serde_json::json!({ "severity": "error", "code": e.code, "message": e.message }).to_string(),
-        _ => format!("error[{}]: {}", e.code, linc_compiler::render::escape(&e.message)),
+/// The longest command line the console reads (its commands are short; a
+/// line without an end, piped in by mistake, must not grow without bound).
+pub const MAX_LINE: usize = 4096;
+
+/// A line the console reads: its text, or how long it was when too long.
+type ReadLine = Result<String, usize>;
+
+/// Lines of `input`, each at most [`MAX_LINE`] bytes; the rest of a longer
+/// line is read and dropped without being kept. Bytes that are not UTF-8
+/// are replaced (the command is then refused as written wrongly).
+fn bounded_lines(mut input: impl std::io::BufRead) -> impl Iterator<Item = ReadLine> {
+    std::iter::from_fn(move || {
+        let mut kept: Vec<u8> = Vec::new();
+        let mut length = 0usize;
+        loop {
+            let buf = match input.fill_buf() {
+                Ok(b) => b,
+                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+                Err(_) => return None,
+            };
+            if buf.is_empty() {
+                return (length > 0).then(|| finish(kept, length));
+            }
+            let (chunk, end) = match buf.iter().position(|&b| b == b'\n') {
+                Some(at) => (&buf[..at], Some(at + 1)),
+                None => (buf, None),
+            };
+            let room = (MAX_LINE + 1).saturating_sub(kept.len());
+            kept.extend_from_slice(&chunk[..chunk.len().min(room)]);
+            length += chunk.len();
+            let used = end.unwrap_or(buf.len());
+            input.consume(used);
+            if end.is_some() {
+                return Some(finish(kept, length));
+            }
+        }
+    })
+}
+
+fn finish(mut kept: Vec<u8>, length: usize) -> ReadLine {
+    if length > MAX_LINE {
+        return Err(length);
     }
+    if kept.last() == Some(&b'\r') {
+        kept.pop();
+    }
+    Ok(String::from_utf8_lossy(&kept).into_owned())
+}
+
+/// A refused command, as the reporter renders it, for the transcript on
+/// standard output between the replies it follows.
+fn error_text(e: &ConsoleError, r: &mut Reporter) -> String {
+    r.text(linc_compiler::Diagnostic::command(e.code, e.message.clone())).trim_end().to_string()
 }
 
 /// Runs one line and prints its replies; `true` if every command succeeded.
-fn line(console: &mut Console, text: &str, format: Format, trace: Option<&mut Trace>, state: Option<&Path>) -> bool {
+fn line(console: &mut Console, text: &str, r: &mut Reporter, trace: Option<&mut Trace>, state: Option<&Path>) -> bool {
     let mut ok = true;
     for reply in console.execute_traced(text, trace) {
         match reply {
-            Ok(r) if r.is_empty() => {}
-            Ok(r) => println!("{r}"),
+            Ok(reply) if reply.is_empty() => {}
+            Ok(reply) => println!("{reply}"),
             Err(e) => {
                 ok = false;
-                println!("{}", error_text(&e, format));
+                println!("{}", error_text(&e, r));
             }
         }
     }
-    // Runtime errors are shown in the ADVANCE/SCAN reply; they are not
-    // command failures.
-    console.take_failures();
+    // Runtime errors of the scans a command ran follow its reply, rendered
+    // like any runtime error; they are not command failures.
+    for e in console.take_failures() {
+        println!("{}", r.runtime_text(&e).trim_end());
+    }
     // SAVE took the state; it is written here, atomically.
     if let (Some(bytes), Some(path)) = (console.take_saved(), state) {
-        if let Err(e) = crate::files::write_atomic(path, &bytes) {
-            println!("error[E0900]: {e}");
+        if let Err(e) = linc_driver::files::write_atomic(path, &bytes) {
+            println!("{}", r.text(e.diagnostic()).trim_end());
             ok = false;
         }
     }
     ok
 }
 
-pub fn run(o: Options) -> u8 {
-    let format = o.common.format;
+pub fn run(o: Options, r: &mut Reporter) -> u8 {
     if o.common.trace.as_ref().is_some_and(|p| p.as_os_str() == "-") {
-        return crate::report::usage("--trace of the console takes a FILE (standard output holds the replies)");
+        return crate::report::usage(r, "--trace of the console takes a FILE (standard output holds the replies)");
     }
     let trace_path = o.common.trace.clone();
     let state = o.retain.state.clone();
@@ -77,47 +125,41 @@ pub fn run(o: Options) -> u8 {
         retain: o.retain,
         script: o.script.clone(),
     };
-    let mut strategy = match strategy_cmd::load(&so) {
+    let mut strategy = match strategy_cmd::load(&so, r) {
         Ok(s) => s,
         Err(status) => return status,
     };
     if let Some(path) = &state {
-        if let Err(status) = crate::state_file::warm_start(path, so.retain.cold, &mut strategy) {
+        if let Err(status) = crate::state_file::warm_start(path, so.retain.cold, &mut strategy, r) {
             return status;
         }
     }
     let mut console = Console::new(strategy);
     console.can_save = state.is_some();
-    let mut sink = match strategy_cmd::trace_sink(trace_path.as_deref()) {
+    let mut sink = match strategy_cmd::trace_sink(trace_path.as_deref(), r) {
         Ok(s) => s,
         Err(status) => return status,
     };
     let mut trace = sink.as_mut().map(|w| Trace::new(w.as_mut(), &console.strategy.store));
     let status = match &o.script {
-        Some(p) => match crate::files::read_input_text(p) {
-            Ok(text) => {
-                script(&mut console, text.lines().map(str::to_string), format, trace.as_mut(), state.as_deref())
-            }
+        Some(p) => match linc_driver::files::read_input(p) {
+            Ok(bytes) => script(&mut console, bounded_lines(bytes.as_slice()), r, trace.as_mut(), state.as_deref()),
             Err(e) => {
-                eprintln!("error[E0900]: can't read `{}`: {e}", p.display());
+                r.unreadable(p, &e);
                 return 2;
             }
         },
-        None if std::io::stdin().is_terminal() => interactive(&mut console, format, trace.as_mut(), state.as_deref()),
-        None => {
-            let lines = std::io::stdin().lock().lines().map_while(Result::ok);
-            script(&mut console, lines, format, trace.as_mut(), state.as_deref())
-        }
+        None if std::io::stdin().is_terminal() => interactive(&mut console, r, trace.as_mut(), state.as_deref()),
+        None => script(&mut console, bounded_lines(std::io::stdin().lock()), r, trace.as_mut(), state.as_deref()),
     };
     let traced = trace.map(Trace::finish);
     drop(sink);
     if let Some(Err(e)) = traced {
-        eprintln!("error[E0900]: can't write the trace: {e}");
-        return 2;
+        return strategy_cmd::trace_unwritten(trace_path.as_deref(), &e, r);
     }
     // The state is kept at the end as on SAVE.
     if let Some(path) = &state {
-        if let Err(status) = crate::state_file::save(path, &console.strategy) {
+        if let Err(status) = crate::state_file::save(path, &console.strategy, r) {
             return status;
         }
     }
@@ -127,30 +169,39 @@ pub fn run(o: Options) -> u8 {
 /// Runs every line; the exit status: 1 if a command was refused.
 fn script(
     console: &mut Console,
-    lines: impl Iterator<Item = String>,
-    format: Format,
+    lines: impl Iterator<Item = ReadLine>,
+    r: &mut Reporter,
     mut trace: Option<&mut Trace>,
     state: Option<&Path>,
 ) -> u8 {
     let mut ok = true;
     for l in lines {
+        let l = match l {
+            Ok(l) => l,
+            Err(length) => {
+                let why = format!("a console line is at most {MAX_LINE} bytes; this one has {length}");
+                println!("{}", error_text(&ConsoleError { code: "C0002", message: why }, r));
+                ok = false;
+                continue;
+            }
+        };
         if skipped(&l) {
             continue;
         }
         if is_quit(&l) {
             break;
         }
-        ok &= line(console, &l, format, trace.as_deref_mut(), state);
+        ok &= line(console, &l, r, trace.as_deref_mut(), state);
     }
     u8::from(!ok)
 }
 
 /// The prompt `linc> ` with line editing and history (rustyline).
-fn interactive(console: &mut Console, format: Format, mut trace: Option<&mut Trace>, state: Option<&Path>) -> u8 {
+fn interactive(console: &mut Console, r: &mut Reporter, mut trace: Option<&mut Trace>, state: Option<&Path>) -> u8 {
     let mut editor = match rustyline::DefaultEditor::new() {
         Ok(e) => e,
         Err(e) => {
-            eprintln!("error[E0900]: can't open the terminal: {e}");
+            r.command("E0900", format!("can't open the terminal: {e}"));
             return 2;
         }
     };
@@ -162,7 +213,7 @@ fn interactive(console: &mut Console, format: Format, mut trace: Option<&mut Tra
             break;
         }
         let _ = editor.add_history_entry(l.as_str());
-        line(console, &l, format, trace.as_deref_mut(), state);
+        line(console, &l, r, trace.as_deref_mut(), state);
     }
     0
 }

@@ -1,6 +1,6 @@
 //! `linc disasm OUT.sto`: a readable listing of an object file.
 
-use linc_compiler::render::Format;
+use linc_driver::Reporter;
 use linc_runtime::isa::Op;
 use linc_runtime::object::{CodeBlock, ObjectFile};
 use linc_runtime::text::format_value;
@@ -9,9 +9,9 @@ use std::collections::HashMap;
 use std::fmt::Write;
 use std::path::Path;
 
-pub fn run(path: &Path, format: Format) -> u8 {
+pub fn run(path: &Path, r: &mut Reporter) -> u8 {
     let name = path.display().to_string();
-    let loaded = crate::files::read_input(path)
+    let loaded = linc_driver::files::read_input(path)
         .map_err(|e| ("E0900", format!("can't read `{name}`: {e}")))
         .and_then(|bytes| linc_runtime::load(&bytes).map_err(|e| (e.code(), e.to_string())));
     match loaded {
@@ -20,7 +20,7 @@ pub fn run(path: &Path, format: Format) -> u8 {
             0
         }
         Err((code, message)) => {
-            eprint!("{}", crate::report::file_error(&name, code, message, format));
+            r.whole_file(&name, code, message);
             2
         }
     }
@@ -48,7 +48,7 @@ pub fn listing(obj: &ObjectFile) -> String {
         // The object names its source; it is read under the input rules, so
         // a name that is now a FIFO or a device can't hang the listing.
         let source = sources.entry(u.file.as_str()).or_insert_with(|| {
-            crate::files::read_input_text(std::path::Path::new(&u.file))
+            linc_driver::files::read_input_text(std::path::Path::new(&u.file))
                 .map(|t| t.lines().map(str::to_string).collect())
                 .unwrap_or_default()
         });

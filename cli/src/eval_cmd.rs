@@ -3,17 +3,18 @@
 use crate::check_cmd::load_db;
 use linc_compiler::check::Context;
 use linc_compiler::lower::{self, Lines};
-use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::render::SourceFiles;
 use linc_compiler::session::{CheckOptions, Input, Session};
+use linc_driver::Reporter;
 use linc_runtime::store::Store;
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{text, Database};
 use linc_stdlib::value::decode_dollar;
 use std::path::Path;
 
-pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>, format: Format) -> u8 {
+pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>, r: &mut Reporter) -> u8 {
     let mut dbfiles = SourceFiles::new();
-    let db = match load_db(db, &mut dbfiles, format) {
+    let db = match load_db(db, &mut dbfiles, r) {
         Ok(db) => db,
         Err(status) => return status,
     };
@@ -22,9 +23,7 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>, 
     let mut session = Session::new(Context { db: &db, resolve_blocks, steps: None });
     let id = session.add("<expr>", expr.as_bytes().to_vec());
     let checked = session.check(id, CheckOptions { input: Input::Expression, tree: false });
-    for d in &checked.diagnostics {
-        eprint!("{}", render::render(session.files(), d, format));
-    }
+    r.emit_all(session.files(), &checked.diagnostics);
     let Some(program) = checked.expr else {
         return 2;
     };
@@ -33,17 +32,14 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>, 
         Ok(o) => o,
         Err(errors) => {
             for e in errors {
-                eprint!("{}", render::render(session.files(), &e.to_diagnostic().in_file(id), format));
+                r.emit(session.files(), &e.to_diagnostic().in_file(id));
             }
             return 2;
         }
     };
     let now = match crate::run_cmd::start_time(now) {
         Ok(s) => s,
-        Err(msg) => {
-            eprintln!("error: {msg}");
-            return 2;
-        }
+        Err(msg) => return crate::report::usage(r, msg),
     };
     let mut store = Store::new(db);
     store.now = now as f64;
@@ -66,11 +62,11 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>, 
         }
         Ok(Ok(None)) => 2,
         Ok(Err(e)) => {
-            eprint!("{}", crate::report::runtime_in("<expr>", expr.to_string(), &e, format));
+            r.runtime_in("<expr>", expr.to_string(), &e);
             1
         }
         Err(e) => {
-            eprint!("{}", crate::report::file_error("<expr>", e.code(), e.to_string(), format));
+            r.whole_file("<expr>", e.code(), e.to_string());
             2
         }
     }

@@ -1,8 +1,9 @@
 //! `linc explain CODE`: print a code's explanation page.
 
 use linc_compiler::codes::{lookup, CODES};
+use linc_compiler::render;
 
-pub fn run(code: Option<&str>, list: bool) -> u8 {
+pub fn run(code: Option<&str>, list: bool, r: &mut linc_driver::Reporter) -> u8 {
     match code {
         Some(c) if !list => match lookup(c) {
             Some(entry) => {
@@ -12,10 +13,10 @@ pub fn run(code: Option<&str>, list: bool) -> u8 {
                 }
                 0
             }
-            None => {
-                eprintln!("error: `{c}` is not a linc diagnostic code (see `linc explain --list`)");
-                2
-            }
+            None => crate::report::usage(
+                r,
+                format_args!("`{}` is not a linc diagnostic code (see `linc explain --list`)", render::escape(c)),
+            ),
         },
         _ => {
             for c in CODES {

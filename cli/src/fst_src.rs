@@ -2,9 +2,9 @@
 //! read, checked and compiled by the compiler's FST front end, diagnostics
 //! printed through the renderer, and `linc fst list`.
 
-use crate::check_cmd::io_error;
 use linc_compiler::fst;
-use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::render::SourceFiles;
+use linc_driver::Reporter;
 use linc_runtime::{Database, ObjectFile};
 use std::path::Path;
 
@@ -22,13 +22,13 @@ pub struct Checked {
 
 /// The table's text, or the located E0017 for bytes that are not UTF-8
 /// (already printed). `Err` is an I/O failure, reported.
-fn read(path: &Path, files: &mut SourceFiles, format: Format) -> Result<Option<String>, ()> {
-    let bytes = crate::files::read_input(path).map_err(|e| io_error(path, &e, format))?;
+fn read(path: &Path, files: &mut SourceFiles, r: &mut Reporter) -> Result<Option<String>, ()> {
+    let bytes = linc_driver::files::read_input(path).map_err(|e| r.unreadable(path, &e))?;
     let (text, invalid) = linc_compiler::files::decode(bytes);
     let id = files.add_decoded(path.display().to_string(), text.clone(), invalid.clone());
     match linc_compiler::session::SessionError::not_utf8(&invalid) {
         Some(e) => {
-            print!("{}", render::render(files, &e.to_diagnostic().in_file(id), format));
+            r.emit(files, &e.to_diagnostic().in_file(id));
             Ok(None)
         }
         None => Ok(Some(text)),
@@ -37,9 +37,9 @@ fn read(path: &Path, files: &mut SourceFiles, format: Format) -> Result<Option<S
 
 /// Reads, checks and (with a database, when `lower`) compiles one table,
 /// printing its diagnostics.
-pub fn check(path: &Path, db: Option<&Database>, lower: bool, format: Format) -> Result<Checked, ()> {
+pub fn check(path: &Path, db: Option<&Database>, lower: bool, r: &mut Reporter) -> Result<Checked, ()> {
     let mut files = SourceFiles::new();
-    let Some(text) = read(path, &mut files, format)? else {
+    let Some(text) = read(path, &mut files, r)? else {
         return Ok(Checked { errors: 1, warnings: 0, object: None });
     };
     let name = path.display().to_string();
@@ -47,7 +47,7 @@ pub fn check(path: &Path, db: Option<&Database>, lower: bool, format: Format) ->
     let (diagnostics, object) = fst::compile(&text, stem, &name, db);
     let errors = diagnostics.iter().filter(|d| d.is_error()).count();
     for d in &diagnostics {
-        print!("{}", render::render(&files, &d.clone().in_file(linc_compiler::span::FileId(0)), format));
+        r.emit(&files, &d.clone().in_file(linc_compiler::span::FileId(0)));
     }
     let object = if lower { object } else { None };
     Ok(Checked { errors, warnings: diagnostics.len() - errors, object })
@@ -55,14 +55,14 @@ pub fn check(path: &Path, db: Option<&Database>, lower: bool, format: Format) ->
 
 /// `linc fst list TABLE.csv [--db DB]`: the table as the FST Editor shows
 /// it, with each step's instruction offset when a database lets it compile.
-pub fn list(path: &Path, db: Option<&Path>, format: Format) -> u8 {
+pub fn list(path: &Path, db: Option<&Path>, r: &mut Reporter) -> u8 {
     let mut dbfiles = SourceFiles::new();
-    let db = match crate::check_cmd::load_db(db, &mut dbfiles, format) {
+    let db = match crate::check_cmd::load_db(db, &mut dbfiles, r) {
         Ok(db) => db,
         Err(status) => return status,
     };
     let mut files = SourceFiles::new();
-    let text = match read(path, &mut files, format) {
+    let text = match read(path, &mut files, r) {
         Ok(Some(t)) => t,
         Ok(None) => return 1,
         Err(()) => return 2,
@@ -74,7 +74,7 @@ pub fn list(path: &Path, db: Option<&Path>, format: Format) -> u8 {
         diagnostics = more;
     }
     for d in &diagnostics {
-        print!("{}", render::render(&files, &d.clone().in_file(linc_compiler::span::FileId(0)), format));
+        r.emit(&files, &d.clone().in_file(linc_compiler::span::FileId(0)));
     }
     if diagnostics.iter().any(|d| d.is_error()) {
         return 1;

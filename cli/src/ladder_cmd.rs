@@ -3,12 +3,12 @@
 //! `to-st` prints the ST a ladder file compiles as (ADR 0009): what runs
 //! is exactly that ST, so it is the way to review what a rung does.
 
-use crate::check_cmd::{io_error, load_db};
-use crate::MessageFormat;
+use crate::check_cmd::load_db;
 use clap::Subcommand;
 use linc_compiler::check::Context;
 use linc_compiler::ladder;
-use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::render::SourceFiles;
+use linc_driver::Reporter;
 use linc_runtime::Database;
 use std::path::{Path, PathBuf};
 
@@ -28,8 +28,6 @@ pub enum LadderCommand {
         /// Runs of every action before drawing.
         #[arg(long, default_value_t = 1)]
         cycles: u32,
-        #[arg(long, value_enum, default_value = "human")]
-        message_format: MessageFormat,
     },
     /// Print the ST a ladder file compiles as (a jump becomes an IF around the rungs it skips).
     ToSt {
@@ -37,43 +35,40 @@ pub enum LadderCommand {
         /// The database that types contacts and coils (without it, names are not checked).
         #[arg(long)]
         db: Option<PathBuf>,
-        #[arg(long, value_enum, default_value = "human")]
-        message_format: MessageFormat,
     },
 }
 
-pub fn run(command: LadderCommand) -> u8 {
+pub fn run(command: LadderCommand, r: &mut Reporter) -> u8 {
     match command {
-        LadderCommand::Show { file, values, db, set, cycles, message_format } => {
-            let format = crate::format(message_format);
+        LadderCommand::Show { file, values, db, set, cycles } => {
             if !values {
-                return show(&file, &|_| None, format);
+                return show(&file, &|_| None, r);
             }
             let Some(db) = db else {
-                return crate::report::usage("[E0903] --values runs the ladder: give --db DB.json");
+                return crate::report::usage(r, "--values runs the ladder: give --db DB.json");
             };
-            match crate::ladder_values::after_run(&file, &db, &set, cycles, format) {
-                Ok(known) => show(&file, &|span| known.get(&(span.start, span.end)).copied(), format),
+            match crate::ladder_values::after_run(&file, &db, &set, cycles, r) {
+                Ok(known) => show(&file, &|span| known.get(&(span.start, span.end)).copied(), r),
                 Err(status) => status,
             }
         }
-        LadderCommand::ToSt { file, db, message_format } => to_st(&file, db.as_deref(), crate::format(message_format)),
+        LadderCommand::ToSt { file, db } => to_st(&file, db.as_deref(), r),
     }
 }
 
 /// Prints the ST, or the ladder's own errors (exit 1).
-fn to_st(file: &Path, db: Option<&Path>, format: Format) -> u8 {
+fn to_st(file: &Path, db: Option<&Path>, r: &mut Reporter) -> u8 {
     let mut files = SourceFiles::new();
-    let loaded = match load_db(db, &mut files, format) {
+    let loaded = match load_db(db, &mut files, r) {
         Ok(d) => d,
         Err(status) => return status,
     };
     let resolve_blocks = loaded.is_some();
     let db = loaded.unwrap_or_else(Database::builtin);
-    let bytes = match crate::files::read_input(file) {
+    let bytes = match linc_driver::files::read_input(file) {
         Ok(b) => b,
         Err(e) => {
-            io_error(file, &e, format);
+            r.unreadable(file, &e);
             return 2;
         }
     };
@@ -81,7 +76,7 @@ fn to_st(file: &Path, db: Option<&Path>, format: Format) -> u8 {
     let (text, invalid) = linc_compiler::files::decode(bytes);
     let id = files.add_decoded(name, text.clone(), invalid.clone());
     if let Some(e) = linc_compiler::session::SessionError::not_utf8(&invalid) {
-        print!("{}", render::render(&files, &e.to_diagnostic().in_file(id), format));
+        r.emit(&files, &e.to_diagnostic().in_file(id));
         return 1;
     }
     let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");
@@ -92,20 +87,18 @@ fn to_st(file: &Path, db: Option<&Path>, format: Format) -> u8 {
             0
         }
         Err(diagnostics) => {
-            for d in diagnostics {
-                print!("{}", render::render(&files, &d.in_file(id), format));
-            }
+            r.emit_all(&files, &diagnostics.into_iter().map(|d| d.in_file(id)).collect::<Vec<_>>());
             1
         }
     }
 }
 
 /// Prints the diagram, or the file's syntax errors (exit 1).
-fn show(file: &Path, values: ladder::pretty::draw::Values, format: Format) -> u8 {
-    let bytes = match crate::files::read_input(file) {
+fn show(file: &Path, values: ladder::pretty::draw::Values, r: &mut Reporter) -> u8 {
+    let bytes = match linc_driver::files::read_input(file) {
         Ok(b) => b,
         Err(e) => {
-            io_error(file, &e, format);
+            r.unreadable(file, &e);
             return 2;
         }
     };
@@ -119,9 +112,7 @@ fn show(file: &Path, values: ladder::pretty::draw::Values, format: Format) -> u8
         Err(diagnostics) => {
             let mut files = SourceFiles::new();
             let id = files.add(file.display().to_string(), text);
-            for d in diagnostics {
-                print!("{}", render::render(&files, &d.in_file(id), format));
-            }
+            r.emit_all(&files, &diagnostics.into_iter().map(|d| d.in_file(id)).collect::<Vec<_>>());
             1
         }
     }

@@ -6,8 +6,9 @@ use crate::check_cmd::load_db;
 use crate::run_cmd::{own_block, set_and_show};
 use linc_compiler::check::Context;
 use linc_compiler::lower::{self, Lines};
-use linc_compiler::render::{Format, SourceFiles};
+use linc_compiler::render::SourceFiles;
 use linc_compiler::session::{CheckOptions, Input, Session};
+use linc_driver::Reporter;
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{Database, Program, Store};
 use linc_stdlib::Value;
@@ -20,27 +21,30 @@ pub fn after_run(
     db_path: &Path,
     set: &[String],
     cycles: u32,
-    format: Format,
+    r: &mut Reporter,
 ) -> Result<HashMap<(usize, usize), bool>, u8> {
     let mut files = SourceFiles::new();
-    let db = load_db(Some(db_path), &mut files, format)?.unwrap_or_default();
+    let db = load_db(Some(db_path), &mut files, r)?.unwrap_or_default();
     let mut store = Store::new(db.clone());
-    set_and_show(&mut store, set, &[])?;
-    let obj =
-        crate::build::compile(&[file.to_path_buf()], Some(&db), format, 1).map_err(|crate::build::Failed(s)| s)?;
-    let verified =
-        linc_runtime::verify::verify(obj).map_err(|e| crate::report::usage(format_args!("[{}] {e}", e.code())))?;
+    set_and_show(&mut store, set, &[], r)?;
+    let obj = crate::build::compile(&[file.to_path_buf()], Some(&db), r, 1).map_err(|crate::build::Failed(s)| s)?;
+    let name = file.display().to_string();
+    let verified = linc_runtime::verify::verify(obj).map_err(|e| {
+        r.whole_file(&name, e.code(), e.to_string());
+        2u8
+    })?;
     let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0));
     for unit in 0..verified.object().units.len() {
-        let own = own_block(&store, None, &verified.object().units[unit].block_type).map_err(crate::report::usage)?;
-        let linked = verified
-            .clone()
-            .link(&store, &[Program { unit, own }])
-            .map_err(|e| crate::report::usage(format_args!("[{}] {e}", e.code())))?;
+        let own = own_block(&store, None, &verified.object().units[unit].block_type)
+            .map_err(|d| crate::report::refused(r, *d))?;
+        let linked = verified.clone().link(&store, &[Program { unit, own }]).map_err(|e| {
+            r.whole_file(&name, e.code(), e.to_string());
+            2u8
+        })?;
         let mut act = Activation::new(&linked, 0, 0);
         for _ in 0..cycles {
             if let Err(e) = vm.run(&linked, &mut act, &mut store, None) {
-                eprint!("{}", crate::report::runtime(&e, format));
+                r.runtime(&e);
                 break;
             }
         }

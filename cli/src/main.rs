@@ -9,7 +9,6 @@ mod console_cmd;
 mod disasm_cmd;
 mod eval_cmd;
 mod explain_cmd;
-mod files;
 mod fst_src;
 mod ladder_cmd;
 mod ladder_values;
@@ -24,6 +23,7 @@ mod test_cmd;
 mod test_report;
 
 use clap::{Parser, Subcommand, ValueEnum};
+use linc_driver::Reporter;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -36,6 +36,9 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// How to print diagnostics (errors and warnings, on standard error).
+    #[arg(long, value_enum, default_value = "human", global = true)]
+    message_format: MessageFormat,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -74,9 +77,6 @@ enum Command {
         /// Database (JSON) to resolve block, field and alias names against.
         #[arg(long)]
         db: Option<PathBuf>,
-        /// How to print diagnostics.
-        #[arg(long, value_enum, default_value = "human")]
-        message_format: MessageFormat,
         /// Print the syntax tree of each file.
         #[arg(long)]
         tree: bool,
@@ -112,8 +112,6 @@ enum Command {
         /// Map file (JSON) for a generic sequence: every generic name needs a target.
         #[arg(long)]
         map: Option<PathBuf>,
-        #[arg(long, value_enum, default_value = "human")]
-        message_format: MessageFormat,
     },
     /// Generic sequences: specialise, generalise and list generic names (guide §9.1).
     Sfc {
@@ -132,73 +130,7 @@ enum Command {
     },
     /// Run a strategy (PLANT.json --for DURATION), one sequence or FST table (FILE --db DB.json --for DURATION),
     /// or one action once per cycle (FILE --db DB.json).
-    Run {
-        /// A strategy's database (.json), or an action file (.st/.stx, compiled first) or object file (.sto).
-        file: PathBuf,
-        /// The database to run one action against (not with a strategy).
-        #[arg(long)]
-        db: Option<PathBuf>,
-        /// Run the strategy for this much simulated time: 10m, 1h30m, T#2.5s.
-        #[arg(long = "for", value_name = "DURATION")]
-        duration: Option<String>,
-        /// The action to run (default: the first in the file).
-        #[arg(long)]
-        action: Option<String>,
-        /// The block running an `ACTION name : TYPE` action (default: the only block of that type).
-        #[arg(long)]
-        block: Option<String>,
-        /// Cycles to run; 0 links the action and applies --set, --show and --out without running it.
-        #[arg(long, default_value_t = 1, value_name = "N", allow_negative_numbers = true, value_parser = cycles)]
-        cycles: u32,
-        /// Seconds of simulated time per cycle (default 1), or per scan of a sequence (default: its task's period).
-        #[arg(long, value_name = "SECS", allow_hyphen_values = true, value_parser = period)]
-        period: Option<f64>,
-        /// Hold a step of the sequence being run (repeatable).
-        #[arg(long, value_name = "STEP")]
-        hold_step: Vec<String>,
-        /// Force a transition of the sequence being run: NAME=hold|continue|normal (repeatable).
-        #[arg(long, value_name = "NAME=HOW")]
-        force: Vec<String>,
-        /// Set a field before the run: BLOCK.FIELD=VALUE (repeatable).
-        #[arg(long)]
-        set: Vec<String>,
-        /// Print BLOCK.FIELD = VALUE after the run (repeatable).
-        #[arg(long)]
-        show: Vec<String>,
-        /// Trace field writes: to FILE as JSON lines for a strategy, or printed as they happen.
-        #[arg(long, value_name = "FILE", num_args = 0..=1, default_missing_value = "-")]
-        trace: Option<PathBuf>,
-        /// Write the database, with its values after the run, here (atomically).
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// A strategy's retentive state: restored at the start when the file exists (a warm start), saved at the end.
-        #[arg(long, value_name = "FILE")]
-        state: Option<PathBuf>,
-        /// Start cold: ignore the --state file (it is still written at the end).
-        #[arg(long)]
-        cold: bool,
-        /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
-        #[arg(long, value_name = "YYYY-MM-DDTHH:MM:SS", value_parser = now)]
-        now: Option<String>,
-        /// Seed of RANDOM, for repeatable runs.
-        #[arg(long)]
-        seed: Option<u64>,
-        /// Instruction budget of one run before the watchdog stops it (at least 1).
-        #[arg(
-            long,
-            default_value_t = linc_runtime::vm::DEFAULT_WATCHDOG,
-            value_name = "N",
-            allow_negative_numbers = true,
-            value_parser = watchdog
-        )]
-        watchdog: u64,
-        /// Which tier runs the code: `auto` compiles loops at once and other code once it has run long
-        /// (ADR 0011); `compiled` compiles every block at its first run; `interpreter` never compiles.
-        #[arg(long, value_enum, default_value = "auto")]
-        tier: TierArg,
-        #[arg(long, value_enum, default_value = "human")]
-        message_format: MessageFormat,
-    },
+    Run(Box<RunArgs>),
     /// Run scenario tests (.ltest files; a directory is searched) and report like `cargo test`.
     Test {
         /// Scenario files or directories (default: the current directory).
@@ -239,8 +171,6 @@ enum Command {
         /// With --state: ignore the state file and start cold (it is still saved).
         #[arg(long, requires = "state")]
         cold: bool,
-        #[arg(long, value_enum, default_value = "human")]
-        message_format: MessageFormat,
     },
     /// Evaluate one ST expression and print its value.
     Eval {
@@ -254,15 +184,9 @@ enum Command {
         now: Option<String>,
         #[arg(long)]
         seed: Option<u64>,
-        #[arg(long, value_enum, default_value = "human")]
-        message_format: MessageFormat,
     },
     /// Print a readable listing of an object file.
-    Disasm {
-        file: PathBuf,
-        #[arg(long, value_enum, default_value = "human")]
-        message_format: MessageFormat,
-    },
+    Disasm { file: PathBuf },
     /// Explain a diagnostic code, e.g. `linc explain E0104`.
     Explain {
         /// The code; omit it (or use --list) to list all codes.
@@ -273,6 +197,74 @@ enum Command {
     },
 }
 
+/// `linc run`'s options (boxed: the largest command by far).
+#[derive(clap::Args)]
+struct RunArgs {
+    /// A strategy's database (.json), or an action file (.st/.stx, compiled first) or object file (.sto).
+    file: PathBuf,
+    /// The database to run one action against (not with a strategy).
+    #[arg(long)]
+    db: Option<PathBuf>,
+    /// Run the strategy for this much simulated time: 10m, 1h30m, T#2.5s.
+    #[arg(long = "for", value_name = "DURATION", allow_hyphen_values = true)]
+    duration: Option<String>,
+    /// The action to run (default: the first in the file).
+    #[arg(long)]
+    action: Option<String>,
+    /// The block running an `ACTION name : TYPE` action (default: the only block of that type).
+    #[arg(long)]
+    block: Option<String>,
+    /// Cycles to run; 0 links the action and applies --set, --show and --out without running it.
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = cycles)]
+    cycles: Option<u32>,
+    /// Seconds of simulated time per cycle (default 1), or per scan of a sequence (default: its task's period).
+    #[arg(long, value_name = "SECS", allow_hyphen_values = true, value_parser = period)]
+    period: Option<f64>,
+    /// Hold a step of the sequence being run (repeatable).
+    #[arg(long, value_name = "STEP")]
+    hold_step: Vec<String>,
+    /// Force a transition of the sequence being run: NAME=hold|continue|normal (repeatable).
+    #[arg(long, value_name = "NAME=HOW")]
+    force: Vec<String>,
+    /// Set a field before the run: BLOCK.FIELD=VALUE (repeatable).
+    #[arg(long)]
+    set: Vec<String>,
+    /// Print BLOCK.FIELD = VALUE after the run (repeatable).
+    #[arg(long)]
+    show: Vec<String>,
+    /// Trace field writes: to FILE as JSON lines for a strategy, or printed as they happen.
+    #[arg(long, value_name = "FILE", num_args = 0..=1, default_missing_value = "-")]
+    trace: Option<PathBuf>,
+    /// Write the database, with its values after the run, here (atomically).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// A strategy's retentive state: restored at the start when the file exists (a warm start), saved at the end.
+    #[arg(long, value_name = "FILE")]
+    state: Option<PathBuf>,
+    /// Start cold: ignore the --state file (it is still written at the end).
+    #[arg(long)]
+    cold: bool,
+    /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
+    #[arg(long, value_name = "YYYY-MM-DDTHH:MM:SS", value_parser = now)]
+    now: Option<String>,
+    /// Seed of RANDOM, for repeatable runs.
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Instruction budget of one run before the watchdog stops it (at least 1).
+    #[arg(
+        long,
+        default_value_t = linc_runtime::vm::DEFAULT_WATCHDOG,
+        value_name = "N",
+        allow_negative_numbers = true,
+        value_parser = watchdog
+    )]
+    watchdog: u64,
+    /// Which tier runs the code: `auto` compiles loops at once and other code once it has run long
+    /// (ADR 0011); `compiled` compiles every block at its first run; `interpreter` never compiles.
+    #[arg(long, value_enum, default_value = "auto")]
+    tier: TierArg,
+}
+
 #[derive(Subcommand)]
 enum FstCommand {
     /// Print the table aligned, with each step's instruction offset (IP) when --db lets it compile.
@@ -281,8 +273,6 @@ enum FstCommand {
         /// The ROC point database the table's points live in.
         #[arg(long)]
         db: Option<PathBuf>,
-        #[arg(long, value_enum, default_value = "human")]
-        message_format: MessageFormat,
     },
 }
 
@@ -302,8 +292,6 @@ enum SfcCommand {
         /// The sequence to write.
         #[arg(short, long)]
         out: PathBuf,
-        #[arg(long, value_enum, default_value = "human")]
-        message_format: MessageFormat,
     },
     /// Write the generic sequence: database names a map entry targets replaced by its generic name.
     Generalise {
@@ -312,8 +300,6 @@ enum SfcCommand {
         map: PathBuf,
         #[arg(short, long)]
         out: PathBuf,
-        #[arg(long, value_enum, default_value = "human")]
-        message_format: MessageFormat,
     },
     /// Print a map (JSON) with every generic name of a sequence and an empty target.
     MapTemplate {
@@ -321,29 +307,26 @@ enum SfcCommand {
         /// The database whose blocks and aliases are not generic names.
         #[arg(long)]
         db: Option<PathBuf>,
-        #[arg(long, value_enum, default_value = "human")]
-        message_format: MessageFormat,
     },
 }
 
-// Value parsers: a bad option value is a usage error (exit 2) whose message
-// says what is accepted, before any file is read. Clap prints them as
-// `error: invalid value 'V' for '--OPTION <NAME>': [E0903] ...`.
+// Value parsers: a bad option value is a usage error (E0903, exit 2) whose
+// message says what is accepted, before any file is read; clap's errors
+// reach the user through the reporter like every other error.
 
 /// `--period`: simulated seconds per cycle. Zero or less would stop or
-/// reverse the clock, and NaN or infinity would poison every timer.
+/// reverse the clock, NaN or infinity would poison every timer, and less
+/// than the clock's microsecond would not move it at all.
 fn period(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
-        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
-        _ => Err("[E0903] the period must be a positive, finite number of seconds, such as 0.5 or 10".into()),
+        Ok(x) if (1e-6..=366.0 * 86_400.0).contains(&x) => Ok(x),
+        _ => Err("the period must be a number of seconds from 0.000001 (the clock's microsecond) to 366 days, such as 0.5 or 10".into()),
     }
 }
 
 /// `--cycles`: 0 is allowed (link, --set, --show and --out without a run).
 fn cycles(s: &str) -> Result<u32, String> {
-    s.trim()
-        .parse::<u32>()
-        .map_err(|_| format!("[E0903] the number of cycles must be a whole number from 0 to {}", u32::MAX))
+    s.trim().parse::<u32>().map_err(|_| format!("the number of cycles must be a whole number from 0 to {}", u32::MAX))
 }
 
 /// `--watchdog`: a budget of 0 instructions would stop every action before
@@ -351,7 +334,7 @@ fn cycles(s: &str) -> Result<u32, String> {
 fn watchdog(s: &str) -> Result<u64, String> {
     match s.trim().parse::<u64>() {
         Ok(n) if n >= 1 => Ok(n),
-        _ => Err("[E0903] the watchdog budget must be a whole number of instructions, at least 1".into()),
+        _ => Err("the watchdog budget must be a whole number of instructions, at least 1".into()),
     }
 }
 
@@ -359,9 +342,7 @@ fn watchdog(s: &str) -> Result<u64, String> {
 fn now(s: &str) -> Result<String, String> {
     match linc_runtime::text::parse_timestamp(s) {
         Some(_) => Ok(s.to_string()),
-        None => {
-            Err("[E0903] not a real date and time; write YYYY-MM-DDTHH:MM:SS (UTC), such as 2024-02-29T13:45:07".into())
-        }
+        None => Err("not a real date and time; write YYYY-MM-DDTHH:MM:SS (UTC), such as 2024-02-29T13:45:07".into()),
     }
 }
 
@@ -378,33 +359,81 @@ fn is_object(path: &std::path::Path) -> bool {
     path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"))
 }
 
-fn sfc(command: SfcCommand) -> u8 {
+fn sfc(command: SfcCommand, r: &mut Reporter) -> u8 {
     use sfc_cmd::Direction;
     match command {
-        SfcCommand::Specialise { file, map, out, message_format } => {
-            sfc_cmd::rewrite(Direction::Specialise, &file, &map, &out, format(message_format))
-        }
-        SfcCommand::Generalise { file, map, out, message_format } => {
-            sfc_cmd::rewrite(Direction::Generalise, &file, &map, &out, format(message_format))
-        }
-        SfcCommand::MapTemplate { file, db, message_format } => {
-            sfc_cmd::map_template(&file, db.as_deref(), format(message_format))
-        }
+        SfcCommand::Specialise { file, map, out } => sfc_cmd::rewrite(Direction::Specialise, &file, &map, &out, r),
+        SfcCommand::Generalise { file, map, out } => sfc_cmd::rewrite(Direction::Generalise, &file, &map, &out, r),
+        SfcCommand::MapTemplate { file, db } => sfc_cmd::map_template(&file, db.as_deref(), r),
     }
 }
 
+/// The message format asked for on a command line clap refused, so that
+/// even that error comes in the format the caller reads.
+fn format_in_args() -> linc_compiler::render::Format {
+    let args: Vec<String> = std::env::args().collect();
+    let value = args.iter().enumerate().find_map(|(i, a)| match a.strip_prefix("--message-format") {
+        Some("") => args.get(i + 1).cloned(),
+        Some(v) => v.strip_prefix('=').map(str::to_string),
+        None => None,
+    });
+    match value.as_deref() {
+        Some("json") => linc_compiler::render::Format::Json,
+        Some("short") => linc_compiler::render::Format::Short,
+        _ => linc_compiler::render::Format::Human,
+    }
+}
+
+/// A command line clap refused, as E0903 through the reporter (help and
+/// version requests print as clap prints them).
+fn refused_arguments(e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion)
+        || e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+    {
+        let _ = e.print();
+        return ExitCode::from(if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand { 2 } else { 0 });
+    }
+    // clap's first line is the message; its tips and usage line are help.
+    let text = e.render().to_string();
+    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
+    let first = lines.next().unwrap_or_default();
+    let mut d = linc_compiler::Diagnostic::command("E0903", first.strip_prefix("error: ").unwrap_or(first));
+    for line in lines {
+        d = d.help(line.strip_prefix("tip: ").unwrap_or(line));
+    }
+    let mut r = Reporter::new(format_in_args());
+    ExitCode::from(report::refused(&mut r, d))
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
-    let status = match cli.command {
-        Command::Compile { files, out, db, map, message_format } => {
-            compile_cmd::run(&files, &out, db.as_deref(), map.as_deref(), format(message_format))
-        }
-        Command::Sfc { command } => sfc(command),
-        Command::Fst { command: FstCommand::List { file, db, message_format } } => {
-            fst_src::list(&file, db.as_deref(), format(message_format))
-        }
-        Command::Ladder { command } => ladder_cmd::run(command),
-        Command::Console { file, script, set, trace, now, seed, state, cold, message_format } => {
+    quiet_broken_pipe();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return refused_arguments(e),
+    };
+    let mut r = Reporter::new(format(cli.message_format));
+    ExitCode::from(dispatch(cli.command, &mut r))
+}
+
+/// A reader that stops reading (`linc explain --list | head -1`) ends
+/// `linc` quietly, as it ends any Unix tool, instead of a panic in `println!`.
+fn quiet_broken_pipe() {
+    #[cfg(unix)]
+    // SAFETY: restoring the default action of SIGPIPE, before any thread
+    // is started, is what every C program starts with.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
+fn dispatch(command: Command, r: &mut Reporter) -> u8 {
+    match command {
+        Command::Compile { files, out, db, map } => compile_cmd::run(&files, &out, db.as_deref(), map.as_deref(), r),
+        Command::Sfc { command } => sfc(command, r),
+        Command::Fst { command: FstCommand::List { file, db } } => fst_src::list(&file, db.as_deref(), r),
+        Command::Ladder { command } => ladder_cmd::run(command, r),
+        Command::Console { file, script, set, trace, now, seed, state, cold } => {
             let common = run_cmd::Common {
                 set,
                 show: Vec::new(),
@@ -414,109 +443,97 @@ fn main() -> ExitCode {
                 seed,
                 watchdog: linc_runtime::vm::DEFAULT_WATCHDOG,
                 tier: linc_runtime::vm::Tier::Auto,
-                format: format(message_format),
             };
             let retain = strategy_cmd::Retain { state, cold };
-            console_cmd::run(console_cmd::Options { db: file, script, common, retain })
+            console_cmd::run(console_cmd::Options { db: file, script, common, retain }, r)
         }
-        Command::Run {
-            file,
-            db,
-            duration,
-            action,
-            block,
-            cycles,
-            period,
-            hold_step,
-            force,
-            set,
-            show,
-            trace,
-            out,
-            state,
-            cold,
-            now,
-            seed,
-            watchdog,
-            tier,
-            message_format,
-        } => {
-            let retain = strategy_cmd::Retain { state, cold };
-            let misuse = match (&retain.state, &duration) {
-                (None, _) if retain.cold => Some("--cold ignores a --state file: give --state FILE too"),
-                (Some(_), None) => Some("--state keeps a strategy's state: give --for DURATION"),
-                _ => None,
-            };
-            let format = format(message_format);
-            let common = run_cmd::Common { set, show, trace, out, now, seed, watchdog, tier: tier.into(), format };
-            match (db, duration) {
-                _ if misuse.is_some() => report::usage(misuse.unwrap_or_default()),
-                (None, Some(duration)) => strategy_cmd::run(&strategy_cmd::Options {
-                    db: file,
-                    duration,
-                    common,
-                    single: None,
-                    retain,
-                    script: None,
-                }),
-                (Some(db), None) => {
-                    let period = period.unwrap_or(1.0);
-                    run_cmd::run(&run_cmd::Options { file, db, action, block, cycles, period, common })
-                }
-                (Some(db), Some(duration))
-                    if sequence_src::is_sequence(&file) || fst_src::is_fst(&file) || is_object(&file) =>
-                {
-                    let kind = sequence_run::Kind::of(&file);
-                    let single = sequence_run::SequenceRun { file, kind, block, period, hold_steps: hold_step, force };
-                    strategy_cmd::run(&strategy_cmd::Options {
-                        db,
-                        duration,
-                        common,
-                        single: Some(single),
-                        retain,
-                        script: None,
-                    })
-                }
-                (Some(_), Some(_)) => report::usage(
-                    "--for runs a strategy (PLANT.json without --db), a sequence (FILE.sfc --db PLANT.json) \
-                     or an FST table (TABLE.csv --db ROC.json)",
-                ),
-                (None, None) => {
-                    report::usage("give --for DURATION to run a strategy, or --db DB.json to run one action")
-                }
-            }
+        Command::Run(run) => run_command(*run, r),
+        Command::Eval { expr, db, now, seed } => eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed, r),
+        Command::Test { paths, jobs, junit, vcd } => test_cmd::run(&test_cmd::Options { paths, jobs, junit, vcd }, r),
+        Command::Disasm { file } => disasm_cmd::run(&file, r),
+        Command::Check { files, db, tree, transition, sequence, map, allow_unmapped, resources, instrument } => {
+            check_cmd::run(
+                &check_cmd::Options {
+                    files,
+                    db,
+                    tree,
+                    transition,
+                    sequence,
+                    map,
+                    allow_unmapped,
+                    resources: resources.then_some(match instrument {
+                        InstrumentSize::Small => linc_compiler::sfc::resources::Instrument::Small,
+                        InstrumentSize::Large => linc_compiler::sfc::resources::Instrument::Large,
+                    }),
+                },
+                r,
+            )
         }
-        Command::Eval { expr, db, now, seed, message_format } => {
-            eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed, format(message_format))
-        }
-        Command::Test { paths, jobs, junit, vcd } => test_cmd::run(&test_cmd::Options { paths, jobs, junit, vcd }),
-        Command::Disasm { file, message_format } => disasm_cmd::run(&file, format(message_format)),
-        Command::Check {
-            files,
-            db,
-            message_format,
-            tree,
-            transition,
-            sequence,
-            map,
-            allow_unmapped,
-            resources,
-            instrument,
-        } => check_cmd::run(&check_cmd::Options {
-            files,
-            db,
-            format: format(message_format),
-            tree,
-            transition,
-            sequence,
-            map,
-            allow_unmapped,
-            resources: resources.then_some(match instrument {
-                InstrumentSize::Small => linc_compiler::sfc::resources::Instrument::Small,
-                InstrumentSize::Large => linc_compiler::sfc::resources::Instrument::Large,
-            }),
-        }),
-        Command::Explain { code, list } => explain_cmd::run(code.as_deref(), list),
+        Command::Explain { code, list } => explain_cmd::run(code.as_deref(), list, r),
+    }
+}
+
+/// The options of `linc run` that only one form takes: refused (E0903)
+/// where they would be ignored.
+fn misuse(a: &RunArgs) -> Option<String> {
+    let strategy = a.db.is_none();
+    let single = a.db.is_some() && a.duration.is_some();
+    let action = a.db.is_some() && a.duration.is_none();
+    let only = |flag: &str, given: bool, ok: bool, form: &str| (given && !ok).then(|| format!("{flag} {form}"));
+    [
+        only("--cold", a.cold && a.state.is_none(), false, "ignores a --state file: give --state FILE too"),
+        only("--state", a.state.is_some(), a.duration.is_some(), "keeps a strategy's state: give --for DURATION"),
+        only("--cycles", a.cycles.is_some(), action, "runs one action: a strategy or sequence runs --for DURATION"),
+        only("--action", a.action.is_some(), action, "chooses the action of an action file run with --db"),
+        only("--block", a.block.is_some(), !strategy, "chooses the block of one program run with --db"),
+        only("--period", a.period.is_some(), !strategy, "sets one program's period: a strategy's tasks set theirs"),
+        only("--hold-step", !a.hold_step.is_empty(), single, "holds a step of a sequence run with --db and --for"),
+        only("--force", !a.force.is_empty(), single, "forces a transition of a sequence run with --db and --for"),
+    ]
+    .into_iter()
+    .flatten()
+    .next()
+}
+
+fn run_command(a: RunArgs, r: &mut Reporter) -> u8 {
+    if let Some(why) = misuse(&a) {
+        return report::usage(r, why);
+    }
+    let retain = strategy_cmd::Retain { state: a.state, cold: a.cold };
+    let common = run_cmd::Common {
+        set: a.set,
+        show: a.show,
+        trace: a.trace,
+        out: a.out,
+        now: a.now,
+        seed: a.seed,
+        watchdog: a.watchdog,
+        tier: a.tier.into(),
     };
-    ExitCode::from(status)
+    let file = a.file;
+    match (a.db, a.duration) {
+        (None, Some(duration)) => {
+            let o = strategy_cmd::Options { db: file, duration, common, single: None, retain, script: None };
+            strategy_cmd::run(&o, r)
+        }
+        (Some(db), None) => {
+            let (action, block, cycles, period) = (a.action, a.block, a.cycles.unwrap_or(1), a.period.unwrap_or(1.0));
+            run_cmd::run(&run_cmd::Options { file, db, action, block, cycles, period, common }, r)
+        }
+        (Some(db), Some(duration))
+            if sequence_src::is_sequence(&file) || fst_src::is_fst(&file) || is_object(&file) =>
+        {
+            let kind = sequence_run::Kind::of(&file);
+            let (block, period, hold_steps, force) = (a.block, a.period, a.hold_step, a.force);
+            let single = sequence_run::SequenceRun { file, kind, block, period, hold_steps, force };
+            let o = strategy_cmd::Options { db, duration, common, single: Some(single), retain, script: None };
+            strategy_cmd::run(&o, r)
+        }
+        (Some(_), Some(_)) => report::usage(
+            r,
+            "--for runs a strategy (PLANT.json without --db), a sequence (FILE.sfc --db PLANT.json) \
+             or an FST table (TABLE.csv --db ROC.json)",
+        ),
+        (None, None) => report::usage(r, "give --for DURATION to run a strategy, or --db DB.json to run one action"),
+    }
 }

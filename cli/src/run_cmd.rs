@@ -3,7 +3,9 @@
 use crate::build::{compile, Failed};
 use crate::check_cmd::load_db;
 use crate::report::usage;
-use linc_compiler::render::{Format, SourceFiles};
+use linc_compiler::render::SourceFiles;
+use linc_compiler::Diagnostic;
+use linc_driver::Reporter;
 use linc_runtime::store::Store;
 use linc_runtime::vm::{Activation, Clock, Vm};
 use linc_runtime::{text, Database, Linked, Program, Verified};
@@ -21,7 +23,6 @@ pub struct Common {
     pub watchdog: u64,
     /// Which tier runs the code (interpreter, compiled, or the default mix).
     pub tier: linc_runtime::vm::Tier,
-    pub format: Format,
 }
 
 pub struct Options {
@@ -36,59 +37,66 @@ pub struct Options {
 
 pub use linc_runtime::console::fields::{address, set, show_value, Addr};
 
-/// Applies every `--set` and resolves every `--show` (printing the first
-/// problem; `Err` is the exit status).
-pub fn set_and_show(store: &mut Store, sets: &[String], shows: &[String]) -> Result<Vec<(String, Addr)>, u8> {
+/// Applies every `--set` and resolves every `--show` (reporting the first
+/// problem, E0903; `Err` is the exit status).
+pub fn set_and_show(
+    store: &mut Store,
+    sets: &[String],
+    shows: &[String],
+    r: &mut Reporter,
+) -> Result<Vec<(String, Addr)>, u8> {
     for s in sets {
-        set(store, s).map_err(|msg| usage(format_args!("--set {s}: {msg}")))?;
+        set(store, s).map_err(|msg| usage(r, format_args!("--set {s}: {msg}")))?;
     }
-    shows
-        .iter()
-        .map(|p| address(store, p).map(|a| (p.clone(), a)))
-        .collect::<Result<_, _>>()
-        .map_err(|msg| usage(format_args!("--show: {msg}")))
+    let mut out = Vec::with_capacity(shows.len());
+    for p in shows {
+        let a = address(store, p).map_err(|msg| usage(r, format_args!("--show {p}: {msg}")))?;
+        out.push((p.clone(), a));
+    }
+    Ok(out)
 }
 
 /// Loads a program file: a `.sto` object as is (verified), anything else
 /// compiled against `db`. Errors are printed; `Err` carries the exit status.
-pub fn program_object(path: &Path, db: &Database, format: Format) -> Result<Verified, u8> {
+pub fn program_object(path: &Path, db: &Database, r: &mut Reporter) -> Result<Verified, u8> {
     let name = path.display().to_string();
-    let fail = |code: &'static str, message: String| {
-        eprint!("{}", crate::report::file_error(&name, code, message, format));
+    let mut fail = |code: &'static str, message: String| {
+        r.whole_file(&name, code, message);
         2
     };
     let is_object = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"));
     if !is_object {
-        let obj = compile(&[path.to_path_buf()], Some(db), format, 2).map_err(|Failed(s)| s)?;
-        return linc_runtime::verify::verify(obj).map_err(|e| fail(e.code(), e.to_string()));
+        let obj = compile(&[path.to_path_buf()], Some(db), r, 2).map_err(|Failed(s)| s)?;
+        return linc_runtime::verify::verify(obj).map_err(|e| {
+            r.whole_file(&name, e.code(), e.to_string());
+            2
+        });
     }
-    let bytes = crate::files::read_input(path).map_err(|e| fail("E0900", format!("can't read `{name}`: {e}")))?;
+    let bytes = linc_driver::files::read_input(path).map_err(|e| fail("E0900", format!("can't read `{name}`: {e}")))?;
     linc_runtime::load(&bytes).map_err(|e| fail(e.code(), e.to_string()))
 }
 
-pub fn run(o: &Options) -> u8 {
+pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     // `--out` and `--trace FILE` may not replace an input or anything but a
     // regular file; checked before the run, so a refused run changes nothing.
     let outputs = [("--out", &o.common.out), ("--trace", &o.common.trace)];
     let outputs: Vec<(&str, &Path)> = outputs.iter().filter_map(|(f, p)| Some((*f, p.as_deref()?))).collect();
-    if let Err(e) = crate::files::check_distinct(&outputs) {
-        eprintln!("{e}");
-        return 2;
+    if let Err(e) = linc_driver::files::check_distinct(&outputs) {
+        return crate::report::refused(r, e.diagnostic());
     }
     for (_, out) in outputs.iter().filter(|(_, p)| p.as_os_str() != "-") {
-        if let Err(e) = crate::files::check_output(out, &[&o.file, &o.db]) {
-            eprintln!("{e}");
-            return 2;
+        if let Err(e) = linc_driver::files::check_output(out, &[&o.file, &o.db]) {
+            return crate::report::refused(r, e.diagnostic());
         }
     }
     let mut dbfiles = SourceFiles::new();
-    let db = match load_db(Some(&o.db), &mut dbfiles, o.common.format) {
+    let db = match load_db(Some(&o.db), &mut dbfiles, r) {
         Ok(Some(db)) => db,
         Ok(None) => return 2,
         Err(status) => return status,
     };
     let db_text = dbfiles.get(0).map(|f| f.source().clone()).unwrap_or_default();
-    let obj = match program_object(&o.file, &db, o.common.format) {
+    let obj = match program_object(&o.file, &db, r) {
         Ok(obj) => obj,
         Err(status) => return status,
     };
@@ -98,54 +106,49 @@ pub fn run(o: &Options) -> u8 {
             Some(i) => i,
             None => {
                 let names: Vec<&str> = units.iter().map(|a| a.name.as_str()).collect();
-                return usage(format_args!("no action `{name}` (the file has {})", names.join(", ")));
+                return usage(r, format_args!("--action: no action `{name}` (the file has {})", names.join(", ")));
             }
         },
-        None if units.is_empty() => return usage("the file has no actions"),
+        None if units.is_empty() => return usage(r, "the file has no actions"),
         None => 0,
     };
     let action = &units[index];
     let mut store = Store::new(db);
     let own = match own_block(&store, o.block.as_deref(), &action.block_type) {
         Ok(b) => b,
-        Err(msg) => return usage(msg),
+        Err(d) => return crate::report::refused(r, *d),
     };
-    let shows = match set_and_show(&mut store, &o.common.set, &o.common.show) {
+    let shows = match set_and_show(&mut store, &o.common.set, &o.common.show, r) {
         Ok(v) => v,
         Err(status) => return status,
     };
     let now = match start_time(o.common.now.as_deref()) {
         Ok(s) => s,
-        Err(msg) => return usage(msg),
+        Err(msg) => return usage(r, msg),
     };
     store.now = now as f64;
     let linked = match obj.link(&store, &[Program { unit: index, own }]) {
         Ok(l) => l,
         Err(e) => {
-            eprint!(
-                "{}",
-                crate::report::file_error(&o.file.display().to_string(), e.code(), e.to_string(), o.common.format)
-            );
+            r.whole_file(&o.file.display().to_string(), e.code(), e.to_string());
             return 2;
         }
     };
     let seed = o.common.seed.unwrap_or_else(|| now as u64 ^ u64::from(std::process::id()));
     let to_stdout = o.common.trace.as_ref().is_some_and(|p| p.as_os_str() == "-");
-    let (status, traced) = cycles(o, &linked, &mut store, seed, to_stdout);
+    let (status, traced) = cycles(o, &linked, &mut store, (seed, to_stdout), r);
     say_compiled(o.common.tier, linked.compiled_blocks());
     for (path, a) in &shows {
         println!("{path} = {}", show_value(&store, *a));
     }
     if let Some(path) = o.common.trace.as_ref().filter(|_| !to_stdout) {
-        if let Err(e) = crate::files::write_atomic(path, traced.as_bytes()) {
-            eprintln!("{e}");
-            return 2;
+        if let Err(e) = linc_driver::files::write_atomic(path, traced.as_bytes()) {
+            return crate::report::refused(r, e.diagnostic());
         }
     }
     if let Some(out) = &o.common.out {
         if let Err(e) = write_db(out, &db_text, &store) {
-            eprintln!("{e}");
-            return 2;
+            return crate::report::refused(r, e.diagnostic());
         }
     }
     status
@@ -162,7 +165,13 @@ pub fn say_compiled(tier: linc_runtime::vm::Tier, (compiled, all): (usize, usize
 /// Runs the action `--cycles` times, `--period` apart; returns the exit
 /// status (1 after a runtime error, which ends the run) and the trace text
 /// kept for a `--trace FILE`.
-fn cycles(o: &Options, linked: &Linked, store: &mut Store, seed: u64, to_stdout: bool) -> (u8, String) {
+fn cycles(
+    o: &Options,
+    linked: &Linked,
+    store: &mut Store,
+    (seed, to_stdout): (u64, bool),
+    r: &mut Reporter,
+) -> (u8, String) {
     let mut act = Activation::new(linked, 0, 0);
     let mut vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
     vm.set_tier(o.common.tier);
@@ -178,7 +187,7 @@ fn cycles(o: &Options, linked: &Linked, store: &mut Store, seed: u64, to_stdout:
         };
         let trace: linc_runtime::vm::Tracer = if o.common.trace.is_some() { Some(&mut tracer) } else { None };
         if let Err(e) = vm.run(linked, &mut act, store, trace) {
-            eprint!("{}", crate::report::runtime(&e, o.common.format));
+            r.runtime(&e);
             return (1, traced);
         }
         store.now += o.period;
@@ -190,7 +199,7 @@ fn cycles(o: &Options, linked: &Linked, store: &mut Store, seed: u64, to_stdout:
 pub fn start_time(now: Option<&str>) -> Result<i64, String> {
     match now {
         Some(t) => text::parse_timestamp(t)
-            .ok_or_else(|| format!("[E0903] --now `{t}` is not a real date and time YYYY-MM-DDTHH:MM:SS")),
+            .ok_or_else(|| format!("--now `{t}` is not a real date and time YYYY-MM-DDTHH:MM:SS")),
         None => Ok(std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
             .map(|d| d.as_secs() as i64)
@@ -201,16 +210,23 @@ pub fn start_time(now: Option<&str>) -> Result<i64, String> {
 /// Picks the block that runs an `ACTION name : TYPE` action. A block named
 /// with `--block` must be of that type: the action's lone field names would
 /// otherwise link to whatever same-named fields another type happens to have.
-pub(crate) fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result<Option<usize>, String> {
+pub(crate) fn own_block(
+    store: &Store,
+    named: Option<&str>,
+    block_type: &str,
+) -> Result<Option<usize>, Box<Diagnostic>> {
     let t = store.db.template(block_type);
     if let Some(n) = named {
-        let b = store.db.block(n).ok_or_else(|| format!("--block: the database has no block `{n}`"))?;
+        let b = store.db.block(n).ok_or_else(|| {
+            Box::new(Diagnostic::command("E0904", format!("--block: the database has no block `{n}`")))
+        })?;
         let actual = store.db.blocks[b].template;
         if !block_type.is_empty() && Some(actual) != t {
             let name = &store.db.templates[actual].name;
-            return Err(format!(
-                "[E0904] --block {n} has type {name}, but the action runs on a block of type {block_type}"
-            ));
+            return Err(Box::new(Diagnostic::command(
+                "E0904",
+                format!("--block {n} has type {name}, but the action runs on a block of type {block_type}"),
+            )));
         }
         return Ok(Some(b));
     }
@@ -218,16 +234,17 @@ pub(crate) fn own_block(store: &Store, named: Option<&str>, block_type: &str) ->
         return Ok(None);
     }
     let of_type: Vec<usize> = (0..store.db.blocks.len()).filter(|&b| Some(store.db.blocks[b].template) == t).collect();
-    match of_type.as_slice() {
-        [b] => Ok(Some(*b)),
-        [] => Err(format!("the action runs on a {block_type} block and the database has none")),
-        _ => Err(format!("the database has several {block_type} blocks; choose one with --block")),
-    }
+    let why = match of_type.as_slice() {
+        [b] => return Ok(Some(*b)),
+        [] => format!("the action runs on a {block_type} block and the database has none"),
+        _ => format!("the database has several {block_type} blocks; choose one with --block"),
+    };
+    Err(Box::new(Diagnostic::command("E0904", why)))
 }
 
 /// Writes the database with the store's values, in the input's JSON shape.
-pub fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<(), crate::files::Refused> {
-    let json_error = |e: serde_json::Error| crate::files::Refused {
+pub fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<(), linc_driver::files::Refused> {
+    let json_error = |e: serde_json::Error| linc_driver::files::Refused {
         code: "E0900",
         message: format!("can't write `{}`: {e}", out.display()),
     };
@@ -249,5 +266,5 @@ pub fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<
         }
     }
     let text = serde_json::to_string_pretty(&root).map_err(json_error)? + "\n";
-    crate::files::write_atomic(out, text.as_bytes())
+    linc_driver::files::write_atomic(out, text.as_bytes())
 }

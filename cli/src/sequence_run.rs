@@ -3,7 +3,7 @@
 //! monitor's controls (`--hold-step`, `--force`) and step flags for
 //! `--show Step.X` / `Step.T`.
 
-use crate::report::usage;
+use linc_compiler::Diagnostic;
 use linc_runtime::db::Task;
 use linc_runtime::sequence::Sequence;
 use linc_runtime::strategy::{Want, WantKind};
@@ -37,7 +37,7 @@ impl Kind {
         if crate::fst_src::is_fst(file) {
             return Kind::Fst;
         }
-        let fst_object = crate::files::read_input(file)
+        let fst_object = linc_driver::files::read_input(file)
             .ok()
             .and_then(|bytes| linc_runtime::ObjectFile::from_bytes(&bytes).ok())
             .is_some_and(|o| o.units.first().is_some_and(|u| u.kind == linc_runtime::object::UnitKind::Fst));
@@ -50,13 +50,9 @@ impl Kind {
 }
 
 /// The block that runs the program: an SFC_CON block for a sequence, an
-/// FST block for a table (`--block`, or the only one).
-pub fn block(db: &Database, named: Option<&str>, kind: Kind) -> Result<usize, u8> {
-    find_block(db, named, kind).map_err(usage)
-}
-
-/// [`block`], the refusal as text (E0904) for callers that report it their way.
-pub fn find_block(db: &Database, named: Option<&str>, kind: Kind) -> Result<usize, String> {
+/// FST block for a table (`--block`, or the only one); E0904 otherwise.
+pub fn find_block(db: &Database, named: Option<&str>, kind: Kind) -> Result<usize, Box<Diagnostic>> {
+    let refuse = |why: String| Box::new(Diagnostic::command("E0904", why));
     let (template, what) = match kind {
         Kind::Sequence => ("SFC_CON", "the sequence"),
         Kind::Fst => ("FST", "the table"),
@@ -65,15 +61,15 @@ pub fn find_block(db: &Database, named: Option<&str>, kind: Kind) -> Result<usiz
     if let Some(n) = named {
         return match db.block(n) {
             Some(b) if runs(b) => Ok(b),
-            Some(_) => Err(format!("[E0904] --block {n} is not an {template} block")),
-            None => Err(format!("[E0904] --block: the database has no block `{n}`")),
+            Some(_) => Err(refuse(format!("--block {n} is not an {template} block"))),
+            None => Err(refuse(format!("--block: the database has no block `{n}`"))),
         };
     }
     let all: Vec<usize> = (0..db.blocks.len()).filter(|&b| runs(b)).collect();
     match all.as_slice() {
         [b] => Ok(*b),
-        [] => Err(format!("[E0904] the database has no {template} block to run {what}; add one")),
-        _ => Err(format!("[E0904] the database has several {template} blocks; choose one with --block")),
+        [] => Err(refuse(format!("the database has no {template} block to run {what}; add one"))),
+        _ => Err(refuse(format!("the database has several {template} blocks; choose one with --block"))),
     }
 }
 
@@ -101,24 +97,32 @@ pub fn want_for(file: &std::path::Path, kind: Kind, block: usize) -> Want {
     Want { block, file: file.display().to_string(), action: String::new(), kind }
 }
 
-/// Applies `--hold-step` and `--force NAME=hold|continue|normal`.
-pub fn monitor(seq: &mut Sequence, o: &SequenceRun) -> Result<(), u8> {
+/// Applies `--hold-step` and `--force NAME=hold|continue|normal`, and
+/// checks that every `--show Step.X` names a step (E0903).
+pub fn monitor(seq: &mut Sequence, o: &SequenceRun, step_shows: &[String]) -> Result<(), Box<Diagnostic>> {
+    let usage = |why: String| Box::new(Diagnostic::command("E0903", why));
+    for p in step_shows {
+        let step = p.split_once('.').map_or(p.as_str(), |(s, _)| s);
+        if !seq.chart.has_step(step) {
+            return Err(usage(format!("--show {p}: no block, alias or step of the sequence is called `{step}`")));
+        }
+    }
     for s in &o.hold_steps {
         if !seq.chart.has_step(s) {
-            return Err(usage(format_args!("[E0903] --hold-step: the sequence has no step `{s}`")));
+            return Err(usage(format!("--hold-step: the sequence has no step `{s}`")));
         }
         seq.monitor.held.insert(s.clone());
     }
     for f in &o.force {
         let (name, how) = f.rsplit_once('=').unwrap_or((f.as_str(), ""));
         if !seq.chart.has_transition(name.trim()) {
-            return Err(usage(format_args!("[E0903] --force: the sequence has no transition `{}`", name.trim())));
+            return Err(usage(format!("--force: the sequence has no transition `{}`", name.trim())));
         }
         let value = match how.trim().to_ascii_lowercase().as_str() {
             "hold" => Some(false),
             "continue" => Some(true),
             "normal" => None,
-            other => return Err(usage(format_args!("[E0903] --force {f}: `{other}` is not hold, continue or normal"))),
+            other => return Err(usage(format!("--force {f}: `{other}` is not hold, continue or normal"))),
         };
         match value {
             Some(v) => seq.monitor.forced.insert(name.trim().to_string(), v),

@@ -1,11 +1,11 @@
 //! `.sfc` files on the command line: read, checked (and lowered) by the
 //! compiler's sequence front end, diagnostics printed through the renderer.
 
-use crate::check_cmd::io_error;
 use linc_compiler::check::Context;
-use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::render::SourceFiles;
 use linc_compiler::sfc;
 use linc_compiler::sfc::{resources, resources::Instrument};
+use linc_driver::Reporter;
 use linc_runtime::ObjectFile;
 use std::path::Path;
 
@@ -35,8 +35,8 @@ pub struct Extra<'a> {
 
 /// Reads, checks and (when `lower`) compiles one sequence; prints its
 /// diagnostics (and its tree when `tree`). `Err` is an I/O failure, reported.
-pub fn check(path: &Path, ctx: Context, lower: bool, tree: bool, format: Format) -> Result<Checked, ()> {
-    check_with(path, ctx, &Extra::default(), (lower, tree), format)
+pub fn check(path: &Path, ctx: Context, lower: bool, tree: bool, r: &mut Reporter) -> Result<Checked, ()> {
+    check_with(path, ctx, &Extra::default(), (lower, tree), r)
 }
 
 /// [`check`] with a map and resources (`lower`, `tree` as there).
@@ -45,9 +45,9 @@ pub fn check_with(
     ctx: Context,
     extra: &Extra,
     (lower, tree): (bool, bool),
-    format: Format,
+    r: &mut Reporter,
 ) -> Result<Checked, ()> {
-    let bytes = crate::files::read_input(path).map_err(|e| io_error(path, &e, format))?;
+    let bytes = linc_driver::files::read_input(path).map_err(|e| r.unreadable(path, &e))?;
     let name = path.display().to_string();
     let (text, invalid) = linc_compiler::files::decode(bytes);
     let mut files = SourceFiles::new();
@@ -72,7 +72,7 @@ pub fn check_with(
             }
             if let Some(i) = extra.resources {
                 let uses = resources::count(t, i);
-                crate::sfc_cmd::print_resources(&name, &uses, i.name(), format);
+                crate::sfc_cmd::print_resources(&name, &uses, i.name(), r.format());
                 d.extend(resources::over_limit(&uses, i));
             }
         }
@@ -81,7 +81,7 @@ pub fn check_with(
     diagnostics.extend(more);
     let errors = diagnostics.iter().filter(|d| d.is_error()).count();
     for d in &diagnostics {
-        print!("{}", render::render(&files, &d.clone().in_file(id), format));
+        r.emit(&files, &d.clone().in_file(id));
     }
     Ok(Checked { errors, warnings: diagnostics.len() - errors, object })
 }

@@ -3,10 +3,11 @@
 //! and loading a map for `check`/`compile --map`. The rewriting is the
 //! compiler's (`linc_compiler::sfc::generic`); this reads, prints, writes.
 
-use crate::check_cmd::{io_error, load_db};
-use linc_compiler::render::{self, Format, SourceFiles};
+use crate::check_cmd::load_db;
+use linc_compiler::render::{Format, SourceFiles};
 use linc_compiler::sfc::generic::{self, Map};
 use linc_compiler::{sfc, Diagnostic};
+use linc_driver::Reporter;
 use linc_runtime::Database;
 use std::path::Path;
 
@@ -20,22 +21,22 @@ pub struct Bound {
 
 /// Reads `path` as a map and binds it to `db`, printing the map's errors.
 /// `Err` is an I/O failure (exit 2), already printed.
-pub fn load_map(path: &Path, db: &Database, resolve_blocks: bool, format: Format) -> Result<Bound, u8> {
-    let (map, text, errors) = read_map(path, format)?;
+pub fn load_map(path: &Path, db: &Database, resolve_blocks: bool, r: &mut Reporter) -> Result<Bound, u8> {
+    let (map, text, errors) = read_map(path, r)?;
     let (bound, more) = generic::bind(&map, db, resolve_blocks);
     let file = path.display().to_string();
     let mut files = SourceFiles::new();
     let id = files.add(file.clone(), text);
     let all: Vec<Diagnostic> = errors.iter().chain(&more).map(|e| e.to_diagnostic().in_file(id)).collect();
     for d in &all {
-        print!("{}", render::render(&files, d, format));
+        r.emit(&files, d);
     }
     Ok(Bound { db: bound, map: generic::Named { map, file }, errors: all.len() })
 }
 
-fn read_map(path: &Path, format: Format) -> Result<(Map, String, Vec<generic::MapError>), u8> {
-    let text = crate::files::read_input_text(path).map_err(|e| {
-        io_error(path, &e, format);
+fn read_map(path: &Path, r: &mut Reporter) -> Result<(Map, String, Vec<generic::MapError>), u8> {
+    let text = linc_driver::files::read_input_text(path).map_err(|e| {
+        r.unreadable(path, &e);
         2u8
     })?;
     let (map, errors) = generic::parse_map(&text);
@@ -45,9 +46,9 @@ fn read_map(path: &Path, format: Format) -> Result<(Map, String, Vec<generic::Ma
 /// Reads and parses a sequence for rewriting. A sequence that does not
 /// parse is not rewritten (its references can't all be found): its
 /// diagnostics are printed and `Err(1)` returned.
-fn parse(path: &Path, format: Format) -> Result<(String, sfc::ast::Sequence), u8> {
-    let text = crate::files::read_input_text(path).map_err(|e| {
-        io_error(path, &e, format);
+fn parse(path: &Path, r: &mut Reporter) -> Result<(String, sfc::ast::Sequence), u8> {
+    let text = linc_driver::files::read_input_text(path).map_err(|e| {
+        r.unreadable(path, &e);
         2u8
     })?;
     let (seq, diagnostics) = sfc::parser::parse(&text);
@@ -59,7 +60,7 @@ fn parse(path: &Path, format: Format) -> Result<(String, sfc::ast::Sequence), u8
     let mut files = SourceFiles::new();
     let id = files.add(path.display().to_string(), text);
     for d in errors {
-        print!("{}", render::render(&files, &d.clone().in_file(id), format));
+        r.emit(&files, &d.clone().in_file(id));
     }
     Err(1)
 }
@@ -72,12 +73,11 @@ pub enum Direction {
 }
 
 /// `linc sfc specialise|generalise FILE --map MAP -o OUT`.
-pub fn rewrite(dir: Direction, file: &Path, map_path: &Path, out: &Path, format: Format) -> u8 {
-    if let Err(e) = crate::files::check_output(out, &[file, map_path]) {
-        eprintln!("{e}");
-        return 2;
+pub fn rewrite(dir: Direction, file: &Path, map_path: &Path, out: &Path, r: &mut Reporter) -> u8 {
+    if let Err(e) = linc_driver::files::check_output(out, &[file, map_path]) {
+        return crate::report::refused(r, e.diagnostic());
     }
-    let (map, text, errors) = match read_map(map_path, format) {
+    let (map, text, errors) = match read_map(map_path, r) {
         Ok(m) => m,
         Err(status) => return status,
     };
@@ -85,11 +85,11 @@ pub fn rewrite(dir: Direction, file: &Path, map_path: &Path, out: &Path, format:
         let mut files = SourceFiles::new();
         let id = files.add(map_path.display().to_string(), text);
         for e in &errors {
-            print!("{}", render::render(&files, &e.to_diagnostic().in_file(id), format));
+            r.emit(&files, &e.to_diagnostic().in_file(id));
         }
         return 1;
     }
-    let (src, seq) = match parse(file, format) {
+    let (src, seq) = match parse(file, r) {
         Ok(p) => p,
         Err(status) => return status,
     };
@@ -97,24 +97,21 @@ pub fn rewrite(dir: Direction, file: &Path, map_path: &Path, out: &Path, format:
         Direction::Specialise => generic::specialise(&src, &seq, &map),
         Direction::Generalise => generic::generalise(&src, &seq, &map),
     };
-    match crate::files::write_atomic(out, written.as_bytes()) {
+    match linc_driver::files::write_atomic(out, written.as_bytes()) {
         Ok(()) => 0,
-        Err(e) => {
-            eprintln!("{e}");
-            2
-        }
+        Err(e) => crate::report::refused(r, e.diagnostic()),
     }
 }
 
 /// `linc sfc map-template FILE [--db DB]`: prints a map with every generic
 /// name and an empty target.
-pub fn map_template(file: &Path, db: Option<&Path>, format: Format) -> u8 {
+pub fn map_template(file: &Path, db: Option<&Path>, r: &mut Reporter) -> u8 {
     let mut dbfiles = SourceFiles::new();
-    let db = match load_db(db, &mut dbfiles, format) {
+    let db = match load_db(db, &mut dbfiles, r) {
         Ok(db) => db.unwrap_or_else(Database::builtin),
         Err(status) => return status,
     };
-    let (_, seq) = match parse(file, format) {
+    let (_, seq) = match parse(file, r) {
         Ok(p) => p,
         Err(status) => return status,
     };

@@ -4,6 +4,7 @@
 //! asks to ignore it. The state is written atomically, so a run that dies
 //! while saving leaves the last good state in place.
 
+use linc_driver::Reporter;
 use linc_runtime::strategy::Strategy;
 use std::io;
 use std::path::Path;
@@ -17,38 +18,31 @@ pub enum Start {
     Warm,
 }
 
-/// Restores `path` into `s` unless `cold`. Errors are printed; the `u8` is
+/// Restores `path` into `s` unless `cold`. Errors are reported; the `u8` is
 /// the exit status (2).
-pub fn warm_start(path: &Path, cold: bool, s: &mut Strategy) -> Result<Start, u8> {
+pub fn warm_start(path: &Path, cold: bool, s: &mut Strategy, r: &mut Reporter) -> Result<Start, u8> {
     if cold {
         return Ok(Start::Cold);
     }
-    let bytes = match crate::files::read_in_out(path) {
+    let bytes = match linc_driver::files::read_in_out(path) {
         Ok(b) => b,
         Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(Start::Cold),
         Err(e) => {
-            eprintln!("error[E0900]: can't read the state file `{}`: {e}", path.display());
+            r.unreadable(path, &e);
             return Err(2);
         }
     };
     match s.restore_state(&bytes) {
         Ok(()) => Ok(Start::Warm),
         Err(e) => {
-            eprintln!(
-                "error[{}]: `{}`: {} (the run did not start; --cold ignores the file)",
-                e.code,
-                path.display(),
-                e.message
-            );
+            let why = format!("{} (the run did not start; --cold ignores the file)", e.message);
+            r.whole_file(&path.display().to_string(), e.code, why);
             Err(2)
         }
     }
 }
 
 /// Saves the strategy's state to `path`, atomically.
-pub fn save(path: &Path, s: &Strategy) -> Result<(), u8> {
-    crate::files::write_atomic(path, &s.save_state()).map_err(|e| {
-        eprintln!("{e}");
-        2
-    })
+pub fn save(path: &Path, s: &Strategy, r: &mut Reporter) -> Result<(), u8> {
+    linc_driver::files::write_atomic(path, &s.save_state()).map_err(|e| crate::report::refused(r, e.diagnostic()))
 }

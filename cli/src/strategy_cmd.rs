@@ -5,9 +5,10 @@ use crate::check_cmd::load_db;
 use crate::report::usage;
 use crate::run_cmd::{program_object, set_and_show, show_value, start_time, write_db, Common};
 use crate::sequence_run::{self, SequenceRun};
-use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::render::SourceFiles;
 use linc_compiler::span::FileId;
 use linc_compiler::{Diagnostic, Span};
+use linc_driver::Reporter;
 use linc_runtime::strategy::{self, trace::Trace, Strategy, StrategyError, Want};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::{Database, Store, Verified};
@@ -36,31 +37,37 @@ pub struct Retain {
 pub fn duration(text: &str) -> Result<u64, String> {
     let secs = linc_runtime::db::duration_seconds(text)
         .map_err(|why| format!("--for `{text}` is not a duration like 10m, 1h30m or T#2.5s: {why}"))?;
-    if !secs.is_finite() || secs <= 0.0 || secs > 366.0 * 86_400.0 {
-        return Err(format!("--for `{text}`: the duration must be more than 0 and at most 366 days"));
+    if !secs.is_finite() || !(1e-6..=366.0 * 86_400.0).contains(&secs) {
+        return Err(format!(
+            "--for `{text}`: the duration must be at least the clock's microsecond (1us) and at most 366 days"
+        ));
     }
     Ok(strategy::micros(secs))
 }
 
 /// A strategy error, located at the block's key in the database text.
-fn report(files: &SourceFiles, db_id: FileId, db_text: &str, e: &StrategyError, format: Format) {
+fn report(files: &SourceFiles, db_id: FileId, db_text: &str, e: &StrategyError, r: &mut Reporter) {
+    r.emit(files, &strategy_diagnostic(db_id, db_text, e));
+}
+
+/// A strategy error as a diagnostic at the block's key in the database text.
+pub fn strategy_diagnostic(db_id: FileId, db_text: &str, e: &StrategyError) -> Diagnostic {
     let quoted = format!("\"{}\"", e.block);
     let span = db_text.find(&quoted).map(|at| Span::new(at, at + quoted.len())).unwrap_or_default();
-    let d = Diagnostic::error(e.code, e.message.clone(), span).label("this block").in_file(db_id);
-    print!("{}", render::render(files, &d, format));
+    Diagnostic::error(e.code, e.message.clone(), span).label("this block").in_file(db_id)
 }
 
 /// Compiles or loads each action file the strategy names, once each.
 /// The verified objects, and each wanted action with the index of its object.
 pub type Plan = (Vec<Verified>, Vec<(Want, usize)>);
 
-fn objects(o: &Options, db: &Database, wants: &[Want]) -> Result<Plan, u8> {
+fn objects(o: &Options, db: &Database, wants: &[Want], r: &mut Reporter) -> Result<Plan, u8> {
     let dir = o.db.parent().map(Path::to_path_buf).unwrap_or_default();
-    compile_wants(&dir, db, wants, o.common.format)
+    compile_wants(&dir, db, wants, r)
 }
 
 /// Compiles or loads each file `wants` name (relative to `dir`), once each.
-pub fn compile_wants(dir: &Path, db: &Database, wants: &[Want], format: Format) -> Result<Plan, u8> {
+pub fn compile_wants(dir: &Path, db: &Database, wants: &[Want], r: &mut Reporter) -> Result<Plan, u8> {
     let mut index: HashMap<String, usize> = HashMap::new();
     let mut objects = Vec::new();
     let mut pairs = Vec::with_capacity(wants.len());
@@ -69,7 +76,7 @@ pub fn compile_wants(dir: &Path, db: &Database, wants: &[Want], format: Format) 
             Some(&i) => i,
             None => {
                 let path = dir.join(&w.file);
-                objects.push(program_object(&path, db, format)?);
+                objects.push(program_object(&path, db, r)?);
                 index.insert(w.file.clone(), objects.len() - 1);
                 objects.len() - 1
             }
@@ -88,59 +95,61 @@ fn assemble(
     store: Store,
     wants: &[Want],
     now: i64,
+    r: &mut Reporter,
 ) -> Result<Strategy, u8> {
     if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
-        report(files, FileId(0), db_text, &e, o.common.format);
+        report(files, FileId(0), db_text, &e, r);
         return Err(2);
     }
-    let (objects, pairs) = objects(o, &store.db, wants)?;
+    let (objects, pairs) = objects(o, &store.db, wants, r)?;
     let seed = o.common.seed.unwrap_or(now as u64);
     let mut vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
     vm.set_tier(o.common.tier);
     Strategy::build(store, objects, &pairs, vm, now as f64).map_err(|e| {
-        report(files, FileId(0), db_text, &e, o.common.format);
+        report(files, FileId(0), db_text, &e, r);
         2
     })
 }
 
 /// The whole strategy of a database, as `linc run PLANT.json` builds it
 /// (with `--set` applied), for the console.
-pub fn load(o: &Options) -> Result<Strategy, u8> {
-    let now = start_time(o.common.now.as_deref()).map_err(usage)?;
+pub fn load(o: &Options, r: &mut Reporter) -> Result<Strategy, u8> {
+    let now = start_time(o.common.now.as_deref()).map_err(|msg| usage(r, msg))?;
     let mut files = SourceFiles::new();
-    let db = match load_db(Some(&o.db), &mut files, o.common.format) {
+    let db = match load_db(Some(&o.db), &mut files, r) {
         Ok(Some(db)) => db,
         Ok(None) => return Err(2),
         Err(status) => return Err(status),
     };
     let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
     let mut store = Store::new(db);
-    set_and_show(&mut store, &o.common.set, &[])?;
+    set_and_show(&mut store, &o.common.set, &[], r)?;
     let wants = strategy::wanted(&store);
-    check_outputs(o, &wants)?;
-    assemble(o, &files, &db_text, store, &wants, now)
+    check_outputs(o, &wants, r)?;
+    assemble(o, &files, &db_text, store, &wants, now, r)
 }
 
-pub fn run(o: &Options) -> u8 {
+pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     let duration = match duration(&o.duration) {
         Ok(d) => d,
-        Err(msg) => return usage(msg),
+        Err(msg) => return usage(r, msg),
     };
     let now = match start_time(o.common.now.as_deref()) {
         Ok(s) => s,
-        Err(msg) => return usage(msg),
+        Err(msg) => return usage(r, msg),
     };
     let mut files = SourceFiles::new();
-    let mut db = match load_db(Some(&o.db), &mut files, o.common.format) {
+    let mut db = match load_db(Some(&o.db), &mut files, r) {
         Ok(Some(db)) => db,
         Ok(None) => return 2,
         Err(status) => return status,
     };
     let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
-    let seq_block = match o.single.as_ref().map(|q| sequence_run::block(&db, q.block.as_deref(), q.kind)).transpose() {
-        Ok(b) => b,
-        Err(status) => return status,
-    };
+    let seq_block =
+        match o.single.as_ref().map(|q| sequence_run::find_block(&db, q.block.as_deref(), q.kind)).transpose() {
+            Ok(b) => b,
+            Err(d) => return crate::report::refused(r, *d),
+        };
     if let (Some(b), Some(p)) = (seq_block, o.single.as_ref().and_then(|q| q.period)) {
         sequence_run::set_period(&mut db, b, p);
     }
@@ -148,7 +157,7 @@ pub fn run(o: &Options) -> u8 {
     let step_shows: Vec<String> =
         o.common.show.iter().filter(|p| is_step_show(&store, seq_block, p)).cloned().collect();
     let field_shows: Vec<String> = o.common.show.iter().filter(|p| !step_shows.contains(p)).cloned().collect();
-    let shows = match set_and_show(&mut store, &o.common.set, &field_shows) {
+    let shows = match set_and_show(&mut store, &o.common.set, &field_shows, r) {
         Ok(v) => v,
         Err(status) => return status,
     };
@@ -156,23 +165,23 @@ pub fn run(o: &Options) -> u8 {
         (Some(q), Some(b)) => vec![sequence_run::want(q, b)],
         _ => strategy::wanted(&store),
     };
-    if let Err(status) = check_outputs(o, &wants) {
+    if let Err(status) = check_outputs(o, &wants, r) {
         return status;
     }
-    let mut s = match assemble(o, &files, &db_text, store, &wants, now) {
+    let mut s = match assemble(o, &files, &db_text, store, &wants, now, r) {
         Ok(s) => s,
         Err(status) => return status,
     };
     if let (Some(q), Some(seq)) = (&o.single, seq_block.and_then(|b| s.sequence_mut(b))) {
-        if let Err(status) = sequence_run::monitor(seq, q) {
-            return status;
+        if let Err(d) = sequence_run::monitor(seq, q, &step_shows) {
+            return crate::report::refused(r, *d);
         }
     }
     if let Some(path) = &o.retain.state {
-        match crate::state_file::warm_start(path, o.retain.cold, &mut s) {
+        match crate::state_file::warm_start(path, o.retain.cold, &mut s, r) {
             // A warm start restored the values: --set applies on top of them.
             Ok(crate::state_file::Start::Warm) => {
-                if let Err(status) = set_and_show(&mut s.store, &o.common.set, &[]) {
+                if let Err(status) = set_and_show(&mut s.store, &o.common.set, &[], r) {
                     return status;
                 }
             }
@@ -181,7 +190,7 @@ pub fn run(o: &Options) -> u8 {
         }
     }
     // The trace streams to its file (or standard output) as the run goes.
-    let mut sink = match trace_sink(o.common.trace.as_deref()) {
+    let mut sink = match trace_sink(o.common.trace.as_deref(), r) {
         Ok(s) => s,
         Err(status) => return status,
     };
@@ -190,7 +199,7 @@ pub fn run(o: &Options) -> u8 {
     let traced = trace.map(Trace::finish);
     drop(sink);
     for e in &failures {
-        eprint!("{}", crate::report::runtime(e, o.common.format));
+        r.runtime(e);
     }
     crate::run_cmd::say_compiled(o.common.tier, s.compiled_blocks());
     for path in &o.common.show {
@@ -199,13 +208,12 @@ pub fn run(o: &Options) -> u8 {
         println!("{path} = {}", step.or(field).unwrap_or_default());
     }
     if let Some(Err(e)) = traced {
-        eprintln!("error[E0900]: can't write the trace: {e}");
-        return 2;
+        return trace_unwritten(o.common.trace.as_deref(), &e, r);
     }
-    if let Some(Err(status)) = o.retain.state.as_ref().map(|p| crate::state_file::save(p, &s)) {
+    if let Some(Err(status)) = o.retain.state.as_ref().map(|p| crate::state_file::save(p, &s, r)) {
         return status;
     }
-    match write_outputs(o, &db_text, &s.store) {
+    match write_outputs(o, &db_text, &s.store, r) {
         Ok(()) => u8::from(!failures.is_empty()),
         Err(status) => status,
     }
@@ -225,39 +233,33 @@ fn is_step_show(store: &Store, seq_block: Option<usize>, path: &str) -> bool {
 /// checked before the run, so a refused run changes nothing.
 /// No two outputs may name one file (E0902), and the console's `--script`
 /// is an input too.
-fn check_outputs(o: &Options, wants: &[Want]) -> Result<(), u8> {
+fn check_outputs(o: &Options, wants: &[Want], r: &mut Reporter) -> Result<(), u8> {
     let dir = o.db.parent().map(Path::to_path_buf).unwrap_or_default();
     let inputs: Vec<PathBuf> =
         std::iter::once(o.db.clone()).chain(o.script.clone()).chain(wants.iter().map(|w| dir.join(&w.file))).collect();
     let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     let outputs = [("--out", &o.common.out), ("--trace", &o.common.trace), ("--state", &o.retain.state)];
     let outputs: Vec<(&str, &Path)> = outputs.iter().filter_map(|(f, p)| Some((*f, p.as_deref()?))).collect();
-    let refused = crate::files::check_distinct(&outputs).err().or_else(|| {
+    let refused = linc_driver::files::check_distinct(&outputs).err().or_else(|| {
         outputs
             .iter()
             .filter(|(_, p)| p.as_os_str() != "-")
-            .find_map(|(_, out)| crate::files::check_output(out, &input_refs).err())
+            .find_map(|(_, out)| linc_driver::files::check_output(out, &input_refs).err())
     });
     match refused {
-        Some(e) => {
-            eprintln!("{e}");
-            Err(2)
-        }
+        Some(e) => Err(crate::report::refused(r, e.diagnostic())),
         None => Ok(()),
     }
 }
 
 /// Where `--trace` goes: standard output for `-`, else a file committed
 /// when the trace is finished.
-pub fn trace_sink(path: Option<&Path>) -> Result<Option<Box<dyn std::io::Write>>, u8> {
+pub fn trace_sink(path: Option<&Path>, r: &mut Reporter) -> Result<Option<Box<dyn std::io::Write>>, u8> {
     match path {
         Some(p) if p.as_os_str() == "-" => Ok(Some(Box::new(std::io::BufWriter::new(std::io::stdout().lock())))),
-        Some(p) => match crate::files::AtomicFile::create(p) {
+        Some(p) => match linc_driver::files::AtomicFile::create(p) {
             Ok(f) => Ok(Some(Box::new(TraceFile(Some(f))))),
-            Err(e) => {
-                eprintln!("{e}");
-                Err(2)
-            }
+            Err(e) => Err(crate::report::refused(r, e.diagnostic())),
         },
         None => Ok(None),
     }
@@ -265,7 +267,7 @@ pub fn trace_sink(path: Option<&Path>) -> Result<Option<Box<dyn std::io::Write>>
 
 /// A trace file: committed (renamed into place) when the trace is
 /// flushed at its end, so a run that fails to write leaves no partial file.
-struct TraceFile(Option<crate::files::AtomicFile>);
+struct TraceFile(Option<linc_driver::files::AtomicFile>);
 
 impl std::io::Write for TraceFile {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
@@ -285,12 +287,18 @@ impl std::io::Write for TraceFile {
 }
 
 /// Writes the database with its values.
-fn write_outputs(o: &Options, db_text: &str, store: &Store) -> Result<(), u8> {
+fn write_outputs(o: &Options, db_text: &str, store: &Store, r: &mut Reporter) -> Result<(), u8> {
     if let Some(out) = &o.common.out {
         if let Err(e) = write_db(out, db_text, store) {
-            eprintln!("{e}");
-            return Err(2);
+            return Err(crate::report::refused(r, e.diagnostic()));
         }
     }
     Ok(())
+}
+
+/// A trace that could not be written to the end (E0900, exit status 2).
+pub fn trace_unwritten(path: Option<&Path>, e: &std::io::Error, r: &mut Reporter) -> u8 {
+    let name = path.map_or("-".into(), |p| p.display().to_string());
+    r.command("E0900", format!("can't write the trace `{name}`: {e}"));
+    2
 }

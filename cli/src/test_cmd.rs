@@ -5,12 +5,13 @@
 //! scenarios on all cores and prints (`docs/testing.md`).
 
 use crate::report::usage;
-use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::render::{Format, SourceFiles};
 use linc_compiler::scenario::{self, Action, How, Target};
+use linc_driver::Reporter;
 use linc_runtime::scenario::{Check, Report, Step};
 use linc_runtime::strategy::{Strategy, Want};
 use linc_runtime::vm::{Clock, Vm};
-use linc_runtime::{Database, Store};
+use linc_runtime::Store;
 use std::path::{Path, PathBuf};
 
 pub struct Options {
@@ -67,15 +68,14 @@ fn walk(dir: &Path, out: &mut Vec<PathBuf>, depth: usize) -> std::io::Result<()>
     Ok(())
 }
 
-pub fn run(o: &Options) -> u8 {
+pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     let paths = if o.paths.is_empty() { vec![PathBuf::from(".")] } else { o.paths.clone() };
     let files = match scenarios(&paths) {
         Ok(f) => f,
-        Err(msg) => return usage(format_args!("[E0903] {msg}")),
+        Err(msg) => return usage(r, msg),
     };
     if let Err(e) = check_outputs(o, &files) {
-        eprintln!("{e}");
-        return 2;
+        return crate::report::refused(r, e.diagnostic());
     }
     let jobs = o.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())).max(1);
     let started = std::time::Instant::now();
@@ -100,13 +100,12 @@ pub fn run(o: &Options) -> u8 {
     println!("\ntest result: {verdict}. {passed} passed, {} failed", failed.len());
     eprintln!("linc test: {} scenarios in {:.2}s on {jobs} thread(s)", outcomes.len(), started.elapsed().as_secs_f64());
     if let Some(path) = &o.junit {
-        if let Err(e) = crate::files::write_atomic(path, crate::test_report::junit(&outcomes).as_bytes()) {
-            eprintln!("{e}");
-            return 2;
+        if let Err(e) = linc_driver::files::write_atomic(path, crate::test_report::junit(&outcomes).as_bytes()) {
+            return crate::report::refused(r, e.diagnostic());
         }
     }
     if let Some(path) = &o.vcd {
-        if let Err(status) = crate::test_report::write_vcds(path, &outcomes) {
+        if let Err(status) = crate::test_report::write_vcds(path, &outcomes, r) {
             return status;
         }
     }
@@ -117,14 +116,14 @@ pub fn run(o: &Options) -> u8 {
 /// scenario names (its strategy or program and database); checked before
 /// any scenario runs. Files read later (a strategy's action files) are
 /// protected when the report is written (`files::AtomicFile`).
-fn check_outputs(o: &Options, files: &[PathBuf]) -> Result<(), crate::files::Refused> {
+fn check_outputs(o: &Options, files: &[PathBuf]) -> Result<(), linc_driver::files::Refused> {
     let outputs = [("--junit", &o.junit), ("--vcd", &o.vcd)];
     let outputs: Vec<(&str, &Path)> = outputs.iter().filter_map(|(f, p)| Some((*f, p.as_deref()?))).collect();
-    crate::files::check_distinct(&outputs)?;
+    linc_driver::files::check_distinct(&outputs)?;
     let mut inputs: Vec<PathBuf> = files.to_vec();
     for file in files {
         let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
-        let Ok(text) = crate::files::read_input_text(file) else { continue };
+        let Ok(text) = linc_driver::files::read_input_text(file) else { continue };
         match scenario::parse(&text).0.target {
             Some(Target::Strategy(db)) => inputs.push(dir.join(db)),
             Some(Target::Program { file, db }) => inputs.extend([dir.join(file), dir.join(db)]),
@@ -136,7 +135,7 @@ fn check_outputs(o: &Options, files: &[PathBuf]) -> Result<(), crate::files::Ref
     if let Some(vcd) = &o.vcd {
         targets.extend(crate::test_report::vcd_targets(vcd, files));
     }
-    targets.iter().try_for_each(|t| crate::files::check_output(t, &inputs))
+    targets.iter().try_for_each(|t| linc_driver::files::check_output(t, &inputs))
 }
 
 /// Runs the scenarios on `jobs` threads; the outcomes come back in file
@@ -164,27 +163,42 @@ pub fn run_all(files: &[PathBuf], jobs: usize, vcd: bool) -> Vec<Outcome> {
 /// fields it names are sampled only for a VCD (`vcd`).
 pub fn run_one(file: &Path, vcd: bool) -> Outcome {
     let name = file.display().to_string();
-    let fail = |details: String| Outcome { name: name.clone(), passed: false, details, report: Report::default() };
-    let text = match crate::files::read_input_text(file) {
+    // What goes wrong before the run is part of the scenario's report, in
+    // the short format, so that reports come out in file order.
+    let mut r = Reporter::in_memory(Format::Short);
+    let fail =
+        |r: &mut Reporter| Outcome { name: name.clone(), passed: false, details: r.take(), report: Report::default() };
+    let bytes = match linc_driver::files::read_input(file) {
         Ok(t) => t,
-        Err(e) => return fail(format!("error[E0900]: can't read `{name}`: {e}\n")),
+        Err(e) => {
+            r.unreadable(file, &e);
+            return fail(&mut r);
+        }
     };
     let mut sources = SourceFiles::new();
-    let id = sources.add(name.clone(), text.clone());
-    let (sc, diagnostics) = scenario::parse(&text);
+    let (text, invalid) = linc_compiler::files::decode(bytes);
+    let id = sources.add_decoded(name.clone(), text.clone(), invalid.clone());
+    if let Some(e) = linc_compiler::session::SessionError::not_utf8(&invalid) {
+        r.emit(&sources, &e.to_diagnostic().in_file(id));
+        return fail(&mut r);
+    }
+    let (sc, diagnostics) = scenario::parse(text.strip_prefix('\u{feff}').unwrap_or(&text));
     if !diagnostics.is_empty() {
-        let shown: String =
-            diagnostics.iter().map(|d| render::render(&sources, &d.clone().in_file(id), Format::Short)).collect();
-        return fail(shown);
+        // Spans count from after a byte order mark: put them back in the file.
+        let bom = if text.starts_with('\u{feff}') { 3 } else { 0 };
+        for d in diagnostics {
+            let span = linc_compiler::Span::new(d.span.start + bom, d.span.end + bom);
+            r.emit(&sources, &linc_compiler::Diagnostic { span, ..d }.in_file(id));
+        }
+        return fail(&mut r);
     }
     let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
-    let mut strategy = match build(&dir, sc.target.as_ref()) {
-        Ok(s) => s,
-        Err(why) => return fail(why),
+    let Ok(mut strategy) = build(&dir, sc.target.as_ref(), &mut r) else {
+        return fail(&mut r);
     };
-    let (steps, errors) = steps(&sc, &strategy, &sources, id);
-    if !errors.is_empty() {
-        return fail(errors);
+    let steps = steps(&sc, &strategy, &sources, id, &mut r);
+    if r.errors() > 0 {
+        return fail(&mut r);
     }
     let watch = if vcd { watched(&sc) } else { Vec::new() };
     strategy.store.now = START;
@@ -234,10 +248,10 @@ fn steps(
     s: &Strategy,
     sources: &SourceFiles,
     id: linc_compiler::FileId,
-) -> (Vec<Step>, String) {
+    r: &mut Reporter,
+) -> Vec<Step> {
     let names = s.step_names();
     let mut out = Vec::new();
-    let mut errors = String::new();
     for l in &sc.lines {
         match &l.action {
             Action::At { at_us, command } => {
@@ -260,52 +274,52 @@ fn steps(
                     Err(diagnostics) => {
                         for d in diagnostics {
                             let shifted = linc_compiler::Span::new(d.span.start + span.start, d.span.end + span.start);
-                            let d = linc_compiler::Diagnostic { span: shifted, ..d }.in_file(id);
-                            errors.push_str(&render::render(sources, &d, Format::Short));
+                            r.emit(sources, &linc_compiler::Diagnostic { span: shifted, ..d }.in_file(id));
                         }
                     }
                 }
             }
         }
     }
-    (out, errors)
+    out
 }
 
 fn load_error(e: linc_runtime::LoadError) -> linc_compiler::Diagnostic {
     linc_compiler::Diagnostic::error(e.code(), e.to_string(), linc_compiler::Span::new(0, 0))
 }
 
-/// Builds the strategy (or the single program) a scenario names, quietly:
-/// what goes wrong is returned as text for the scenario's report.
-fn build(dir: &Path, target: Option<&Target>) -> Result<Strategy, String> {
+/// Builds the strategy (or the single program) a scenario names; what goes
+/// wrong is reported to `r`, the scenario's own reporter.
+fn build(dir: &Path, target: Option<&Target>, r: &mut Reporter) -> Result<Strategy, ()> {
     let (db_path, single) = match target {
         Some(Target::Strategy(db)) => (dir.join(db), None),
         Some(Target::Program { file, db }) => (dir.join(db), Some(dir.join(file))),
-        None => return Err("the scenario names nothing to run\n".into()),
+        None => {
+            r.command("E0500", "the scenario names nothing to run: write `strategy PLANT.json`");
+            return Err(());
+        }
     };
-    let text =
-        crate::files::read_input_text(&db_path).map_err(|e| format!("can't read `{}`: {e}\n", db_path.display()))?;
-    let db = Database::from_json(&text).map_err(|e| format!("{}: {e}\n", db_path.display()))?;
+    let mut files = SourceFiles::new();
+    let db = crate::check_cmd::load_db(Some(&db_path), &mut files, r).map_err(|_| ())?.unwrap_or_default();
+    let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
     let store = Store::new(db.clone());
     let wants: Vec<Want> = match &single {
         None => linc_runtime::strategy::wanted(&store),
-        Some(file) => vec![single_want(&db, file)?],
+        Some(file) => {
+            let kind = crate::sequence_run::Kind::of(file);
+            let block = crate::sequence_run::find_block(&db, None, kind).map_err(|d| r.emit_own(*d))?;
+            vec![crate::sequence_run::want_for(file, kind, block)]
+        }
+    };
+    let located = |e: &linc_runtime::strategy::StrategyError| {
+        crate::strategy_cmd::strategy_diagnostic(linc_compiler::FileId(0), &db_text, e)
     };
     if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
-        return Err(format!("{}: error[{}]: {}: {}\n", db_path.display(), e.code, e.block, e.message));
+        r.emit(&files, &located(&e));
+        return Err(());
     }
     let db_dir = db_path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let (objects, pairs) = crate::strategy_cmd::compile_wants(&db_dir, &db, &wants, Format::Short)
-        .map_err(|_| format!("`{}`: its programs do not compile (see above)\n", db_path.display()))?;
+    let (objects, pairs) = crate::strategy_cmd::compile_wants(&db_dir, &db, &wants, r).map_err(|_| ())?;
     let vm = Vm::new(linc_runtime::vm::DEFAULT_WATCHDOG, Clock::new(1, 0));
-    Strategy::build(store, objects, &pairs, vm, START)
-        .map_err(|e| format!("{}: error[{}]: {}: {}\n", db_path.display(), e.code, e.block, e.message))
-}
-
-/// The one program of a `program` scenario, run by the only block that can.
-fn single_want(db: &Database, file: &Path) -> Result<Want, String> {
-    let kind = crate::sequence_run::Kind::of(file);
-    let block =
-        crate::sequence_run::find_block(db, None, kind).map_err(|why| format!("`{}`: {why}\n", file.display()))?;
-    Ok(crate::sequence_run::want_for(file, kind, block))
+    Strategy::build(store, objects, &pairs, vm, START).map_err(|e| r.emit(&files, &located(&e)))
 }

@@ -145,9 +145,9 @@ pub fn vcd_targets(path: &Path, scenarios: &[PathBuf]) -> Vec<PathBuf> {
 
 /// `--vcd PATH`: the file itself for one scenario; for several, a
 /// directory of `NAME.vcd` files (made if missing).
-pub fn write_vcds(path: &Path, outcomes: &[Outcome]) -> Result<(), u8> {
-    let fail = |e: &dyn std::fmt::Display| {
-        eprintln!("error[E0900]: can't write `{}`: {e}", path.display());
+pub fn write_vcds(path: &Path, outcomes: &[Outcome], r: &mut linc_driver::Reporter) -> Result<(), u8> {
+    let mut fail = |e: &dyn std::fmt::Display| {
+        r.command("E0900", format!("can't write `{}`: {e}", path.display()));
         2
     };
     if outcomes.len() > 1 {
@@ -156,7 +156,7 @@ pub fn write_vcds(path: &Path, outcomes: &[Outcome]) -> Result<(), u8> {
     let names: Vec<PathBuf> = outcomes.iter().map(|o| PathBuf::from(&o.name)).collect();
     for (o, target) in outcomes.iter().zip(vcd_targets(path, &names)) {
         let bytes = vcd(o).map_err(|e| fail(&e))?;
-        crate::files::write_atomic(&target, &bytes).map_err(|e| fail(&e))?;
+        linc_driver::files::write_atomic(&target, &bytes).map_err(|e| fail(&e))?;
     }
     Ok(())
 }

@@ -10,6 +10,10 @@ fn linc(args: &[&str]) -> Output {
         .expect("run linc")
 }
 
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
 fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
@@ -37,7 +41,7 @@ fn errors_exit_one_with_short_locations() {
     let o = linc(&["check", "examples/guide/broken.st", "--db", DB, "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
-        stdout(&o),
+        stderr(&o),
         "examples/guide/broken.st:2:24: error[E0010]: unexpected `;`\n\
          examples/guide/broken.st:3:17: error[E0104]: `AUTOMATIC` is not a value of `PIC_004.Mode`\n\
          examples/guide/broken.st:5:28: error[E0007]: `ANDB` is a name, not the operator AND\n"
@@ -48,7 +52,7 @@ fn errors_exit_one_with_short_locations() {
 fn human_format_renders_snippets_and_help() {
     let o = linc(&["check", "examples/guide/broken.st", "--db", DB]);
     assert_eq!(o.status.code(), Some(1));
-    insta::assert_snapshot!(stdout(&o));
+    insta::assert_snapshot!(stderr(&o));
     assert!(String::from_utf8_lossy(&o.stderr).contains("3 errors, 0 warnings"));
 }
 
@@ -57,7 +61,7 @@ fn json_format_is_one_object_per_line() {
     let o = linc(&["check", "examples/guide/broken.st", "--db", DB, "--message-format", "json"]);
     assert_eq!(o.status.code(), Some(1));
     let lines: Vec<serde_json::Value> =
-        stdout(&o).lines().map(|l| serde_json::from_str(l).expect("each line is JSON")).collect();
+        stderr(&o).lines().map(|l| serde_json::from_str(l).expect("each line is JSON")).collect();
     assert_eq!(lines.len(), 3);
     assert_eq!(lines[1]["code"], "E0104");
     assert_eq!(lines[1]["line"], 3);
@@ -85,7 +89,7 @@ fn broken_database_is_reported_with_its_location() {
     let db = temp_file("bad.json", "{ \"blocks\": { \"B1\": { \"type\": \"NOPE\" } } }");
     let o = linc(&["check", "examples/guide/shift.st", "--db", &db, "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stdout(&o).contains("bad.json:1:31: error[E0803]: block `B1` has unknown type `NOPE`"), "{}", stdout(&o));
+    assert!(stderr(&o).contains("bad.json:1:31: error[E0803]: block `B1` has unknown type `NOPE`"), "{}", stderr(&o));
 }
 
 #[test]

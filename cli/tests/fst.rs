@@ -46,7 +46,7 @@ fn errors_are_located_at_their_cell() {
     let bad = bad.to_string_lossy().into_owned();
     let o = linc(&["check", &bad, "--db", PLANT, "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(1));
-    let out = stdout(&o);
+    let out = stderr(&o);
     assert!(out.contains("bad.csv:2:8: error[E0421]"), "{out}");
     assert!(out.contains("bad.csv:3:7: error[E0407]"), "{out}");
     // Compiling a table needs its point database.

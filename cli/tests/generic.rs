@@ -27,7 +27,7 @@ fn generic_sequence_checks_clean_with_each_map() {
 fn without_a_map_generic_names_are_unknown() {
     let o = linc(&["check", SEQ, "--db", DB, "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(1));
-    let out = stdout(&o);
+    let out = stderr(&o);
     assert_eq!(out.matches("E0100").count(), 23, "{out}");
 }
 
@@ -89,7 +89,7 @@ fn unmapped_names_are_errors_naming_the_map() {
     let m = map.to_str().unwrap();
     let o = linc(&["check", SEQ, "--map", m, "--db", DB, "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(1));
-    let out = stdout(&o);
+    let out = stderr(&o);
     let first = out.lines().next().unwrap();
     assert_eq!(first, format!("{SEQ}:12:33: error[E0250]: can't find `StartCmd` in the database or in the map `{m}`"));
     // StartCmd once, AbortCmd twice, TempPV (empty target) twice.
@@ -102,8 +102,8 @@ fn allow_unmapped_makes_them_warnings() {
     let map = partial_map("generic-allow");
     let m = map.to_str().unwrap();
     let o = linc(&["check", SEQ, "--map", m, "--db", DB, "--allow-unmapped", "--message-format", "short"]);
-    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
-    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stderr(&o);
     assert_eq!(out.matches("warning[W0250]").count(), 5, "{out}");
     assert_eq!(out.matches("error").count(), 0, "{out}");
 }
@@ -113,13 +113,13 @@ fn compile_needs_a_complete_map() {
     let dir = temp_dir("generic-compile");
     let out = dir.join("r.sto");
     let o = linc(&["compile", SEQ, "--map", MAP2, "--db", DB, "-o", out.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    assert_eq!(o.status.code(), Some(0), "{}{}", stderr(&o), stderr(&o));
     assert!(fs::metadata(&out).unwrap().len() > 0);
     let map = partial_map("generic-compile-partial");
     let out2 = dir.join("r2.sto");
     let o = linc(&["compile", SEQ, "--map", map.to_str().unwrap(), "--db", DB, "-o", out2.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stdout(&o).contains("error[E0250]"), "{}", stdout(&o));
+    assert!(stderr(&o).contains("error[E0250]"), "{}", stderr(&o));
     assert!(!out2.exists());
 }
 
@@ -128,7 +128,7 @@ fn check_with_map(tag: &str, text: &str) -> (Option<i32>, String) {
     let map = temp_dir(tag).join("m.json");
     fs::write(&map, text).unwrap();
     let o = linc(&["check", SEQ, "--map", map.to_str().unwrap(), "--db", DB, "--message-format", "short"]);
-    let out = stdout(&o).replace(map.to_str().unwrap(), "m.json");
+    let out = stderr(&o).replace(map.to_str().unwrap(), "m.json");
     (o.status.code(), out)
 }
 
@@ -199,13 +199,13 @@ fn too_many_steps_warn_w0251() {
     fs::write(&path, &src).unwrap();
     let p = path.to_str().unwrap();
     let o = linc(&["check", "--resources", p, "--message-format", "short"]);
-    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
-    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o) + &stderr(&o);
     assert!(out.contains("  steps          151 of 150  over the limit\n"), "{out}");
     assert!(out.contains("warning[W0251]: the sequence uses 151 steps; a small instrument loads at most 150"), "{out}");
     assert_eq!(out.matches("W0251").count(), 1, "{out}");
     let o = linc(&["check", "--resources", "--instrument", "large", p, "--message-format", "short"]);
-    assert_eq!(stdout(&o).matches("W0251").count(), 0, "{}", stdout(&o));
+    assert_eq!(stderr(&o).matches("W0251").count(), 0, "{}", stderr(&o));
 }
 
 #[test]
@@ -229,13 +229,13 @@ fn rewriting_with_a_bad_map_or_a_broken_sequence_writes_nothing() {
     fs::write(&map, "{ \"Reactor\": 1 }").unwrap();
     let o = linc(&["sfc", "specialise", SEQ, "--map", map.to_str().unwrap(), "-o", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stdout(&o).contains("error[E0251]"), "{}", stdout(&o));
+    assert!(stderr(&o).contains("error[E0251]"), "{}", stderr(&o));
     assert!(!out.exists());
     let broken = dir.join("broken.sfc");
     fs::write(&broken, "INITIAL_STEP Idle: Go(N); END_STEP\nACTION Go\n    Reactor.Heater := ;\nEND_ACTION\n").unwrap();
     let o = linc(&["sfc", "generalise", broken.to_str().unwrap(), "--map", MAP1, "-o", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stdout(&o).contains("error[E0"), "{}", stdout(&o));
+    assert!(stderr(&o).contains("error[E0"), "{}", stderr(&o));
     assert!(!out.exists());
 }
 
@@ -252,13 +252,13 @@ fn long_generic_names_are_accepted_with_a_map() {
     fs::write(&map, "{ \"WaterLevelLoFlag\": \"R1.Alarm\", \"ReactorHeaterOn\": \"R2.Heater\" }").unwrap();
     let (s, m) = (seq.to_str().unwrap(), map.to_str().unwrap());
     let o = linc(&["check", s, "--map", m, "--db", DB]);
-    assert_eq!((o.status.code(), stdout(&o)), (Some(0), String::new()));
+    assert_eq!((o.status.code(), stderr(&o)), (Some(0), String::new()));
     // Without the map the names are too long for ST.
     let o = linc(&["check", s, "--db", DB, "--message-format", "short"]);
-    assert_eq!(stdout(&o).matches("error[E0005]").count(), 2, "{}", stdout(&o));
+    assert_eq!(stderr(&o).matches("error[E0005]").count(), 2, "{}", stderr(&o));
     let out = dir.join("specific.sfc");
     let o = linc(&["sfc", "specialise", s, "--map", m, "-o", out.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert_eq!(
         fs::read_to_string(&out).unwrap(),
         "INITIAL_STEP Idle: Go(N); END_STEP\nACTION Go\n    (* keep me *) R1.Alarm := R2.Heater;\nEND_ACTION\n"

@@ -2,7 +2,7 @@
 //! and `linc ladder to-st`, on the guide's eight rungs.
 
 mod common;
-use common::{linc, stdout, temp_dir};
+use common::{linc, stderr, stdout, temp_dir};
 
 const LD: &str = "examples/ladder/interlock.ld";
 const DB: &str = "examples/ladder/plant.json";
@@ -62,7 +62,7 @@ fn ladder_errors_exit_one_with_their_codes() {
         temp_file("bad.ld", "[Dig_1a.In] -> JUMP Top;\nTop: [Ana_8a.Count] -> (Ana_7b.PV);\n[A.In] -> JUMP Top;\n");
     let o = linc(&["check", &bad, "--db", DB, "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(1));
-    let text = stdout(&o);
+    let text = stderr(&o);
     let codes: Vec<&str> = text.lines().filter_map(|l| l.split(['[', ']']).nth(1)).collect();
     assert_eq!(codes, ["E0306", "E0307", "E0100", "E0305"], "{text}");
     let o = linc(&["ladder", "to-st", &bad, "--db", DB]);
@@ -74,7 +74,7 @@ fn an_ld_action_and_an_st_action_share_one_namespace() {
     let st = temp_file("interlock.st", "Dig_1b.Out := TRUE;\n");
     let o = linc(&["check", LD, &st, "--db", DB, "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stdout(&o).contains("E0117"), "{}", stdout(&o));
+    assert!(stderr(&o).contains("E0117"), "{}", stderr(&o));
 }
 
 #[test]

@@ -1,6 +1,6 @@
 //! `linc ladder show`: rungs drawn between the rails.
 mod common;
-use common::{linc, stdout, temp_dir};
+use common::{linc, stderr, stdout, temp_dir};
 
 #[test]
 fn the_guide_rungs_are_drawn() {
@@ -24,7 +24,7 @@ fn nested_branches_and_boxes_are_drawn() {
     std::fs::write(&f, "[a.x -> (b.y);\n").expect("write");
     let o = linc(&["ladder", "show", f.to_str().unwrap(), "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stdout(&o).contains("error[E03"), "{}", stdout(&o));
+    assert!(stderr(&o).contains("error[E03"), "{}", stderr(&o));
 }
 
 #[test]

@@ -152,12 +152,16 @@ fn a_program_scenario_runs_one_sequence_in_its_only_sfc_con_block() {
     std::fs::write(dir.join("one.ltest"), text).unwrap();
     let file = dir.join("one.ltest").display().to_string();
     let o = linc(&["test", &file]);
-    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     // A database with no SFC_CON block can't run it.
     std::fs::write(dir.join("none.json"), r#"{"blocks": {}}"#).unwrap();
     std::fs::write(dir.join("two.ltest"), "program batch.sfc\ndb none.json\nrun 1s\n").unwrap();
     let file = dir.join("two.ltest").display().to_string();
     let o = linc(&["test", &file]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stdout(&o).contains("[E0904] the database has no SFC_CON block to run the sequence"), "{}", stdout(&o));
+    assert!(
+        stdout(&o).contains("error[E0904]: the database has no SFC_CON block to run the sequence"),
+        "{}",
+        stdout(&o)
+    );
 }

@@ -64,7 +64,7 @@ fn a_broken_sequence_gets_located_errors() {
     std::fs::write(&f, src).expect("write");
     let o = linc(&["check", f.to_str().unwrap(), "--db", PLANT, "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(1));
-    let out = stdout(&o);
+    let out = stderr(&o);
     let codes: Vec<&str> = out.lines().filter_map(|l| l.split("error[").nth(1)).map(|r| &r[..5]).collect();
     assert_eq!(codes, ["E0207", "E0204"], "{out}");
 }
@@ -103,7 +103,7 @@ fn a_sequence_action_may_be_ladder() {
     std::fs::write(&f, src).expect("write");
     let file = f.to_str().unwrap();
     let o = linc(&["check", file, "--db", PLANT]);
-    assert_eq!((o.status.code(), stdout(&o).as_str()), (Some(0), ""), "{}", stderr(&o));
+    assert_eq!((o.status.code(), stderr(&o).as_str()), (Some(0), ""), "{}", stderr(&o));
     let o = linc(&[
         "run",
         file,
@@ -132,7 +132,7 @@ fn a_sequence_action_may_be_ladder() {
     .expect("write");
     let o = linc(&["check", bad.to_str().unwrap(), "--db", PLANT, "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stdout(&o).contains("bad.sfc:3:22: error[E0304]: unresolved jump"), "{}", stdout(&o));
+    assert!(stderr(&o).contains("bad.sfc:3:22: error[E0304]: unresolved jump"), "{}", stderr(&o));
 }
 
 #[test]
@@ -156,5 +156,5 @@ fn a_transition_may_be_one_ladder_rung() {
     std::fs::write(&f, src.replace("[/R1.Alarm]", "[/R1.Alarm")).expect("write");
     let o = linc(&["check", file, "--db", PLANT, "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stdout(&o).contains("lt.sfc:3:"), "{}", stdout(&o));
+    assert!(stderr(&o).contains("lt.sfc:3:"), "{}", stderr(&o));
 }

@@ -3,7 +3,7 @@
 //! reaches the terminal raw.
 
 mod common;
-use common::{linc, stdout, DB};
+use common::{linc, stderr, DB};
 
 /// Writes `bytes` to `dir/name` in a fresh temporary directory of this test
 /// run and returns its path.
@@ -24,7 +24,7 @@ fn check_and_compile(files: &[String]) -> ((Option<i32>, String), (Option<i32>, 
     let mut compile = vec!["compile", "--db", DB, "--message-format", "short", "-o", &out];
     compile.extend(files.iter().map(String::as_str));
     let (c, k) = (linc(&check), linc(&compile));
-    ((c.status.code(), stdout(&c)), (k.status.code(), stdout(&k)))
+    ((c.status.code(), stderr(&c)), (k.status.code(), stderr(&k)))
 }
 
 #[test]
@@ -57,8 +57,8 @@ fn fails_cleanly(file: &str, code: &str) {
         let mut full = args.clone();
         full.extend([file, "--db", DB, "--message-format", "short"]);
         let o = linc(&full);
-        let text = stdout(&o);
-        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+        let text = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {text}");
         assert_eq!(text.matches("error[").count(), 1, "{args:?}: {}", &text[text.len().saturating_sub(500)..]);
         assert!(text.contains(&format!("error[{code}]")), "{args:?}");
     }
@@ -85,7 +85,7 @@ fn a_ten_megabyte_line_is_checked_and_compiled() {
         full.extend([f.as_str(), "--db", DB]);
         let o = linc(&full);
         assert_eq!(o.status.code(), Some(1), "{args:?}");
-        let text = stdout(&o);
+        let text = stderr(&o);
         assert_eq!(text.matches("error[").count(), 2, "{args:?}: {}", &text[..text.len().min(2000)]);
         assert!(text.contains("error[E0022]") && text.contains("error[E0019]"), "{text}");
         assert!(text.len() < 4_000, "long lines are cut around the label: {} bytes", text.len());
@@ -98,11 +98,11 @@ fn escapes_and_bad_bytes_are_shown_escaped() {
     for format in ["human", "short", "json"] {
         let o = linc(&["check", &f, "--db", DB, "--message-format", format]);
         assert_eq!(o.status.code(), Some(1));
-        assert!(!o.stdout.contains(&0x1b) && !o.stderr.contains(&0x1b), "{format}: {}", stdout(&o));
+        assert!(!o.stdout.contains(&0x1b) && !o.stderr.contains(&0x1b), "{format}: {}", stderr(&o));
         if format == "short" {
             let file = f.as_str();
             assert_eq!(
-                stdout(&o),
+                stderr(&o),
                 format!(
                     "{file}:1:15: error[E0103]: can't store a STRING value in a REAL field\n\
                      {file}:1:30: error[E0017]: byte 0xB0 is not UTF-8\n\
@@ -112,24 +112,24 @@ fn escapes_and_bad_bytes_are_shown_escaped() {
         }
     }
     let o = linc(&["check", &f, "--db", DB, "--tree"]);
-    assert!(!o.stdout.contains(&0x1b), "{}", stdout(&o));
+    assert!(!o.stdout.contains(&0x1b), "{}", stderr(&o));
 }
 
 #[test]
 fn a_byte_order_mark_is_accepted() {
     let f = temp("bom", "bom.st", "\u{FEFF}PIC_004.PV := 1;\nPIC_004.PV := 'x';\n".as_bytes());
     let o = linc(&["check", &f, "--db", DB, "--message-format", "short"]);
-    assert_eq!(stdout(&o), format!("{f}:2:15: error[E0103]: can't store a STRING value in a REAL field\n"));
+    assert_eq!(stderr(&o), format!("{f}:2:15: error[E0103]: can't store a STRING value in a REAL field\n"));
 }
 
 #[test]
 fn an_object_file_is_named_as_such() {
     let out = temp("object", "ok.sto", b"");
     let o = linc(&["compile", "examples/guide/shift.st", "--db", DB, "-o", &out]);
-    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let o = linc(&["check", &out]);
     assert_eq!(o.status.code(), Some(1));
-    let text = stdout(&o);
+    let text = stderr(&o);
     assert!(text.contains("error[E0018]: `") && text.contains("is a linc object file, not ST source"), "{text}");
     assert!(text.contains(&format!("run `linc disasm {out}`")), "{text}");
 }
@@ -138,10 +138,10 @@ fn an_object_file_is_named_as_such() {
 fn junk_gives_few_errors() {
     let at = temp("junk", "at.st", &[b'@'; 2 << 20]);
     let o = linc(&["check", &at, "--message-format", "short"]);
-    assert_eq!(stdout(&o), format!("{at}:1:1: error[E0001]: unexpected characters, from `@` on\n"));
+    assert_eq!(stderr(&o), format!("{at}:1:1: error[E0001]: unexpected characters, from `@` on\n"));
     let many = temp("junk", "many.st", "xx := 1; ".repeat(1_500).as_bytes());
     let o = linc(&["check", &many, "--db", DB, "--message-format", "short"]);
-    let text = stdout(&o);
+    let text = stderr(&o);
     assert_eq!(text.lines().count(), 1_001, "{}", &text[text.len().saturating_sub(300)..]);
     assert!(
         text.ends_with(&format!("{many}:1:9001: error[E0023]: 500 more errors in this file not shown\n")),

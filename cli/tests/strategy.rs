@@ -92,6 +92,6 @@ fn blocks_without_an_action_run_nothing_and_half_named_ones_are_refused() {
         .expect("write");
     let o = linc(&["run", db.to_str().unwrap(), "--for", "1s", "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(2));
-    let out = String::from_utf8_lossy(&o.stdout);
+    let out = String::from_utf8_lossy(&o.stderr);
     assert!(out.contains(":1:15: error[E0830]: the block names no action: its FileName is empty"), "{out}");
 }

@@ -51,6 +51,12 @@ impl Diagnostic {
         }
     }
 
+    /// An error about the command itself (an option, an argument), which
+    /// belongs to no file: printed without a location.
+    pub fn command(code: &'static str, message: impl Into<String>) -> Diagnostic {
+        Diagnostic::error(code, message, Span::default()).in_file(FileId::NONE)
+    }
+
     pub fn warning(code: &'static str, message: impl Into<String>, span: Span) -> Diagnostic {
         Diagnostic { severity: Severity::Warning, ..Diagnostic::error(code, message, span) }
     }

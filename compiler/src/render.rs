@@ -80,6 +80,9 @@ fn severity_word(s: Severity) -> &'static str {
 }
 
 fn short(files: &SourceFiles, d: &Diagnostic) -> String {
+    if d.file == FileId::NONE {
+        return format!("{}[{}]: {}\n", severity_word(d.severity), d.code, escape(&d.message));
+    }
     let (line, col) = line_col(files, d.file, d.span.start);
     let name = escape(file_name(files, d.file));
     format!("{name}:{line}:{col}: {}[{}]: {}\n", severity_word(d.severity), d.code, escape(&d.message))
@@ -104,14 +107,15 @@ fn json(files: &SourceFiles, d: &Diagnostic) -> String {
             })
         })
         .collect();
+    let located = d.file != FileId::NONE;
     let v = serde_json::json!({
-        "file": file_name(files, d.file),
-        "line": line,
-        "column": column,
-        "end_line": end_line,
-        "end_column": end_column,
-        "start": d.span.start,
-        "end": d.span.end,
+        "file": located.then(|| file_name(files, d.file)),
+        "line": located.then_some(line),
+        "column": located.then_some(column),
+        "end_line": located.then_some(end_line),
+        "end_column": located.then_some(end_column),
+        "start": located.then_some(d.span.start),
+        "end": located.then_some(d.span.end),
         "severity": severity_word(d.severity),
         "code": d.code,
         "message": d.message,
@@ -124,7 +128,7 @@ fn json(files: &SourceFiles, d: &Diagnostic) -> String {
 
 fn human(files: &SourceFiles, d: &Diagnostic) -> String {
     // A file with no text (an object file given as source) has no snippet.
-    let empty = files.file(d.file).is_some_and(|f| f.text().is_empty());
+    let empty = d.file == FileId::NONE || files.file(d.file).is_some_and(|f| f.text().is_empty());
     let mut labels = if empty { Vec::new() } else { vec![(d.file, d.span, d.label.as_str(), true)] };
     labels.extend(d.secondary.iter().map(|l| (l.file.unwrap_or(d.file), l.span, l.text.as_str(), false)));
     let (view, ranges) = View::build(files, &labels);
@@ -141,8 +145,9 @@ fn human(files: &SourceFiles, d: &Diagnostic) -> String {
         Severity::Error => cs::Diagnostic::error(),
         Severity::Warning => cs::Diagnostic::warning(),
     };
-    // Without a snippet, a note still names the file the error belongs to.
-    let whole_file = empty.then(|| format!("in {}", escape(file_name(files, d.file))));
+    // Without a snippet, a note still names the file the error belongs to
+    // (a diagnostic about the command itself has none).
+    let whole_file = (empty && d.file != FileId::NONE).then(|| format!("in {}", escape(file_name(files, d.file))));
     let notes = whole_file.into_iter().chain(d.help.iter().map(|h| format!("help: {}", escape(h)))).collect();
     let diag = base.with_code(d.code).with_message(escape(&d.message)).with_labels(cs_labels).with_notes(notes);
     let config = term::Config::default();

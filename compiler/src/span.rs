@@ -28,6 +28,11 @@ impl Span {
 pub struct FileId(pub u32);
 
 impl FileId {
+    /// No file: a diagnostic about the command itself (an option value, a
+    /// missing argument) rather than about a place in a file. It is printed
+    /// without a location (`json`: `"file": null`).
+    pub const NONE: FileId = FileId(u32::MAX);
+
     pub fn index(self) -> usize {
         self.0 as usize
     }

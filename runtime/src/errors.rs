@@ -93,11 +93,7 @@ pub struct RuntimeError {
 
 impl fmt::Display for RuntimeError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{}:{}:{}: error[{}]: in `{}`: {}",
-            self.file, self.line, self.col, self.code, self.action, self.message
-        )
+        write!(f, "{}:{}:{}: {}: in `{}`: {}", self.file, self.line, self.col, self.code, self.action, self.message)
     }
 }
 

@@ -114,7 +114,7 @@ pub fn run(driver: &mut dyn Driver, steps: Vec<Step>, watch: &[String]) -> Repor
                 r.advance(driver, at_us);
                 for reply in driver.command(&command) {
                     if let Err((code, message)) = reply {
-                        r.fail(line, at_us, format!("`{command}`: error[{code}]: {message}"), Vec::new());
+                        r.fail(line, at_us, format!("`{command}` was refused ({code}): {message}"), Vec::new());
                     }
                 }
                 r.check(driver.strategy_mut());
@@ -191,7 +191,7 @@ impl Runner {
                 self.fail(
                     0,
                     at,
-                    format!("runtime error[{}] in `{}` at {where_}: {}", e.code, e.action, e.message),
+                    format!("runtime error {} in `{}` at {where_}: {}", e.code, e.action, e.message),
                     Vec::new(),
                 );
             }
@@ -277,7 +277,7 @@ fn evaluate(vm: &mut Vm, p: &mut Pending, slots: &[u32], store: &mut Store) -> R
             Some(other) => Ok(other.as_bool()),
             None => Err(format!("`{}` gave no value", p.text)),
         },
-        Err(e) => Err(format!("`{}` failed: error[{}]: {}", p.text, e.code, e.message)),
+        Err(e) => Err(format!("`{}` failed ({}): {}", p.text, e.code, e.message)),
     }
 }
 

@@ -113,7 +113,7 @@ fn undecided_expectations_run_to_their_deadline() {
 fn commands_at_times_and_their_errors() {
     let r = go(COUNT, |_| vec![Step::At { line: 4, at_us: 300_000, command: "M REC.N0=1".into() }]);
     assert_eq!(failed_at(&r), [(4, 300_000)]);
-    assert!(r.failures[0].message.contains("error[C0000]"), "{}", r.failures[0].message);
+    assert!(r.failures[0].message.contains("was refused (C0000)"), "{}", r.failures[0].message);
     let r = go(COUNT, |_| {
         vec![Step::Run { line: 1, for_us: 1_000_000 }, Step::At { line: 2, at_us: 500_000, command: "NOW".into() }]
     });
@@ -125,7 +125,7 @@ fn a_runtime_error_fails_the_scenario() {
     let divide = "ACTION Count\n    REC.N0 := REC.N0 + 1;\n    REC.N1 := 10 / (5 - REC.N0);\nEND_ACTION\n";
     let r = go(divide, |_| vec![Step::Run { line: 1, for_us: 1_000_000 }]);
     assert_eq!(r.failures.len(), 1, "{:?}", r.failures);
-    assert!(r.failures[0].message.contains("runtime error[R0001]"), "{}", r.failures[0].message);
+    assert!(r.failures[0].message.contains("runtime error R0001"), "{}", r.failures[0].message);
     assert_eq!(r.failures[0].at_us, 500_000, "the fifth scan divides by zero");
 }
 

@@ -40,7 +40,7 @@ impl ConsoleError {
 
 impl std::fmt::Display for ConsoleError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "error[{}]: {}", self.code, self.message)
+        write!(f, "{}: {}", self.code, self.message)
     }
 }
 
@@ -332,13 +332,13 @@ impl Console {
         Ok(format!("{name}.{t} {}", format!("{force:?}").to_uppercase()))
     }
 
-    /// Runs the tasks; the reply is the clock after, and any runtime errors.
+    /// Runs the tasks; the reply is the clock after. Runtime errors are
+    /// kept as data for [`Console::take_failures`], which the caller reports
+    /// through its renderer right after the reply.
     fn advance(&mut self, us: u64, trace: Option<&mut Trace>) -> String {
         let failed = self.strategy.run_for(us, trace);
-        let mut lines = vec![self.strategy.now_text()];
-        lines.extend(failed.iter().map(|e| e.to_string()));
         self.failures.extend(failed);
-        lines.join("\n")
+        self.strategy.now_text()
     }
 
     fn error_text(&self) -> String {

@@ -148,17 +148,23 @@ fn read_limited(path: &Path, limit: u64, remember: bool) -> io::Result<Vec<u8>> 
     Ok(bytes)
 }
 
-/// An output file `linc` will not write, or could not write: printed as
-/// `error[CODE]: message`, exit status 2.
+/// An output file `linc` will not write, or could not write (exit status
+/// 2); reported through [`crate::Reporter`] like any other error.
 #[derive(Debug)]
 pub struct Refused {
     pub code: &'static str,
     pub message: String,
 }
 
+impl Refused {
+    pub fn diagnostic(&self) -> linc_compiler::Diagnostic {
+        linc_compiler::Diagnostic::command(self.code, self.message.clone())
+    }
+}
+
 impl fmt::Display for Refused {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "error[{}]: {}", self.code, self.message)
+        f.write_str(&self.message)
     }
 }
 

@@ -1,0 +1,219 @@
+//! One path for errors: every error of every command is a coded diagnostic
+//! from the one reporter, on standard error, in the format asked for —
+//! `--message-format json` included, for option errors, unreadable files,
+//! refused outputs, runtime faults and clap's own refusals. Option values
+//! that would be ignored or mean nothing are refused (E0903), a closed
+//! standard output ends `linc` without a panic, and no source outside the
+//! renderer writes `error[` by hand.
+
+mod common;
+
+use common::{linc, linc_with_input, stderr, stdout, temp_dir};
+use std::path::Path;
+use std::process::Output;
+
+const PLANT: &str = "examples/strategy/plant.json";
+const SEQ: &str = "examples/sequences/batch.sfc";
+const SEQ_DB: &str = "examples/sequences/plant.json";
+
+/// Every line of standard error is one JSON diagnostic with a code.
+fn assert_json_errors(args: &[&str], o: &Output) {
+    assert_ne!(o.status.code(), Some(0), "{args:?} should fail");
+    let err = stderr(o);
+    assert!(!err.trim().is_empty(), "{args:?}: nothing on standard error");
+    for line in err.lines().filter(|l| !l.trim().is_empty()) {
+        let v: serde_json::Value =
+            serde_json::from_str(line).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {line}"));
+        let code = v["code"].as_str().unwrap_or_default();
+        let coded = code.len() == 5 && "ECRW".contains(&code[..1]) && code[1..].chars().all(|c| c.is_ascii_digit());
+        assert!(coded, "{args:?}: no code in {line}");
+        assert_eq!(v["severity"], "error", "{args:?}: {line}");
+    }
+}
+
+#[test]
+fn every_command_reports_its_errors_as_json() {
+    let dir = temp_dir("errors-json");
+    let fault = dir.join("fault.st");
+    std::fs::write(&fault, "Counters.N0 := 1 / Counters.N1;\n").expect("write");
+    let junk = dir.join("junk.sto");
+    std::fs::write(&junk, "not an object").expect("write");
+    let f = fault.to_str().expect("path");
+    let j = junk.to_str().expect("path");
+    let missing = dir.join("missing.st");
+    let m = missing.to_str().expect("path");
+    let cases: Vec<Vec<&str>> = vec![
+        vec!["check", "examples/guide/broken.st", "--db", common::DB],
+        vec!["check", m],
+        vec!["check", f, "--db", "examples/guide/broken.st"],
+        vec!["compile", "examples/guide/broken.st", "--db", common::DB, "-o", "x.sto"],
+        vec!["compile", f, "--db", common::DB, "-o", f],
+        vec!["run", f, "--db", common::DB],
+        vec!["run", f, "--db", common::DB, "--set", "Counters.N1=abc"],
+        vec!["run", f, "--db", common::DB, "--show", "Nope.X"],
+        vec!["run", f, "--db", common::DB, "--period", "0"],
+        vec!["run", PLANT, "--for", "0s"],
+        vec!["run", PLANT, "--for", "1s", "--cycles", "3"],
+        vec!["run", SEQ, "--db", SEQ_DB, "--for", "1s", "--force", "Nope=hold"],
+        vec!["run", SEQ, "--db", SEQ_DB, "--for", "1s", "--show", "Nope.X"],
+        vec!["console", m],
+        vec!["eval", "1 / 0"],
+        vec!["eval", "1 +"],
+        vec!["disasm", j],
+        vec!["explain", "E9999"],
+        vec!["test", m],
+        vec!["fst", "list", m],
+        vec!["ladder", "to-st", m],
+        vec!["ladder", "show", m],
+        vec!["sfc", "map-template", m],
+        vec!["sfc", "specialise", SEQ, "--map", m, "-o", "x.sfc"],
+        vec!["run", "--no-such-option"],
+    ];
+    for mut args in cases {
+        args.extend(["--message-format", "json"]);
+        let o = linc(&args);
+        assert_json_errors(&args, &o);
+    }
+    // The format may also come first, as a global option.
+    let o = linc(&["--message-format", "json", "run", PLANT, "--for", "garbage"]);
+    assert_json_errors(&["--message-format", "json", "run"], &o);
+}
+
+/// Exit 2 and E0903 naming `flag`.
+fn assert_option_refused(args: &[&str], flag: &str) {
+    let o = linc(args);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+    let err = stderr(&o);
+    assert!(err.contains("error[E0903]") && err.contains(flag), "{args:?}: {err}");
+    assert!(stdout(&o).is_empty(), "{args:?} ran: {}", stdout(&o));
+}
+
+#[test]
+fn option_values_that_mean_nothing_are_refused() {
+    for d in ["0s", "garbage", "0.0000001s", "-5s"] {
+        assert_option_refused(&["run", PLANT, "--for", d], "--for");
+    }
+    assert_option_refused(&["run", PLANT, "--for", "1s", "--show", "NOPE.X"], "--show");
+    assert_option_refused(&["run", PLANT, "--for", "1s", "--set", "X=abc"], "--set");
+    assert_option_refused(&["run", PLANT, "--for", "1s", "--set", "TANK1.Level=abc"], "--set");
+    assert_option_refused(&["run", PLANT, "--for", "1s", "--cold"], "--cold");
+    // Options of another form of `run` are refused, not ignored.
+    assert_option_refused(&["run", PLANT, "--for", "1s", "--cycles", "3"], "--cycles");
+    assert_option_refused(&["run", PLANT, "--for", "1s", "--action", "Fill"], "--action");
+    assert_option_refused(&["run", PLANT, "--for", "1s", "--period", "1"], "--period");
+    assert_option_refused(&["run", PLANT, "--for", "1s", "--hold-step", "Fill"], "--hold-step");
+    assert_option_refused(&["run", SEQ, "--db", SEQ_DB, "--for", "1s", "--cycles", "2"], "--cycles");
+    // A step that the sequence does not have prints no empty value.
+    assert_option_refused(&["run", SEQ, "--db", SEQ_DB, "--for", "1s", "--show", "Nope.X"], "--show Nope.X");
+    let o = linc(&["run", SEQ, "--db", SEQ_DB, "--for", "1s", "--show", "Idle.X"]);
+    assert_eq!((o.status.code(), stdout(&o)), (Some(0), "Idle.X = TRUE\n".to_string()), "{}", stderr(&o));
+}
+
+#[test]
+fn a_closed_standard_output_ends_linc_without_a_panic() {
+    use std::io::Read;
+    use std::process::{Command, Stdio};
+    for args in [vec!["explain", "--list"], vec!["run", PLANT, "--for", "10s", "--trace", "-"]] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_linc"))
+            .args(&args)
+            .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("run linc");
+        let mut first = [0u8; 1];
+        child.stdout.take().expect("stdout").read_exact(&mut first).expect("one byte");
+        // The reading end is closed here, as `| head -c1` closes it.
+        let o = child.wait_with_output().expect("wait");
+        assert_ne!(o.status.code(), Some(101), "{args:?} panicked: {}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"), "{args:?}: {}", stderr(&o));
+    }
+}
+
+#[test]
+fn console_lines_are_bounded() {
+    // A line without an end is not kept whole: it is refused (C0002) once
+    // it passes the limit, and the lines after it still run.
+    let long = "D ".to_string() + &"X".repeat(1 << 20);
+    let o = linc_with_input(&["console", PLANT], &format!("{long}\nD TANK1.HighCnt\n"));
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("error[C0002]: a console line is at most 4096 bytes"), "{}", &out[..out.len().min(400)]);
+    assert!(out.contains("TANK1.HighCnt = 0"), "{out}");
+    assert!(out.len() < 1000, "the long line was echoed: {} bytes", out.len());
+}
+
+#[test]
+fn byte_order_marks_are_ignored_in_databases_and_scenarios() {
+    let dir = temp_dir("errors-bom");
+    for f in ["plant.json", "actions.stx", "modbus.stx", "plant.ltest"] {
+        let text = std::fs::read(Path::new("..").join("examples/strategy").join(f)).expect("example");
+        let mut with_bom = b"\xEF\xBB\xBF".to_vec();
+        with_bom.extend(text);
+        std::fs::write(dir.join(f), with_bom).expect("write");
+    }
+    let db = dir.join("plant.json");
+    let o = linc(&["run", db.to_str().expect("path"), "--for", "10s", "--show", "TANK1.HighCnt"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let o = linc(&["test", dir.join("plant.ltest").to_str().expect("path")]);
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    // A database error after the mark is still located where it is.
+    std::fs::write(&db, b"\xEF\xBB\xBF{ \"blocks\": { \"B1\": { \"type\": \"NOPE\" } } }").expect("write");
+    let o = linc(&["run", db.to_str().expect("path"), "--for", "1s", "--message-format", "short"]);
+    assert!(stderr(&o).contains("plant.json:1:31: error[E0803]"), "{}", stderr(&o));
+}
+
+#[test]
+fn scenario_problems_are_located_and_coded() {
+    let dir = temp_dir("errors-scenario");
+    let bad = dir.join("latin1.ltest");
+    std::fs::write(&bad, b"strategy plant.json\nrun 1s (* caf\xE9 *)\n").expect("write");
+    let o = linc(&["test", bad.to_str().expect("path")]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stdout(&o).contains("latin1.ltest:2:14: error[E0017]"), "{}", stdout(&o));
+    let o = linc(&["test", dir.join("nothing.ltest").to_str().expect("path")]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("error[E0903]"), "{}", stderr(&o));
+    // A scenario whose strategy is missing: E0900, at the database's name.
+    std::fs::write(dir.join("gone.ltest"), "strategy gone.json\nrun 1s\n").expect("write");
+    let o = linc(&["test", dir.join("gone.ltest").to_str().expect("path")]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stdout(&o).contains("gone.json:1:1: error[E0900]: can't read"), "{}", stdout(&o));
+    assert_eq!(stdout(&o).matches("error[").count(), 1, "{}", stdout(&o));
+}
+
+/// Every source file under `dir`.
+fn sources(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    for entry in std::fs::read_dir(dir).expect("list").flatten() {
+        let p = entry.path();
+        if p.is_dir() {
+            sources(&p, out);
+        } else if p.extension().is_some_and(|e| e == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+#[test]
+fn no_source_writes_an_error_by_hand() {
+    let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
+    let mut files = Vec::new();
+    for krate in ["cli/src", "driver/src", "compiler/src", "runtime/src", "stdlib/src"] {
+        sources(&root.join(krate), &mut files);
+    }
+    let hand: Vec<String> = files
+        .iter()
+        .filter(|p| !p.ends_with("compiler/src/render.rs"))
+        .flat_map(|p| {
+            let text = std::fs::read_to_string(p).expect("read");
+            // Unit tests may say what the renderer prints.
+            let code = text.split("#[cfg(test)]").next().unwrap_or_default().to_string();
+            code.lines()
+                .enumerate()
+                .filter(|(_, l)| l.contains("\"error[") || l.contains("error[{"))
+                .map(|(i, l)| format!("{}:{}: {}", p.display(), i + 1, l.trim()))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert!(hand.is_empty(), "errors written by hand:\n{}", hand.join("\n"));
+}

@@ -1,0 +1,10 @@
+//! What every front end of linc shares, between the compiler and runtime
+//! below and the `linc` command line (and the coming monitor, language
+//! server and protocol servers) above: files read and written under one set
+//! of rules ([`files`]), and one reporter through which every problem of
+//! every stage reaches the user ([`report`]).
+
+pub mod files;
+pub mod report;
+
+pub use report::Reporter;
