@@ -110,6 +110,40 @@ fn option_values_that_mean_nothing_are_refused() {
 }
 
 #[test]
+fn values_a_field_cannot_hold_are_refused_as_the_loader_refuses_them() {
+    // --set: E0903, nothing runs.
+    for set in ["SYS.ErrNum=5", "TANK1.HighCnt=2147483648", "TANK1.Valve=2"] {
+        assert_option_refused(&["run", PLANT, "--for", "1s", "--set", set], "--set");
+    }
+    // The console's M: C0004 / C0005, the field unchanged.
+    let dir = temp_dir("errors-field-values");
+    let db = dir.join("db.json");
+    let template =
+        r#"{"templates": {"T": {"fields": {"S": "STRING", "N": "INT", "B": "BITS8"}}}, "blocks": {"X": {"type": "T""#;
+    std::fs::write(&db, format!("{template}}}}}}}")).expect("write");
+    let script = "M X.N=99999999999\nM X.B=256\nD X.N\nD X.B\n";
+    let o = linc_with_input(&["console", db.to_str().expect("path")], script);
+    let out = stdout(&o);
+    assert!(out.contains("error[C0004]: 99999999999 does not fit a INT field"), "{out}");
+    assert!(out.contains("error[C0004]: 256 does not fit a BITS8 field"), "{out}");
+    assert!(out.ends_with("X.N = 0\nX.B = 0\n"), "{out}");
+    // A string longer than the VM's: refused by --set (console lines are
+    // shorter than that anyway).
+    let long = format!("X.S='{}'", "a".repeat(70_000));
+    let o = linc(&["run", db.to_str().expect("path"), "--for", "1s", "--set", &long]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("the text is 70000 bytes long"), "{}", &stderr(&o)[..300.min(stderr(&o).len())]);
+    let o = linc_with_input(&["console", PLANT], "M SYS.ErrNum=5\nD SYS.ErrNum\n");
+    assert!(stdout(&o).contains("error[C0005]: SYS.ErrNum is read-only"), "{}", stdout(&o));
+    // The database loader says the same of a string too long.
+    let text = format!(r#"{template}, "values": {{"S": "{}"}}}}}}}}"#, "a".repeat(70_000));
+    std::fs::write(&db, text).expect("write");
+    let o = linc(&["check", "examples/guide/shift.st", "--db", db.to_str().expect("path")]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("a string field holds at most 65535"), "{}", &stderr(&o)[..300.min(stderr(&o).len())]);
+}
+
+#[test]
 fn a_closed_standard_output_ends_linc_without_a_panic() {
     use std::io::Read;
     use std::process::{Command, Stdio};

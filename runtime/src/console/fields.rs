@@ -67,10 +67,27 @@ fn truth(v: &str) -> Result<bool, String> {
     }
 }
 
-fn int(v: &str) -> Result<i32, String> {
-    v.parse::<i64>()
-        .map(|i| i.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32)
-        .map_err(|_| format!("`{v}` is not an integer"))
+/// A whole number in `lo..=hi`, refused (not wrapped or clamped) outside
+/// it, with the range the database loader states for the field type.
+fn whole(v: &str, (lo, hi): (i64, i64), ty: &str) -> Result<i64, String> {
+    let x = v.parse::<i64>().map_err(|_| format!("`{v}` is not an integer"))?;
+    if (lo..=hi).contains(&x) {
+        Ok(x)
+    } else {
+        Err(format!("{x} does not fit a {ty} field (expected a whole number from {lo} to {hi})"))
+    }
+}
+
+/// A text for a string field, at most as long as the VM lets a string be.
+fn text(bytes: Vec<u8>) -> Result<Vec<u8>, String> {
+    if bytes.len() > crate::vm::MAX_STRING {
+        return Err(format!(
+            "the text is {} bytes long; a string field holds at most {} bytes",
+            bytes.len(),
+            crate::vm::MAX_STRING
+        ));
+    }
+    Ok(bytes)
 }
 
 /// The cell `value` makes of the cell at `a`, parsed by the field's type
@@ -91,11 +108,11 @@ pub fn parse_value(store: &Store, a: Addr, value: &str) -> Result<Cell, String> 
             }
             Cell::Real(x)
         }
-        (Cell::Int(_), _) => Cell::Int(int(value)?),
+        (Cell::Int(_), _) => Cell::Int(whole(value, (i32::MIN.into(), i32::MAX.into()), "INT")? as i32),
         (Cell::Bool(_), _) => Cell::Bool(truth(value)?),
         (Cell::Bits { width, .. }, None) => {
-            let x = int(value)?;
-            Cell::Bits { v: if *width == 8 { (x as u16) & 0xFF } else { x as u16 }, width: *width }
+            let (range, ty) = if *width == 8 { ((0, 255), "BITS8") } else { ((-32_768, 65_535), "BITS16") };
+            Cell::Bits { v: whole(value, range, ty)? as u16, width: *width }
         }
         (Cell::Enum { .. }, _) => {
             let text = unquote(value);
@@ -105,17 +122,21 @@ pub fn parse_value(store: &Store, a: Addr, value: &str) -> Result<Cell, String> 
                 .ok_or_else(|| format!("`{text}` is not one of {}", names.join(", ")))?;
             Cell::Enum { idx: i as u16 }
         }
-        (Cell::Text(_), _) => Cell::Text(unquote(value).as_bytes().to_vec()),
-        (Cell::Bseq(_), _) => Cell::Bseq(decode_dollar(unquote(value).as_bytes())),
-        (Cell::Wstr(_), _) => Cell::Wstr(decode_dollar(unquote(value).as_bytes())),
+        (Cell::Text(_), _) => Cell::Text(text(unquote(value).as_bytes().to_vec())?),
+        (Cell::Bseq(_), _) => Cell::Bseq(text(decode_dollar(unquote(value).as_bytes()))?),
+        (Cell::Wstr(_), _) => Cell::Wstr(text(decode_dollar(unquote(value).as_bytes()))?),
         (Cell::Alarms(_), _) => return Err("alarm states can't be set with --set".into()),
     })
 }
 
-/// Applies `BLOCK.FIELD=VALUE` (`--set`).
+/// Applies `BLOCK.FIELD=VALUE` (`--set`): refused, as by the console's
+/// `M`, for a field the block computes or a value the field can't hold.
 pub fn set(store: &mut Store, assignment: &str) -> Result<(), String> {
     let (path, value) = assignment.split_once('=').ok_or_else(|| format!("`{assignment}` is not BLOCK.FIELD=VALUE"))?;
     let a = address(store, path.trim())?;
+    if store.is_readonly(a.cell) {
+        return Err(format!("{} is read-only: the block computes it", store.describe(a.cell)));
+    }
     let new = parse_value(store, a, value)?;
     if let Some(slot) = store.cells.get_mut(a.cell as usize) {
         *slot = new;
@@ -163,5 +184,28 @@ mod tests {
         assert_eq!(parse_value(&s, pv, "5"), Ok(Cell::Real(5.0)));
         assert!(parse_value(&s, pv, "abc").is_err());
         assert!(parse_value(&s, pv, "inf").is_err());
+    }
+
+    #[test]
+    fn values_a_field_cannot_hold_are_refused_not_wrapped() {
+        let db = crate::Database::from_json(
+            r#"{"templates": {"T": {"fields": {"B": "BITS8", "W": "BITS16", "N": "INT", "S": "STRING"}}},
+                "blocks": {"X": {"type": "T"}}}"#,
+        );
+        let mut s = Store::new(db.expect("database"));
+        let at = |s: &Store, f: &str| address(s, f).expect(f);
+        let b = at(&s, "X.B");
+        assert_eq!(parse_value(&s, b, "255"), Ok(Cell::Bits { v: 255, width: 8 }));
+        let e = parse_value(&s, b, "256").expect_err("BITS8 256");
+        assert!(e.contains("does not fit a BITS8 field (expected a whole number from 0 to 255)"), "{e}");
+        assert!(parse_value(&s, b, "-1").is_err());
+        assert!(parse_value(&s, at(&s, "X.W"), "65536").is_err());
+        assert_eq!(parse_value(&s, at(&s, "X.W"), "65535"), Ok(Cell::Bits { v: 65535, width: 16 }));
+        assert!(parse_value(&s, at(&s, "X.N"), "2147483648").is_err(), "INT is not clamped");
+        let long = "a".repeat(crate::vm::MAX_STRING + 1);
+        assert!(parse_value(&s, at(&s, "X.S"), &long).expect_err("long").contains("at most 65535 bytes"));
+        assert!(set(&mut s, &format!("X.S={}", "a".repeat(crate::vm::MAX_STRING))).is_ok());
+        assert!(set(&mut s, "X.B=256").is_err());
+        assert_eq!(show_value(&s, b), "0", "a refused --set changes nothing");
     }
 }
