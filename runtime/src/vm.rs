@@ -622,6 +622,11 @@ impl Vm {
                     let r = tri!(r);
                     self.push_r(r);
                 }
+                Op::PowRKeep {} => {
+                    let b = self.pop_r();
+                    let a = self.pop_r();
+                    self.push_r(linc_stdlib::power(a, b).unwrap_or(f32::NAN));
+                }
                 Op::NegR {} => {
                     let v = self.pop_r();
                     self.push_r(-v);

@@ -73,6 +73,32 @@ fn power_only_for_positive_rr() {
 }
 
 #[test]
+fn a_power_that_overflows_leaves_rr_unchanged_and_the_table_running() {
+    // 10 ** 100 and 2 ** R1 (R1 = 1000) are no single-precision numbers:
+    // RR stays, as after / 0, and the table goes on (no fault, RUNFLG 1).
+    let s = once(
+        &[
+            ",VAL,10,",
+            ",**,100,",
+            ",SAV,\"FST 1,R2\",",
+            ",VAL,2,",
+            ",**,\"FST 1,R1\",",
+            ",SAV,\"FST 1,R3\",",
+            ",VAL,0.5,",
+            ",**,-1000,",
+            ",END,,",
+        ],
+        r#""R1": 1000"#,
+    );
+    assert_eq!(num(&s, "FST 1.R2"), 10.0);
+    assert_eq!(num(&s, "FST 1.R3"), 2.0);
+    assert_eq!(num(&s, "FST 1.RR"), 0.5, "0.5 ** -1000 overflows too");
+    assert_eq!(num(&s, "FST 1.RUNFLG"), 1.0);
+    let s = run(&table(&[",VAL,\"FST 1,R4\",", ",+,1,", ",SAV,\"FST 1,R4\",", ",**,1e6,", ",END,,"]), "", 250);
+    assert_eq!(num(&s, "FST 1.R4"), 3.0, "three cycles, each past the overflow");
+}
+
+#[test]
 fn abs_exp_int() {
     let s = once(
         &[
