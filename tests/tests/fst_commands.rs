@@ -310,6 +310,28 @@ fn brk_delays_each_following_command() {
     assert_eq!(num(&s, "FST 1.R1"), 1.0);
 }
 
+/// (time in ms, step) of each step the trace shows.
+fn step_times(lines: &[String]) -> Vec<(u64, u64)> {
+    lines
+        .iter()
+        .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
+        .filter_map(|v| Some(((v["time"].as_f64()? * 1000.0).round() as u64, v["step"].as_u64()?)))
+        .collect()
+}
+
+#[test]
+fn brk_delays_step_0_after_end_too() {
+    // B-15: once BRK is set, a delay comes "between the executions of each
+    // subsequent command", END and the step 0 after it included.
+    let t = table(&[",BRK,3,", ",VAL,\"FST 1,R1\",", ",+,1,", ",SAV,\"FST 1,R1\",", ",END,,"]);
+    let (s, lines) = traced(&t, "", 2450);
+    let expected = [(0, 0), (300, 1), (600, 2), (900, 3), (1200, 4), (1500, 0), (1800, 1), (2100, 2), (2400, 3)];
+    assert_eq!(step_times(&lines), expected);
+    assert_eq!(num(&s, "FST 1.R1"), 2.0);
+    // Without a trace (several steps per VM run) the timing is the same.
+    assert_eq!(num(&run(&t, "", 2350), "FST 1.R1"), 1.0, "the second SAV is at 2400 ms");
+}
+
 #[test]
 fn steps_per_cycle_bound_a_loop() {
     let t = table(&["LOOP,+,1,", ",GO,LOOP,"]);

@@ -4,7 +4,8 @@
 //! In each cycle a running table (RUNFLG 1) executes up to its steps-per-
 //! cycle limit, stopping early at END (the next cycle starts at step 0), at
 //! WT (it sleeps for the time asked, then goes on at the next step) and
-//! while a BRK delay is in force (one command per BRK × 100 ms). Its four
+//! while a BRK delay is in force (one command per BRK × 100 ms, END and
+//! the step 0 after it included). Its four
 //! timers count down by one every 100 ms while it runs. A runtime fault —
 //! a point removed from the database, an invalid history index — stops the
 //! table with RUNFLG 5 and IP at the failing step.
@@ -217,7 +218,14 @@ impl Strategy {
             let Some(f) = member.fst.as_mut() else { return Ok(()) };
             match outcome {
                 Err(e) => return Err(e),
-                Ok(Outcome::Done) => return Ok(()),
+                Ok(Outcome::Done) => {
+                    // END is a command like any other: under BRK, step 0
+                    // waits the break period after it (B-15).
+                    if brk > 0 {
+                        f.wait_until = now + brk as u64 * TICK_US;
+                    }
+                    return Ok(());
+                }
                 Ok(Outcome::Suspended) => match member.act.pause.take() {
                     Some((0, secs)) => {
                         f.wait_until = now + wait_us(secs);
