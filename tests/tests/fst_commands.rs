@@ -3,7 +3,7 @@
 //! resolution (docs/fst.md). Each table runs in FST 1 of a ROC800 database
 //! with task 1 at 100 ms, starting 2026-01-05 06:00:00 (a Monday).
 
-use linc_conformance::fst::{num, run, table, text, traced};
+use linc_conformance::fst::{num, run, table, text, traced, POINTS};
 
 /// Runs rows for one cycle (time 0 only).
 fn once(rows: &[&str], fst: &str) -> linc_runtime::strategy::Strategy {
@@ -278,6 +278,28 @@ fn timers_of_another_fst_and_by_number() {
     assert_eq!(num(&s, "FST 1.TMR4"), 30.0);
     assert_eq!(num(&s, "FST 1.TMR2"), 13.0, "rounded");
     assert_eq!(num(&s, "FST 1.TMR3"), 0.0, "below 0 is 0");
+}
+
+#[test]
+fn timers_count_down_whether_or_not_their_table_runs() {
+    // FST 1 sets a timer of FST 2, which runs no table (ST works "for any
+    // of the available FSTs"): it counts down all the same.
+    let points = format!(r#"{{ "device": "ROC800", "blocks": {{ {POINTS}, "FST 2": {{ "type": "FST" }} }} }}"#);
+    let db = linc_runtime::Database::from_json(&points).expect("database");
+    let t = table(&[
+        ",VAL,\"FST 1,R1\",",
+        ",==,1,DONE",
+        ",ST,\"FST 2,TMR1\",30",
+        ",VAL,1,",
+        ",SAV,\"FST 1,R1\",",
+        "DONE,END,,",
+    ]);
+    let mut s = linc_conformance::fst::strategy(&t, db);
+    assert!(s.run_for(1_050_000, None).is_empty());
+    assert_eq!(num(&s, "FST 2.TMR1"), 20.0, "30 at 0 ms, ten intervals later");
+    // A table that is stopped (RUNFLG 0) keeps counting its timers.
+    let s = run(&table(&[",END,,"]), r#""RUNFLG": 0, "TMR1": 20, "TMR4": 3"#, 1050);
+    assert_eq!((num(&s, "FST 1.TMR1"), num(&s, "FST 1.TMR4")), (10.0, 0.0));
 }
 
 #[test]
