@@ -547,6 +547,36 @@ fn run_flag_stops_and_restarts() {
     assert_eq!(num(&run(&t, "", 550), "FST 1.R1"), 6.0, "started when the database does not say");
 }
 
+/// The instruction offset of each step of `rows`, as `linc fst list` shows.
+fn offsets(rows: &[&str]) -> Vec<u32> {
+    let db = linc_conformance::fst::database("");
+    let (_, object) = linc_compiler::fst::compile(&table(rows), "t", "t.csv", Some(&db));
+    linc_compiler::fst::offsets(&object.expect("compiles")).expect("offsets")
+}
+
+#[test]
+fn ip_points_at_the_next_step_to_run() {
+    // "IP … the storage location of the next function to be executed."
+    let ends = [",VAL,1,", ",+,1,", ",END,,", ",VAL,9,"];
+    assert_eq!(num(&run(&table(&ends), "", 50), "FST 1.IP"), 0.0, "after END: step 0");
+    let falls_off = [",VAL,1,", ",+,1,"];
+    assert_eq!(num(&run(&table(&falls_off), "", 50), "FST 1.IP"), 0.0, "after the last step: step 0");
+    let waits = [",VAL,1,", ",WT,1,", ",+,1,", ",END,,"];
+    let ip = f64::from(offsets(&waits)[2]);
+    assert_eq!(num(&run(&table(&waits), "", 50), "FST 1.IP"), ip, "asleep in WT: the step after it");
+    // END stands before the last step, a WT: the cycle ends after it.
+    let last_wt = [",GO,W,", ",END,,", "W,WT,1,"];
+    assert_eq!(num(&run(&table(&last_wt), "", 50), "FST 1.IP"), 0.0, "a WT as last step: step 0 next");
+    let brk = [",BRK,2,", ",VAL,1,", ",END,,"];
+    let ip = f64::from(offsets(&brk)[1]);
+    assert_eq!(num(&run(&table(&brk), "", 50), "FST 1.IP"), ip, "BRK: the step after it, when the delay ends");
+    // The steps-per-cycle limit stops a loop: the next cycle begins step 1.
+    let l = ["LOOP,+,1,", ",GO,LOOP,"];
+    let ip = f64::from(offsets(&l)[1]);
+    assert_eq!(num(&run(&table(&l), r#""STEPS": 3"#, 50), "FST 1.IP"), ip, "steps 0, 1, 0 ran");
+    assert_eq!(num(&run(&table(&l), r#""STEPS": 4"#, 50), "FST 1.IP"), 0.0, "steps 0, 1, 0, 1 ran");
+}
+
 #[test]
 fn a_missing_point_stops_the_table_with_run_flag_5() {
     let t = table(&[",VAL,1,", ",SAV,\"FST 1,R1\",", ",VAL,\"SFP 1,DATA1\",", ",END,,"]);

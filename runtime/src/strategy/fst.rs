@@ -144,8 +144,7 @@ impl Strategy {
             _ => DEFAULT_STEPS,
         };
         let result = self.fst_cycle(m, task, budget, brk, trace.as_deref_mut());
-        let f = self.members[m].fst.as_deref();
-        let ip = f.and_then(|f| f.offsets.get(usize::from(self.members[m].act.step)).copied()).unwrap_or(0);
+        let ip = self.next_ip(m, result.is_err());
         if let Some(cell) = c.ip {
             self.host_write(m, task, cell, Cell::Int(ip as i32), trace.as_deref_mut());
         }
@@ -158,6 +157,22 @@ impl Strategy {
             }
         }
         result
+    }
+
+    /// IP after a cycle of member `m`: the offset of "the next function to
+    /// be executed" (B.2) — where the suspended run resumes, or step 0 after
+    /// END — or, after a fault, of the failing step.
+    fn next_ip(&self, m: usize, failed: bool) -> u32 {
+        let member = &self.members[m];
+        let Some(f) = member.fst.as_deref() else { return 0 };
+        let step = usize::from(member.act.step);
+        match member.act.resume_point().0 {
+            _ if failed => f.offsets.get(step).copied().unwrap_or(0),
+            // A run resumes at a step's `Step` or, after a WT or BRK that
+            // was the last step, at the final `Ret`: step 0 comes next.
+            Some(pc) if f.offsets.contains(&pc) => pc,
+            _ => f.offsets.first().copied().unwrap_or(0),
+        }
     }
 
     /// Runs up to `budget` steps; with a trace, one step per VM run so each
