@@ -578,6 +578,44 @@ fn ip_points_at_the_next_step_to_run() {
 }
 
 #[test]
+fn a_table_stopped_and_started_again_begins_at_step_0_at_once() {
+    use linc_runtime::strategy::ProgramState;
+    // Each pass counts in R1, then sleeps 10 s.
+    let t = table(&[",VAL,\"FST 1,R1\",", ",+,1,", ",SAV,\"FST 1,R1\",", ",WT,10,", ",END,,"]);
+    let runflg = |s: &mut linc_runtime::strategy::Strategy, v: i32| {
+        let c = s.store.cell_of(s.store.db.block("FST 1").unwrap(), "RUNFLG").unwrap();
+        s.store.cells[c as usize] = linc_runtime::store::Cell::Int(v);
+    };
+    // Through RUNFLG, from ST or the console's write.
+    let mut s = linc_conformance::fst::strategy(&t, linc_conformance::fst::database(""));
+    assert!(s.run_for(250_000, None).is_empty());
+    assert_eq!(num(&s, "FST 1.R1"), 1.0, "asleep until 10 s");
+    runflg(&mut s, 0);
+    assert!(s.run_for(200_000, None).is_empty());
+    runflg(&mut s, 1);
+    assert!(s.run_for(100_000, None).is_empty());
+    assert_eq!(num(&s, "FST 1.R1"), 2.0, "RUNFLG 0 then 1: step 0 at once, not at 10 s");
+    // Through the console's STOP and START of the program.
+    let mut s = linc_conformance::fst::strategy(&t, linc_conformance::fst::database(""));
+    let block = s.store.db.block("FST 1").unwrap();
+    assert!(s.run_for(250_000, None).is_empty());
+    assert!(s.set_program_state(block, ProgramState::Inactive));
+    assert!(s.run_for(200_000, None).is_empty());
+    assert_eq!(num(&s, "FST 1.RUNFLG"), 0.0);
+    assert!(s.set_program_state(block, ProgramState::Running));
+    assert!(s.run_for(100_000, None).is_empty());
+    assert_eq!(num(&s, "FST 1.R1"), 2.0, "STOP then START: step 0 at once, not at 10 s");
+    assert_eq!(num(&s, "FST 1.RUNFLG"), 1.0);
+    // Stopped and started between two cycles, before any cycle saw RUNFLG 0.
+    let mut s = linc_conformance::fst::strategy(&t, linc_conformance::fst::database(""));
+    assert!(s.run_for(250_000, None).is_empty());
+    assert!(s.set_program_state(block, ProgramState::Inactive));
+    assert!(s.set_program_state(block, ProgramState::Running));
+    assert!(s.run_for(100_000, None).is_empty());
+    assert_eq!(num(&s, "FST 1.R1"), 2.0, "STOP and START at once: step 0 at the next cycle");
+}
+
+#[test]
 fn a_missing_point_stops_the_table_with_run_flag_5() {
     let t = table(&[",VAL,1,", ",SAV,\"FST 1,R1\",", ",VAL,\"SFP 1,DATA1\",", ",END,,"]);
     let db = linc_conformance::fst::database("");

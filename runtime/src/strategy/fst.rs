@@ -99,10 +99,11 @@ impl FstRun {
 }
 
 impl FstRun {
-    /// A warm start (B.1.6): a running table begins again at step 0 at its
-    /// next cycle, awake; the registers and timers are fields and stay (the
-    /// timers count on, with the device's clock).
-    pub(super) fn warm_start(&mut self) {
+    /// A running table begins again at step 0 at its next cycle, awake
+    /// (any WT or BRK deadline forgotten): after a warm start (B.1.6) and
+    /// when the console stops or starts the program. The registers and
+    /// timers are fields and stay (the timers count on, with the device).
+    pub(super) fn restart(&mut self) {
         self.running = false;
         self.wait_until = 0;
     }
