@@ -300,6 +300,24 @@ fn timers_count_down_whether_or_not_their_table_runs() {
     // A table that is stopped (RUNFLG 0) keeps counting its timers.
     let s = run(&table(&[",END,,"]), r#""RUNFLG": 0, "TMR1": 20, "TMR4": 3"#, 1050);
     assert_eq!((num(&s, "FST 1.TMR1"), num(&s, "FST 1.TMR4")), (10.0, 0.0));
+    // In a 1 s task the table sees ten intervals gone between two cycles:
+    // R2 keeps what CT's timer held at the second cycle.
+    let slow =
+        format!(r#"{{ "device": "ROC800", "tasks": {{ "1": {{ "period": "T#1s" }} }}, "blocks": {{ {POINTS} }} }}"#);
+    let db = linc_runtime::Database::from_json(&slow).expect("database");
+    let t = table(&[
+        ",VAL,\"FST 1,TMR1\",",
+        ",SAV,\"FST 1,R2\",",
+        ",VAL,\"FST 1,R1\",",
+        ",==,1,DONE",
+        ",ST,1,25",
+        ",VAL,1,",
+        ",SAV,\"FST 1,R1\",",
+        "DONE,END,,",
+    ]);
+    let mut s = linc_conformance::fst::strategy(&t, db);
+    assert!(s.run_for(1_050_000, None).is_empty());
+    assert_eq!((num(&s, "FST 1.R2"), num(&s, "FST 1.TMR1")), (15.0, 15.0), "25 at 0 s, 15 at 1 s");
 }
 
 #[test]
