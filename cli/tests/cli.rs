@@ -157,6 +157,29 @@ fn eval_prints_values_in_st_form() {
     }
 }
 
+/// R0005's message gives the reason: the operand rule of `**` that was
+/// broken, an argument outside a function's domain, or an overflow.
+#[test]
+fn eval_says_why_a_power_or_a_function_failed() {
+    let overflow = "overflows: the result is beyond the largest REAL (3.4028235E38)";
+    for (expr, why) in [
+        ("2.0**1000.0", format!("2 ** 1000 {overflow}")),
+        ("10.0 ** 39", format!("10 ** 39 {overflow}")),
+        ("(-2.0)**2.0", "(-2) ** 2 is undefined: A must exceed zero".to_string()),
+        ("0.0**0.0", "0 ** 0 is undefined: 0 may only be raised to a power above zero".to_string()),
+        ("EXP(100.0)", format!("EXP(100) {overflow}")),
+        ("SQRT(-1.0)", "SQRT(-1) is undefined: the argument must not be negative".to_string()),
+        ("LN(0.0)", "LN(0) is undefined: the argument must exceed zero".to_string()),
+        ("ACOS(2.0)", "ACOS(2) is undefined: the argument must lie between -1 and 1".to_string()),
+    ] {
+        let (code, _, err) = eval(expr);
+        assert_eq!(code, Some(1), "{expr}: {err}");
+        assert!(err.contains(&format!("error[R0005]: in `eval`: {why}")), "{expr}: {err}");
+    }
+    let (code, out, err) = eval("2.0 ** -1000.0");
+    assert_eq!((code, out.trim_end()), (Some(0), "0.0"), "an underflow is 0: {err}");
+}
+
 #[test]
 fn eval_reads_the_database_and_reports_errors() {
     let o = linc(&["eval", "REC1.A0 * 2", "--db", DB]);

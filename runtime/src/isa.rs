@@ -153,6 +153,7 @@ instructions! {
     0x4B DivR {}                     [2 1 0 0] "REAL /; dividing by 0 is an error.";
     0x4C PowR {}                     [2 1 0 0] "REAL **; needs A > 0 (or A = 0 with B > 0).";
     0x4D NegR {}                     [1 1 0 0] "REAL negation.";
+    0x4E PowRKeep {}                 [2 1 0 0] "FST REAL **: NaN where `PowR` faults, which `StoreRKeep` then drops (an FST never faults on arithmetic).";
     0x50 EqI {}                      [2 1 0 0] "INT =.";
     0x51 NeI {}                      [2 1 0 0] "INT <>.";
     0x52 LtI {}                      [2 1 0 0] "INT <.";

@@ -217,7 +217,8 @@ struct State {
 }
 
 /// Instructions that only an FST unit may hold (the FST engine gives them
-/// their step budget and reads their pauses).
+/// their step budget and reads their pauses; `PowRKeep` leaves a NaN that
+/// only FST math's `StoreRKeep` drops).
 fn fst_only(op: &Op) -> bool {
     matches!(
         op,
@@ -227,6 +228,7 @@ fn fst_only(op: &Op) -> bool {
             | Op::Log { .. }
             | Op::HistWrite { .. }
             | Op::HistRead { .. }
+            | Op::PowRKeep {}
     )
 }
 

@@ -20,7 +20,7 @@ use crate::store::{Cell, Store};
 use cells::{cell, corrupt, load_bit, load_int, locate, note, store_bit, store_int, target, writable};
 use fst_ops::FstFlow;
 use linc_stdlib::value::round_to_i32;
-use linc_stdlib::{Env, Value};
+use linc_stdlib::{Env, FnError, Value};
 use std::mem::take;
 
 /// `?` for the dispatch loop: a fault leaves the loop, so the program
@@ -617,10 +617,15 @@ impl Vm {
                 Op::PowR {} => {
                     let b = self.pop_r();
                     let a = self.pop_r();
-                    let r = power(a, b)
-                        .ok_or_else(|| Fault::new("R0005", format!("{a} ** {b} is undefined (A must exceed zero)")));
+                    // The library's message says why: which rule A or B breaks, or an overflow.
+                    let r = linc_stdlib::power(a, b).map_err(|FnError::Domain(why)| Fault::new("R0005", why));
                     let r = tri!(r);
                     self.push_r(r);
+                }
+                Op::PowRKeep {} => {
+                    let b = self.pop_r();
+                    let a = self.pop_r();
+                    self.push_r(linc_stdlib::power(a, b).unwrap_or(f32::NAN));
                 }
                 Op::NegR {} => {
                     let v = self.pop_r();

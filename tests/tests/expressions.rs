@@ -12,6 +12,13 @@ valid!(s12_5_nested_brackets, "§12.5", Action, "Recipe.A0 := ((((Recipe.A1 + 1)
 valid!(s12_6_subtraction_is_left_associative, "§12.6", Action, "Recipe.N0 := 10 - 2 - 3;\n");
 valid!(s12_6_division_is_left_associative, "§12.6", Action, "Recipe.N0 := 100 / 10 / 5;\n");
 valid!(s12_6_power_is_left_associative, "§12.6", Action, "Recipe.A0 := 2 ** 3 ** 2;\n");
+// The guide's table gives `*`, `/`, `MOD`, `+` and `-` a row each; linc,
+// as IEC 61131-3, gives `* / MOD` one level and `+ -` another, each left
+// to right (decision 17): `10 - 2 + 3` is 11, not 5, and `12 / 3 * 2` is
+// 8, not 2.
+valid!(s12_6_add_and_subtract_share_a_level, "§12.6", Action, "Recipe.N0 := 10 - 2 + 3;\n");
+valid!(s12_6_multiply_and_divide_share_a_level, "§12.6", Action, "Recipe.N0 := 12 / 3 * 2;\n");
+valid!(s12_6_mod_and_divide_share_a_level, "§12.6", Action, "Recipe.N0 := 10 MOD 4 / 2;\n");
 valid!(s12_6_negation_binds_tighter_than_power, "§12.6", Action, "Recipe.A0 := -Recipe.A1 ** 2;\n");
 valid!(s12_6_power_binds_tighter_than_multiply, "§12.6", Action, "Recipe.A0 := 2 * Recipe.A1 ** 2;\n");
 valid!(s12_6_multiply_before_add, "§12.6", Action, "Recipe.N0 := 1 + 2 * 3 MOD 4;\n");
@@ -32,3 +39,16 @@ invalid!(s12_6_enum_comparison_checks_value, "§12.6", Transition, "PIC_004.Mode
 invalid!(s12_6_string_plus_number, "§12.6", Action, "Recipe.A0 := Raw1.Rx_Value + 1;\n", ["E0114"]);
 invalid!(s12_6_and_on_reals, "§12.6", Transition, "Recipe.A0 AND 1", ["E0114"]);
 invalid!(s12_6_unbalanced_bracket, "§12.6", Action, "Recipe.A0 := (Recipe.A1 + 2;\n", ["E0010"]);
+
+/// The values of decision 17's groupings, run: a table row per level would
+/// give 5, 2, 0 and 7 instead.
+#[test]
+fn s12_6_one_level_for_multiplicative_and_one_for_additive_operators() {
+    let src =
+        "Recipe.N0 := 10 - 2 + 3;\nRecipe.N1 := 12 / 3 * 2;\nRecipe.N2 := 10 MOD 4 / 2;\nRecipe.N3 := 7 MOD 4 * 2;\n\
+               Recipe.A0 := 1.0 - 0.5 + 0.25;\nRecipe.A1 := 8.0 / 4.0 * 2.0;\n";
+    let r = linc_conformance::exec::run(src);
+    assert_eq!(r.error, None);
+    let got = ["Recipe.N0", "Recipe.N1", "Recipe.N2", "Recipe.N3", "Recipe.A0", "Recipe.A1"].map(|p| r.get(p));
+    assert_eq!(got, ["11", "8", "1", "6", "0.75", "4.0"]);
+}

@@ -3,7 +3,7 @@
 //! resolution (docs/fst.md). Each table runs in FST 1 of a ROC800 database
 //! with task 1 at 100 ms, starting 2026-01-05 06:00:00 (a Monday).
 
-use linc_conformance::fst::{num, run, table, text, traced};
+use linc_conformance::fst::{num, run, table, text, traced, POINTS};
 
 /// Runs rows for one cycle (time 0 only).
 fn once(rows: &[&str], fst: &str) -> linc_runtime::strategy::Strategy {
@@ -70,6 +70,32 @@ fn power_only_for_positive_rr() {
     assert_eq!(num(&s, "FST 1.R2"), -2.0, "RR <= 0: no operation");
     assert_eq!(num(&s, "FST 1.R3"), 0.0);
     assert_eq!(num(&s, "FST 1.RR"), 2.0);
+}
+
+#[test]
+fn a_power_that_overflows_leaves_rr_unchanged_and_the_table_running() {
+    // 10 ** 100 and 2 ** R1 (R1 = 1000) are no single-precision numbers:
+    // RR stays, as after / 0, and the table goes on (no fault, RUNFLG 1).
+    let s = once(
+        &[
+            ",VAL,10,",
+            ",**,100,",
+            ",SAV,\"FST 1,R2\",",
+            ",VAL,2,",
+            ",**,\"FST 1,R1\",",
+            ",SAV,\"FST 1,R3\",",
+            ",VAL,0.5,",
+            ",**,-1000,",
+            ",END,,",
+        ],
+        r#""R1": 1000"#,
+    );
+    assert_eq!(num(&s, "FST 1.R2"), 10.0);
+    assert_eq!(num(&s, "FST 1.R3"), 2.0);
+    assert_eq!(num(&s, "FST 1.RR"), 0.5, "0.5 ** -1000 overflows too");
+    assert_eq!(num(&s, "FST 1.RUNFLG"), 1.0);
+    let s = run(&table(&[",VAL,\"FST 1,R4\",", ",+,1,", ",SAV,\"FST 1,R4\",", ",**,1e6,", ",END,,"]), "", 250);
+    assert_eq!(num(&s, "FST 1.R4"), 3.0, "three cycles, each past the overflow");
 }
 
 #[test]
@@ -255,6 +281,46 @@ fn timers_of_another_fst_and_by_number() {
 }
 
 #[test]
+fn timers_count_down_whether_or_not_their_table_runs() {
+    // FST 1 sets a timer of FST 2, which runs no table (ST works "for any
+    // of the available FSTs"): it counts down all the same.
+    let points = format!(r#"{{ "device": "ROC800", "blocks": {{ {POINTS}, "FST 2": {{ "type": "FST" }} }} }}"#);
+    let db = linc_runtime::Database::from_json(&points).expect("database");
+    let t = table(&[
+        ",VAL,\"FST 1,R1\",",
+        ",==,1,DONE",
+        ",ST,\"FST 2,TMR1\",30",
+        ",VAL,1,",
+        ",SAV,\"FST 1,R1\",",
+        "DONE,END,,",
+    ]);
+    let mut s = linc_conformance::fst::strategy(&t, db);
+    assert!(s.run_for(1_050_000, None).is_empty());
+    assert_eq!(num(&s, "FST 2.TMR1"), 20.0, "30 at 0 ms, ten intervals later");
+    // A table that is stopped (RUNFLG 0) keeps counting its timers.
+    let s = run(&table(&[",END,,"]), r#""RUNFLG": 0, "TMR1": 20, "TMR4": 3"#, 1050);
+    assert_eq!((num(&s, "FST 1.TMR1"), num(&s, "FST 1.TMR4")), (10.0, 0.0));
+    // In a 1 s task the table sees ten intervals gone between two cycles:
+    // R2 keeps what CT's timer held at the second cycle.
+    let slow =
+        format!(r#"{{ "device": "ROC800", "tasks": {{ "1": {{ "period": "T#1s" }} }}, "blocks": {{ {POINTS} }} }}"#);
+    let db = linc_runtime::Database::from_json(&slow).expect("database");
+    let t = table(&[
+        ",VAL,\"FST 1,TMR1\",",
+        ",SAV,\"FST 1,R2\",",
+        ",VAL,\"FST 1,R1\",",
+        ",==,1,DONE",
+        ",ST,1,25",
+        ",VAL,1,",
+        ",SAV,\"FST 1,R1\",",
+        "DONE,END,,",
+    ]);
+    let mut s = linc_conformance::fst::strategy(&t, db);
+    assert!(s.run_for(1_050_000, None).is_empty());
+    assert_eq!((num(&s, "FST 1.R2"), num(&s, "FST 1.TMR1")), (15.0, 15.0), "25 at 0 s, 15 at 1 s");
+}
+
+#[test]
 fn wt_suspends_for_whole_100_ms_intervals() {
     // R1 counts the passes through step 0; WT 0.5 then END: a pass every
     // 600 ms (0.5 s asleep, then END ends its cycle, then step 0 next cycle).
@@ -282,6 +348,28 @@ fn brk_delays_each_following_command() {
     // BRK 0 ends the delay at once: everything in the first cycle.
     let s = run(&table(&[",BRK,0,", ",VAL,1,", ",SAV,\"FST 1,R1\",", ",END,,"]), "", 50);
     assert_eq!(num(&s, "FST 1.R1"), 1.0);
+}
+
+/// (time in ms, step) of each step the trace shows.
+fn step_times(lines: &[String]) -> Vec<(u64, u64)> {
+    lines
+        .iter()
+        .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
+        .filter_map(|v| Some(((v["time"].as_f64()? * 1000.0).round() as u64, v["step"].as_u64()?)))
+        .collect()
+}
+
+#[test]
+fn brk_delays_step_0_after_end_too() {
+    // B-15: once BRK is set, a delay comes "between the executions of each
+    // subsequent command", END and the step 0 after it included.
+    let t = table(&[",BRK,3,", ",VAL,\"FST 1,R1\",", ",+,1,", ",SAV,\"FST 1,R1\",", ",END,,"]);
+    let (s, lines) = traced(&t, "", 2450);
+    let expected = [(0, 0), (300, 1), (600, 2), (900, 3), (1200, 4), (1500, 0), (1800, 1), (2100, 2), (2400, 3)];
+    assert_eq!(step_times(&lines), expected);
+    assert_eq!(num(&s, "FST 1.R1"), 2.0);
+    // Without a trace (several steps per VM run) the timing is the same.
+    assert_eq!(num(&run(&t, "", 2350), "FST 1.R1"), 1.0, "the second SAV is at 2400 ms");
 }
 
 #[test]
@@ -475,6 +563,74 @@ fn run_flag_stops_and_restarts() {
     let t = table(&[",VAL,\"FST 1,R1\",", ",+,1,", ",SAV,\"FST 1,R1\",", ",END,,"]);
     assert_eq!(num(&run(&t, r#""RUNFLG": 0"#, 550), "FST 1.R1"), 0.0, "RUNFLG 0: not running");
     assert_eq!(num(&run(&t, "", 550), "FST 1.R1"), 6.0, "started when the database does not say");
+}
+
+/// The instruction offset of each step of `rows`, as `linc fst list` shows.
+fn offsets(rows: &[&str]) -> Vec<u32> {
+    let db = linc_conformance::fst::database("");
+    let (_, object) = linc_compiler::fst::compile(&table(rows), "t", "t.csv", Some(&db));
+    linc_compiler::fst::offsets(&object.expect("compiles")).expect("offsets")
+}
+
+#[test]
+fn ip_points_at_the_next_step_to_run() {
+    // "IP … the storage location of the next function to be executed."
+    let ends = [",VAL,1,", ",+,1,", ",END,,", ",VAL,9,"];
+    assert_eq!(num(&run(&table(&ends), "", 50), "FST 1.IP"), 0.0, "after END: step 0");
+    let falls_off = [",VAL,1,", ",+,1,"];
+    assert_eq!(num(&run(&table(&falls_off), "", 50), "FST 1.IP"), 0.0, "after the last step: step 0");
+    let waits = [",VAL,1,", ",WT,1,", ",+,1,", ",END,,"];
+    let ip = f64::from(offsets(&waits)[2]);
+    assert_eq!(num(&run(&table(&waits), "", 50), "FST 1.IP"), ip, "asleep in WT: the step after it");
+    // END stands before the last step, a WT: the cycle ends after it.
+    let last_wt = [",GO,W,", ",END,,", "W,WT,1,"];
+    assert_eq!(num(&run(&table(&last_wt), "", 50), "FST 1.IP"), 0.0, "a WT as last step: step 0 next");
+    let brk = [",BRK,2,", ",VAL,1,", ",END,,"];
+    let ip = f64::from(offsets(&brk)[1]);
+    assert_eq!(num(&run(&table(&brk), "", 50), "FST 1.IP"), ip, "BRK: the step after it, when the delay ends");
+    // The steps-per-cycle limit stops a loop: the next cycle begins step 1.
+    let l = ["LOOP,+,1,", ",GO,LOOP,"];
+    let ip = f64::from(offsets(&l)[1]);
+    assert_eq!(num(&run(&table(&l), r#""STEPS": 3"#, 50), "FST 1.IP"), ip, "steps 0, 1, 0 ran");
+    assert_eq!(num(&run(&table(&l), r#""STEPS": 4"#, 50), "FST 1.IP"), 0.0, "steps 0, 1, 0, 1 ran");
+}
+
+#[test]
+fn a_table_stopped_and_started_again_begins_at_step_0_at_once() {
+    use linc_runtime::strategy::ProgramState;
+    // Each pass counts in R1, then sleeps 10 s.
+    let t = table(&[",VAL,\"FST 1,R1\",", ",+,1,", ",SAV,\"FST 1,R1\",", ",WT,10,", ",END,,"]);
+    let runflg = |s: &mut linc_runtime::strategy::Strategy, v: i32| {
+        let c = s.store.cell_of(s.store.db.block("FST 1").unwrap(), "RUNFLG").unwrap();
+        s.store.cells[c as usize] = linc_runtime::store::Cell::Int(v);
+    };
+    // Through RUNFLG, from ST or the console's write.
+    let mut s = linc_conformance::fst::strategy(&t, linc_conformance::fst::database(""));
+    assert!(s.run_for(250_000, None).is_empty());
+    assert_eq!(num(&s, "FST 1.R1"), 1.0, "asleep until 10 s");
+    runflg(&mut s, 0);
+    assert!(s.run_for(200_000, None).is_empty());
+    runflg(&mut s, 1);
+    assert!(s.run_for(100_000, None).is_empty());
+    assert_eq!(num(&s, "FST 1.R1"), 2.0, "RUNFLG 0 then 1: step 0 at once, not at 10 s");
+    // Through the console's STOP and START of the program.
+    let mut s = linc_conformance::fst::strategy(&t, linc_conformance::fst::database(""));
+    let block = s.store.db.block("FST 1").unwrap();
+    assert!(s.run_for(250_000, None).is_empty());
+    assert!(s.set_program_state(block, ProgramState::Inactive));
+    assert!(s.run_for(200_000, None).is_empty());
+    assert_eq!(num(&s, "FST 1.RUNFLG"), 0.0);
+    assert!(s.set_program_state(block, ProgramState::Running));
+    assert!(s.run_for(100_000, None).is_empty());
+    assert_eq!(num(&s, "FST 1.R1"), 2.0, "STOP then START: step 0 at once, not at 10 s");
+    assert_eq!(num(&s, "FST 1.RUNFLG"), 1.0);
+    // Stopped and started between two cycles, before any cycle saw RUNFLG 0.
+    let mut s = linc_conformance::fst::strategy(&t, linc_conformance::fst::database(""));
+    assert!(s.run_for(250_000, None).is_empty());
+    assert!(s.set_program_state(block, ProgramState::Inactive));
+    assert!(s.set_program_state(block, ProgramState::Running));
+    assert!(s.run_for(100_000, None).is_empty());
+    assert_eq!(num(&s, "FST 1.R1"), 2.0, "STOP and START at once: step 0 at the next cycle");
 }
 
 #[test]

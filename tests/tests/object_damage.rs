@@ -114,3 +114,27 @@ fn crc_matches_an_independent_implementation() {
     }
     assert_eq!(crc32(b"123456789"), 0xCBF4_3926);
 }
+
+/// `PowRKeep` (FST `**`, NaN instead of a fault) is refused outside an FST
+/// table: in an action a NaN would reach the database unchecked.
+#[test]
+fn the_quiet_power_belongs_to_fst_tables_only() {
+    use linc_runtime::isa::Op::*;
+    use linc_runtime::object::{CodeBlock, ObjectFile, Unit, UnitKind};
+    let ops = vec![PushR { v: 2.0 }, PushR { v: 1000.0 }, PowRKeep {}, StoreLoc { n: 0 }, Ret {}];
+    let block = CodeBlock { locals: 1, ops: linc_runtime::wire::Code(ops), ..CodeBlock::default() };
+    let unit = Unit {
+        kind: UnitKind::Action,
+        name: "A".into(),
+        file: "a.st".into(),
+        block_type: String::new(),
+        retained: 0,
+        blocks: vec![block],
+        charts: Vec::new(),
+        steps: Vec::new(),
+    };
+    let obj = ObjectFile { source: "a.st".into(), symbols: vec![], strings: vec![], units: vec![unit] };
+    let e = linc_runtime::verify::verify(obj).expect_err("refused");
+    assert_eq!(e.code(), "E0710");
+    assert!(e.to_string().contains("PowRKeep belongs to FST tables only"), "{e}");
+}

@@ -139,6 +139,11 @@ fn the_verifier_checks_every_chart_table() {
 
 /// A strategy with one SFC_CON block running `sequence()` every second.
 fn strategy(run: bool) -> linc_runtime::strategy::Strategy {
+    strategy_of(sequence(), run)
+}
+
+/// A strategy with one SFC_CON block running `obj` every second.
+fn strategy_of(obj: ObjectFile, run: bool) -> linc_runtime::strategy::Strategy {
     use linc_runtime::strategy::{wanted, Strategy};
     let db = linc_runtime::Database::from_json(&format!(
         r#"{{ "tasks": {{ "1": {{ "period": "T#1s" }} }}, "blocks": {{
@@ -150,7 +155,7 @@ fn strategy(run: bool) -> linc_runtime::strategy::Strategy {
     let wants: Vec<_> = wanted(&store).into_iter().map(|w| (w, 0)).collect();
     assert_eq!(wants.len(), 1);
     assert_eq!(wants[0].0.kind, linc_runtime::strategy::WantKind::Sequence);
-    let v = verify::verify(sequence()).expect("verifies");
+    let v = verify::verify(obj).expect("verifies");
     Strategy::build(store, vec![v], &wants, Vm::new(10_000, Clock::new(1, 0)), 0.0).expect("builds")
 }
 
@@ -210,4 +215,63 @@ fn sfc_con_fields_command_the_sequence() {
     set(&mut s, "SEQ.Reset", true);
     s.run_for(1_000_000, None);
     assert_eq!([field(&s, "SEQ.Status"), field(&s, "SEQ.Steps"), field(&s, "SEQ.Init")], ["'RESET'", "0", "TRUE"]);
+}
+
+/// `sequence()` whose step B, at each scan, counts in N1 and writes
+/// `value` to its own SFC_CON block's `field` (`SEQ.Run := FALSE`).
+fn commanding_itself(field: &str, value: i32) -> ObjectFile {
+    let mut obj = sequence();
+    obj.symbols.push(Symbol { block: "SEQ".into(), field: field.into(), sub: Sub::Field, class: Class::Bool });
+    obj.units[0].blocks.push(block(vec![
+        LoadI { sym: 1 },
+        PushI { v: 1 },
+        AddI {},
+        StoreI { sym: 1 },
+        PushI { v: value },
+        StoreI { sym: 3 },
+        Ret {},
+    ]));
+    let chart = &mut obj.units[0].charts[0];
+    chart.actions.push(ActionRec { name: "command".into(), kind: 0, index: 3 });
+    chart.steps[1].assocs = vec![AssocRec { action: 2, qualifier: b'N', time_us: 0 }];
+    obj
+}
+
+#[test]
+fn a_sequence_that_stops_itself_stops_at_the_next_scan() {
+    // A counts in scans 0, 1, 2 (N0 = 3); A to B fires in scan 3, where B's
+    // action counts N1 = 1 and writes SEQ.Run := FALSE (or SEQ.Stop :=
+    // TRUE). The write stands, and the next scan reads it and stops.
+    for (command, value) in [("Run", 0), ("Stop", 1)] {
+        let mut s = strategy_of(commanding_itself(command, value), true);
+        assert!(s.run_for(4_000_000, None).is_empty());
+        assert_eq!(field(&s, "Counters.N1"), "1", "{command}");
+        assert_eq!(field(&s, &format!("SEQ.{command}")), if value == 0 { "FALSE" } else { "TRUE" }, "{command}");
+        assert_eq!(field(&s, "SEQ.Status"), "'RUNNING'", "{command}: read at the next scan");
+        assert!(s.run_for(3_000_000, None).is_empty());
+        assert_eq!(field(&s, "Counters.N1"), "1", "{command}: no action ran after the scan that wrote it");
+        let shown = ["SEQ.Status", "SEQ.Run", "SEQ.Stop", "SEQ.Steps"].map(|f| field(&s, f));
+        assert_eq!(shown, ["'STOPPED'", "FALSE", "FALSE", "1"], "{command}");
+    }
+}
+
+#[test]
+fn a_sequence_that_releases_its_own_hold_runs_on() {
+    // Held from the start, A's action counts; B is never reached while
+    // held. Here B writes SEQ.Hold := FALSE while HELD: a write the engine
+    // used to overwrite with TRUE.
+    let mut s = strategy_of(commanding_itself("Hold", 0), true);
+    assert!(s.run_for(4_000_000, None).is_empty());
+    set_flag(&mut s, "SEQ.Hold", true);
+    assert!(s.run_for(1_000_000, None).is_empty());
+    assert_eq!([field(&s, "SEQ.Status"), field(&s, "Counters.N1")], ["'HELD'", "2"]);
+    assert_eq!(field(&s, "SEQ.Hold"), "FALSE", "B's write stands");
+    assert!(s.run_for(1_000_000, None).is_empty());
+    assert_eq!(field(&s, "SEQ.Status"), "'RUNNING'", "read at the next scan");
+}
+
+fn set_flag(s: &mut linc_runtime::strategy::Strategy, path: &str, v: bool) {
+    let (b, f) = path.split_once('.').unwrap();
+    let c = s.store.cell_of(s.store.db.block(b).unwrap(), f).unwrap();
+    s.store.cells[c as usize] = linc_runtime::store::Cell::Bool(v);
 }

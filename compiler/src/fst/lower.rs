@@ -352,14 +352,16 @@ impl Lowering {
         self.place(skip);
     }
 
-    /// RR ** ARG1, only for RR above 0 (B.4: no operation otherwise).
+    /// RR ** ARG1, only for RR above 0 (B.4: no operation otherwise); a
+    /// result too large for a REAL leaves RR as it was (`PowRKeep` gives
+    /// NaN where ST's `PowR` faults).
     fn power(&mut self, a: &Arg) {
         let skip = self.label();
         self.load(&rr());
         self.ops.push(Op::PushR { v: 0.0 });
         self.ops.push(Op::GtR {});
         self.ops.push(Op::JumpIfFalse { to: skip });
-        self.arith(a, Op::PowR {});
+        self.arith(a, Op::PowRKeep {});
         self.place(skip);
     }
 

@@ -117,6 +117,9 @@ impl Strategy {
                 if member.stopped {
                     member.act.reset();
                     member.qual = Default::default();
+                    if let Some(f) = member.fst.as_deref_mut() {
+                        f.restart();
+                    }
                 }
                 // A failed sequence stays in ERROR until reset: a start resets it.
                 if let Some(seq) = member.seq.as_deref_mut().filter(|s| s.status == Status::Error) {
@@ -138,6 +141,9 @@ impl Strategy {
                 member.qual = Default::default();
                 member.stopped = true;
                 member.suspended = false;
+                if let Some(f) = member.fst.as_deref_mut() {
+                    f.restart();
+                }
                 if let Some(seq) = member.seq.as_deref_mut() {
                     seq.command(crate::sequence::Command::Reset);
                 }

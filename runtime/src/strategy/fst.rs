@@ -4,8 +4,8 @@
 //! In each cycle a running table (RUNFLG 1) executes up to its steps-per-
 //! cycle limit, stopping early at END (the next cycle starts at step 0), at
 //! WT (it sleeps for the time asked, then goes on at the next step) and
-//! while a BRK delay is in force (one command per BRK × 100 ms). Its four
-//! timers count down by one every 100 ms while it runs. A runtime fault —
+//! while a BRK delay is in force (one command per BRK × 100 ms, END and
+//! the step 0 after it included). A runtime fault —
 //! a point removed from the database, an invalid history index — stops the
 //! table with RUNFLG 5 and IP at the failing step.
 
@@ -52,7 +52,6 @@ struct FstCells {
     ip: Option<u32>,
     brk: Option<u32>,
     steps: Option<u32>,
-    timers: [Option<u32>; 4],
 }
 
 /// One FST block's engine state.
@@ -63,8 +62,6 @@ pub(super) struct FstRun {
     offsets: Vec<u32>,
     /// Asleep (WT, BRK) until this time.
     wait_until: u64,
-    /// Time up to which the timers have counted.
-    ticked: u64,
     /// Whether the table ran at the last scan (a stop and start begins again at step 0).
     running: bool,
 }
@@ -90,7 +87,6 @@ impl FstRun {
             ip: c("IP"),
             brk: c("BRK"),
             steps: c("STEPS"),
-            timers: [c("TMR1"), c("TMR2"), c("TMR3"), c("TMR4")],
         };
         let t = store.db.block_template(block);
         let set = t.field("RUNFLG").is_some_and(|f| store.db.blocks[block].values.iter().any(|(i, _)| *i == f));
@@ -98,14 +94,16 @@ impl FstRun {
             store.cells[cell as usize] = Cell::Int(1);
         }
         let offsets = unit.main().map(|b| b.labels[..unit.steps.len()].to_vec()).unwrap_or_default();
-        FstRun { cells, offsets, wait_until: 0, ticked: 0, running: false }
+        FstRun { cells, offsets, wait_until: 0, running: false }
     }
 }
 
 impl FstRun {
-    /// A warm start (B.1.6): a running table begins again at step 0 at its
-    /// next cycle, awake; the registers and timers are fields and stay.
-    pub(super) fn warm_start(&mut self) {
+    /// A running table begins again at step 0 at its next cycle, awake
+    /// (any WT or BRK deadline forgotten): after a warm start (B.1.6) and
+    /// when the console stops or starts the program. The registers and
+    /// timers are fields and stay (the timers count on, with the device).
+    pub(super) fn restart(&mut self) {
         self.running = false;
         self.wait_until = 0;
     }
@@ -119,26 +117,6 @@ fn wait_us(secs: f32) -> u64 {
 }
 
 impl Strategy {
-    /// Counts the timers of member `m`'s block down by the 100 ms intervals
-    /// passed since they last counted.
-    fn tick_timers(&mut self, m: usize, task: u8, mut trace: Option<&mut Trace>) {
-        let now = self.now_us;
-        let Some(f) = self.members[m].fst.as_mut() else { return };
-        let ticks = now.saturating_sub(f.ticked) / TICK_US;
-        f.ticked += ticks * TICK_US;
-        let timers = f.cells.timers;
-        if ticks == 0 {
-            return;
-        }
-        for cell in timers.into_iter().flatten() {
-            let v = int(&self.store, Some(cell));
-            if v > 0 {
-                let left = i64::from(v).saturating_sub(ticks as i64).max(0) as i32;
-                self.host_write(m, task, cell, Cell::Int(left), trace.as_deref_mut());
-            }
-        }
-    }
-
     /// One cycle of an FST block's table.
     pub(super) fn scan_fst(&mut self, m: usize, task: u8, mut trace: Option<&mut Trace>) -> Result<(), RuntimeError> {
         let now = self.now_us;
@@ -147,17 +125,13 @@ impl Strategy {
         if int(&self.store, c.runflg) != 1 {
             if let Some(f) = self.members[m].fst.as_mut() {
                 f.running = false;
-                f.ticked = now;
             }
             self.members[m].act.reset();
             return Ok(());
         }
-        if running {
-            self.tick_timers(m, task, trace.as_deref_mut());
-        } else if let Some(f) = self.members[m].fst.as_mut() {
-            // Started (again): from step 0, awake, timers counting from now.
+        if let (false, Some(f)) = (running, self.members[m].fst.as_mut()) {
+            // Started (again): from step 0, awake.
             f.running = true;
-            f.ticked = now;
             f.wait_until = 0;
             self.members[m].act.reset();
         }
@@ -171,8 +145,7 @@ impl Strategy {
             _ => DEFAULT_STEPS,
         };
         let result = self.fst_cycle(m, task, budget, brk, trace.as_deref_mut());
-        let f = self.members[m].fst.as_deref();
-        let ip = f.and_then(|f| f.offsets.get(usize::from(self.members[m].act.step)).copied()).unwrap_or(0);
+        let ip = self.next_ip(m, result.is_err());
         if let Some(cell) = c.ip {
             self.host_write(m, task, cell, Cell::Int(ip as i32), trace.as_deref_mut());
         }
@@ -185,6 +158,22 @@ impl Strategy {
             }
         }
         result
+    }
+
+    /// IP after a cycle of member `m`: the offset of "the next function to
+    /// be executed" (B.2) — where the suspended run resumes, or step 0 after
+    /// END — or, after a fault, of the failing step.
+    fn next_ip(&self, m: usize, failed: bool) -> u32 {
+        let member = &self.members[m];
+        let Some(f) = member.fst.as_deref() else { return 0 };
+        let step = usize::from(member.act.step);
+        match member.act.resume_point().0 {
+            _ if failed => f.offsets.get(step).copied().unwrap_or(0),
+            // A run resumes at a step's `Step` or, after a WT or BRK that
+            // was the last step, at the final `Ret`: step 0 comes next.
+            Some(pc) if f.offsets.contains(&pc) => pc,
+            _ => f.offsets.first().copied().unwrap_or(0),
+        }
     }
 
     /// Runs up to `budget` steps; with a trace, one step per VM run so each
@@ -217,7 +206,14 @@ impl Strategy {
             let Some(f) = member.fst.as_mut() else { return Ok(()) };
             match outcome {
                 Err(e) => return Err(e),
-                Ok(Outcome::Done) => return Ok(()),
+                Ok(Outcome::Done) => {
+                    // END is a command like any other: under BRK, step 0
+                    // waits the break period after it (B-15).
+                    if brk > 0 {
+                        f.wait_until = now + brk as u64 * TICK_US;
+                    }
+                    return Ok(());
+                }
                 Ok(Outcome::Suspended) => match member.act.pause.take() {
                     Some((0, secs)) => {
                         f.wait_until = now + wait_us(secs);
@@ -280,11 +276,15 @@ impl Strategy {
 }
 
 /// The ROC device's own clockwork, run whenever simulated time moves:
-/// timed discrete outputs (TDO) turn off when their time is up, and the
-/// history logger samples its points. Found once when the strategy is
-/// built, so a strategy without ROC points pays nothing.
+/// the FST timers count down, timed discrete outputs (TDO) turn off when
+/// their time is up, and the history logger samples its points. Found once
+/// when the strategy is built, so a strategy without ROC points pays
+/// nothing.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Device {
+    /// `TMR1`–`TMR4` of every FST point, whether or not it runs a table:
+    /// ST sets the timers of "any of the available FSTs" (Table B-14).
+    timers: Vec<u32>,
     /// `TDOREM` and `STATUS` of every DOU point.
     tdo: Vec<(u32, u32)>,
     /// Whether any history point is sampled by the logger.
@@ -299,19 +299,42 @@ impl Device {
             .filter_map(|b| Some((store.cell_of(b, "TDOREM")?, store.cell_of(b, "STATUS")?)))
             .collect();
         let logs = (0..store.db.blocks.len()).any(|b| store.db.block_template(b).name.eq_ignore_ascii_case("HIST"));
-        Device { tdo, logs, last_us: 0 }
+        let timers = (0..store.db.blocks.len())
+            .filter(|&b| is_fst(store, b))
+            .flat_map(|b| ["TMR1", "TMR2", "TMR3", "TMR4"].map(|f| store.cell_of(b, f)))
+            .flatten()
+            .collect();
+        Device { timers, tdo, logs, last_us: 0 }
     }
 }
 
 impl Strategy {
+    /// Counts every FST timer above 0 down by `ticks` (to 0 at the least).
+    fn tick_timers(&mut self, ticks: u64, mut trace: Option<&mut Trace>) {
+        if ticks == 0 {
+            return;
+        }
+        for i in 0..self.device.timers.len() {
+            let cell = self.device.timers[i];
+            let v = int(&self.store, Some(cell));
+            if v > 0 {
+                let left = i64::from(v).saturating_sub(ticks.min(i64::MAX as u64) as i64).max(0) as i32;
+                self.host_write(usize::MAX, 0, cell, Cell::Int(left), trace.as_deref_mut());
+            }
+        }
+    }
+
     /// Advances the device's clockwork to now.
     pub(super) fn device_tick(&mut self, mut trace: Option<&mut Trace>) {
         let now = self.now_us;
         let dt = now.saturating_sub(self.device.last_us);
+        // The 100 ms boundaries of the simulated clock passed since the last tick.
+        let ticks = (now / TICK_US).saturating_sub(self.device.last_us / TICK_US);
         self.device.last_us = now;
         if dt == 0 {
             return;
         }
+        self.tick_timers(ticks, trace.as_deref_mut());
         for i in 0..self.device.tdo.len() {
             let (rem, status) = self.device.tdo[i];
             let Some(Cell::Real(left)) = self.store.cells.get(rem as usize).cloned() else { continue };

@@ -1,6 +1,7 @@
 //! SFC_CON blocks in a strategy: each runs the sequence its `FileName`
 //! holds, one scan per run of its task, commanded by its fields (guide
-//! §20.6.3; the state table is in docs/sequences.md).
+//! §20.6.3; the state table is in docs/sequences.md). A command field is
+//! read at the start of a scan, whoever wrote it, the sequence included.
 
 use super::trace::Trace;
 use super::{BlockCells, Strategy, StrategyError, Want};
@@ -81,14 +82,29 @@ impl Strategy {
                 program: name.as_deref().unwrap_or(""),
             }),
         };
+        let commands = [member.cells.run, member.cells.hold, member.cells.reset, member.cells.stop];
+        let before = commands.map(|c| c.and_then(|c| host.store.cells.get(c as usize).cloned()));
         let result = seq.scan(now, &mut host);
         let (status, steps) = (seq.status, seq.active_count());
-        self.show_sequence(m, task, status, steps, trace);
+        // A command field the scan itself wrote (an action's `SEQ1.Run :=
+        // FALSE`) stands, to be read at the start of the next scan.
+        let written =
+            std::array::from_fn(|i| commands[i].and_then(|c| self.store.cells.get(c as usize).cloned()) != before[i]);
+        self.show_sequence(m, task, (status, steps), written, trace);
         result
     }
 
-    /// The block's fields after a scan, as §20.6.3 has them per status.
-    fn show_sequence(&mut self, m: usize, task: u8, status: Status, steps: usize, mut trace: Option<&mut Trace>) {
+    /// The block's fields after a scan, as §20.6.3 has them per status,
+    /// except the command fields (`Run`, `Hold`, `Reset`, `Stop`, in that
+    /// order in `written`) that the scan wrote.
+    fn show_sequence(
+        &mut self,
+        m: usize,
+        task: u8,
+        (status, steps): (Status, usize),
+        written: [bool; 4],
+        mut trace: Option<&mut Trace>,
+    ) {
         let (run, hold, init) = match status {
             Status::Reset => (false, false, true),
             Status::Running => (true, false, false),
@@ -100,12 +116,13 @@ impl Strategy {
         // Hold is only ever set here: a Hold written while the sequence is
         // not yet running stays pending for the next scan.
         let status_idx = c.status.and_then(|cell| self.store.enum_names(cell).iter().position(|n| n == status_name));
+        let unless = |i: usize, v: Option<Cell>| v.filter(|_| !written[i]);
         let writes = [
-            (c.run, Some(Cell::Bool(run))),
+            (c.run, unless(0, Some(Cell::Bool(run)))),
             (c.init, Some(Cell::Bool(init))),
-            (c.hold, hold.then_some(Cell::Bool(true))),
-            (c.reset, Some(Cell::Bool(false))),
-            (c.stop, Some(Cell::Bool(false))),
+            (c.hold, unless(1, hold.then_some(Cell::Bool(true)))),
+            (c.reset, unless(2, Some(Cell::Bool(false)))),
+            (c.stop, unless(3, Some(Cell::Bool(false)))),
             (c.steps, Some(Cell::Int(steps as i32))),
             (c.status, status_idx.map(|idx| Cell::Enum { idx: idx as u16 })),
         ];

@@ -255,7 +255,7 @@ impl Strategy {
                 seq.monitor = Default::default();
             }
             if let Some(f) = m.fst.as_deref_mut() {
-                f.warm_start();
+                f.restart();
                 m.act.reset();
             }
         }

@@ -97,7 +97,8 @@ const TABLE: &str = "STEP,LABEL,CMD,ARGUMENT1,ARGUMENT2
 13,,BRK,\"FST 1,R9\",
 14,,WT,0.3,
 15,,/,\"FST 1,R2\",
-16,,GO,TOP,
+16,,**,\"FST 1,R2\",
+17,,GO,TOP,
 ";
 
 pub fn corpus() -> Vec<Seed> {
