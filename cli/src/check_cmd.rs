@@ -103,7 +103,7 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
         let id = session.add(path.display().to_string(), bytes);
         let checked = session.check(id, CheckOptions { input, tree: o.tree });
         if let Some(t) = &checked.tree {
-            print!("{}", t.pretty());
+            crate::out::print(&t.pretty());
         }
         for d in &checked.diagnostics {
             if d.is_error() {

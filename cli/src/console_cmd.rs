@@ -89,22 +89,22 @@ fn line(console: &mut Console, text: &str, r: &mut Reporter, trace: Option<&mut 
     for reply in console.execute_traced(text, trace) {
         match reply {
             Ok(reply) if reply.is_empty() => {}
-            Ok(reply) => println!("{reply}"),
+            Ok(reply) => crate::out::line(&reply),
             Err(e) => {
                 ok = false;
-                println!("{}", error_text(&e, r));
+                crate::out::line(&error_text(&e, r));
             }
         }
     }
     // Runtime errors of the scans a command ran follow its reply, rendered
     // like any runtime error; they are not command failures.
     for e in console.take_failures() {
-        println!("{}", r.runtime_text(&e).trim_end());
+        crate::out::line(r.runtime_text(&e).trim_end());
     }
     // SAVE took the state; it is written here, atomically.
     if let (Some(bytes), Some(path)) = (console.take_saved(), state) {
         if let Err(e) = linc_driver::files::write_atomic(path, &bytes) {
-            println!("{}", r.text(e.diagnostic()).trim_end());
+            crate::out::line(r.text(e.diagnostic()).trim_end());
             ok = false;
         }
     }
@@ -180,7 +180,7 @@ fn script(
             Ok(l) => l,
             Err(length) => {
                 let why = format!("a console line is at most {MAX_LINE} bytes; this one has {length}");
-                println!("{}", error_text(&ConsoleError { code: "C0002", message: why }, r));
+                crate::out::line(&error_text(&ConsoleError { code: "C0002", message: why }, r));
                 ok = false;
                 continue;
             }

@@ -16,7 +16,7 @@ pub fn run(path: &Path, r: &mut Reporter) -> u8 {
         .and_then(|bytes| linc_runtime::load(&bytes).map_err(|e| (e.code(), e.to_string())));
     match loaded {
         Ok(obj) => {
-            print!("{}", listing(obj.object()));
+            crate::out::print(&listing(obj.object()));
             0
         }
         Err((code, message)) => {

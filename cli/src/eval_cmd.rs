@@ -57,7 +57,7 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>, 
                 linc_stdlib::Value::Bytes(b) if is_text => linc_stdlib::Value::Bytes(decode_dollar(&b)),
                 v => v,
             };
-            println!("{}", text::format_value(&v));
+            crate::out::line(&text::format_value(&v));
             0
         }
         Ok(Ok(None)) => 2,

@@ -7,9 +7,9 @@ pub fn run(code: Option<&str>, list: bool, r: &mut linc_driver::Reporter) -> u8 
     match code {
         Some(c) if !list => match lookup(c) {
             Some(entry) => {
-                print!("{}", entry.explanation);
+                crate::out::print(entry.explanation);
                 if !entry.explanation.ends_with('\n') {
-                    println!();
+                    crate::out::line("");
                 }
                 0
             }
@@ -20,7 +20,7 @@ pub fn run(code: Option<&str>, list: bool, r: &mut linc_driver::Reporter) -> u8 
         },
         _ => {
             for c in CODES {
-                println!("{}  {}", c.code, c.title);
+                crate::out::line(&format!("{}  {}", c.code, c.title));
             }
             0
         }

@@ -80,6 +80,6 @@ pub fn list(path: &Path, db: Option<&Path>, r: &mut Reporter) -> u8 {
         return 1;
     }
     let offsets = object.as_ref().and_then(fst::offsets);
-    print!("{}", fst::list::listing(&table, offsets.as_deref()));
+    crate::out::print(&fst::list::listing(&table, offsets.as_deref()));
     0
 }

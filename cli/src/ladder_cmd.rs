@@ -83,7 +83,7 @@ fn to_st(file: &Path, db: Option<&Path>, r: &mut Reporter) -> u8 {
     let ctx = Context { db: &db, resolve_blocks, steps: None };
     match ladder::to_st(&text, stem, ctx) {
         Ok(st) => {
-            print!("{st}");
+            crate::out::print(&st);
             0
         }
         Err(diagnostics) => {
@@ -106,7 +106,7 @@ fn show(file: &Path, values: ladder::pretty::draw::Values, r: &mut Reporter) -> 
     let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");
     match ladder::draw(&text, stem, values) {
         Ok(d) => {
-            print!("{d}");
+            crate::out::print(&d);
             0
         }
         Err(diagnostics) => {

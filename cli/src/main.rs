@@ -12,6 +12,7 @@ mod explain_cmd;
 mod fst_src;
 mod ladder_cmd;
 mod ladder_values;
+mod out;
 mod report;
 mod run_cmd;
 mod sequence_run;

@@ -139,7 +139,7 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     let (status, traced) = cycles(o, &linked, &mut store, (seed, to_stdout), r);
     say_compiled(o.common.tier, linked.compiled_blocks());
     for (path, a) in &shows {
-        println!("{path} = {}", show_value(&store, *a));
+        crate::out::line(&format!("{path} = {}", show_value(&store, *a)));
     }
     if let Some(path) = o.common.trace.as_ref().filter(|_| !to_stdout) {
         if let Err(e) = linc_driver::files::write_atomic(path, traced.as_bytes()) {
@@ -180,7 +180,7 @@ fn cycles(
         let mut tracer = |s: &Store, cell: u32| {
             let line = format!("cycle {cycle}: {} = {}\n", s.describe(cell), s.show(cell));
             if to_stdout {
-                print!("{line}");
+                crate::out::print(&line);
             } else {
                 traced.push_str(&line);
             }

@@ -68,7 +68,7 @@ pub fn check_with(
         let mut d = report.diagnostics;
         if let Some(t) = &report.tree {
             if tree {
-                print!("{}", sfc::pretty::sequence(t));
+                crate::out::print(&sfc::pretty::sequence(t));
             }
             if let Some(i) = extra.resources {
                 let uses = resources::count(t, i);

@@ -115,7 +115,7 @@ pub fn map_template(file: &Path, db: Option<&Path>, r: &mut Reporter) -> u8 {
         Ok(p) => p,
         Err(status) => return status,
     };
-    print!("{}", generic::map_template(&generic::generic_names(&seq, &db)));
+    crate::out::print(&generic::map_template(&generic::generic_names(&seq, &db)));
     0
 }
 
@@ -124,16 +124,16 @@ pub fn print_resources(name: &str, uses: &[sfc::resources::Use], instrument: &st
     if format == Format::Json {
         let fields: Vec<String> =
             uses.iter().map(|u| format!("{:?}:{{\"used\":{},\"limit\":{}}}", u.resource, u.used, u.limit)).collect();
-        println!(
+        crate::out::line(&format!(
             "{{\"resources\":{{\"file\":{},\"instrument\":\"{instrument}\",{}}}}}",
             serde_json::Value::String(name.to_string()),
             fields.join(",")
-        );
+        ));
         return;
     }
-    println!("resources of {name} ({instrument} instrument):");
+    crate::out::line(&format!("resources of {name} ({instrument} instrument):"));
     for u in uses {
         let mark = if u.used > u.limit { "  over the limit" } else { "" };
-        println!("  {:<13}{:>5} of {}{mark}", u.resource, u.used, u.limit);
+        crate::out::line(&format!("  {:<13}{:>5} of {}{mark}", u.resource, u.used, u.limit));
     }
 }

@@ -205,7 +205,7 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     for path in &o.common.show {
         let step = seq_block.and_then(|b| s.sequence_mut(b)).and_then(|q| sequence_run::step_flag(q, path));
         let field = shows.iter().find(|(p, _)| p == path).map(|(_, a)| show_value(&s.store, *a));
-        println!("{path} = {}", step.or(field).unwrap_or_default());
+        crate::out::line(&format!("{path} = {}", step.or(field).unwrap_or_default()));
     }
     if let Some(Err(e)) = traced {
         return trace_unwritten(o.common.trace.as_deref(), &e, r);

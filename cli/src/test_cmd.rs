@@ -80,24 +80,24 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     let jobs = o.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())).max(1);
     let started = std::time::Instant::now();
     let outcomes = run_all(&files, jobs, o.vcd.is_some());
-    println!("running {} scenario{}", outcomes.len(), if outcomes.len() == 1 { "" } else { "s" });
+    crate::out::line(&format!("running {} scenario{}", outcomes.len(), if outcomes.len() == 1 { "" } else { "s" }));
     for out in &outcomes {
-        println!("test {} ... {}", out.name, if out.passed { "ok" } else { "FAILED" });
+        crate::out::line(&format!("test {} ... {}", out.name, if out.passed { "ok" } else { "FAILED" }));
     }
     let failed: Vec<&Outcome> = outcomes.iter().filter(|o| !o.passed).collect();
     if !failed.is_empty() {
-        println!("\nfailures:\n");
+        crate::out::line("\nfailures:\n");
         for f in &failed {
-            println!("---- {} ----\n{}", f.name, f.details);
+            crate::out::line(&format!("---- {} ----\n{}", f.name, f.details));
         }
-        println!("failures:");
+        crate::out::line("failures:");
         for f in &failed {
-            println!("    {}", f.name);
+            crate::out::line(&format!("    {}", f.name));
         }
     }
     let passed = outcomes.len() - failed.len();
     let verdict = if failed.is_empty() { "ok" } else { "FAILED" };
-    println!("\ntest result: {verdict}. {passed} passed, {} failed", failed.len());
+    crate::out::line(&format!("\ntest result: {verdict}. {passed} passed, {} failed", failed.len()));
     eprintln!("linc test: {} scenarios in {:.2}s on {jobs} thread(s)", outcomes.len(), started.elapsed().as_secs_f64());
     if let Some(path) = &o.junit {
         if let Err(e) = linc_driver::files::write_atomic(path, crate::test_report::junit(&outcomes).as_bytes()) {

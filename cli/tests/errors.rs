@@ -251,3 +251,40 @@ fn no_source_writes_an_error_by_hand() {
         .collect();
     assert!(hand.is_empty(), "errors written by hand:\n{}", hand.join("\n"));
 }
+
+#[test]
+fn no_output_sends_an_escape_sequence_to_the_terminal() {
+    let dir = temp_dir("errors-escapes");
+    let esc = "\u{1b}[2J";
+    // A block name with an escape sequence (JSON allows it as \u001b).
+    let db = dir.join("db.json");
+    std::fs::write(&db, r#"{"blocks": {"A\u001b[2JB": {"type": "RECIPE", "values": {"A0": 1.5}}}}"#).expect("db");
+    let db = db.to_str().expect("path");
+    let field = format!("A{esc}B.A0");
+    let table = dir.join("t.csv");
+    std::fs::write(&table, format!("STEP,LABEL,CMD,ARGUMENT1,ARGUMENT2,COMMENT\n0,,END,,,clear {esc} screen\n"))
+        .expect("table");
+    let named = dir.join(format!("x{esc}y.st"));
+    std::fs::write(&named, "Counters.N0 := 1;\n").expect("source");
+    let object = dir.join("x.sto");
+    let o = linc(&["compile", named.to_str().expect("path"), "--db", common::DB, "-o", object.to_str().expect("path")]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let runs: Vec<(Vec<&str>, Option<String>)> = vec![
+        (vec!["run", db, "--for", "1s", "--show", &field], None),
+        (vec!["console", db], Some(format!("D {field}\nD A{esc}B.A0-\n"))),
+        (vec!["eval", "'$1B[2Jx'"], None),
+        (vec!["fst", "list", table.to_str().expect("path")], None),
+        (vec!["disasm", object.to_str().expect("path")], None),
+        (vec!["explain", esc], None),
+    ];
+    for (args, input) in runs {
+        let o = match &input {
+            Some(text) => linc_with_input(&args, text),
+            None => linc(&args),
+        };
+        let (out, err) = (stdout(&o), stderr(&o));
+        assert!(!out.contains('\u{1b}') && !err.contains('\u{1b}'), "{args:?} printed a raw escape: {out}{err}");
+        let shown = out.contains("\\u{1b}") || err.contains("\\u{1b}") || out.contains("$1B");
+        assert!(shown, "{args:?} dropped the text: {out}{err}");
+    }
+}

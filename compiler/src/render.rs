@@ -47,6 +47,22 @@ fn needs_escape(c: char) -> bool {
         || matches!(c, '\u{2028}' | '\u{2029}' | BOM)
 }
 
+/// [`escape`] for text of several lines (a listing, a drawing, a reply):
+/// line ends stay line ends, every other control character is escaped.
+pub fn escape_text(s: &str) -> Cow<'_, str> {
+    if !s.chars().any(|c| c != '\n' && needs_escape(c)) {
+        return Cow::Borrowed(s);
+    }
+    let mut out = String::with_capacity(s.len() + 8);
+    for (i, line) in s.split('\n').enumerate() {
+        if i > 0 {
+            out.push('\n');
+        }
+        out.push_str(&escape(line));
+    }
+    Cow::Owned(out)
+}
+
 /// `s` with every character that must not reach a terminal written as `\u{..}`.
 pub fn escape(s: &str) -> Cow<'_, str> {
     if !s.chars().any(needs_escape) {
