@@ -4,10 +4,9 @@ use linc_compiler::check::Context;
 use linc_compiler::render::{Format, SourceFiles};
 use linc_compiler::session::{CheckOptions, Input, Session};
 use linc_compiler::sfc::resources::Instrument;
-use linc_compiler::Diagnostic;
 use linc_driver::Reporter;
 use linc_runtime::Database;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 pub struct Options {
     pub files: Vec<PathBuf>,
@@ -22,31 +21,9 @@ pub struct Options {
     pub resources: Option<Instrument>,
 }
 
-/// Loads `--db`, printing its diagnostics. `Err` carries the exit status.
-pub fn load_db(path: Option<&Path>, files: &mut SourceFiles, r: &mut Reporter) -> Result<Option<Database>, u8> {
-    let Some(path) = path else { return Ok(None) };
-    let text = linc_driver::files::read_input_text(path).map_err(|e| {
-        r.unreadable(path, &e);
-        2u8
-    })?;
-    // A byte order mark is ignored, as in sources: three spaces keep every
-    // offset that of the file.
-    let loaded = match text.strip_prefix('\u{feff}') {
-        Some(rest) => Database::from_json(&format!("   {rest}")),
-        None => Database::from_json(&text),
-    };
-    let id = files.add(path.display().to_string(), text);
-    loaded.map(Some).map_err(|e| {
-        let span = e.span.map(|(s, e)| linc_compiler::Span::new(s, e)).unwrap_or_default();
-        let d = Diagnostic::error(e.code, e.message, span).label("here").in_file(id);
-        r.emit(files, &d);
-        2u8
-    })
-}
-
 pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     let mut dbfiles = SourceFiles::new();
-    let db = match load_db(o.db.as_deref(), &mut dbfiles, r) {
+    let db = match linc_driver::database::load(o.db.as_deref(), &mut dbfiles, r) {
         Ok(db) => db,
         Err(status) => return status,
     };
@@ -70,8 +47,8 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
         crate::sequence_src::Extra { map: bound.as_ref(), allow_unmapped: o.allow_unmapped, resources: o.resources };
     let input = if o.transition { Input::Transition } else { Input::Actions };
     for path in &o.files {
-        if crate::fst_src::is_fst(path) {
-            match crate::fst_src::check(path, resolve_blocks.then_some(&db), false, r) {
+        if linc_driver::source::is_fst(path) {
+            match crate::fst_src::check(path, resolve_blocks.then_some(&db), r) {
                 Ok(c) => {
                     errors += c.errors;
                     warnings += c.warnings;
@@ -80,7 +57,7 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
             }
             continue;
         }
-        if crate::sequence_src::is_sequence(path) {
+        if linc_driver::source::is_sequence(path) {
             let seq_db = bound.as_ref().map_or(&db, |b| &b.db);
             let ctx = Context { db: seq_db, resolve_blocks, steps: None };
             match crate::sequence_src::check_with(path, ctx, &extra, (false, o.tree), r) {

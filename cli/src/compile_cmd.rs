@@ -1,9 +1,9 @@
 //! `linc compile FILE... -o OUT.sto`.
 
-use crate::build::{compile, Failed};
-use crate::check_cmd::load_db;
 use linc_compiler::check::Context;
 use linc_compiler::render::SourceFiles;
+use linc_driver::build::{compile, Failed};
+use linc_driver::database::load as load_db;
 use linc_driver::Reporter;
 use linc_runtime::{Database, ObjectFile};
 use std::path::{Path, PathBuf};
@@ -45,7 +45,7 @@ fn compile_mapped(
         crate::report::usage(r, "--map compiles one generic sequence (.sfc) on its own");
         return Err(Failed(2));
     };
-    if !crate::sequence_src::is_sequence(file) {
+    if !linc_driver::source::is_sequence(file) {
         crate::report::usage(r, format_args!("--map is for sequences: `{}` is not a .sfc file", file.display()));
         return Err(Failed(2));
     }

@@ -130,7 +130,7 @@ pub fn run(o: Options, r: &mut Reporter) -> u8 {
         Err(status) => return status,
     };
     if let Some(path) = &state {
-        if let Err(status) = crate::state_file::warm_start(path, so.retain.cold, &mut strategy, r) {
+        if let Err(status) = linc_driver::state::warm_start(path, so.retain.cold, &mut strategy, r) {
             return status;
         }
     }
@@ -159,7 +159,7 @@ pub fn run(o: Options, r: &mut Reporter) -> u8 {
     }
     // The state is kept at the end as on SAVE.
     if let Some(path) = &state {
-        if let Err(status) = crate::state_file::save(path, &console.strategy, r) {
+        if let Err(status) = linc_driver::state::save(path, &console.strategy, r) {
             return status;
         }
     }

@@ -1,10 +1,10 @@
 //! `linc eval EXPR`: evaluate one expression and print its value.
 
-use crate::check_cmd::load_db;
 use linc_compiler::check::Context;
 use linc_compiler::lower::{self, Lines};
 use linc_compiler::render::SourceFiles;
 use linc_compiler::session::{CheckOptions, Input, Session};
+use linc_driver::database::load as load_db;
 use linc_driver::Reporter;
 use linc_runtime::store::Store;
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
@@ -37,7 +37,7 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>, 
             return 2;
         }
     };
-    let now = match crate::run_cmd::start_time(now) {
+    let now = match linc_driver::database::start_time(now) {
         Ok(s) => s,
         Err(msg) => return crate::report::usage(r, msg),
     };

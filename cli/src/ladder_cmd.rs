@@ -3,11 +3,11 @@
 //! `to-st` prints the ST a ladder file compiles as (ADR 0009): what runs
 //! is exactly that ST, so it is the way to review what a rung does.
 
-use crate::check_cmd::load_db;
 use clap::Subcommand;
 use linc_compiler::check::Context;
 use linc_compiler::ladder;
 use linc_compiler::render::SourceFiles;
+use linc_driver::database::load as load_db;
 use linc_driver::Reporter;
 use linc_runtime::Database;
 use std::path::{Path, PathBuf};

@@ -2,12 +2,13 @@
 //! database, then evaluates each element (contact operands, coil targets)
 //! in the database as the run left it, for the drawing.
 
-use crate::check_cmd::load_db;
-use crate::run_cmd::{own_block, set_and_show};
 use linc_compiler::check::Context;
 use linc_compiler::lower::{self, Lines};
 use linc_compiler::render::SourceFiles;
 use linc_compiler::session::{CheckOptions, Input, Session};
+use linc_driver::database::load as load_db;
+use linc_driver::database::set_and_show;
+use linc_driver::strategy::own_block;
 use linc_driver::Reporter;
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{Database, Program, Store};
@@ -27,7 +28,8 @@ pub fn after_run(
     let db = load_db(Some(db_path), &mut files, r)?.unwrap_or_default();
     let mut store = Store::new(db.clone());
     set_and_show(&mut store, set, &[], r)?;
-    let obj = crate::build::compile(&[file.to_path_buf()], Some(&db), r, 1).map_err(|crate::build::Failed(s)| s)?;
+    let obj = linc_driver::build::compile(&[file.to_path_buf()], Some(&db), r, 1)
+        .map_err(|linc_driver::build::Failed(s)| s)?;
     let name = file.display().to_string();
     let verified = linc_runtime::verify::verify(obj).map_err(|e| {
         r.whole_file(&name, e.code(), e.to_string());

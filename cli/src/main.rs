@@ -2,7 +2,6 @@
 //!
 //! Exit status: 0 clean, 1 errors found in the input, 2 usage or I/O problem.
 
-mod build;
 mod check_cmd;
 mod compile_cmd;
 mod console_cmd;
@@ -15,10 +14,8 @@ mod ladder_values;
 mod out;
 mod report;
 mod run_cmd;
-mod sequence_run;
 mod sequence_src;
 mod sfc_cmd;
-mod state_file;
 mod strategy_cmd;
 mod test_cmd;
 mod test_report;
@@ -522,11 +519,11 @@ fn run_command(a: RunArgs, r: &mut Reporter) -> u8 {
             run_cmd::run(&run_cmd::Options { file, db, action, block, cycles, period, common }, r)
         }
         (Some(db), Some(duration))
-            if sequence_src::is_sequence(&file) || fst_src::is_fst(&file) || is_object(&file) =>
+            if linc_driver::source::is_sequence(&file) || linc_driver::source::is_fst(&file) || is_object(&file) =>
         {
-            let kind = sequence_run::Kind::of(&file);
+            let kind = linc_driver::single::Kind::of(&file);
             let (block, period, hold_steps, force) = (a.block, a.period, a.hold_step, a.force);
-            let single = sequence_run::SequenceRun { file, kind, block, period, hold_steps, force };
+            let single = linc_driver::single::SequenceRun { file, kind, block, period, hold_steps, force };
             let o = strategy_cmd::Options { db, duration, common, single: Some(single), retain, script: None };
             strategy_cmd::run(&o, r)
         }

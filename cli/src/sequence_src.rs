@@ -9,11 +9,6 @@ use linc_driver::Reporter;
 use linc_runtime::ObjectFile;
 use std::path::Path;
 
-/// Whether a path names a sequence source.
-pub fn is_sequence(path: &Path) -> bool {
-    path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sfc"))
-}
-
 /// What checking one `.sfc` file gave.
 pub struct Checked {
     pub errors: usize,
@@ -33,13 +28,9 @@ pub struct Extra<'a> {
     pub resources: Option<Instrument>,
 }
 
-/// Reads, checks and (when `lower`) compiles one sequence; prints its
-/// diagnostics (and its tree when `tree`). `Err` is an I/O failure, reported.
-pub fn check(path: &Path, ctx: Context, lower: bool, tree: bool, r: &mut Reporter) -> Result<Checked, ()> {
-    check_with(path, ctx, &Extra::default(), (lower, tree), r)
-}
-
-/// [`check`] with a map and resources (`lower`, `tree` as there).
+/// Reads, checks and (when `lower`) compiles one sequence, with a map and
+/// resources; reports its diagnostics (and prints its tree when `tree`).
+/// `Err` is an I/O failure, reported.
 pub fn check_with(
     path: &Path,
     ctx: Context,

@@ -3,10 +3,10 @@
 //! and loading a map for `check`/`compile --map`. The rewriting is the
 //! compiler's (`linc_compiler::sfc::generic`); this reads, prints, writes.
 
-use crate::check_cmd::load_db;
 use linc_compiler::render::{Format, SourceFiles};
 use linc_compiler::sfc::generic::{self, Map};
 use linc_compiler::{sfc, Diagnostic};
+use linc_driver::database::load as load_db;
 use linc_driver::Reporter;
 use linc_runtime::Database;
 use std::path::Path;

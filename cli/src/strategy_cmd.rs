@@ -1,18 +1,19 @@
 //! `linc run PLANT.json --for DURATION`: run a whole strategy. The CLI
 //! reads, compiles and prints; the runtime's strategy engine runs.
 
-use crate::check_cmd::load_db;
 use crate::report::usage;
-use crate::run_cmd::{program_object, set_and_show, show_value, start_time, write_db, Common};
-use crate::sequence_run::{self, SequenceRun};
+use crate::run_cmd::Common;
 use linc_compiler::render::SourceFiles;
 use linc_compiler::span::FileId;
-use linc_compiler::{Diagnostic, Span};
+use linc_driver::database::load as load_db;
+use linc_driver::database::{duration, set_and_show, start_time, write_db};
+use linc_driver::single::SequenceRun;
+use linc_driver::strategy::{compile_wants, strategy_diagnostic};
 use linc_driver::Reporter;
+use linc_runtime::console::fields::show_value;
 use linc_runtime::strategy::{self, trace::Trace, Strategy, StrategyError, Want};
 use linc_runtime::vm::{Clock, Vm};
-use linc_runtime::{Database, Store, Verified};
-use std::collections::HashMap;
+use linc_runtime::{Database, Store};
 use std::path::{Path, PathBuf};
 
 pub struct Options {
@@ -33,57 +34,14 @@ pub struct Retain {
     pub cold: bool,
 }
 
-/// A duration as an ST time constant, with or without `T#` (`10m`, `T#1h30m`).
-pub fn duration(text: &str) -> Result<u64, String> {
-    let secs = linc_runtime::db::duration_seconds(text)
-        .map_err(|why| format!("--for `{text}` is not a duration like 10m, 1h30m or T#2.5s: {why}"))?;
-    if !secs.is_finite() || !(1e-6..=366.0 * 86_400.0).contains(&secs) {
-        return Err(format!(
-            "--for `{text}`: the duration must be at least the clock's microsecond (1us) and at most 366 days"
-        ));
-    }
-    Ok(strategy::micros(secs))
-}
-
 /// A strategy error, located at the block's key in the database text.
 fn report(files: &SourceFiles, db_id: FileId, db_text: &str, e: &StrategyError, r: &mut Reporter) {
     r.emit(files, &strategy_diagnostic(db_id, db_text, e));
 }
 
-/// A strategy error as a diagnostic at the block's key in the database text.
-pub fn strategy_diagnostic(db_id: FileId, db_text: &str, e: &StrategyError) -> Diagnostic {
-    let quoted = format!("\"{}\"", e.block);
-    let span = db_text.find(&quoted).map(|at| Span::new(at, at + quoted.len())).unwrap_or_default();
-    Diagnostic::error(e.code, e.message.clone(), span).label("this block").in_file(db_id)
-}
-
-/// Compiles or loads each action file the strategy names, once each.
-/// The verified objects, and each wanted action with the index of its object.
-pub type Plan = (Vec<Verified>, Vec<(Want, usize)>);
-
-fn objects(o: &Options, db: &Database, wants: &[Want], r: &mut Reporter) -> Result<Plan, u8> {
+fn objects(o: &Options, db: &Database, wants: &[Want], r: &mut Reporter) -> Result<linc_driver::strategy::Plan, u8> {
     let dir = o.db.parent().map(Path::to_path_buf).unwrap_or_default();
     compile_wants(&dir, db, wants, r)
-}
-
-/// Compiles or loads each file `wants` name (relative to `dir`), once each.
-pub fn compile_wants(dir: &Path, db: &Database, wants: &[Want], r: &mut Reporter) -> Result<Plan, u8> {
-    let mut index: HashMap<String, usize> = HashMap::new();
-    let mut objects = Vec::new();
-    let mut pairs = Vec::with_capacity(wants.len());
-    for w in wants {
-        let i = match index.get(&w.file) {
-            Some(&i) => i,
-            None => {
-                let path = dir.join(&w.file);
-                objects.push(program_object(&path, db, r)?);
-                index.insert(w.file.clone(), objects.len() - 1);
-                objects.len() - 1
-            }
-        };
-        pairs.push((w.clone(), i));
-    }
-    Ok((objects, pairs))
 }
 
 /// Compiles the programs `wants` name and builds the strategy over
@@ -146,12 +104,12 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     };
     let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
     let seq_block =
-        match o.single.as_ref().map(|q| sequence_run::find_block(&db, q.block.as_deref(), q.kind)).transpose() {
+        match o.single.as_ref().map(|q| linc_driver::single::find_block(&db, q.block.as_deref(), q.kind)).transpose() {
             Ok(b) => b,
             Err(d) => return crate::report::refused(r, *d),
         };
     if let (Some(b), Some(p)) = (seq_block, o.single.as_ref().and_then(|q| q.period)) {
-        sequence_run::set_period(&mut db, b, p);
+        linc_driver::single::set_period(&mut db, b, p);
     }
     let mut store = Store::new(db.clone());
     let step_shows: Vec<String> =
@@ -162,7 +120,7 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
         Err(status) => return status,
     };
     let wants = match (&o.single, seq_block) {
-        (Some(q), Some(b)) => vec![sequence_run::want(q, b)],
+        (Some(q), Some(b)) => vec![linc_driver::single::want(q, b)],
         _ => strategy::wanted(&store),
     };
     if let Err(status) = check_outputs(o, &wants, r) {
@@ -173,19 +131,19 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
         Err(status) => return status,
     };
     if let (Some(q), Some(seq)) = (&o.single, seq_block.and_then(|b| s.sequence_mut(b))) {
-        if let Err(d) = sequence_run::monitor(seq, q, &step_shows) {
+        if let Err(d) = linc_driver::single::monitor(seq, q, &step_shows) {
             return crate::report::refused(r, *d);
         }
     }
     if let Some(path) = &o.retain.state {
-        match crate::state_file::warm_start(path, o.retain.cold, &mut s, r) {
+        match linc_driver::state::warm_start(path, o.retain.cold, &mut s, r) {
             // A warm start restored the values: --set applies on top of them.
-            Ok(crate::state_file::Start::Warm) => {
+            Ok(linc_driver::state::Start::Warm) => {
                 if let Err(status) = set_and_show(&mut s.store, &o.common.set, &[], r) {
                     return status;
                 }
             }
-            Ok(crate::state_file::Start::Cold) => {}
+            Ok(linc_driver::state::Start::Cold) => {}
             Err(status) => return status,
         }
     }
@@ -203,14 +161,14 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     }
     crate::run_cmd::say_compiled(o.common.tier, s.compiled_blocks());
     for path in &o.common.show {
-        let step = seq_block.and_then(|b| s.sequence_mut(b)).and_then(|q| sequence_run::step_flag(q, path));
+        let step = seq_block.and_then(|b| s.sequence_mut(b)).and_then(|q| linc_driver::single::step_flag(q, path));
         let field = shows.iter().find(|(p, _)| p == path).map(|(_, a)| show_value(&s.store, *a));
         crate::out::line(&format!("{path} = {}", step.or(field).unwrap_or_default()));
     }
     if let Some(Err(e)) = traced {
         return trace_unwritten(o.common.trace.as_deref(), &e, r);
     }
-    if let Some(Err(status)) = o.retain.state.as_ref().map(|p| crate::state_file::save(p, &s, r)) {
+    if let Some(Err(status)) = o.retain.state.as_ref().map(|p| linc_driver::state::save(p, &s, r)) {
         return status;
     }
     match write_outputs(o, &db_text, &s.store, r) {

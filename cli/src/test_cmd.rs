@@ -5,13 +5,8 @@
 //! scenarios on all cores and prints (`docs/testing.md`).
 
 use crate::report::usage;
-use linc_compiler::render::{Format, SourceFiles};
-use linc_compiler::scenario::{self, Action, How, Target};
+use linc_compiler::scenario::{self, Target};
 use linc_driver::Reporter;
-use linc_runtime::scenario::{Check, Report, Step};
-use linc_runtime::strategy::{Strategy, Want};
-use linc_runtime::vm::{Clock, Vm};
-use linc_runtime::Store;
 use std::path::{Path, PathBuf};
 
 pub struct Options {
@@ -19,19 +14,6 @@ pub struct Options {
     pub jobs: Option<usize>,
     pub junit: Option<PathBuf>,
     pub vcd: Option<PathBuf>,
-}
-
-/// Every simulation starts at this time (2026-01-05 00:00:00 UTC, a
-/// Monday), so scenarios are repeatable; `at` times count from it.
-pub const START: f64 = 1_767_571_200.0;
-
-/// What one scenario gave: its name, whether it passed, the text to print
-/// under `failures:`, its report (for JUnit and VCD).
-pub struct Outcome {
-    pub name: String,
-    pub passed: bool,
-    pub details: String,
-    pub report: Report,
 }
 
 /// Every `.ltest` file under the paths, sorted, each once.
@@ -79,12 +61,12 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     }
     let jobs = o.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())).max(1);
     let started = std::time::Instant::now();
-    let outcomes = run_all(&files, jobs, o.vcd.is_some());
+    let outcomes = linc_driver::scenarios::run_all(&files, jobs, o.vcd.is_some());
     crate::out::line(&format!("running {} scenario{}", outcomes.len(), if outcomes.len() == 1 { "" } else { "s" }));
     for out in &outcomes {
         crate::out::line(&format!("test {} ... {}", out.name, if out.passed { "ok" } else { "FAILED" }));
     }
-    let failed: Vec<&Outcome> = outcomes.iter().filter(|o| !o.passed).collect();
+    let failed: Vec<&linc_driver::scenarios::Outcome> = outcomes.iter().filter(|o| !o.passed).collect();
     if !failed.is_empty() {
         crate::out::line("\nfailures:\n");
         for f in &failed {
@@ -136,190 +118,4 @@ fn check_outputs(o: &Options, files: &[PathBuf]) -> Result<(), linc_driver::file
         targets.extend(crate::test_report::vcd_targets(vcd, files));
     }
     targets.iter().try_for_each(|t| linc_driver::files::check_output(t, &inputs))
-}
-
-/// Runs the scenarios on `jobs` threads; the outcomes come back in file
-/// order whatever order they finish in, so reports are identical.
-pub fn run_all(files: &[PathBuf], jobs: usize, vcd: bool) -> Vec<Outcome> {
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    let mut slots: Vec<Option<Outcome>> = (0..files.len()).map(|_| None).collect();
-    let results = std::sync::Mutex::new(&mut slots);
-    std::thread::scope(|scope| {
-        for _ in 0..jobs.min(files.len()) {
-            scope.spawn(|| loop {
-                let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                let Some(file) = files.get(i) else { break };
-                let out = run_one(file, vcd);
-                if let Ok(mut r) = results.lock() {
-                    r[i] = Some(out);
-                }
-            });
-        }
-    });
-    slots.into_iter().flatten().collect()
-}
-
-/// Runs one scenario file; everything it prints is in the outcome. The
-/// fields it names are sampled only for a VCD (`vcd`).
-pub fn run_one(file: &Path, vcd: bool) -> Outcome {
-    let name = file.display().to_string();
-    // What goes wrong before the run is part of the scenario's report, in
-    // the short format, so that reports come out in file order.
-    let mut r = Reporter::in_memory(Format::Short);
-    let fail =
-        |r: &mut Reporter| Outcome { name: name.clone(), passed: false, details: r.take(), report: Report::default() };
-    let bytes = match linc_driver::files::read_input(file) {
-        Ok(t) => t,
-        Err(e) => {
-            r.unreadable(file, &e);
-            return fail(&mut r);
-        }
-    };
-    let mut sources = SourceFiles::new();
-    let (text, invalid) = linc_compiler::files::decode(bytes);
-    let id = sources.add_decoded(name.clone(), text.clone(), invalid.clone());
-    if let Some(e) = linc_compiler::session::SessionError::not_utf8(&invalid) {
-        r.emit(&sources, &e.to_diagnostic().in_file(id));
-        return fail(&mut r);
-    }
-    let (sc, diagnostics) = scenario::parse(text.strip_prefix('\u{feff}').unwrap_or(&text));
-    if !diagnostics.is_empty() {
-        // Spans count from after a byte order mark: put them back in the file.
-        let bom = if text.starts_with('\u{feff}') { 3 } else { 0 };
-        for d in diagnostics {
-            let span = linc_compiler::Span::new(d.span.start + bom, d.span.end + bom);
-            r.emit(&sources, &linc_compiler::Diagnostic { span, ..d }.in_file(id));
-        }
-        return fail(&mut r);
-    }
-    let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
-    let Ok(mut strategy) = build(&dir, sc.target.as_ref(), &mut r) else {
-        return fail(&mut r);
-    };
-    let steps = steps(&sc, &strategy, &sources, id, &mut r);
-    if r.errors() > 0 {
-        return fail(&mut r);
-    }
-    let watch = if vcd { watched(&sc) } else { Vec::new() };
-    strategy.store.now = START;
-    let mut console = linc_runtime::console::Console::new(strategy);
-    let report = linc_runtime::scenario::run(&mut console, steps, &watch);
-    let details = details(&name, &report);
-    Outcome { name, passed: report.failures.is_empty(), details, report }
-}
-
-/// The failures as `FILE:LINE: at TIME: message` with the values read.
-fn details(name: &str, r: &Report) -> String {
-    let mut out = String::new();
-    for f in &r.failures {
-        let line = if f.line == 0 { String::new() } else { format!(":{}", f.line) };
-        out.push_str(&format!("{name}{line}: at {}: {}\n", linc_runtime::scenario::time(f.at_us), f.message));
-        for (field, value) in &f.values {
-            out.push_str(&format!("    {field} = {value}\n"));
-        }
-    }
-    out
-}
-
-/// The fields a scenario names in its commands and expectations, for VCD.
-fn watched(sc: &scenario::Scenario) -> Vec<String> {
-    let mut out = Vec::new();
-    for l in &sc.lines {
-        let text = match &l.action {
-            Action::At { command, .. } => command.as_str(),
-            Action::Expect { expr, .. } => expr.as_str(),
-            Action::Run { .. } => continue,
-        };
-        for token in text.split(|c: char| !(c.is_alphanumeric() || c == '_' || c == '.' || c == ' ' || c == '-')) {
-            for part in token.split_whitespace() {
-                if part.contains('.') && !out.iter().any(|o: &String| o.eq_ignore_ascii_case(part)) {
-                    out.push(part.to_string());
-                }
-            }
-        }
-    }
-    out
-}
-
-/// The runtime steps: expectations checked and compiled against the
-/// strategy's database and its sequences' steps.
-fn steps(
-    sc: &scenario::Scenario,
-    s: &Strategy,
-    sources: &SourceFiles,
-    id: linc_compiler::FileId,
-    r: &mut Reporter,
-) -> Vec<Step> {
-    let names = s.step_names();
-    let mut out = Vec::new();
-    for l in &sc.lines {
-        match &l.action {
-            Action::At { at_us, command } => {
-                out.push(Step::At { line: l.line, at_us: *at_us, command: command.clone() })
-            }
-            Action::Run { for_us } => out.push(Step::Run { line: l.line, for_us: *for_us }),
-            Action::Expect { how, expr, span } => {
-                let compiled = scenario::compile_expectation(expr, &s.store.db, &names)
-                    .and_then(|obj| linc_runtime::verify::verify(obj).map_err(|e| vec![load_error(e)]));
-                match compiled {
-                    Ok(object) => {
-                        let check = match *how {
-                            How::Within(d) => Check::Within(d),
-                            How::After(d) => Check::After(d),
-                            How::Always => Check::Always,
-                            How::Never => Check::Never,
-                        };
-                        out.push(Step::Expect { line: l.line, check, text: expr.clone(), object });
-                    }
-                    Err(diagnostics) => {
-                        for d in diagnostics {
-                            let shifted = linc_compiler::Span::new(d.span.start + span.start, d.span.end + span.start);
-                            r.emit(sources, &linc_compiler::Diagnostic { span: shifted, ..d }.in_file(id));
-                        }
-                    }
-                }
-            }
-        }
-    }
-    out
-}
-
-fn load_error(e: linc_runtime::LoadError) -> linc_compiler::Diagnostic {
-    linc_compiler::Diagnostic::error(e.code(), e.to_string(), linc_compiler::Span::new(0, 0))
-}
-
-/// Builds the strategy (or the single program) a scenario names; what goes
-/// wrong is reported to `r`, the scenario's own reporter.
-fn build(dir: &Path, target: Option<&Target>, r: &mut Reporter) -> Result<Strategy, ()> {
-    let (db_path, single) = match target {
-        Some(Target::Strategy(db)) => (dir.join(db), None),
-        Some(Target::Program { file, db }) => (dir.join(db), Some(dir.join(file))),
-        None => {
-            r.command("E0500", "the scenario names nothing to run: write `strategy PLANT.json`");
-            return Err(());
-        }
-    };
-    let mut files = SourceFiles::new();
-    let db = crate::check_cmd::load_db(Some(&db_path), &mut files, r).map_err(|_| ())?.unwrap_or_default();
-    let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
-    let store = Store::new(db.clone());
-    let wants: Vec<Want> = match &single {
-        None => linc_runtime::strategy::wanted(&store),
-        Some(file) => {
-            let kind = crate::sequence_run::Kind::of(file);
-            let block = crate::sequence_run::find_block(&db, None, kind).map_err(|d| r.emit_own(*d))?;
-            vec![crate::sequence_run::want_for(file, kind, block)]
-        }
-    };
-    let located = |e: &linc_runtime::strategy::StrategyError| {
-        crate::strategy_cmd::strategy_diagnostic(linc_compiler::FileId(0), &db_text, e)
-    };
-    if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
-        r.emit(&files, &located(&e));
-        return Err(());
-    }
-    let db_dir = db_path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let (objects, pairs) = crate::strategy_cmd::compile_wants(&db_dir, &db, &wants, r).map_err(|_| ())?;
-    let vm = Vm::new(linc_runtime::vm::DEFAULT_WATCHDOG, Clock::new(1, 0));
-    Strategy::build(store, objects, &pairs, vm, START).map_err(|e| r.emit(&files, &located(&e)))
 }

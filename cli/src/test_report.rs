@@ -1,7 +1,7 @@
 //! `linc test`'s files: a JUnit XML report and VCD traces (GTKWave) of the
 //! fields each scenario names. Both are deterministic: no wall-clock times.
 
-use crate::test_cmd::Outcome;
+use linc_driver::scenarios::Outcome;
 use std::path::{Path, PathBuf};
 
 /// Text with `&`, `<`, `>`, `"` and `'` escaped, and control characters

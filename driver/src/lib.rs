@@ -4,7 +4,14 @@
 //! of rules ([`files`]), and one reporter through which every problem of
 //! every stage reaches the user ([`report`]).
 
+pub mod build;
+pub mod database;
 pub mod files;
 pub mod report;
+pub mod scenarios;
+pub mod single;
+pub mod source;
+pub mod state;
+pub mod strategy;
 
 pub use report::Reporter;

@@ -156,6 +156,19 @@ impl Reporter {
     }
 }
 
+/// Reports a refused option or argument (E0903) and gives exit status 2.
+pub fn usage(r: &mut Reporter, msg: impl std::fmt::Display) -> u8 {
+    r.command("E0903", msg.to_string());
+    2
+}
+
+/// Reports a diagnostic about the command or one of its files (E0902,
+/// E0904 …) and gives exit status 2.
+pub fn refused(r: &mut Reporter, d: Diagnostic) -> u8 {
+    r.emit_own(d);
+    2
+}
+
 /// Byte offset of a 1-based line and column in `text` (clamped).
 fn offset(text: &str, line: u32, col: u32) -> usize {
     let start: usize = text.split_inclusive('\n').take((line as usize).saturating_sub(1)).map(str::len).sum();

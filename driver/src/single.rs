@@ -34,10 +34,10 @@ impl Kind {
     /// unit is one) or a sequence. An unreadable object is taken for a
     /// sequence here; loading it later reports why it can't be read.
     pub fn of(file: &std::path::Path) -> Kind {
-        if crate::fst_src::is_fst(file) {
+        if crate::source::is_fst(file) {
             return Kind::Fst;
         }
-        let fst_object = linc_driver::files::read_input(file)
+        let fst_object = crate::files::read_input(file)
             .ok()
             .and_then(|bytes| linc_runtime::ObjectFile::from_bytes(&bytes).ok())
             .is_some_and(|o| o.units.first().is_some_and(|u| u.kind == linc_runtime::object::UnitKind::Fst));

@@ -1,11 +1,15 @@
-//! Turning source files into an object: shared by `compile` and `run`.
-//!
-//! The compiler's session does the work; this only reads the files and
-//! prints what the session reports.
+//! Turning source files into an object, for `compile`, `run`, the console
+//! and scenarios alike: ST and ladder action files through one compile
+//! session, a sequence or an FST table on its own, an object loaded and
+//! verified. The compiler does the work; this reads the files and reports.
 
+use crate::report::usage;
+use crate::source;
+use crate::Reporter;
 use linc_compiler::check::Context;
+use linc_compiler::fst;
 use linc_compiler::session::{CheckOptions, Session};
-use linc_driver::Reporter;
+use linc_compiler::sfc;
 use linc_runtime::{Database, ObjectFile};
 use std::path::PathBuf;
 
@@ -20,7 +24,7 @@ pub fn compile(
     r: &mut Reporter,
     errors_status: u8,
 ) -> Result<ObjectFile, Failed> {
-    if let Some(table) = paths.iter().find(|p| crate::fst_src::is_fst(p)) {
+    if let Some(table) = paths.iter().find(|p| source::is_fst(p)) {
         return compile_fst(paths, table, db, r, errors_status);
     }
     let builtin;
@@ -32,18 +36,17 @@ pub fn compile(
         }
     };
     let ctx = Context { db, resolve_blocks, steps: None };
-    if let Some(seq) = paths.iter().find(|p| crate::sequence_src::is_sequence(p)) {
+    if let Some(seq) = paths.iter().find(|p| source::is_sequence(p)) {
         // A sequence is one unit of its own (its steps and actions are its).
         if paths.len() > 1 {
-            crate::report::usage(r, format_args!("`{}` is a sequence: compile it on its own", seq.display()));
+            usage(r, format_args!("`{}` is a sequence: compile it on its own", seq.display()));
             return Err(Failed(2));
         }
-        let c = crate::sequence_src::check(seq, ctx, true, false, r).map_err(|()| Failed(2))?;
-        return c.object.ok_or(Failed(errors_status));
+        return compile_sequence(seq, ctx, r)?.ok_or(Failed(errors_status));
     }
     let mut session = Session::compiling(ctx);
     for path in paths {
-        let bytes = linc_driver::files::read_input(path).map_err(|e| {
+        let bytes = crate::files::read_input(path).map_err(|e| {
             r.unreadable(path, &e);
             Failed(2)
         })?;
@@ -70,14 +73,29 @@ fn compile_fst(
     errors_status: u8,
 ) -> Result<ObjectFile, Failed> {
     if paths.len() > 1 {
-        crate::report::usage(r, format_args!("`{}` is an FST table: compile it on its own", table.display()));
+        usage(r, format_args!("`{}` is an FST table: compile it on its own", table.display()));
         return Err(Failed(2));
     }
     let Some(db) = db else {
         let what = format!("compiling the FST table `{}` needs its point database: pass --db", table.display());
-        crate::report::usage(r, what);
+        usage(r, what);
         return Err(Failed(2));
     };
-    let c = crate::fst_src::check(table, Some(db), true, r).map_err(|()| Failed(2))?;
-    c.object.ok_or(Failed(errors_status))
+    let (text, files, id) = source::read(table, r).map_err(Failed)?;
+    let Some(text) = text else { return Err(Failed(errors_status)) };
+    let stem = table.file_stem().and_then(|s| s.to_str()).unwrap_or("fst");
+    let (diagnostics, object) = fst::compile(&text, stem, &table.display().to_string(), Some(db));
+    r.emit_all(&files, &diagnostics.into_iter().map(|d| d.in_file(id)).collect::<Vec<_>>());
+    object.ok_or(Failed(errors_status))
+}
+
+/// Reads and compiles one sequence (no map), reporting its diagnostics;
+/// `Ok(None)` when it has errors.
+fn compile_sequence(path: &std::path::Path, ctx: Context, r: &mut Reporter) -> Result<Option<ObjectFile>, Failed> {
+    let (text, files, id) = source::read(path, r).map_err(Failed)?;
+    let Some(text) = text else { return Ok(None) };
+    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("sequence");
+    let (diagnostics, object) = sfc::compile_sequence(&text, stem, &path.display().to_string(), ctx);
+    r.emit_all(&files, &diagnostics.into_iter().map(|d| d.in_file(id)).collect::<Vec<_>>());
+    Ok(object)
 }

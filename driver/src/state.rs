@@ -4,7 +4,7 @@
 //! asks to ignore it. The state is written atomically, so a run that dies
 //! while saving leaves the last good state in place.
 
-use linc_driver::Reporter;
+use crate::Reporter;
 use linc_runtime::strategy::Strategy;
 use std::io;
 use std::path::Path;
@@ -24,7 +24,7 @@ pub fn warm_start(path: &Path, cold: bool, s: &mut Strategy, r: &mut Reporter) -
     if cold {
         return Ok(Start::Cold);
     }
-    let bytes = match linc_driver::files::read_in_out(path) {
+    let bytes = match crate::files::read_in_out(path) {
         Ok(b) => b,
         Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(Start::Cold),
         Err(e) => {
@@ -44,5 +44,5 @@ pub fn warm_start(path: &Path, cold: bool, s: &mut Strategy, r: &mut Reporter) -
 
 /// Saves the strategy's state to `path`, atomically.
 pub fn save(path: &Path, s: &Strategy, r: &mut Reporter) -> Result<(), u8> {
-    linc_driver::files::write_atomic(path, &s.save_state()).map_err(|e| crate::report::refused(r, e.diagnostic()))
+    crate::files::write_atomic(path, &s.save_state()).map_err(|e| crate::report::refused(r, e.diagnostic()))
 }

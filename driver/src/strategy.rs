@@ -1,0 +1,93 @@
+//! Building what a command runs: each program a strategy's blocks name,
+//! compiled or loaded once, and the block an action runs on. Used alike by
+//! `linc run`, the console and scenario tests.
+
+use crate::build::{compile, Failed};
+use crate::Reporter;
+use linc_compiler::span::FileId;
+use linc_compiler::{Diagnostic, Span};
+use linc_runtime::strategy::{StrategyError, Want};
+use linc_runtime::{Database, Store, Verified};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// Compiles or loads each action file the strategy names, once each.
+/// The verified objects, and each wanted action with the index of its object.
+pub type Plan = (Vec<Verified>, Vec<(Want, usize)>);
+
+/// Compiles or loads each file `wants` name (relative to `dir`), once each.
+pub fn compile_wants(dir: &Path, db: &Database, wants: &[Want], r: &mut Reporter) -> Result<Plan, u8> {
+    let mut index: HashMap<String, usize> = HashMap::new();
+    let mut objects = Vec::new();
+    let mut pairs = Vec::with_capacity(wants.len());
+    for w in wants {
+        let i = match index.get(&w.file) {
+            Some(&i) => i,
+            None => {
+                let path = dir.join(&w.file);
+                objects.push(program_object(&path, db, r)?);
+                index.insert(w.file.clone(), objects.len() - 1);
+                objects.len() - 1
+            }
+        };
+        pairs.push((w.clone(), i));
+    }
+    Ok((objects, pairs))
+}
+
+/// Loads a program file: a `.sto` object as is (verified), anything else
+/// compiled against `db`. Errors are printed; `Err` carries the exit status.
+pub fn program_object(path: &Path, db: &Database, r: &mut Reporter) -> Result<Verified, u8> {
+    let name = path.display().to_string();
+    let mut fail = |code: &'static str, message: String| {
+        r.whole_file(&name, code, message);
+        2
+    };
+    if !crate::source::is_object(path) {
+        let obj = compile(&[path.to_path_buf()], Some(db), r, 2).map_err(|Failed(s)| s)?;
+        return linc_runtime::verify::verify(obj).map_err(|e| {
+            r.whole_file(&name, e.code(), e.to_string());
+            2
+        });
+    }
+    let bytes = crate::files::read_input(path).map_err(|e| fail("E0900", format!("can't read `{name}`: {e}")))?;
+    linc_runtime::load(&bytes).map_err(|e| fail(e.code(), e.to_string()))
+}
+
+/// A strategy error as a diagnostic at the block's key in the database text.
+pub fn strategy_diagnostic(db_id: FileId, db_text: &str, e: &StrategyError) -> Diagnostic {
+    let quoted = format!("\"{}\"", e.block);
+    let span = db_text.find(&quoted).map(|at| Span::new(at, at + quoted.len())).unwrap_or_default();
+    Diagnostic::error(e.code, e.message.clone(), span).label("this block").in_file(db_id)
+}
+
+/// Picks the block that runs an `ACTION name : TYPE` action. A block named
+/// with `--block` must be of that type: the action's lone field names would
+/// otherwise link to whatever same-named fields another type happens to have.
+pub fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result<Option<usize>, Box<Diagnostic>> {
+    let t = store.db.template(block_type);
+    if let Some(n) = named {
+        let b = store.db.block(n).ok_or_else(|| {
+            Box::new(Diagnostic::command("E0904", format!("--block: the database has no block `{n}`")))
+        })?;
+        let actual = store.db.blocks[b].template;
+        if !block_type.is_empty() && Some(actual) != t {
+            let name = &store.db.templates[actual].name;
+            return Err(Box::new(Diagnostic::command(
+                "E0904",
+                format!("--block {n} has type {name}, but the action runs on a block of type {block_type}"),
+            )));
+        }
+        return Ok(Some(b));
+    }
+    if block_type.is_empty() {
+        return Ok(None);
+    }
+    let of_type: Vec<usize> = (0..store.db.blocks.len()).filter(|&b| Some(store.db.blocks[b].template) == t).collect();
+    let why = match of_type.as_slice() {
+        [b] => return Ok(Some(*b)),
+        [] => format!("the action runs on a {block_type} block and the database has none"),
+        _ => format!("the database has several {block_type} blocks; choose one with --block"),
+    };
+    Err(Box::new(Diagnostic::command("E0904", why)))
+}
