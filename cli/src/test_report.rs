@@ -156,7 +156,10 @@ pub fn write_vcds(path: &Path, outcomes: &[Outcome], r: &mut linc_driver::Report
     let names: Vec<PathBuf> = outcomes.iter().map(|o| PathBuf::from(&o.name)).collect();
     for (o, target) in outcomes.iter().zip(vcd_targets(path, &names)) {
         let bytes = vcd(o).map_err(|e| fail(&e))?;
-        linc_driver::files::write_atomic(&target, &bytes).map_err(|e| fail(&e))?;
+        // A refused output keeps its own code (E0901, E0902).
+        if let Err(e) = linc_driver::files::write_atomic(&target, &bytes) {
+            return Err(linc_driver::report::refused(r, e.diagnostic()));
+        }
     }
     Ok(())
 }

@@ -140,6 +140,35 @@ fn serial_and_parallel_runs_give_identical_reports() {
     let parallel = run("4", "parallel.xml");
     assert_eq!(serial, parallel);
     assert!(serial.1.contains("running 12 scenarios"), "{}", serial.1);
+    // Scenarios that fail before they run (an action that does not
+    // compile, a database that does not load, a bad expectation) report
+    // inside their own outcome, in file order, for any number of threads.
+    std::fs::write(dir.join("broken.stx"), "ACTION Fill\n  TANK1.Valve := ;\nEND_ACTION\n").expect("write");
+    let broken = std::fs::read_to_string(dir.join("plant.json")).expect("db").replace("actions.stx", "broken.stx");
+    std::fs::write(dir.join("broken.json"), broken).expect("write");
+    for i in 0..6 {
+        std::fs::write(dir.join(format!("s{i:04}b.ltest")), "strategy broken.json\nrun 1s\n").expect("write");
+        std::fs::write(dir.join(format!("s{i:04}c.ltest")), "strategy nothing.json\nrun 1s\n").expect("write");
+        std::fs::write(dir.join(format!("s{i:04}d.ltest")), "strategy plant.json\nexpect always NOPE.X\n")
+            .expect("write");
+    }
+    let serial = run("1", "serial.xml");
+    let parallel = run("4", "parallel.xml");
+    assert_eq!(serial, parallel);
+    assert_eq!(serial.0, Some(1));
+    assert!(serial.1.contains("running 30 scenarios"), "{}", serial.1);
+    assert_eq!(serial.1.matches("error[E0010]").count(), 6, "{}", serial.1);
+    assert_eq!(serial.1.matches("error[E0900]").count(), 6, "{}", serial.1);
+    assert_eq!(serial.1.matches("error[E0131]").count(), 6, "{}", serial.1);
+}
+
+#[test]
+fn a_vcd_that_can_not_be_written_keeps_its_own_code() {
+    let dir = copy_example("strategy", "vcd-device");
+    let o = linc(&["test", dir.join("plant.ltest").to_str().unwrap(), "--vcd", "/dev/null"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(err.contains("error[E0901]") && !err.contains("E0900"), "{err}");
 }
 
 #[test]
