@@ -47,7 +47,7 @@ pub fn run(command: LadderCommand, r: &mut Reporter) -> u8 {
             let Some(db) = db else {
                 return crate::report::usage(r, "--values runs the ladder: give --db DB.json");
             };
-            match crate::ladder_values::after_run(&file, &db, &set, cycles, r) {
+            match linc_driver::ladder::after_run(&file, &db, &set, cycles, r) {
                 Ok(known) => show(&file, &|span| known.get(&(span.start, span.end)).copied(), r),
                 Err(status) => status,
             }

@@ -10,7 +10,6 @@ mod eval_cmd;
 mod explain_cmd;
 mod fst_src;
 mod ladder_cmd;
-mod ladder_values;
 mod out;
 mod report;
 mod run_cmd;

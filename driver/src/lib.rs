@@ -6,7 +6,9 @@
 
 pub mod build;
 pub mod database;
+pub mod eval;
 pub mod files;
+pub mod ladder;
 pub mod report;
 pub mod scenarios;
 pub mod single;

@@ -1,15 +1,15 @@
-//! `linc ladder show --values`: runs a ladder file's actions against a
+//! The values of a ladder drawing (`linc ladder show --values`): runs a ladder file's actions against a
 //! database, then evaluates each element (contact operands, coil targets)
 //! in the database as the run left it, for the drawing.
 
+use crate::database::load as load_db;
+use crate::database::set_and_show;
+use crate::strategy::own_block;
+use crate::Reporter;
 use linc_compiler::check::Context;
 use linc_compiler::lower::{self, Lines};
 use linc_compiler::render::SourceFiles;
 use linc_compiler::session::{CheckOptions, Input, Session};
-use linc_driver::database::load as load_db;
-use linc_driver::database::set_and_show;
-use linc_driver::strategy::own_block;
-use linc_driver::Reporter;
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{Database, Program, Store};
 use linc_stdlib::Value;
@@ -28,8 +28,7 @@ pub fn after_run(
     let db = load_db(Some(db_path), &mut files, r)?.unwrap_or_default();
     let mut store = Store::new(db.clone());
     set_and_show(&mut store, set, &[], r)?;
-    let obj = linc_driver::build::compile(&[file.to_path_buf()], Some(&db), r, 1)
-        .map_err(|linc_driver::build::Failed(s)| s)?;
+    let obj = crate::build::compile(&[file.to_path_buf()], Some(&db), r, 1).map_err(|crate::build::Failed(s)| s)?;
     let name = file.display().to_string();
     let verified = linc_runtime::verify::verify(obj).map_err(|e| {
         r.whole_file(&name, e.code(), e.to_string());
@@ -51,7 +50,7 @@ pub fn after_run(
             }
         }
     }
-    let text = std::fs::read_to_string(file).unwrap_or_default();
+    let text = crate::files::read_input_text(file).unwrap_or_default();
     let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");
     let mut known = HashMap::new();
     for span in linc_compiler::ladder::element_spans(&text, stem) {
