@@ -71,17 +71,6 @@ mod tests {
     }
 }
 
-/// Days since 1970-01-01 of a proleptic Gregorian date.
-pub fn days_from_civil(y: i64, m: i64, d: i64) -> i64 {
-    let y = if m <= 2 { y - 1 } else { y };
-    let era = y.div_euclid(400);
-    let yoe = y - era * 400;
-    let mp = (m + 9) % 12;
-    let doy = (153 * mp + 2) / 5 + d - 1;
-    let doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-    era * 146_097 + doe - 719_468
-}
-
 /// Parses `YYYY-MM-DDTHH:MM:SS` (a space may replace the `T`) into POSIX
 /// seconds. Only a real date and time is accepted: exactly four digits of
 /// year and two of everything else, a day that exists in that month (29
@@ -100,15 +89,10 @@ pub fn parse_timestamp(s: &str) -> Option<i64> {
     };
     let (y, mo, da) = (num(0, 4)?, num(5, 7)?, num(8, 10)?);
     let (h, mi, se) = (num(11, 13)?, num(14, 16)?, num(17, 19)?);
-    let leap = y % 4 == 0 && (y % 100 != 0 || y % 400 == 0);
-    let month_days = match mo {
-        1 | 3 | 5 | 7 | 8 | 10 | 12 => 31,
-        4 | 6 | 9 | 11 => 30,
-        2 if leap => 29,
-        2 => 28,
-        _ => return None,
-    };
-    let valid = (1..=month_days).contains(&da) && h < 24 && mi < 60 && se < 60;
+    // The one calendar of the library (leap years, month lengths, days).
+    use linc_stdlib::functions::datetime::{days_from_civil, valid_date};
+    let (mo, da) = (u32::try_from(mo).ok()?, u32::try_from(da).ok()?);
+    let valid = valid_date(y, mo, da) && h < 24 && mi < 60 && se < 60;
     valid.then(|| days_from_civil(y, mo, da) * 86_400 + h * 3600 + mi * 60 + se)
 }
 

@@ -2,10 +2,11 @@
 //! civil date with no time zone (the device keeps local time and knows no
 //! zone), so `0` is 1970-01-01 00:00:00 and every day has 86 400 seconds.
 //!
-//! The calendar arithmetic is Howard Hinnant's `civil_from_days`
-//! (proleptic Gregorian, exact for every day an `i64` of seconds can name),
-//! written here rather than taken from a crate: four lines do not earn a
-//! dependency.
+//! The calendar arithmetic is the library's one calendar
+//! (`linc_stdlib::functions::datetime`, Hinnant's `civil_from_days`,
+//! proleptic Gregorian), shared with the date functions and `--now`.
+
+use linc_stdlib::functions::datetime::civil_from_days;
 
 /// Seconds in a day of the device clock (no leap seconds).
 pub const DAY: i64 = 86_400;
@@ -34,23 +35,6 @@ impl Civil {
     pub fn month_day(&self) -> u32 {
         self.month * 100 + self.day
     }
-}
-
-/// The calendar date of day `z` counted from 1970-01-01 (Hinnant's
-/// `civil_from_days`: shift to eras of 400 years starting on March 1st, so
-/// the leap day is the last day of a year of the era).
-fn civil_from_days(z: i64) -> (i64, u32, u32) {
-    let z = z + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z.rem_euclid(146_097); // day of era, 0..=146096
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365; // 0..=399
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100); // 0..=365, from March 1st
-    let mp = (5 * doy + 2) / 153; // 0..=11, March = 0
-    let day = doy - (153 * mp + 2) / 5 + 1;
-    let month = if mp < 10 { mp + 3 } else { mp - 9 };
-    let year = yoe + era * 400 + i64::from(month <= 2);
-    // The ranges above make both casts lossless.
-    (year, month as u32, day as u32)
 }
 
 /// The calendar parts of a device time.
