@@ -82,7 +82,10 @@ fn program(rng: &mut Rng) -> (String, String) {
 }
 
 /// What a run left: every field of Recipe, and the fault's code and line.
-fn outcome(src: &str) -> Option<(Vec<String>, Option<(&'static str, u32)>)> {
+type Outcome = (Vec<String>, Option<(&'static str, u32)>);
+
+/// The outcome of compiling and running `src`; `None` if it does not compile.
+fn outcome(src: &str) -> Option<Outcome> {
     let db = guide_db();
     let ctx = Context { db, resolve_blocks: true, steps: None };
     let checked = linc_compiler::check_source(src, "fold", ctx);
