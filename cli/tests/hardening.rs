@@ -65,10 +65,7 @@ fn status(o: &Output) -> (Option<i32>, String) {
 
 /// A fresh, empty directory for one test.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("linc-hardening-{}-{name}", std::process::id()));
-    let _ = fs::remove_dir_all(&dir);
-    fs::create_dir_all(&dir).expect("scratch dir");
-    dir
+    linc_test_support::fresh_dir(&format!("hardening-{name}"))
 }
 
 fn s(p: &Path) -> &str {

@@ -16,9 +16,7 @@ const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
 
 /// A fresh copy of the example strategy (database, actions, scenario).
 fn plant(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("linc-outputs-{}-{tag}", std::process::id()));
-    let _ = fs::remove_dir_all(&dir);
-    fs::create_dir_all(&dir).expect("scratch dir");
+    let dir = linc_test_support::fresh_dir(&format!("outputs-{tag}"));
     for f in ["plant.json", "actions.stx", "modbus.stx", "plant.ltest"] {
         fs::copy(Path::new(ROOT).join("examples/strategy").join(f), dir.join(f)).expect("copy example");
     }

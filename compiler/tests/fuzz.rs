@@ -11,19 +11,7 @@ use linc_compiler::render::{render, Format, SourceFiles};
 use linc_compiler::session::{CheckOptions, Session};
 use linc_runtime::Database;
 
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
+use linc_test_support::Rng;
 
 const CORPUS: &[&str] = &[
     include_str!("../../examples/guide/control.stx"),
@@ -132,7 +120,7 @@ fn mutate(rng: &mut Rng, input: &str) -> Vec<u8> {
         match rng.below(6) {
             0 if len > 0 => {
                 let at = rng.below(len);
-                bytes[at] = rng.next() as u8;
+                bytes[at] = rng.next_u64() as u8;
             }
             1 if len > 0 => {
                 let at = rng.below(len);
@@ -219,7 +207,7 @@ fn exercise(db: &Database, bytes: &[u8]) {
 fn random_and_mutated_inputs_never_panic() {
     let cases: usize = std::env::var("LINC_FUZZ_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(3_000);
     let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    let mut rng = Rng::new(0x9E37_79B9_7F4A_7C15);
     for i in 0..cases {
         let src = if i % 4 == 0 {
             random_tokens(&mut rng).into_bytes()

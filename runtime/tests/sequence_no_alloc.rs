@@ -5,32 +5,7 @@ use linc_runtime::sequence::chart::{Action, Assoc, Body, Chart, Step, Transition
 use linc_runtime::sequence::engine::Host;
 use linc_runtime::sequence::{Command, Sequence};
 use linc_runtime::strategy::qualifier::Qualifier;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-struct Counting;
-
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-thread_local! {
-    /// Set on the thread whose allocations are counted: the test harness's
-    /// own threads allocate now and then, which says nothing about a scan.
-    static COUNTED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if COUNTED.with(std::cell::Cell::get) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        // SAFETY: forwarded unchanged to the system allocator.
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: forwarded unchanged to the system allocator.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
+use linc_test_support::alloc::{allocations_in, Counting};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -72,12 +47,11 @@ fn scans_do_not_allocate() {
     seq.command(Command::Run);
     let mut host = Toggle(0);
     seq.scan(0, &mut host).expect("scan");
-    COUNTED.with(|c| c.set(true));
-    let before = ALLOCATIONS.load(Ordering::Relaxed);
-    for i in 1..=300u64 {
-        host.0 = i;
-        seq.scan(i * 100_000, &mut host).expect("scan");
-    }
-    COUNTED.with(|c| c.set(false));
-    assert_eq!(ALLOCATIONS.load(Ordering::Relaxed) - before, 0, "allocations in 300 scans");
+    let ((), allocations) = allocations_in(|| {
+        for i in 1..=300u64 {
+            host.0 = i;
+            seq.scan(i * 100_000, &mut host).expect("scan");
+        }
+    });
+    assert_eq!(allocations, 0, "allocations in 300 scans");
 }

@@ -5,33 +5,7 @@ use linc_conformance::guide_db;
 use linc_runtime::store::Store;
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::Program;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-struct Counting;
-
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-thread_local! {
-    /// Set on the thread whose allocations are counted: the test harness's
-    /// own threads allocate now and then (seen under load: 4 allocations in
-    /// 1 run of 50), which says nothing about the VM.
-    static COUNTED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if COUNTED.with(std::cell::Cell::get) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        // SAFETY: forwarded unchanged to the system allocator.
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: forwarded unchanged to the system allocator.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
+use linc_test_support::alloc::{allocations_in, Counting};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -46,11 +20,10 @@ fn numeric_actions_do_not_allocate() {
     let mut act = Activation::new(&linked, 0, 0);
     let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0));
     vm.run(&linked, &mut act, &mut store, None).expect("runs");
-    COUNTED.with(|c| c.set(true));
-    let before = ALLOCATIONS.load(Ordering::Relaxed);
-    for _ in 0..100 {
-        vm.run(&linked, &mut act, &mut store, None).expect("runs");
-    }
-    COUNTED.with(|c| c.set(false));
-    assert_eq!(ALLOCATIONS.load(Ordering::Relaxed) - before, 0, "allocations in 100 runs");
+    let ((), allocations) = allocations_in(|| {
+        for _ in 0..100 {
+            vm.run(&linked, &mut act, &mut store, None).expect("runs");
+        }
+    });
+    assert_eq!(allocations, 0, "allocations in 100 runs");
 }

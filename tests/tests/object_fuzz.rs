@@ -18,10 +18,9 @@ use linc_runtime::store::Store;
 use linc_runtime::vm::{Activation, Clock, Outcome, Vm};
 use linc_runtime::wire::Bytes;
 use linc_runtime::Program;
-use std::alloc::{GlobalAlloc, Layout, System};
+use linc_test_support::alloc::Counting;
 use std::cell::RefCell;
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 #[path = "object_fuzz/corpus.rs"]
@@ -30,35 +29,6 @@ use corpus::{corpus, fuzz_db, Seed};
 
 /// Counts live heap bytes and their peak, so the memory assertion measures
 /// what the loader and VM hold, independent of how the allocator keeps pages.
-struct Counting;
-
-static LIVE: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let live = LIVE.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
-        PEAK.fetch_max(live, Ordering::Relaxed);
-        // SAFETY: forwarded unchanged to the system allocator.
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
-        // SAFETY: forwarded unchanged to the system allocator.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if new_size >= layout.size() {
-            let live = LIVE.fetch_add(new_size - layout.size(), Ordering::Relaxed) + new_size - layout.size();
-            PEAK.fetch_max(live, Ordering::Relaxed);
-        } else {
-            LIVE.fetch_sub(layout.size() - new_size, Ordering::Relaxed);
-        }
-        // SAFETY: forwarded unchanged to the system allocator.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
@@ -702,7 +672,7 @@ fn mutated_objects_never_panic_and_stay_within_memory() {
         t.cases += 1;
     }
     let elapsed = start.elapsed();
-    let peak = PEAK.load(Ordering::Relaxed);
+    let peak = linc_test_support::alloc::peak();
     let resident = resident_peak_kib();
     eprintln!(
         "object_fuzz: {} cases in {:.1} s; rejected {} ({} before the verifier) {:?}; accepted {}, link failed {}; {} runs: {} done, {} suspended, faults {:?}; slowest case {:?}; peak live heap {:.1} MiB, resident peak {:?} KiB",

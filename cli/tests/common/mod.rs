@@ -25,11 +25,8 @@ pub fn stderr(o: &Output) -> String {
 }
 
 /// A fresh directory `tag` for this test run.
-pub fn temp_dir(tag: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("linc-cli-{}-{tag}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+#[allow(unused_imports)]
+pub use linc_test_support::temp_dir;
 
 /// Runs `linc` with `args` in the repository root, `input` on its standard input.
 pub fn linc_with_input(args: &[&str], input: &str) -> Output {
