@@ -163,6 +163,37 @@ fn serial_and_parallel_runs_give_identical_reports() {
 }
 
 #[test]
+fn the_vcd_trace_holds_aliases_and_step_variables() {
+    let dir = copy_example("sequences", "vcd-steps");
+    let db = std::fs::read_to_string(dir.join("plant.json")).expect("db");
+    let db = db.replacen('{', "{\n  \"aliases\": { \"Temp\": \"R1.Temp\" },", 1);
+    std::fs::write(dir.join("plant.json"), db).expect("db");
+    let text = "strategy plant.json\nexpect always Temp < 120.0\nexpect within 5m Heat.X\nexpect always Heat.T >= 0.0\nrun 5m\n";
+    std::fs::write(dir.join("steps.ltest"), text).expect("scenario");
+    let vcd_path = dir.join("steps.vcd");
+    let o = linc(&["test", dir.join("steps.ltest").to_str().unwrap(), "--vcd", vcd_path.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    let bytes = std::fs::read(&vcd_path).expect("written");
+    let mut parser = vcd::Parser::new(&bytes[..]);
+    let header = parser.parse_header().expect("a VCD header");
+    let temp = header.find_var(&["linc", "Temp"]).expect("the alias is traced").code;
+    let heat = header.find_var(&["linc", "Heat.X"]).expect("the step flag is traced").code;
+    let heat_t = header.find_var(&["linc", "Heat.T"]).expect("the step time is traced").code;
+    let (mut temps, mut heat_on, mut heat_times) = (0, false, Vec::new());
+    for command in parser {
+        match command.expect("a VCD command") {
+            vcd::Command::ChangeReal(id, _) if id == temp => temps += 1,
+            vcd::Command::ChangeScalar(id, v) if id == heat => heat_on |= v == vcd::Value::V1,
+            vcd::Command::ChangeReal(id, v) if id == heat_t => heat_times.push(v),
+            _ => {}
+        }
+    }
+    assert!(temps > 1, "the alias's field changes: {temps}");
+    assert!(heat_on, "Heat became active");
+    assert!(heat_times.iter().any(|t| *t > 1.0), "Heat.T counts up: {heat_times:?}");
+}
+
+#[test]
 fn a_vcd_that_can_not_be_written_keeps_its_own_code() {
     let dir = copy_example("strategy", "vcd-device");
     let o = linc(&["test", dir.join("plant.ltest").to_str().unwrap(), "--vcd", "/dev/null"]);

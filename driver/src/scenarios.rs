@@ -109,7 +109,8 @@ fn details(name: &str, r: &Report) -> String {
     out
 }
 
-/// The fields a scenario names in its commands and expectations, for VCD.
+/// The fields, aliases and step variables a scenario names in its commands
+/// and expectations, for VCD.
 fn watched(sc: &scenario::Scenario) -> Vec<String> {
     let mut out = Vec::new();
     for l in &sc.lines {
@@ -120,7 +121,10 @@ fn watched(sc: &scenario::Scenario) -> Vec<String> {
         };
         for token in text.split(|c: char| !(c.is_alphanumeric() || c == '_' || c == '.' || c == ' ' || c == '-')) {
             for part in token.split_whitespace() {
-                if part.contains('.') && !out.iter().any(|o: &String| o.eq_ignore_ascii_case(part)) {
+                // BLOCK.FIELD and Step.X, or an alias (a bare name): the
+                // runner keeps those the strategy has and skips the rest.
+                let name = part.contains('.') || part.starts_with(|c: char| c.is_alphabetic() || c == '_');
+                if name && !out.iter().any(|o: &String| o.eq_ignore_ascii_case(part)) {
                     out.push(part.to_string());
                 }
             }

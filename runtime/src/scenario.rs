@@ -56,9 +56,25 @@ pub struct Failure {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Samples {
     pub names: Vec<String>,
-    pub cells: Vec<u32>,
+    pub watched: Vec<Watched>,
     /// (time µs, variable, value as the store shows it).
     pub changes: Vec<(u64, usize, String)>,
+}
+
+/// What a sampled variable is: a field's cell (named directly or through an
+/// alias), or a step variable's slot among the strategy's step slots
+/// (`2 × step` for `.X`, `2 × step + 1` for `.T`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Watched {
+    Cell(u32),
+    Step(usize),
+}
+
+/// A sampled value, compared before it is formatted.
+#[derive(Clone, Debug, PartialEq)]
+enum Seen {
+    Cell(crate::store::Cell),
+    Raw(u32),
 }
 
 /// What running a scenario gave.
@@ -87,8 +103,8 @@ struct Runner {
     slots: Vec<u32>,
     pending: Vec<Pending>,
     report: Report,
-    /// The watched cells as last sampled.
-    last: Vec<Option<crate::store::Cell>>,
+    /// The watched variables as last sampled.
+    last: Vec<Option<Seen>>,
 }
 
 /// Runs `steps` against the driver's strategy. `watch` names the fields to
@@ -153,14 +169,31 @@ pub fn time(us: u64) -> String {
     }
 }
 
+/// The variables of `watch` the strategy has: fields (`BLOCK.FIELD`, or an
+/// alias, named as written) and step variables (`Step.X`, `Step.T` of its
+/// sequences); other names are skipped, each variable is sampled once.
 fn samples(s: &Strategy, watch: &[String]) -> Samples {
     let mut out = Samples::default();
+    let steps = s.step_names();
     for name in watch {
-        let Some((block, field)) = name.rsplit_once('.') else { continue };
-        let Some(cell) = s.store.db.block(block).and_then(|b| s.store.cell_of(b, field)) else { continue };
-        if !out.cells.contains(&cell) {
-            out.names.push(s.store.describe(cell));
-            out.cells.push(cell);
+        let step = name.split_once('.').and_then(|(step, flag)| {
+            let i = steps.iter().position(|n| n.eq_ignore_ascii_case(step))?;
+            match flag.to_ascii_uppercase().as_str() {
+                "X" => Some(Watched::Step(2 * i)),
+                "T" => Some(Watched::Step(2 * i + 1)),
+                _ => None,
+            }
+        });
+        let field = crate::console::fields::address(&s.store, name).ok().filter(|a| a.bit.is_none());
+        let (w, shown) = match (field, step) {
+            (Some(a), _) if name.contains('.') => (Watched::Cell(a.cell), s.store.describe(a.cell)),
+            (Some(a), _) => (Watched::Cell(a.cell), name.clone()),
+            (None, Some(w)) => (w, name.clone()),
+            (None, None) => continue,
+        };
+        if !out.watched.contains(&w) {
+            out.names.push(shown);
+            out.watched.push(w);
         }
     }
     out
@@ -201,17 +234,35 @@ impl Runner {
         }
     }
 
-    /// Records the watched fields that changed since the last sample
-    /// (compared as cells, so an unchanged field costs no formatting).
+    /// Records the watched variables that changed since the last sample
+    /// (compared as cells or raw slots, so an unchanged one costs no
+    /// formatting).
     fn sample(&mut self, s: &Strategy) {
         let now = s.elapsed_us();
         let smp = &mut self.report.samples;
-        self.last.resize(smp.cells.len(), None);
-        for (i, &cell) in smp.cells.iter().enumerate() {
-            let current = s.store.cells.get(cell as usize);
-            if self.last[i].as_ref() != current {
-                self.last[i] = current.cloned();
-                smp.changes.push((now, i, s.store.show(cell)));
+        if smp.watched.is_empty() {
+            return;
+        }
+        if smp.watched.iter().any(|w| matches!(w, Watched::Step(_))) {
+            s.step_slots(&mut self.slots);
+        }
+        self.last.resize(smp.watched.len(), None);
+        for (i, w) in smp.watched.iter().enumerate() {
+            let current = match *w {
+                Watched::Cell(cell) => s.store.cells.get(cell as usize).cloned().map(Seen::Cell),
+                Watched::Step(slot) => self.slots.get(slot).copied().map(Seen::Raw),
+            };
+            if self.last[i] != current {
+                let shown = match (*w, &current) {
+                    (Watched::Cell(cell), _) => s.store.show(cell),
+                    (Watched::Step(slot), Some(Seen::Raw(raw))) if slot % 2 == 0 => {
+                        if *raw != 0 { "TRUE" } else { "FALSE" }.to_string()
+                    }
+                    (Watched::Step(_), Some(Seen::Raw(raw))) => format!("{:?}", f32::from_bits(*raw)),
+                    _ => String::new(),
+                };
+                self.last[i] = current;
+                smp.changes.push((now, i, shown));
             }
         }
     }
