@@ -14,7 +14,7 @@
 //! object is verified exactly once on its way to the VM (ADR 0005).
 
 use crate::errors::LoadError;
-use crate::isa::{Kind, Op, MAX_CALL_ARGS};
+use crate::isa::{Flag, Kind, Op, MAX_CALL_ARGS};
 use crate::object::{Class, CodeBlock, ObjectFile, Sub, Symbol, Unit, UnitKind};
 use linc_stdlib::SIGNATURES;
 use std::cell::Cell;
@@ -220,38 +220,17 @@ struct State {
 /// their step budget and reads their pauses; `PowRKeep` leaves a NaN that
 /// only FST math's `StoreRKeep` drops).
 fn fst_only(op: &Op) -> bool {
-    matches!(
-        op,
-        Op::Step { .. }
-            | Op::Pause { .. }
-            | Op::DayTime { .. }
-            | Op::Log { .. }
-            | Op::HistWrite { .. }
-            | Op::HistRead { .. }
-            | Op::PowRKeep {}
-    )
+    op.has(Flag::Fst)
 }
 
 /// Instructions where a run may end, so both stacks must be empty there: a
 /// resumed run starts with empty stacks.
 fn suspends(op: &Op) -> bool {
-    matches!(op, Op::Ret {} | Op::Yield {} | Op::Return { .. } | Op::Step { .. } | Op::Pause { .. })
+    op.has(Flag::Suspends)
 }
 
 fn uses_ref(op: &Op) -> bool {
-    matches!(
-        op,
-        Op::LoadRefI { .. }
-            | Op::LoadRefR { .. }
-            | Op::LoadRefS { .. }
-            | Op::LoadRefBit { .. }
-            | Op::StoreRefI { .. }
-            | Op::StoreRefR { .. }
-            | Op::StoreRefS { .. }
-            | Op::StoreRefBit { .. }
-            | Op::RefBit { .. }
-            | Op::RefBitOff { .. }
-    )
+    op.has(Flag::UsesRef)
 }
 
 /// The state after one instruction, or why it is not allowed there. An

@@ -33,15 +33,7 @@ const MAX_DEPTH: usize = 256;
 fn result_ty(op: &Op) -> Ty {
     match op {
         Op::Call { ret, .. } if Kind::from_bits(u32::from(*ret)) == Kind::Real => Ty::F,
-        Op::PushR { .. }
-        | Op::LoadR { .. }
-        | Op::LoadRefR { .. }
-        | Op::IToR {}
-        | Op::AddR {}
-        | Op::SubR {}
-        | Op::MulR {}
-        | Op::DivR {}
-        | Op::NegR {} => Ty::F,
+        _ if op.has(crate::isa::Flag::Real) => Ty::F,
         _ => Ty::I,
     }
 }

@@ -185,74 +185,13 @@ fn compile_as(linked: &Linked, store: &Store, (program, block): (usize, usize), 
     Some(Compiled { entry, module: Some(module), plan, max_depth, locals, retained })
 }
 
-/// Whether the compiled tier translates this instruction.
+/// Whether the compiled tier translates this instruction (the table's
+/// `Compiled` flag; a `Return` only of a numeric value).
 fn in_subset(op: &Op) -> bool {
-    use Op::*;
-    matches!(
-        op,
-        PushI { .. }
-            | PushR { .. }
-            | LoadLoc { .. }
-            | StoreLoc { .. }
-            | LoadRet { .. }
-            | StoreRet { .. }
-            | LoadI { .. }
-            | LoadR { .. }
-            | StoreI { .. }
-            | StoreR { .. }
-            | Ref { .. }
-            | RefOff { .. }
-            | LoadRefI { .. }
-            | LoadRefR { .. }
-            | StoreRefI { .. }
-            | StoreRefR { .. }
-            | IToR {}
-            | RToI {}
-            | Truth {}
-            | AddI {}
-            | SubI {}
-            | MulI {}
-            | DivI {}
-            | ModI {}
-            | NegI {}
-            | AddR {}
-            | SubR {}
-            | MulR {}
-            | DivR {}
-            | NegR {}
-            | EqI {}
-            | NeI {}
-            | LtI {}
-            | GtI {}
-            | LeI {}
-            | GeI {}
-            | EqR {}
-            | NeR {}
-            | LtR {}
-            | GtR {}
-            | LeR {}
-            | GeR {}
-            | And {}
-            | Or {}
-            | Xor {}
-            | Not {}
-            | Jump { .. }
-            | JumpIfFalse { .. }
-            | JumpIfTrue { .. }
-            | Ret {}
-            | PushS { .. }
-            | LoadS { .. }
-            | StoreS { .. }
-            | AppendS { .. }
-            | Decode {}
-            | EqS {}
-            | NeS {}
-            | LtS {}
-            | GtS {}
-            | LeS {}
-            | GeS {}
-            | Call { .. }
-    ) || matches!(op, Return { kind } if Kind::from_bits(u32::from(*kind)) != Kind::Bytes)
+    match op {
+        Op::Return { kind } => Kind::from_bits(u32::from(*kind)) != Kind::Bytes,
+        _ => op.has(crate::isa::Flag::Compiled),
+    }
 }
 
 /// How a compiled run ended.
