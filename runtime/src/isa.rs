@@ -363,6 +363,50 @@ impl Op {
     }
 }
 
+/// The operand of `HistRead`: a read command of the FST manual's Tables
+/// B-16/B-17, numbered for the instruction set.
+#[repr(u8)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum HistFn {
+    Rdb = 0,
+    Dhv,
+    Dht,
+    Phv,
+    Pht,
+    Mhv,
+    Dis,
+    Din,
+    Pis,
+    Pin,
+    Gte,
+}
+
+impl HistFn {
+    pub const ALL: [HistFn; 11] = [
+        HistFn::Rdb,
+        HistFn::Dhv,
+        HistFn::Dht,
+        HistFn::Phv,
+        HistFn::Pht,
+        HistFn::Mhv,
+        HistFn::Dis,
+        HistFn::Din,
+        HistFn::Pis,
+        HistFn::Pin,
+        HistFn::Gte,
+    ];
+
+    /// The function with this operand byte; `None` past the last.
+    pub fn from_u8(b: u8) -> Option<HistFn> {
+        Self::ALL.get(usize::from(b)).copied()
+    }
+
+    /// The FST command's name.
+    pub fn name(self) -> &'static str {
+        ["RDB", "DHV", "DHT", "PHV", "PHT", "MHV", "DIS", "DIN", "PIS", "PIN", "GTE"][self as usize]
+    }
+}
+
 #[cfg(test)]
 mod tests {
     /// Every instruction, with zero operands.

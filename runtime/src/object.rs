@@ -343,3 +343,22 @@ fn crc32_zeroed(data: &[u8]) -> u32 {
     let state = crc32_update(state, &[0; 4]);
     !crc32_update(state, &data[16..])
 }
+/// The storage class of a template field: the database schema's type as
+/// the object format and the verifier see it.
+pub fn class_of(ty: &crate::db::FieldType) -> Class {
+    use crate::db::FieldType;
+    match ty {
+        FieldType::Real => Class::Real,
+        FieldType::Int => Class::Int,
+        FieldType::Bool => Class::Bool,
+        FieldType::Bits { width: 8, .. } => Class::Bits8,
+        FieldType::Bits { .. } => Class::Bits16,
+        FieldType::Enum(_) => Class::Enum,
+        FieldType::String => Class::String,
+        FieldType::Date => Class::Date,
+        FieldType::Time => Class::Time,
+        FieldType::Bseq => Class::Bseq,
+        FieldType::Wstr => Class::Wstr,
+        FieldType::Alarms(_) => Class::Alarms,
+    }
+}

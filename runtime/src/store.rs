@@ -5,7 +5,6 @@
 //! same-typed fields is a contiguous range of cells.
 
 use crate::db::{Database, FieldDef, FieldType, InitValue};
-use crate::object::Class;
 use crate::text::{encode_dollar, format_value};
 use linc_stdlib::value::decode_dollar;
 use linc_stdlib::Value;
@@ -43,23 +42,7 @@ pub enum Cell {
     Alarms(Box<Alarms>),
 }
 
-/// The storage class of a template field.
-pub fn class_of(ty: &FieldType) -> Class {
-    match ty {
-        FieldType::Real => Class::Real,
-        FieldType::Int => Class::Int,
-        FieldType::Bool => Class::Bool,
-        FieldType::Bits { width: 8, .. } => Class::Bits8,
-        FieldType::Bits { .. } => Class::Bits16,
-        FieldType::Enum(_) => Class::Enum,
-        FieldType::String => Class::String,
-        FieldType::Date => Class::Date,
-        FieldType::Time => Class::Time,
-        FieldType::Bseq => Class::Bseq,
-        FieldType::Wstr => Class::Wstr,
-        FieldType::Alarms(_) => Class::Alarms,
-    }
-}
+pub use crate::object::class_of;
 
 /// The database with values, and the clock suppression timers run on.
 #[derive(Clone, Debug)]

@@ -726,8 +726,3 @@ impl Vm {
         self.push_i(i32::from(f(a, b)));
     }
 }
-
-/// `A ** B` (§12.6 note 1), shared with the library and constant folding.
-pub fn power(a: f32, b: f32) -> Option<f32> {
-    linc_stdlib::power(a, b).ok()
-}

@@ -10,8 +10,8 @@ use super::Checker;
 use crate::ast::{Expr, Var};
 use crate::hir::{self, Place, Target};
 use crate::span::Span;
+use linc_runtime::object::class_of;
 use linc_runtime::object::Class;
-use linc_runtime::store::class_of;
 use linc_runtime::{FieldType, Template};
 use linc_stdlib::Ty;
 

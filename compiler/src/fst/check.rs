@@ -8,8 +8,8 @@ use super::tlp::{self, distance, ResolveError, Syntax, SyntaxError};
 use super::{Arg, Cell, Checked, Cmd, Param, Row, Step, Table};
 use crate::diagnostic::{Diagnostic, MAX_ERRORS};
 use crate::span::Span;
+use linc_runtime::object::class_of;
 use linc_runtime::object::Class;
-use linc_runtime::store::class_of;
 use linc_runtime::Database;
 use std::collections::HashMap;
 

@@ -11,9 +11,9 @@
 use super::{Arg, Checked, Cmd, Param};
 use crate::lower::LowerError;
 use crate::span::Span;
+use linc_runtime::isa::HistFn;
 use linc_runtime::isa::{Kind, Op};
 use linc_runtime::object::{Class, CodeBlock, LineEntry, ObjectFile, Sub, Symbol, Unit, UnitKind};
-use linc_runtime::roc::HistFn;
 use linc_runtime::wire::{Bytes, Code};
 use std::collections::HashMap;
 

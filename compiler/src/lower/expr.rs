@@ -85,7 +85,7 @@ fn fold(op: BinOp, x: Const, y: Const, real: bool) -> Option<Const> {
             BinOp::Sub => Some(Const::R(a - c)),
             BinOp::Mul => Some(Const::R(a * c)),
             BinOp::Div if c != 0.0 => Some(Const::R(a / c)),
-            BinOp::Pow => linc_runtime::vm::power(a, c).map(Const::R),
+            BinOp::Pow => linc_stdlib::power(a, c).ok().map(Const::R),
             _ => compare(op, a, c),
         };
     }

@@ -68,48 +68,7 @@ impl ArchiveType {
     }
 }
 
-/// A read command of Table B-16/B-17, numbered for the instruction set.
-#[repr(u8)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum HistFn {
-    Rdb = 0,
-    Dhv,
-    Dht,
-    Phv,
-    Pht,
-    Mhv,
-    Dis,
-    Din,
-    Pis,
-    Pin,
-    Gte,
-}
-
-impl HistFn {
-    pub const ALL: [HistFn; 11] = [
-        HistFn::Rdb,
-        HistFn::Dhv,
-        HistFn::Dht,
-        HistFn::Phv,
-        HistFn::Pht,
-        HistFn::Mhv,
-        HistFn::Dis,
-        HistFn::Din,
-        HistFn::Pis,
-        HistFn::Pin,
-        HistFn::Gte,
-    ];
-
-    /// The function with this operand byte; `None` past the last.
-    pub fn from_u8(b: u8) -> Option<HistFn> {
-        Self::ALL.get(usize::from(b)).copied()
-    }
-
-    /// The FST command's name.
-    pub fn name(self) -> &'static str {
-        ["RDB", "DHV", "DHT", "PHV", "PHT", "MHV", "DIS", "DIN", "PIS", "PIN", "GTE"][self as usize]
-    }
-}
+pub use crate::isa::HistFn;
 
 /// A history command the device halts on (the FST stops; the integrator
 /// sets run flag 5). Always code [`HALT`].
