@@ -103,7 +103,57 @@ fn fst_errors_over_the_cap_cost_no_search() {
     assert!(r < 8.0, "4x the rows took {r:.1}x the time");
 }
 
-#[allow(dead_code)]
 fn ctx(db: &Database) -> Context<'_> {
     Context { db, resolve_blocks: true, steps: None }
+}
+
+/// A sequence of `n` steps in a ring, each with an action and a timed
+/// transition to the next.
+fn ring(n: usize) -> String {
+    let mut out = String::new();
+    for i in 0..n {
+        let kw = if i == 0 { "INITIAL_STEP" } else { "STEP" };
+        out.push_str(&format!("{kw} S{i}: Count(N); END_STEP\n"));
+    }
+    for i in 0..n {
+        out.push_str(&format!("TRANSITION FROM S{i} TO S{} := S{i}.T >= 1.0; END_TRANSITION\n", (i + 1) % n));
+    }
+    out.push_str("ACTION Count\n    R1.Batches := R1.Batches + 1;\nEND_ACTION\n");
+    out
+}
+
+#[test]
+fn sequences_compile_in_linear_time() {
+    let db = Database::from_json(include_str!("../../examples/sequences/plant.json")).expect("sequence example db");
+    let r = ratio(800, ring, |src| {
+        let (d, object) = linc_compiler::sfc::compile_sequence(src, "ring", "ring.sfc", ctx(&db));
+        assert!(object.is_some(), "{:?}", d.first());
+    });
+    assert!(r < 7.0, "4x the steps took {r:.1}x the time");
+}
+
+/// A map of `n` generic names and a generic sequence of `n` steps (each
+/// step's name is looked up in the map, E0255) that reads the last name.
+fn map_and_sequence(n: usize) -> (String, String) {
+    let entries: Vec<String> = (0..n).map(|i| format!("  \"G{i}\": \"R1.Level\"")).collect();
+    let map = format!("{{\n{}\n}}\n", entries.join(",\n"));
+    let mut seq = ring(n);
+    seq.push_str(&format!("ACTION Last\n    R1.Temp := G{};\nEND_ACTION\n", n - 1));
+    (map, seq.replace("Count(N);", "Count(N); Last(N);"))
+}
+
+#[test]
+fn generic_sequences_check_with_a_map_in_linear_time() {
+    use linc_compiler::sfc::generic;
+    let db = Database::from_json(include_str!("../../examples/sequences/plant.json")).expect("sequence example db");
+    let r = ratio(1_000, map_and_sequence, |(map, seq)| {
+        let (map, errors) = generic::parse_map(map);
+        assert!(errors.is_empty(), "{errors:?}");
+        let (bound, errors) = generic::bind(&map, &db, true);
+        assert!(errors.is_empty(), "{errors:?}");
+        let named = generic::Named { map, file: "map.json".into() };
+        let report = linc_compiler::sfc::check_generic(seq, ctx(&bound), &named, false);
+        assert!(report.diagnostics.is_empty(), "{:?}", report.diagnostics.first());
+    });
+    assert!(r < 7.0, "4x the entries and steps took {r:.1}x the time");
 }
