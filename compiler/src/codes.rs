@@ -70,7 +70,7 @@ codes! {
     "E0121" => "FOR step of zero",
     "E0130" => "type of a name unknown when compiling",
     "E0131" => "step variable in a plain action",
-    "E0132" => "too many references, constants, loops or arguments",
+    "E0132" => "too many steps, references, constants, loops or arguments",
     "E0133" => "chart action that uses itself",
     "E0200" => "unexpected token in a sequence",
     "E0201" => "unexpected end of file in a sequence",

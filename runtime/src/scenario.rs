@@ -102,6 +102,9 @@ struct Runner {
     vm: Vm,
     slots: Vec<u32>,
     pending: Vec<Pending>,
+    /// Whether `slots` are the strategy's now: every scan and command is
+    /// followed by a check, which reads them.
+    fresh: bool,
     report: Report,
     /// The watched variables as last sampled.
     last: Vec<Option<Seen>>,
@@ -114,6 +117,7 @@ pub fn run(driver: &mut dyn Driver, steps: Vec<Step>, watch: &[String]) -> Repor
         vm: Vm::new(1_000_000, Clock::new(1, 0)),
         slots: Vec::new(),
         pending: Vec::new(),
+        fresh: false,
         report: Report::default(),
         last: Vec::new(),
     };
@@ -128,6 +132,7 @@ pub fn run(driver: &mut dyn Driver, steps: Vec<Step>, watch: &[String]) -> Repor
                     continue;
                 }
                 r.advance(driver, at_us);
+                r.fresh = false;
                 for reply in driver.command(&command) {
                     if let Err((code, message)) = reply {
                         r.fail(line, at_us, format!("`{command}` was refused ({code}): {message}"), Vec::new());
@@ -218,6 +223,7 @@ impl Runner {
                 return;
             }
             let step = s.scan_us().min(to - now);
+            self.fresh = false;
             for e in s.run_for(step, None) {
                 let at = s.elapsed_us();
                 let where_ = format!("{}:{}:{}", e.file, e.line, e.col);
@@ -267,13 +273,23 @@ impl Runner {
         }
     }
 
+    /// Starts an expectation and checks it at once (the others were checked
+    /// at this time already: checking them all again for each new one made
+    /// setting up a scenario quadratic in its expectations).
     fn expect(&mut self, s: &mut Strategy, line: u32, check: Check, text: String, object: Verified) {
         let now = s.elapsed_us();
         match object.link(&s.store, &[crate::Program { unit: 0, own: None }]) {
             Ok(linked) => {
                 let act = Activation::new(&linked, 0, 0);
-                self.pending.push(Pending { line, check, text, from_us: now, linked, act });
-                self.check(s);
+                if !self.fresh {
+                    s.step_slots(&mut self.slots);
+                    self.fresh = true;
+                }
+                let mut p = Pending { line, check, text, from_us: now, linked, act };
+                let mut names = None;
+                if self.decide(s, &mut p, &mut names) {
+                    self.pending.push(p);
+                }
             }
             Err(e) => self.fail(line, now, format!("`{text}` can't be linked: {e}"), Vec::new()),
         }
@@ -281,35 +297,45 @@ impl Runner {
 
     /// Checks every pending expectation at the strategy's current time.
     fn check(&mut self, s: &mut Strategy) {
-        let now = s.elapsed_us();
         s.step_slots(&mut self.slots);
-        let mut i = 0;
-        while i < self.pending.len() {
-            let p = &mut self.pending[i];
-            let due = deadline(p).is_none_or(|d| now >= d);
-            let value = evaluate(&mut self.vm, p, &self.slots, &mut s.store);
-            let verdict = match (p.check, value) {
-                (_, Err(why)) => Some(Err(why)),
-                (Check::Within(_), Ok(true)) => Some(Ok(())),
-                (Check::Within(d), Ok(false)) if due => {
-                    Some(Err(format!("`{}` did not hold within {}", p.text, time(d))))
-                }
-                (Check::After(d), Ok(v)) if due => {
-                    Some(if v { Ok(()) } else { Err(format!("`{}` did not hold after {}", p.text, time(d))) })
-                }
-                (Check::Always, Ok(false)) => Some(Err(format!("`{}` stopped holding (expected always)", p.text))),
-                (Check::Never, Ok(true)) => Some(Err(format!("`{}` held (expected never)", p.text))),
-                _ => None,
-            };
-            match verdict {
-                None => i += 1,
-                Some(v) => {
-                    let p = self.pending.remove(i);
-                    if let Err(message) = v {
-                        let values = reads(&p.linked, &s.store, &s.step_names(), &self.slots);
-                        self.fail(p.line, now, message, values);
-                    }
-                }
+        self.fresh = true;
+        let mut names = None;
+        let pending = std::mem::take(&mut self.pending);
+        let mut open = Vec::with_capacity(pending.len());
+        for mut p in pending {
+            if self.decide(s, &mut p, &mut names) {
+                open.push(p);
+            }
+        }
+        self.pending = open;
+    }
+
+    /// Evaluates one expectation now: true while it is undecided; a failure
+    /// is recorded with the values it read (`names`: the strategy's step
+    /// names, looked up once for all the failures of a check).
+    fn decide(&mut self, s: &mut Strategy, p: &mut Pending, names: &mut Option<Vec<String>>) -> bool {
+        let now = s.elapsed_us();
+        let due = deadline(p).is_none_or(|d| now >= d);
+        let value = evaluate(&mut self.vm, p, &self.slots, &mut s.store);
+        let verdict = match (p.check, value) {
+            (_, Err(why)) => Some(Err(why)),
+            (Check::Within(_), Ok(true)) => Some(Ok(())),
+            (Check::Within(d), Ok(false)) if due => Some(Err(format!("`{}` did not hold within {}", p.text, time(d)))),
+            (Check::After(d), Ok(v)) if due => {
+                Some(if v { Ok(()) } else { Err(format!("`{}` did not hold after {}", p.text, time(d))) })
+            }
+            (Check::Always, Ok(false)) => Some(Err(format!("`{}` stopped holding (expected always)", p.text))),
+            (Check::Never, Ok(true)) => Some(Err(format!("`{}` held (expected never)", p.text))),
+            _ => None,
+        };
+        match verdict {
+            None => true,
+            Some(Ok(())) => false,
+            Some(Err(message)) => {
+                let names = names.get_or_insert_with(|| s.step_names());
+                let values = reads(&p.linked, &s.store, names, &self.slots);
+                self.fail(p.line, now, message, values);
+                false
             }
         }
     }

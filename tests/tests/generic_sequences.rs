@@ -89,3 +89,25 @@ fn a_step_named_like_a_generic_name_is_e0255() {
     let src = GENERIC.replace("Run", "HeatSP");
     assert_eq!(codes(&src), [("E0255", "HeatSP".to_string())]);
 }
+
+/// A map file's errors are worded as the map file's (they said "the
+/// database is not valid JSON"), and point into it, an empty one too.
+#[test]
+fn map_file_errors_name_the_map_file() {
+    let cases = [
+        ("{ \"Reactor\": R1 }", "the map file is not valid JSON: expected a value", (13, 14)),
+        ("", "the map file is not valid JSON: the text ends where a value should be", (0, 0)),
+        ("{\"a\": \"R1\"} x", "the map file is not valid JSON: unexpected text after the end of the value", (12, 13)),
+        ("{\"A\": \"R1\", \"A\": \"R2\"}", "key `A` appears twice in one JSON object", (12, 15)),
+    ];
+    for (text, message, (start, end)) in cases {
+        let (map, errors) = parse_map(text);
+        assert!(map.entries().is_empty(), "{text:?}");
+        let d: Vec<_> = errors.iter().map(|e| e.to_diagnostic()).collect();
+        assert_eq!(d.len(), 1, "{text:?}: {d:?}");
+        assert_eq!(d[0].code, "E0251");
+        assert!(d[0].message.starts_with(message), "{text:?}: {}", d[0].message);
+        assert!(!d[0].message.contains("database"), "{}", d[0].message);
+        assert_eq!((d[0].span.start, d[0].span.end), (start, end), "{text:?}");
+    }
+}

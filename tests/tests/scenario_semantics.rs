@@ -137,3 +137,39 @@ fn samples_record_changes_for_the_vcd() {
     let changes: Vec<(u64, &str)> = s.changes.iter().map(|(t, _, v)| (*t, v.as_str())).collect();
     assert_eq!(changes, [(0, "0"), (100_000, "1"), (200_000, "2"), (300_000, "3")]);
 }
+
+/// Setting up `n` expectations and deciding them at one scan: time linear
+/// in `n` (each new expectation checked all the pending ones again, so
+/// 20,000 `expect` lines took 22 s to start).
+fn expectations(n: usize) -> std::time::Duration {
+    let s = strategy(COUNT);
+    let object = |text: &str| expect(&s, 0, Check::Always, text);
+    let mut steps: Vec<Step> = (0..n)
+        .map(|i| {
+            let Step::Expect { object, text, .. } = object(&format!("REC.N0 >= {}", -(i as i64))) else {
+                unreachable!()
+            };
+            Step::Expect {
+                line: i as u32 + 1,
+                check: if i % 2 == 0 { Check::Always } else { Check::Within(1) },
+                text,
+                object,
+            }
+        })
+        .collect();
+    steps.push(Step::Run { line: 0, for_us: 100_000 });
+    let mut driver = Bare(s);
+    let start = std::time::Instant::now();
+    let r = run(&mut driver, steps, &[]);
+    let took = start.elapsed();
+    assert!(r.failures.is_empty(), "{:?}", r.failures.first());
+    took
+}
+
+#[test]
+fn expectations_are_set_up_in_linear_time() {
+    let best = |n| (0..3).map(|_| expectations(n)).min().unwrap_or_default();
+    let (t1, t4) = (best(1_000), best(4_000));
+    let r = t4.as_secs_f64() / t1.as_secs_f64().max(1e-9);
+    assert!(r < 7.0, "4x the expectations took {r:.1}x the time ({t1:?}, {t4:?})");
+}

@@ -4,7 +4,8 @@
 
 use super::commands::Kind;
 use super::errors;
-use super::tlp::{self, distance, ResolveError, Syntax, SyntaxError};
+use super::lower::MAX_STEPS;
+use super::tlp::{self, distance, Points, ResolveError, Syntax, SyntaxError};
 use super::{Arg, Cell, Checked, Cmd, Param, Row, Step, Table};
 use crate::diagnostic::{Diagnostic, MAX_ERRORS};
 use crate::span::Span;
@@ -18,7 +19,16 @@ use std::collections::HashMap;
 /// gives no [`Checked`]. Without a database points are not looked up, and
 /// nothing is returned to compile.
 pub fn check(table: &Table, db: Option<&Database>) -> (Option<Checked>, Vec<Diagnostic>) {
-    let mut c = Checker { db, labels: HashMap::new(), diags: Vec::new(), errors: 0, omitted: None, failed: false };
+    let points = db.map(Points::new);
+    let mut c = Checker {
+        db: points.as_ref(),
+        labels: HashMap::new(),
+        diags: Vec::new(),
+        errors: 0,
+        omitted: None,
+        failed: false,
+    };
+    c.too_many_steps(table);
     c.define_labels(table);
     let mut steps = Vec::with_capacity(table.rows.len() + 1);
     let mut end: Option<Span> = None;
@@ -64,7 +74,7 @@ enum Operand {
 }
 
 struct Checker<'a> {
-    db: Option<&'a Database>,
+    db: Option<&'a Points<'a>>,
     /// Labels by upper-case name: the step and the label cell.
     labels: HashMap<String, (u32, Span)>,
     diags: Vec<Diagnostic>,
@@ -85,6 +95,28 @@ impl Checker<'_> {
             }
         }
         self.diags.push(d);
+    }
+
+    /// Whether errors are over the cap: what is found now is only counted,
+    /// so nothing that costs more than a look-up (a "did you mean" search)
+    /// is worth doing for it.
+    fn full(&self) -> bool {
+        self.errors >= MAX_ERRORS
+    }
+
+    /// E0132 at the first step over [`MAX_STEPS`]: the END appended to a
+    /// table without one counts, and is charged to the last row.
+    fn too_many_steps(&mut self, table: &Table) {
+        let has_end = table.rows.iter().any(|r| Cmd::parse(&r.cmd.text) == Some(Cmd::End));
+        let steps = table.rows.len() + usize::from(!has_end);
+        if steps <= MAX_STEPS {
+            return;
+        }
+        let (row, appended) = match table.rows.get(MAX_STEPS) {
+            Some(row) => (row, false),
+            None => (&table.rows[table.rows.len() - 1], true),
+        };
+        self.push(errors::too_many_steps(row.cmd.span, MAX_STEPS, appended));
     }
 
     /// B.1.2: up to six letters and digits, no command names, unique.
@@ -136,7 +168,7 @@ impl Checker<'_> {
             return Arg::Label(step);
         }
         if is_label(&cell.text) && tlp::parse(&cell.text).is_ok_and(|s| matches!(s, Syntax::Text { .. })) {
-            let suggestion = self.suggest_label(&cell.text);
+            let suggestion = if self.full() { None } else { self.suggest_label(&cell.text) };
             self.push(errors::unknown_label(cell.span, &cell.text, suggestion.as_deref()));
         } else {
             self.push(errors::value_for_label(cell.span, cmd.text(), &cell.text));
@@ -239,9 +271,9 @@ impl Checker<'_> {
     fn point_arg(&mut self, cmd: Cmd, cell: &Cell, template: &str) -> Arg {
         // The template decides before the parameter: `SFP 1` is the wrong
         // point, not a point that lacks a parameter.
-        if let (Some(db), Ok(Syntax::Text { point, .. })) = (self.db, tlp::parse(&cell.text)) {
-            if let Some(b) = db.point(point) {
-                let found = db.block_template(b).name.as_str();
+        if let (Some(points), Ok(Syntax::Text { point, .. })) = (self.db, tlp::parse(&cell.text)) {
+            if let Some(b) = points.point(point) {
+                let found = points.db.block_template(b).name.as_str();
                 if !found.eq_ignore_ascii_case(template) {
                     self.push(errors::wrong_point_type(cell.span, cmd.text(), point, found, template));
                     return Arg::None;
@@ -266,7 +298,7 @@ impl Checker<'_> {
     }
 
     fn template_of(&self, block: usize) -> Option<&str> {
-        self.db.map(|db| db.block_template(block).name.as_str())
+        self.db.map(|p| p.db.block_template(block).name.as_str())
     }
 
     fn numeric(&mut self, p: Param, cell: &Cell) -> Arg {
@@ -306,21 +338,22 @@ impl Checker<'_> {
             Syntax::Text { point, param: None } => self.labels.contains_key(&point.to_ascii_uppercase()),
             _ => false,
         };
-        let Some(db) = self.db else {
+        let Some(points) = self.db else {
             if label {
                 self.push(errors::label_for_value(cell.span, &cell.text));
                 return Operand::Bad;
             }
             return Operand::Unresolved;
         };
-        match tlp::resolve(db, &syntax) {
-            Ok((block, field)) => Operand::Param(param(db, block, field, &cell.text), block),
-            Err(ResolveError::UnknownPoint { .. }) if label => {
+        match tlp::resolve(points, &syntax) {
+            Ok((block, field)) => Operand::Param(param(points.db, block, field, &cell.text), block),
+            Err(ResolveError::UnknownPoint) if label => {
                 self.push(errors::label_for_value(cell.span, &cell.text));
                 Operand::Bad
             }
             Err(e) => {
-                self.push(resolve_error(db, &syntax, e, cell.span));
+                let full = self.full();
+                self.push(resolve_error(points.db, &syntax, e, cell.span, full));
                 Operand::Bad
             }
         }
@@ -357,7 +390,9 @@ fn param(db: &Database, block: usize, field: usize, written: &str) -> Param {
     Param { block, field: name, class, readonly, written: written.to_string() }
 }
 
-fn resolve_error(db: &Database, syntax: &Syntax<'_>, e: ResolveError, span: Span) -> Diagnostic {
+/// The diagnostic of a TLP that names nothing; `full` (over the error cap,
+/// only counted) leaves out the suggestion, which reads every block.
+fn resolve_error(db: &Database, syntax: &Syntax<'_>, e: ResolveError, span: Span, full: bool) -> Diagnostic {
     let tname = |t: usize| db.templates.get(t).map(|t| t.name.clone()).unwrap_or_default();
     let block_name = |b: usize| db.blocks.get(b).map(|b| b.name.clone()).unwrap_or_default();
     let (point, param) = match syntax {
@@ -365,7 +400,10 @@ fn resolve_error(db: &Database, syntax: &Syntax<'_>, e: ResolveError, span: Span
         _ => ("", ""),
     };
     match e {
-        ResolveError::UnknownPoint { suggestion } => errors::unknown_point(span, point, suggestion.as_deref()),
+        ResolveError::UnknownPoint => {
+            let suggestion = if full { None } else { tlp::suggest(db, point) };
+            errors::unknown_point(span, point, suggestion.as_deref())
+        }
         ResolveError::UnknownParam { block } => {
             let template = db.block_template(block);
             let known: Vec<&str> = template.fields.iter().map(|f| f.name.as_str()).collect();
@@ -603,6 +641,24 @@ mod tests {
         assert_eq!(read_diags.len(), 1);
         let (checked, d) = check(&table, Some(&db()));
         assert!(checked.is_none() && d.is_empty());
+    }
+
+    #[test]
+    fn too_many_steps_is_located_at_the_first_step_over_the_limit() {
+        let mut rows = vec![",VAL,1,"; MAX_STEPS - 1];
+        rows.push(",END,,");
+        let (checked, d, _) = run(&rows, Some(&db()));
+        assert!(d.is_empty() && checked.is_some(), "{MAX_STEPS} steps with their END fit: {d:?}");
+        rows.insert(0, ",VAL,1,");
+        let (_, d, src) = run(&rows, Some(&db()));
+        assert_eq!(d.iter().map(|d| d.code).collect::<Vec<_>>(), ["E0132"]);
+        let line = src[..d[0].span.start].matches('\n').count() + 1;
+        assert_eq!((line, &src[d[0].span.start..d[0].span.end]), (MAX_STEPS + 2, "END"), "step {MAX_STEPS}");
+        let rows = vec![",VAL,1,"; MAX_STEPS];
+        let (_, d, src) = run(&rows, Some(&db()));
+        let line = src[..d[0].span.start].matches('\n').count() + 1;
+        assert_eq!((d[0].code, line), ("E0132", MAX_STEPS + 1), "the appended END is charged to the last row");
+        assert!(d[0].label.contains("END appended"), "{:?}", d[0]);
     }
 
     #[test]

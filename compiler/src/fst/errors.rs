@@ -17,6 +17,13 @@ pub fn malformed_row(span: Span, why: String) -> Diagnostic {
     Diagnostic::error("E0401", "malformed CSV row", span).label(why)
 }
 
+/// A cell with a line break inside its quotes (RFC 4180 allows it, ROCLINK
+/// never writes one): refused, so that a row is always one line.
+pub fn line_break_in_cell(span: Span) -> Diagnostic {
+    malformed_row(span, "a line break inside a cell".to_string())
+        .help("an FST row is one line: put the cell's text on one line (ROCLINK writes no line breaks in cells)")
+}
+
 /// A STEP cell that is not the next step number.
 pub fn bad_step(span: Span, found: &str, expected: usize) -> Diagnostic {
     Diagnostic::error("E0402", format!("step number `{found}` where step {expected} was expected"), span)
@@ -211,6 +218,20 @@ pub fn wrong_point_type(span: Span, cmd: &str, point: &str, found: &str, expecte
 pub fn text_truncated(span: Span, cmd: &str, keep: usize) -> Diagnostic {
     Diagnostic::warning("W0401", format!("`{cmd}` keeps only the first {keep} characters"), span)
         .label("the rest is cut off")
+}
+
+/// A table with more steps than one FST unit holds (E0132, the code of the
+/// object format's other limits), at the first step over it.
+pub fn too_many_steps(span: Span, limit: usize, appended: bool) -> Diagnostic {
+    let d = Diagnostic::error("E0132", format!("too many steps: a table has at most {limit}"), span)
+        .label(if appended { "the END appended after this step is over the limit" } else { "step over the limit" });
+    if appended {
+        d.help(
+            "the table has no END, so one is appended after its last step; make one of its steps END, or remove a step",
+        )
+    } else {
+        d.help(format!("split the table between FST blocks: each runs a table of up to {limit} steps"))
+    }
 }
 
 /// What is over the error cap is counted once.

@@ -50,6 +50,8 @@ struct Record {
     line: u32,
     cells: Vec<(String, Span)>,
     span: Span,
+    /// The first cell with a line break inside its quotes.
+    line_break: Option<Span>,
 }
 
 impl Record {
@@ -102,6 +104,11 @@ impl Reader<'_> {
                 }
                 continue;
             }
+            if let Some(span) = rec.line_break {
+                self.diags.push(errors::line_break_in_cell(span));
+                self.next_step += 1;
+                continue;
+            }
             if rec.blank(2) {
                 ended = Some(rec.line);
                 warned = self.ignored(&rec, rec.line);
@@ -117,6 +124,10 @@ impl Reader<'_> {
             }
             last_end = rec.span.end;
             self.row(rec);
+        }
+        if self.columns == 0 && self.diags.is_empty() {
+            // No record at all: an empty file, or only blank lines.
+            self.diags.push(errors::bad_header(Span::new(self.base, self.base), ""));
         }
         let (line, col) = line_col(self.text, last_end);
         self.table.end_line = line;
@@ -138,15 +149,19 @@ impl Reader<'_> {
         })?;
         let shift = |s: Span| Span::new(s.start + self.base, s.end + self.base);
         let whole = shift(Span::new(start, end));
+        let mut line_break = None;
         let cells = r
             .iter()
             .enumerate()
             .map(|(i, t)| {
                 let span = spans.get(i).map(|s| shift(trim_span(self.body.as_bytes(), *s))).unwrap_or(whole);
+                if t.contains(['\n', '\r']) {
+                    line_break.get_or_insert(span);
+                }
                 (t.trim().to_string(), span)
             })
             .collect();
-        Ok(Record { line, cells, span: whole })
+        Ok(Record { line, cells, span: whole, line_break })
     }
 
     /// Takes the header row, or reports E0400.
@@ -196,7 +211,11 @@ impl Reader<'_> {
         if Cmd::parse(&cmd.text).is_none() {
             self.diags.push(errors::unknown_command(cmd.span, &cmd.text, suggest_command(&cmd.text)));
         }
-        let (_, col) = line_col(self.text, cmd.span.start);
+        // A row is one line (cells with line breaks are refused), so the
+        // column counts from the row's start: counting from the start of
+        // the file for every row made reading quadratic.
+        let before = self.text.get(rec.span.start..cmd.span.start).unwrap_or("");
+        let col = u32::try_from(before.chars().count() + 1).unwrap_or(u32::MAX);
         let comment = rec.cell(5).map(|c| c.text).unwrap_or_default();
         self.table.rows.push(Row {
             step: u32::try_from(step).unwrap_or(u32::MAX),
@@ -361,6 +380,41 @@ mod tests {
         let (t, d) = read("STEP,CMD,ARG\n0,VAL,1\n");
         assert_eq!(codes(&d), ["E0400"]);
         assert!(t.rows.is_empty());
+    }
+
+    #[test]
+    fn an_empty_file_is_refused_at_its_start() {
+        for (text, start) in [("", 0), ("\n\r\n\n", 0), ("\u{feff}", 3)] {
+            let (t, d) = read(text);
+            assert_eq!(codes(&d), ["E0400"], "{text:?}");
+            assert_eq!(d[0].label, "expected the header here");
+            assert_eq!(d[0].span, Span::new(start, start), "{text:?}");
+            assert!(t.rows.is_empty());
+        }
+        let (t, d) = read("STEP,LABEL,CMD,ARGUMENT1,ARGUMENT2\n");
+        assert!(d.is_empty() && t.rows.is_empty(), "a header alone is a table without steps: {d:?}");
+    }
+
+    #[test]
+    fn a_line_break_in_a_cell_is_refused_and_later_rows_keep_their_lines() {
+        let src =
+            "STEP,LABEL,CMD,ARGUMENT1,ARGUMENT2,COMMENT\n0,,VAL,1,,\"two\nlines\"\n1,,\"\nVAL\",1,,\n2,,VALL,1,,\n";
+        let (t, d) = read(src);
+        assert_eq!(codes(&d), ["E0401", "E0401", "E0403"]);
+        assert_eq!(at(src, d[0].span), "\"two\nlines\"");
+        assert_eq!(at(src, d[1].span), "\"\nVAL\"");
+        assert!(d[0].label.contains("line break"), "{:?}", d[0]);
+        assert_eq!(at(src, d[2].span), "VALL");
+        assert_eq!(t.rows.len(), 1, "only the row without a line break is read");
+        assert_eq!((t.rows[0].step, t.rows[0].line, t.rows[0].col), (0, 6, 4));
+    }
+
+    #[test]
+    fn columns_count_from_the_rows_start() {
+        let src = "STEP,LABEL,CMD,ARGUMENT1,ARGUMENT2\r\n0,ÉTAPE,VAL,1,\r\n1,,  END,,\r\n";
+        let (t, _) = read(src);
+        assert_eq!((t.rows[0].line, t.rows[0].col), (2, 9), "characters, not bytes");
+        assert_eq!((t.rows[1].line, t.rows[1].col), (3, 6));
     }
 
     #[test]

@@ -5,6 +5,7 @@
 
 use linc_runtime::db::Tlp;
 use linc_runtime::Database;
+use std::collections::HashMap;
 
 /// What an argument cell says, before anything is looked up.
 #[derive(Clone, Debug, PartialEq)]
@@ -73,12 +74,25 @@ pub fn number(text: &str) -> Result<f32, SyntaxError> {
 /// Why a TLP names nothing in the database.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum ResolveError {
-    UnknownPoint { suggestion: Option<String> },
-    UnknownParam { block: usize },
-    NeedsParam { block: usize },
-    NoType { t: u16 },
-    NoLogical { template: usize, count: usize },
-    NoParam { template: usize },
+    /// No such point; the closest name is [`suggest`]'s to find, when the
+    /// error is shown (it reads every block).
+    UnknownPoint,
+    UnknownParam {
+        block: usize,
+    },
+    NeedsParam {
+        block: usize,
+    },
+    NoType {
+        t: u16,
+    },
+    NoLogical {
+        template: usize,
+        count: usize,
+    },
+    NoParam {
+        template: usize,
+    },
 }
 
 /// The parameter a point means when none is written (B.1.4: `DOU 4-1`).
@@ -90,14 +104,58 @@ pub fn default_param(template: &str) -> Option<&'static str> {
     }
 }
 
+/// The database's points indexed once per table, so that resolving a cell
+/// costs the same however many blocks the database has (a search through
+/// the blocks for every cell made checking a large table against a large
+/// database quadratic).
+pub struct Points<'a> {
+    pub db: &'a Database,
+    /// Block by name as [`squeeze`] writes it; the first of equal names.
+    by_name: HashMap<String, usize>,
+    /// Each template's blocks in database order: logical number → block.
+    by_template: Vec<Vec<usize>>,
+    /// Template by point type number on the database's device family.
+    by_type: HashMap<u16, usize>,
+}
+
+impl<'a> Points<'a> {
+    pub fn new(db: &'a Database) -> Points<'a> {
+        let mut by_name = HashMap::with_capacity(db.blocks.len());
+        let mut by_template = vec![Vec::new(); db.templates.len()];
+        for (i, b) in db.blocks.iter().enumerate() {
+            by_name.entry(squeeze(&b.name)).or_insert(i);
+            if let Some(list) = by_template.get_mut(b.template) {
+                list.push(i);
+            }
+        }
+        let mut by_type = HashMap::new();
+        for (i, t) in db.templates.iter().enumerate() {
+            if let Some(n) = t.point_type(db.device) {
+                by_type.entry(n).or_insert(i);
+            }
+        }
+        Points { db, by_name, by_template, by_type }
+    }
+
+    /// The block a point name names, as `Database::point` finds it.
+    pub fn point(&self, name: &str) -> Option<usize> {
+        self.by_name.get(&squeeze(name)).copied()
+    }
+}
+
+/// A point name as compared: upper case, no spaces (`DIN4-1` is `DIN 4-1`).
+fn squeeze(s: &str) -> String {
+    s.chars().filter(|c| !c.is_whitespace()).map(|c| c.to_ascii_uppercase()).collect()
+}
+
 /// The block and field a parsed TLP names.
-pub fn resolve(db: &Database, syntax: &Syntax<'_>) -> Result<(usize, usize), ResolveError> {
+pub fn resolve(points: &Points<'_>, syntax: &Syntax<'_>) -> Result<(usize, usize), ResolveError> {
     match syntax {
-        Syntax::Number(_) => Err(ResolveError::UnknownPoint { suggestion: None }),
-        Syntax::Numeric(tlp) => resolve_numeric(db, *tlp),
+        Syntax::Number(_) => Err(ResolveError::UnknownPoint),
+        Syntax::Numeric(tlp) => resolve_numeric(points, *tlp),
         Syntax::Text { point, param } => {
-            let block = db.point(point).ok_or_else(|| ResolveError::UnknownPoint { suggestion: suggest(db, point) })?;
-            let template = db.block_template(block);
+            let block = points.point(point).ok_or(ResolveError::UnknownPoint)?;
+            let template = points.db.block_template(block);
             let name = match param {
                 Some(p) => *p,
                 None => default_param(&template.name).ok_or(ResolveError::NeedsParam { block })?,
@@ -108,31 +166,30 @@ pub fn resolve(db: &Database, syntax: &Syntax<'_>) -> Result<(usize, usize), Res
     }
 }
 
-/// Says which part of a numeric TLP is missing (type, logical, parameter).
-fn resolve_numeric(db: &Database, tlp: Tlp) -> Result<(usize, usize), ResolveError> {
-    if let Some(found) = db.tlp_target(tlp) {
-        return Ok(found);
-    }
-    let template = db.point_template(tlp.t).ok_or(ResolveError::NoType { t: tlp.t })?;
-    let count = db.blocks.iter().filter(|b| b.template == template).count();
-    if usize::from(tlp.l) >= count {
-        return Err(ResolveError::NoLogical { template, count });
+/// The block and field of a numeric TLP, or which part of it is missing
+/// (type, logical, parameter).
+fn resolve_numeric(points: &Points<'_>, tlp: Tlp) -> Result<(usize, usize), ResolveError> {
+    let template = *points.by_type.get(&tlp.t).ok_or(ResolveError::NoType { t: tlp.t })?;
+    let blocks = points.by_template.get(template).map_or(&[][..], Vec::as_slice);
+    let Some(&block) = blocks.get(usize::from(tlp.l)) else {
+        return Err(ResolveError::NoLogical { template, count: blocks.len() });
+    };
+    let fields = points.db.templates.get(template).map_or(0, |t| t.fields.len());
+    if usize::from(tlp.p) < fields {
+        return Ok((block, usize::from(tlp.p)));
     }
     Err(ResolveError::NoParam { template })
 }
 
 /// The ROC point closest to `point` (at most two letters off).
-fn suggest(db: &Database, point: &str) -> Option<String> {
+pub fn suggest(db: &Database, point: &str) -> Option<String> {
     if point.len() > 64 {
         return None;
     }
-    let want: String = point.chars().filter(|c| !c.is_whitespace()).collect::<String>().to_ascii_uppercase();
+    let want = squeeze(point);
     db.blocks
         .iter()
-        .map(|b| {
-            let name: String = b.name.chars().filter(|c| !c.is_whitespace()).collect::<String>().to_ascii_uppercase();
-            (distance(&want, &name), &b.name)
-        })
+        .map(|b| (distance(&want, &squeeze(&b.name)), &b.name))
         .filter(|(d, _)| *d <= 2)
         .min_by_key(|(d, _)| *d)
         .map(|(_, n)| n.clone())
@@ -193,7 +250,7 @@ mod tests {
     }
 
     fn names(db: &Database, cell: &str) -> Result<(String, String), ResolveError> {
-        let (b, f) = resolve(db, &parse(cell).unwrap())?;
+        let (b, f) = resolve(&Points::new(db), &parse(cell).unwrap())?;
         Ok((db.blocks[b].name.clone(), db.block_template(b).fields[f].name.clone()))
     }
 
@@ -210,7 +267,8 @@ mod tests {
         let sfp = db.block("SFP 3").unwrap();
         assert_eq!(names(&db, "SFP 3"), Err(ResolveError::NeedsParam { block: sfp }));
         assert_eq!(names(&db, "SFP 3,DATA30"), Err(ResolveError::UnknownParam { block: sfp }));
-        assert_eq!(names(&db, "SFP 4,DATA3"), Err(ResolveError::UnknownPoint { suggestion: Some("SFP 3".into()) }));
+        assert_eq!(names(&db, "SFP 4,DATA3"), Err(ResolveError::UnknownPoint));
+        assert_eq!(suggest(&db, "SFP 4"), Some("SFP 3".into()));
     }
 
     #[test]

@@ -26,8 +26,19 @@ impl SequenceBuilder {
         SequenceBuilder { l, blocks: Vec::new(), slots: steps.len() }
     }
 
-    fn next(&self) -> u16 {
-        u16::try_from(self.blocks.len()).unwrap_or(u16::MAX)
+    /// The number the next block gets, or E0132 at `span` (once) when the
+    /// unit is full: the number would not fit the 16 bits it is stored in.
+    fn next(&mut self, span: crate::span::Span) -> u16 {
+        match u16::try_from(self.blocks.len()) {
+            Ok(n) if usize::from(n) < crate::sfc::lower::MAX_BLOCKS => n,
+            _ => {
+                if self.blocks.len() == crate::sfc::lower::MAX_BLOCKS {
+                    let what = "code blocks (transition conditions and actions)";
+                    self.l.errors.push(super::LowerError::TooMany { span, what });
+                }
+                0
+            }
+        }
     }
 
     /// A transition condition: the block computes it and returns a truth value.
@@ -35,16 +46,16 @@ impl SequenceBuilder {
         self.l.mark(cond.span);
         self.l.expr_as(cond, Ty::Bool);
         self.l.emit(Op::Return { kind: Kind::Bool as u8 });
-        let at = self.next();
+        let at = self.next(cond.span);
         self.blocks.push(self.l.take_block(name.to_string()));
         at
     }
 
     /// A code action: its statements, ending with `Ret`.
-    pub fn action(&mut self, name: &str, body: &[hir::Stmt]) -> u16 {
+    pub fn action(&mut self, name: &str, body: &[hir::Stmt], span: crate::span::Span) -> u16 {
         self.l.stmts(body);
         self.l.emit(Op::Ret {});
-        let at = self.next();
+        let at = self.next(span);
         self.blocks.push(self.l.take_block(name.to_string()));
         at
     }

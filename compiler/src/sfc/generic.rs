@@ -25,7 +25,10 @@ pub const MAX_GENERIC: usize = 16;
 /// A map file: generic name → database name, in file order.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Map {
-    pub entries: Vec<Entry>,
+    entries: Vec<Entry>,
+    /// Entry by upper-case name: a map is looked up for every reference and
+    /// every step, and a search through the entries made that quadratic.
+    index: HashMap<String, usize>,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -41,7 +44,24 @@ pub struct Entry {
 impl Map {
     /// The entry called `name` (names ignore case).
     pub fn get(&self, name: &str) -> Option<&Entry> {
-        self.entries.iter().find(|e| e.name.eq_ignore_ascii_case(name))
+        self.index.get(&name.to_ascii_uppercase()).and_then(|&i| self.entries.get(i))
+    }
+
+    /// The entries in file order.
+    pub fn entries(&self) -> &[Entry] {
+        &self.entries
+    }
+
+    /// Adds an entry; false (and nothing added) if the map has its name.
+    pub fn push(&mut self, e: Entry) -> bool {
+        match self.index.entry(e.name.to_ascii_uppercase()) {
+            std::collections::hash_map::Entry::Occupied(_) => false,
+            std::collections::hash_map::Entry::Vacant(v) => {
+                v.insert(self.entries.len());
+                self.entries.push(e);
+                true
+            }
+        }
     }
 }
 
@@ -121,7 +141,7 @@ fn is_name(s: &str) -> bool {
 /// Reads a map file. Entries with errors are left out; the rest are kept.
 pub fn parse_map(text: &str) -> (Map, Vec<MapError>) {
     let mut errors = Vec::new();
-    let root = match tree::parse(text) {
+    let root = match tree::parse_named(text, "the map file") {
         Ok(n) => n,
         Err(e) => {
             let (s, t) = e.span.unwrap_or((0, 0));
@@ -146,6 +166,8 @@ pub fn parse_map(text: &str) -> (Map, Vec<MapError>) {
         } else if m.key.len() > MAX_GENERIC {
             Some(format!("it is {} characters long; generic names are at most {MAX_GENERIC}", m.key.len()))
         } else if map.get(&m.key).is_some() {
+            // JSON keys are unique already (the reader refuses a repeated
+            // one); these differ in case only.
             Some("it is in the map twice (names ignore case)".to_string())
         } else {
             None
@@ -160,7 +182,7 @@ pub fn parse_map(text: &str) -> (Map, Vec<MapError>) {
             errors.push(MapError::BadTarget { span: target_span, target: target.to_string() });
             continue;
         }
-        map.entries.push(Entry { name: m.key.clone(), name_span, target: parts, target_span });
+        map.push(Entry { name: m.key.clone(), name_span, target: parts, target_span });
     }
     (map, errors)
 }
@@ -171,7 +193,7 @@ pub fn parse_map(text: &str) -> (Map, Vec<MapError>) {
 pub fn bind(map: &Map, db: &Database, resolve_blocks: bool) -> (Database, Vec<MapError>) {
     let mut bound = db.clone();
     let mut errors = Vec::new();
-    for e in &map.entries {
+    for e in map.entries() {
         if db.block(&e.name).is_some() || db.alias(&e.name).is_some() {
             let why = "the database already has a block or alias of this name".to_string();
             errors.push(MapError::BadName { span: e.name_span, name: e.name.clone(), why });
@@ -212,14 +234,20 @@ pub fn with_map(diagnostics: Vec<Diagnostic>, src: &str, map_file: &str, allow: 
 /// reference is resolved (through the map, or it is E0250).
 pub fn lift_long_names(seq: &mut Sequence, diagnostics: Vec<Diagnostic>) -> Vec<Diagnostic> {
     let mut lifted = std::collections::HashSet::new();
+    // The errors by where they start, so that a reference finds the ones
+    // inside it without reading them all (which made this quadratic).
+    let mut errors: Vec<&Diagnostic> = diagnostics.iter().filter(|d| d.is_error()).collect();
+    errors.sort_by_key(|d| d.span.start);
     super::refs::for_each_mut(seq, &mut |v| {
         let first = &v.segs[0].name;
         let long = first.text.chars().count();
         if !v.malformed || long <= 8 || long > MAX_GENERIC {
             return;
         }
-        let inside = |d: &&Diagnostic| d.is_error() && d.span.start >= v.span.start && d.span.end <= v.span.end;
-        let only = diagnostics.iter().filter(inside).all(|d| d.code == "E0005" && d.span == first.span);
+        let from = errors.partition_point(|d| d.span.start < v.span.start);
+        let starting = errors[from..].iter().take_while(|d| d.span.start <= v.span.end);
+        let mut inside = starting.filter(|d| d.span.end <= v.span.end);
+        let only = inside.all(|d| d.code == "E0005" && d.span == first.span);
         if only {
             v.malformed = false;
             lifted.insert((first.span.start, first.span.end));
@@ -273,7 +301,7 @@ pub fn specialise(src: &str, seq: &Sequence, map: &Map) -> String {
 /// the same target, the first in the map wins.
 pub fn generalise(src: &str, seq: &Sequence, map: &Map) -> String {
     let mut by_target: HashMap<String, &str> = HashMap::new();
-    for e in map.entries.iter().rev().filter(|e| !e.target.is_empty()) {
+    for e in map.entries().iter().rev().filter(|e| !e.target.is_empty()) {
         by_target.insert(e.target.join(".").to_ascii_uppercase(), &e.name);
     }
     let mut edits = Vec::new();

@@ -21,8 +21,18 @@ fn step_names(seq: &Sequence) -> Vec<String> {
     charts.flat_map(|c| c.steps.iter().map(|s| s.name.text.clone())).collect()
 }
 
+/// Most steps a sequence may have: each has two retained slots (`.X` and
+/// `.T`), and slot numbers are 16-bit.
+pub const MAX_STEPS: usize = 32_767;
+
+/// Most code blocks (transition conditions and ST actions) in one sequence
+/// unit: block numbers are 16-bit.
+pub const MAX_BLOCKS: usize = 65_535;
+
 struct Lowering<'a, 's> {
     seq: &'s Sequence,
+    /// Action by upper-case name, the first of equal names.
+    actions: HashMap<String, usize>,
     checker: Checker<'a>,
     b: SequenceBuilder,
     slots: HashMap<String, u16>,
@@ -38,8 +48,13 @@ pub fn lower(seq: &Sequence, name: &str, file: &str, src: &str, ctx: Context) ->
     let steps = step_names(seq);
     let ctx = Context { steps: Some(&steps), ..ctx };
     let slots = steps.iter().enumerate().map(|(i, s)| (s.to_ascii_uppercase(), i as u16)).collect();
+    let mut actions = HashMap::with_capacity(seq.actions.len());
+    for (i, a) in seq.actions.iter().enumerate() {
+        actions.entry(a.name.text.to_ascii_uppercase()).or_insert(i);
+    }
     let mut l = Lowering {
         seq,
+        actions,
         checker: Checker::new(ctx, Limits::default()),
         b: SequenceBuilder::new(file, Lines::new(src), &steps),
         slots,
@@ -54,14 +69,20 @@ pub fn lower(seq: &Sequence, name: &str, file: &str, src: &str, ctx: Context) ->
 
 impl Lowering<'_, '_> {
     fn action_index(&self, name: &str) -> Option<usize> {
-        self.seq.actions.iter().position(|a| a.name.text.eq_ignore_ascii_case(name))
+        self.actions.get(&name.to_ascii_uppercase()).copied()
     }
 
     /// Adds chart `c` and the charts it uses; returns its index.
     fn chart(&mut self, c: &Chart) -> Result<u16, LowerError> {
         let me = self.charts.len();
         self.charts.push(ChartRec::default());
-        let index = |name: &str| c.steps.iter().position(|s| s.name.text.eq_ignore_ascii_case(name));
+        // Each transition names its steps: looked up, not searched for
+        // (a search through the chart's steps made lowering quadratic).
+        let mut by_name = HashMap::with_capacity(c.steps.len());
+        for (i, s) in c.steps.iter().enumerate() {
+            by_name.entry(s.name.text.to_ascii_uppercase()).or_insert(i);
+        }
+        let index = |name: &str| by_name.get(&name.to_ascii_uppercase()).copied();
         let (mut actions, mut local): (Vec<ActionRec>, HashMap<usize, u16>) = (Vec::new(), HashMap::new());
         let mut steps = Vec::with_capacity(c.steps.len());
         for s in &c.steps {
@@ -110,7 +131,7 @@ impl Lowering<'_, '_> {
                     Some(&i) => i,
                     None => {
                         let h = self.checker.action(st);
-                        let i = self.b.action(&name, &h.body);
+                        let i = self.b.action(&name, &h.body, used_at);
                         self.code.insert(g, i);
                         i
                     }

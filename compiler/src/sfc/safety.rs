@@ -34,17 +34,35 @@ pub fn unsafe_edge(steps: usize, initial: &[usize], edges: &[Edge]) -> Option<(u
     for &s in initial {
         start[s / 64] |= 1 << (s % 64);
     }
+    // The transitions leaving each step: a set of active steps looks only
+    // at those, not at every transition of the chart (which made a chart of
+    // n steps in a ring cost n × n).
+    let mut leaving: Vec<Vec<usize>> = vec![Vec::new(); steps];
+    for (ti, e) in edges.iter().enumerate() {
+        for &s in &e.from {
+            if leaving[s].last() != Some(&ti) {
+                leaving[s].push(ti);
+            }
+        }
+    }
     let has = |m: &[u64], s: usize| m[s / 64] & (1 << (s % 64)) != 0;
     let mut seen: HashSet<Vec<u64>> = HashSet::from([start.clone()]);
     let mut todo = VecDeque::from([start]);
     let mut work = 0usize;
+    let mut enabled = Vec::new();
     while let Some(m) = todo.pop_front() {
-        for (ti, e) in edges.iter().enumerate() {
+        // In index order, as the search examined them before.
+        enabled.clear();
+        enabled.extend(active(&m).flat_map(|s| leaving.get(s).into_iter().flatten().copied()));
+        enabled.sort_unstable();
+        enabled.dedup();
+        for &ti in &enabled {
+            let e = &edges[ti];
             work += 1;
             if work > MAX_WORK {
                 return None;
             }
-            if e.from.is_empty() || !e.from.iter().all(|&s| has(&m, s)) {
+            if !e.from.iter().all(|&s| has(&m, s)) {
                 continue;
             }
             let mut next = m.clone();
@@ -63,4 +81,19 @@ pub fn unsafe_edge(steps: usize, initial: &[usize], edges: &[Edge]) -> Option<(u
         }
     }
     None
+}
+
+/// The steps of a set, in order.
+fn active(m: &[u64]) -> impl Iterator<Item = usize> + '_ {
+    m.iter().enumerate().flat_map(|(w, &word)| {
+        let mut bits = word;
+        std::iter::from_fn(move || {
+            if bits == 0 {
+                return None;
+            }
+            let b = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            Some(w * 64 + b)
+        })
+    })
 }

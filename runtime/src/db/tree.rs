@@ -75,9 +75,15 @@ pub fn get<'a>(members: &'a [Member], key: &str) -> Option<&'a Member> {
     members.iter().find(|m| m.key == key)
 }
 
-/// Parses a whole JSON text.
+/// Parses a whole JSON text: a database.
 pub fn parse(text: &str) -> Result<Node, DbError> {
-    let mut p = Parser { text, bytes: text.as_bytes(), at: 0 };
+    parse_named(text, "the database")
+}
+
+/// Parses a whole JSON text; `what` names it in messages ("the map file"),
+/// since other files than a database are JSON too.
+pub fn parse_named(text: &str, what: &'static str) -> Result<Node, DbError> {
+    let mut p = Parser { text, bytes: text.as_bytes(), at: 0, what };
     let node = p.value(0)?;
     p.skip_ws();
     if p.at < p.bytes.len() {
@@ -90,6 +96,8 @@ struct Parser<'a> {
     text: &'a str,
     bytes: &'a [u8],
     at: usize,
+    /// The file as messages name it.
+    what: &'static str,
 }
 
 impl Parser<'_> {
@@ -97,7 +105,7 @@ impl Parser<'_> {
         let end = if self.at < self.bytes.len() { self.at + utf8_len(self.bytes[self.at]) } else { self.at };
         DbError {
             code: code::NOT_JSON,
-            message: format!("the database is not valid JSON: {what}"),
+            message: format!("{} is not valid JSON: {what}", self.what),
             span: Some((self.at, end)),
         }
     }

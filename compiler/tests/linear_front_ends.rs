@@ -1,0 +1,159 @@
+//! The front ends other than `linc check` of ST take time linear in the size
+//! of their input: FST tables, map files, sequences compiled, and the
+//! parser's error recovery. Each is timed at a size and at four times it;
+//! the bound (a ratio under 8) is generous for a shared machine and a debug
+//! build, and a quadratic step gives a ratio near 16.
+
+use linc_compiler::check::Context;
+use linc_compiler::diagnostic::MAX_ERRORS;
+use linc_runtime::Database;
+use std::time::{Duration, Instant};
+
+/// The best of three times of `f`.
+fn best(mut f: impl FnMut()) -> Duration {
+    (0..3)
+        .map(|_| {
+            let start = Instant::now();
+            f();
+            start.elapsed()
+        })
+        .min()
+        .unwrap_or_default()
+}
+
+/// How much longer `f(4n)` takes than `f(n)`.
+fn ratio<T>(n: usize, make: impl Fn(usize) -> T, mut f: impl FnMut(&T)) -> f64 {
+    let (small, large) = (make(n), make(4 * n));
+    let t1 = best(|| f(&small));
+    let t4 = best(|| f(&large));
+    t4.as_secs_f64() / t1.as_secs_f64().max(1e-9)
+}
+
+/// A table of `rows` steps over the FST example's points, with labels and
+/// branches, that checks clean.
+fn fst_table(rows: usize) -> String {
+    let mut out = String::from("STEP,LABEL,CMD,ARGUMENT1,ARGUMENT2,COMMENT\n");
+    for i in 0..rows {
+        out.push_str(&match i % 4 {
+            0 => format!("{i},L{i},VAL,\"AIN 2-1,EU\",,level\n"),
+            1 => format!("{i},,+,\"SFP 2,DATA1\",,\n"),
+            2 => format!("{i},,SAV,\"FST 1,R5\",,\n"),
+            _ => format!("{i},,>=,1,L{},\n", i - 3),
+        });
+    }
+    out
+}
+
+fn fst_check(text: &str, db: &Database) {
+    let (table, d) = linc_compiler::fst::reader::read(text);
+    assert!(d.is_empty(), "{:?}", d.first());
+    let (checked, d) = linc_compiler::fst::check::check(&table, Some(db));
+    assert!(d.is_empty() && checked.is_some(), "{:?}", d.first());
+}
+
+#[test]
+fn fst_tables_check_in_linear_time() {
+    let db = Database::from_json(include_str!("../../examples/fst/plant.json")).expect("fst example db");
+    let r = ratio(2_400, fst_table, |t| fst_check(t, &db));
+    assert!(r < 7.0, "4x the rows took {r:.1}x the time");
+}
+
+/// A database of `n` soft points and a table reading each: looking points
+/// up must not search the database for every cell.
+fn points_and_table(n: usize) -> (Database, String) {
+    let blocks: Vec<String> = (1..=n).map(|i| format!("\"SFP {i}\": {{\"type\": \"SFP\"}}")).collect();
+    let db =
+        format!("{{\"device\": \"ROC800\", \"blocks\": {{\"FST 1\": {{\"type\": \"FST\"}}, {}}}}}", blocks.join(", "));
+    let db = Database::from_json(&db).expect("generated db");
+    let mut table = String::from("STEP,LABEL,CMD,ARGUMENT1,ARGUMENT2\n");
+    for i in 0..n {
+        table.push_str(&format!("{i},,VAL,\"SFP {},DATA1\",\n", i + 1));
+    }
+    (db, table)
+}
+
+#[test]
+fn fst_points_are_found_in_constant_time() {
+    let r = ratio(1_000, points_and_table, |(db, t)| fst_check(t, db));
+    assert!(r < 8.0, "4x the points and rows took {r:.1}x the time");
+}
+
+/// A table with as many errors as are shown (cheap ones), then `rows`
+/// branches to labels no step has: the "did you mean" search through every
+/// label is for errors shown, not for the ones over the cap, only counted.
+fn unknown_labels(rows: usize) -> String {
+    let mut out = String::from("STEP,LABEL,CMD,ARGUMENT1,ARGUMENT2\n");
+    for i in 0..MAX_ERRORS {
+        out.push_str(&format!("{i},,ABS,1,\n"));
+    }
+    for i in MAX_ERRORS..MAX_ERRORS + rows {
+        out.push_str(&format!("{i},L{i},GO,M{i},\n"));
+    }
+    out
+}
+
+#[test]
+fn fst_errors_over_the_cap_cost_no_search() {
+    let db = Database::from_json(include_str!("../../examples/fst/plant.json")).expect("fst example db");
+    let r = ratio(1_000, unknown_labels, |t| {
+        let (table, _) = linc_compiler::fst::reader::read(t);
+        let (_, d) = linc_compiler::fst::check::check(&table, Some(&db));
+        assert_eq!(d.last().map(|d| d.code), Some("E0023"));
+    });
+    assert!(r < 8.0, "4x the rows took {r:.1}x the time");
+}
+
+fn ctx(db: &Database) -> Context<'_> {
+    Context { db, resolve_blocks: true, steps: None }
+}
+
+/// A sequence of `n` steps in a ring, each with an action and a timed
+/// transition to the next.
+fn ring(n: usize) -> String {
+    let mut out = String::new();
+    for i in 0..n {
+        let kw = if i == 0 { "INITIAL_STEP" } else { "STEP" };
+        out.push_str(&format!("{kw} S{i}: Count(N); END_STEP\n"));
+    }
+    for i in 0..n {
+        out.push_str(&format!("TRANSITION FROM S{i} TO S{} := S{i}.T >= 1.0; END_TRANSITION\n", (i + 1) % n));
+    }
+    out.push_str("ACTION Count\n    R1.Batches := R1.Batches + 1;\nEND_ACTION\n");
+    out
+}
+
+#[test]
+fn sequences_compile_in_linear_time() {
+    let db = Database::from_json(include_str!("../../examples/sequences/plant.json")).expect("sequence example db");
+    let r = ratio(800, ring, |src| {
+        let (d, object) = linc_compiler::sfc::compile_sequence(src, "ring", "ring.sfc", ctx(&db));
+        assert!(object.is_some(), "{:?}", d.first());
+    });
+    assert!(r < 7.0, "4x the steps took {r:.1}x the time");
+}
+
+/// A map of `n` generic names and a generic sequence of `n` steps (each
+/// step's name is looked up in the map, E0255) that reads the last name.
+fn map_and_sequence(n: usize) -> (String, String) {
+    let entries: Vec<String> = (0..n).map(|i| format!("  \"G{i}\": \"R1.Level\"")).collect();
+    let map = format!("{{\n{}\n}}\n", entries.join(",\n"));
+    let mut seq = ring(n);
+    seq.push_str(&format!("ACTION Last\n    R1.Temp := G{};\nEND_ACTION\n", n - 1));
+    (map, seq.replace("Count(N);", "Count(N); Last(N);"))
+}
+
+#[test]
+fn generic_sequences_check_with_a_map_in_linear_time() {
+    use linc_compiler::sfc::generic;
+    let db = Database::from_json(include_str!("../../examples/sequences/plant.json")).expect("sequence example db");
+    let r = ratio(1_000, map_and_sequence, |(map, seq)| {
+        let (map, errors) = generic::parse_map(map);
+        assert!(errors.is_empty(), "{errors:?}");
+        let (bound, errors) = generic::bind(&map, &db, true);
+        assert!(errors.is_empty(), "{errors:?}");
+        let named = generic::Named { map, file: "map.json".into() };
+        let report = linc_compiler::sfc::check_generic(seq, ctx(&bound), &named, false);
+        assert!(report.diagnostics.is_empty(), "{:?}", report.diagnostics.first());
+    });
+    assert!(r < 7.0, "4x the entries and steps took {r:.1}x the time");
+}
