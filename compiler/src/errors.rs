@@ -219,7 +219,7 @@ impl SyntaxError {
                 format!("statements nested more than {} deep", crate::parse_support::MAX_NESTING),
                 *span,
             )
-            .label(format!("this {keyword} holds statements nested {} deep", crate::parse_support::MAX_NESTING))
+            .label(format!("this {keyword} goes over the limit"))
             .help("move the inner part into a separate action, or test conditions in sequence instead of nesting"),
             SyntaxError::ExprTooDeep { span } => Diagnostic::error(
                 "E0022",
