@@ -111,11 +111,13 @@ fn show(file: &Path, values: ladder::pretty::draw::Values, format: Format) -> u8
     };
     let (text, _) = linc_compiler::files::decode(bytes);
     let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");
-    match ladder::draw(&text, stem, values) {
-        Ok(d) => {
-            print!("{d}");
-            0
-        }
+    let mut stdout = std::io::stdout().lock();
+    let drawn = ladder::draw_to(&text, stem, values, &mut |s| {
+        let _ = std::io::Write::write_all(&mut stdout, s.as_bytes());
+    });
+    drop(stdout);
+    match drawn {
+        Ok(()) => 0,
         Err(diagnostics) => {
             let mut files = SourceFiles::new();
             let id = files.add(file.display().to_string(), text);

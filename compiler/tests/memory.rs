@@ -138,3 +138,34 @@ fn deep_nesting_needs_little_memory() {
         assert!(peak < size * 2, "{head}…: peak heap {peak} bytes for a {size}-byte file");
     }
 }
+
+/// The peak of checking the ladder file `src` (with the ladder example's
+/// database), and its codes.
+fn ladder_peak(src: String) -> (usize, Vec<&'static str>) {
+    let db = Database::from_json(include_str!("../../examples/ladder/plant.json")).expect("ladder db");
+    let mut codes = Vec::new();
+    let peak = peak_of(|| {
+        let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
+        let id = s.add("big.ld", src.into_bytes());
+        codes = s.check(id, CheckOptions::default()).diagnostics.iter().map(|d| d.code).collect();
+    });
+    (peak, codes)
+}
+
+/// A ladder action is read, checked and dropped before the next one, and
+/// holds at most MAX_ELEMENTS elements (about a kilobyte each while it is
+/// checked): a 48 MB series took more than 4 GB.
+#[test]
+fn ladder_needs_memory_for_one_action_at_a_time() {
+    let _one = serial();
+    let series = format!("{}-> (Dig_1b.Out);\n", "[Dig_1a.In] ".repeat(200_000));
+    let size = series.len();
+    let (peak, codes) = ladder_peak(series);
+    assert_eq!(codes, ["E0313"]);
+    assert!(peak < size * 2, "series: peak heap {peak} bytes for a {size}-byte file");
+    let action = |i: usize| format!("ACTION A{i}\n{}-> (Dig_1b.Out);\nEND_ACTION\n", "[Dig_1a.In] ".repeat(2_000));
+    let (two, codes) = ladder_peak((0..2).map(action).collect());
+    assert!(codes.is_empty(), "{codes:?}");
+    let (twenty, _) = ladder_peak((0..20).map(action).collect());
+    assert!(twenty < two * 3 / 2, "20 actions peak at {twenty} bytes, 2 at {two}");
+}

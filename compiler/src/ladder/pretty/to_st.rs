@@ -9,15 +9,19 @@ use std::fmt::Write;
 /// file's stem, and so the same action name).
 pub fn file(f: &SourceFile) -> String {
     let mut out = String::new();
-    match f.actions.as_slice() {
-        [a] if a.header.is_none() => stmts(&mut out, &a.body, 0),
-        all => {
-            for a in all {
-                action(&mut out, a);
-            }
-        }
+    for a in &f.actions {
+        action_into(&mut out, a);
     }
     out
+}
+
+/// One action as [`file`] prints it: the statements alone for the one
+/// action of a file without headers.
+pub fn action_into(out: &mut String, a: &Action) {
+    match a.header {
+        None => stmts(out, &a.body, 0),
+        Some(_) => action(out, a),
+    }
 }
 
 fn action(out: &mut String, a: &Action) {
