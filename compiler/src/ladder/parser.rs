@@ -89,6 +89,12 @@ struct Parser<'s> {
     elements: usize,
 }
 
+/// Whether `text` is an ST keyword, which cannot name an action or a block
+/// type in ST (so its ST, `linc ladder to-st`, would not read back).
+fn keyword(text: &str) -> bool {
+    !matches!(crate::lexer::Lexer::new(text).next(), Some((_, crate::lexer::Tok::Name(_), _)))
+}
+
 fn is_ident(c: u8) -> bool {
     c.is_ascii_alphanumeric() || c == b'_'
 }
@@ -284,7 +290,7 @@ impl Parser<'_> {
                 Ident { text: String::new(), span: self.here() }
             }
         };
-        if name.text.chars().count() > 8 || name.text.starts_with(|c: char| c.is_ascii_digit()) {
+        if name.text.chars().count() > 8 || name.text.starts_with(|c: char| c.is_ascii_digit()) || keyword(&name.text) {
             self.push(SyntaxError::BadActionName { span: name.span, name: name.text.clone() }.to_diagnostic());
         }
         self.ws();
@@ -292,9 +298,20 @@ impl Parser<'_> {
         if self.peek() == Some(b':') {
             self.pos += 1;
             self.ws();
+            let at = self.pos;
             block_type = self.ident();
-            if block_type.is_none() {
-                self.error("a block type after `:`");
+            match &block_type {
+                None => {
+                    self.error("a block type after `:`");
+                }
+                // ACTION is a keyword and a block type (as in ST).
+                Some(t) if keyword(&t.text) && !t.text.eq_ignore_ascii_case("ACTION") => {
+                    self.pos = at;
+                    self.error("a block type after `:`");
+                    self.pos = t.span.end;
+                    block_type = None;
+                }
+                Some(_) => {}
             }
         }
         let header = Span::new(l, self.pos);
