@@ -29,7 +29,9 @@ pub fn run(path: &Path, format: Format) -> u8 {
 /// The listing: symbols, constants, then each unit's code blocks with
 /// labels, retained slots and the source line of each statement (when the
 /// source file can be read). Linear in the object's size: each source file
-/// is read once, and the line table is walked alongside the code.
+/// is read once, and the line table is walked alongside the code; a string
+/// constant is listed whole once, in the strings table, and by its number
+/// `$k` with its first bytes where it is pushed, and source lines are cut.
 pub fn listing(obj: &ObjectFile) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "; object compiled from {} (format version {})", obj.source, linc_runtime::object::VERSION);
@@ -143,9 +145,35 @@ fn block(out: &mut String, obj: &ObjectFile, index: usize, b: &CodeBlock, source
             }
             shown_line = e.line;
             let text = source.get((e.line as usize).wrapping_sub(1)).map(|s| s.trim()).unwrap_or("");
-            let _ = writeln!(out, "    ; {}:{}  {text}", e.line, e.col);
+            let _ = writeln!(out, "    ; {}:{}  {}", e.line, e.col, cut(text));
         }
         let _ = writeln!(out, "  {pc:>5}  {}", describe(obj, op));
+    }
+}
+
+/// The most bytes of a string constant shown where it is used; the whole
+/// constant is in the strings table, once (a 1 MiB constant pushed 4,000
+/// times made 4 GB of listing).
+const PREVIEW: usize = 32;
+
+/// The most characters of a source line shown above its instructions.
+const LINE: usize = 120;
+
+/// A string constant at a use: whole when short, else its first bytes and
+/// its length.
+fn preview(s: &[u8]) -> String {
+    if s.len() <= PREVIEW {
+        return format_value(&Value::Bytes(s.to_vec()));
+    }
+    let head = format_value(&Value::Bytes(s[..PREVIEW].to_vec()));
+    format!("{}…' ({} bytes)", head.strip_suffix('\'').unwrap_or(&head), s.len())
+}
+
+/// A source line, cut to [`LINE`] characters.
+fn cut(text: &str) -> String {
+    match text.char_indices().nth(LINE) {
+        Some((at, _)) => format!("{}…", &text[..at]),
+        None => text.to_string(),
     }
 }
 
@@ -156,8 +184,8 @@ fn describe(obj: &ObjectFile, op: &Op) -> String {
         Op::PushI { v } => format!("{name:<12} {v}"),
         Op::PushR { v } => format!("{name:<12} {}", linc_runtime::text::format_real(v)),
         Op::PushS { k } => {
-            let s = obj.strings.get(k as usize).cloned().unwrap_or_default();
-            format!("{name:<12} {}", format_value(&Value::Bytes(s.0)))
+            let s = obj.strings.get(k as usize).map(|s| s.0.as_slice()).unwrap_or_default();
+            format!("{name:<12} ${k} {}", preview(s))
         }
         Op::Call { func, argc, .. } => {
             let f = SIGNATURES.get(usize::from(func)).map(|s| s.name).unwrap_or("?");
