@@ -203,6 +203,7 @@ codes! {
     "E0816" => "aliases form a cycle",
     "E0817" => "alias expansion too large",
     "E0818" => "unknown ROC device family",
+    "E0819" => "database with too many fields",
     "E0830" => "action-type block names only half of its action",
     "E0831" => "action-type block names an action its file does not have",
     "E0832" => "error program is not an action-type block",

@@ -202,3 +202,31 @@ fn linking_copies_no_block_it_does_not_change() {
     assert!(peak < bytes.len() / 4, "linking took {peak} bytes for a {}-byte object", bytes.len());
     assert_eq!(linked.ops(0, 0).map(<[Op]>::len), Some((1 << 20) + 2));
 }
+
+/// A database declares at most `MAX_CELLS` fields: 300 blocks of a template
+/// of 10,000 fields (170 kB of JSON) made a store of 3 million cells. Blocks
+/// now cost memory in proportion to their own text, not to their fields.
+#[test]
+fn blocks_need_memory_in_proportion_to_their_text() {
+    use linc_runtime::{Database, Store};
+    let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let fields: Vec<String> = (0..10_000).map(|i| format!("\"F{i}\": \"REAL\"")).collect();
+    let text = |n: usize| {
+        let blocks: Vec<String> = (0..n).map(|i| format!("\"B{i}\": {{ \"type\": \"BIG\" }}")).collect();
+        format!(
+            "{{ \"templates\": {{ \"BIG\": {{ \"fields\": {{ {} }} }} }}, \"blocks\": {{ {} }} }}",
+            fields.join(", "),
+            blocks.join(", ")
+        )
+    };
+    let (one, many) = (text(1), text(300));
+    let (base, cells) = peak_of(|| Database::from_json(&one).map(|db| Store::new(db).cells.len()));
+    assert_eq!(cells, Ok(10_000));
+    let (peak, cells) = peak_of(|| Database::from_json(&many).map(|db| Store::new(db).cells.len()));
+    assert_eq!(cells.map_err(|e| e.code), Err("E0819"));
+    // The JSON tree and the database hold about 20 bytes per byte of block
+    // text (a remaining factor of the JSON loader); the cells of the 3
+    // million fields were some 12,000 times the text.
+    let blocks = many.len() - one.len();
+    assert!(peak < base + blocks * 32, "{peak} bytes with 300 blocks, {base} with one; the blocks are {blocks} bytes");
+}
