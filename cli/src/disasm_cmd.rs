@@ -6,7 +6,7 @@ use linc_runtime::object::{CodeBlock, ObjectFile};
 use linc_runtime::text::format_value;
 use linc_stdlib::{Value, SIGNATURES};
 use std::collections::HashMap;
-use std::fmt::Write;
+use std::io::Write;
 use std::path::Path;
 
 pub fn run(path: &Path, r: &mut Reporter) -> u8 {
@@ -16,7 +16,10 @@ pub fn run(path: &Path, r: &mut Reporter) -> u8 {
         .and_then(|bytes| linc_runtime::load(&bytes).map_err(|e| (e.code(), e.to_string())));
     match loaded {
         Ok(obj) => {
-            crate::out::print(&listing(obj.object()));
+            // Written as it is made: a listing is several times its object.
+            // A closed pipe (`| head`) ends the listing; nothing to report.
+            let mut out = crate::out::Stream::new();
+            let _ = listing(obj.object(), &mut out).and_then(|()| out.flush());
             0
         }
         Err((code, message)) => {
@@ -29,18 +32,19 @@ pub fn run(path: &Path, r: &mut Reporter) -> u8 {
 /// The listing: symbols, constants, then each unit's code blocks with
 /// labels, retained slots and the source line of each statement (when the
 /// source file can be read). Linear in the object's size: each source file
-/// is read once, and the line table is walked alongside the code.
-pub fn listing(obj: &ObjectFile) -> String {
-    let mut out = String::new();
-    let _ = writeln!(out, "; object compiled from {} (format version {})", obj.source, linc_runtime::object::VERSION);
-    let _ = writeln!(out, "; symbols");
+/// is read once, and the line table is walked alongside the code; a string
+/// constant is listed whole once, in the strings table, and by its number
+/// `$k` with its first bytes where it is pushed, and source lines are cut.
+pub fn listing(obj: &ObjectFile, out: &mut dyn Write) -> std::io::Result<()> {
+    writeln!(out, "; object compiled from {} (format version {})", obj.source, linc_runtime::object::VERSION)?;
+    writeln!(out, "; symbols")?;
     for (i, s) in obj.symbols.iter().enumerate() {
-        let _ = writeln!(out, ";   #{i:<3} {} ({:?})", s.text(), s.class);
+        writeln!(out, ";   #{i:<3} {} ({:?})", s.text(), s.class)?;
     }
     if !obj.strings.is_empty() {
-        let _ = writeln!(out, "; strings");
+        writeln!(out, "; strings")?;
         for (i, s) in obj.strings.iter().enumerate() {
-            let _ = writeln!(out, ";   ${i:<3} {}", format_value(&Value::Bytes(s.0.clone())));
+            writeln!(out, ";   ${i:<3} {}", format_value(&Value::Bytes(s.0.clone())))?;
         }
     }
     let mut sources: HashMap<&str, Vec<String>> = HashMap::new();
@@ -53,7 +57,7 @@ pub fn listing(obj: &ObjectFile) -> String {
                 .unwrap_or_default()
         });
         let kind = if u.block_type.is_empty() { String::new() } else { format!(" : {}", u.block_type) };
-        let _ = writeln!(
+        writeln!(
             out,
             "\n{} {}{kind}    ; {}, {} code block{}, {} retained slot{}",
             format!("{:?}", u.kind).to_lowercase(),
@@ -63,22 +67,27 @@ pub fn listing(obj: &ObjectFile) -> String {
             if u.blocks.len() == 1 { "" } else { "s" },
             u.retained,
             if u.retained == 1 { "" } else { "s" },
-        );
+        )?;
         for (ci, c) in u.charts.iter().enumerate() {
-            chart(&mut out, u, ci, c);
+            chart(out, u, ci, c)?;
         }
         for (bi, b) in u.blocks.iter().enumerate() {
-            block(&mut out, obj, bi, b, source);
+            block(out, obj, bi, b, source)?;
         }
     }
-    out
+    Ok(())
 }
 
 /// A sequence's chart table: steps with their slots and associations,
 /// transitions with their condition blocks, actions.
-fn chart(out: &mut String, u: &linc_runtime::object::Unit, index: usize, c: &linc_runtime::object::ChartRec) {
+fn chart(
+    out: &mut dyn Write,
+    u: &linc_runtime::object::Unit,
+    index: usize,
+    c: &linc_runtime::object::ChartRec,
+) -> std::io::Result<()> {
     let title = if index == 0 { "ROOT".to_string() } else { format!("#{index}") };
-    let _ = writeln!(out, "  chart {title}");
+    writeln!(out, "  chart {title}")?;
     let block_name = |b: u16| u.blocks.get(usize::from(b)).map(|b| b.name.clone()).unwrap_or_else(|| format!("#{b}"));
     for s in &c.steps {
         let assocs: Vec<String> = s
@@ -95,44 +104,39 @@ fn chart(out: &mut String, u: &linc_runtime::object::Unit, index: usize, c: &lin
             })
             .collect();
         let kind = if s.initial != 0 { "initial step" } else { "step" };
-        let _ = writeln!(out, "    {kind} {} [slot {}]: {}", s.name, s.slot, assocs.join(", "));
+        writeln!(out, "    {kind} {} [slot {}]: {}", s.name, s.slot, assocs.join(", "))?;
     }
     let steps = |v: &[u16]| {
         v.iter().map(|&i| c.steps.get(usize::from(i)).map_or("?", |s| s.name.as_str())).collect::<Vec<_>>().join(", ")
     };
     for t in &c.transitions {
         let p = if t.priority == u32::MAX { String::new() } else { format!(" priority {}", t.priority) };
-        let _ = writeln!(
+        writeln!(
             out,
             "    transition `{}`{p}: ({}) -> ({}) when {}",
             t.name,
             steps(&t.from),
             steps(&t.to),
             block_name(t.block)
-        );
+        )?;
     }
     for a in &c.actions {
         let body = if a.kind == 1 { format!("chart #{}", a.index) } else { format!("block {}", block_name(a.index)) };
-        let _ = writeln!(out, "    action {}: {body}", a.name);
+        writeln!(out, "    action {}: {body}", a.name)?;
     }
+    Ok(())
 }
 
-fn block(out: &mut String, obj: &ObjectFile, index: usize, b: &CodeBlock, source: &[String]) {
+fn block(out: &mut dyn Write, obj: &ObjectFile, index: usize, b: &CodeBlock, source: &[String]) -> std::io::Result<()> {
     let name = if b.name.is_empty() { format!("#{index}") } else { b.name.clone() };
-    let _ = writeln!(
-        out,
-        "  block {name}    ; {} instructions, {} locals, {} labels",
-        b.ops.len(),
-        b.locals,
-        b.labels.len()
-    );
+    writeln!(out, "  block {name}    ; {} instructions, {} locals, {} labels", b.ops.len(), b.locals, b.labels.len())?;
     let mut labels_at: Vec<(u32, usize)> = b.labels.iter().enumerate().map(|(l, &at)| (at, l)).collect();
     labels_at.sort_unstable();
     let (mut next_line, mut next_label, mut shown_line) = (0, 0, 0);
     for (pc, op) in b.ops.iter().enumerate() {
         while let Some(&(at, l)) = labels_at.get(next_label).filter(|(at, _)| *at as usize <= pc) {
             if at as usize == pc {
-                let _ = writeln!(out, "  L{l}:");
+                writeln!(out, "  L{l}:")?;
             }
             next_label += 1;
         }
@@ -143,9 +147,36 @@ fn block(out: &mut String, obj: &ObjectFile, index: usize, b: &CodeBlock, source
             }
             shown_line = e.line;
             let text = source.get((e.line as usize).wrapping_sub(1)).map(|s| s.trim()).unwrap_or("");
-            let _ = writeln!(out, "    ; {}:{}  {text}", e.line, e.col);
+            writeln!(out, "    ; {}:{}  {}", e.line, e.col, cut(text))?;
         }
-        let _ = writeln!(out, "  {pc:>5}  {}", describe(obj, op));
+        writeln!(out, "  {pc:>5}  {}", describe(obj, op))?;
+    }
+    Ok(())
+}
+
+/// The most bytes of a string constant shown where it is used; the whole
+/// constant is in the strings table, once (a 1 MiB constant pushed 4,000
+/// times made 4 GB of listing).
+const PREVIEW: usize = 32;
+
+/// The most characters of a source line shown above its instructions.
+const LINE: usize = 120;
+
+/// A string constant at a use: whole when short, else its first bytes and
+/// its length.
+fn preview(s: &[u8]) -> String {
+    if s.len() <= PREVIEW {
+        return format_value(&Value::Bytes(s.to_vec()));
+    }
+    let head = format_value(&Value::Bytes(s[..PREVIEW].to_vec()));
+    format!("{}…' ({} bytes)", head.strip_suffix('\'').unwrap_or(&head), s.len())
+}
+
+/// A source line, cut to [`LINE`] characters.
+fn cut(text: &str) -> String {
+    match text.char_indices().nth(LINE) {
+        Some((at, _)) => format!("{}…", &text[..at]),
+        None => text.to_string(),
     }
 }
 
@@ -156,8 +187,8 @@ fn describe(obj: &ObjectFile, op: &Op) -> String {
         Op::PushI { v } => format!("{name:<12} {v}"),
         Op::PushR { v } => format!("{name:<12} {}", linc_runtime::text::format_real(v)),
         Op::PushS { k } => {
-            let s = obj.strings.get(k as usize).cloned().unwrap_or_default();
-            format!("{name:<12} {}", format_value(&Value::Bytes(s.0)))
+            let s = obj.strings.get(k as usize).map(|s| s.0.as_slice()).unwrap_or_default();
+            format!("{name:<12} ${k} {}", preview(s))
         }
         Op::Call { func, argc, .. } => {
             let f = SIGNATURES.get(usize::from(func)).map(|s| s.name).unwrap_or("?");

@@ -104,11 +104,12 @@ fn show(file: &Path, values: ladder::pretty::draw::Values, r: &mut Reporter) -> 
     };
     let (text, _) = linc_compiler::files::decode(bytes);
     let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");
-    match ladder::draw(&text, stem, values) {
-        Ok(d) => {
-            crate::out::print(&d);
-            0
-        }
+    let mut out = crate::out::Stream::new();
+    let drawn = ladder::draw_to(&text, stem, values, &mut |s| out.text(s));
+    let _ = std::io::Write::flush(&mut out);
+    drop(out);
+    match drawn {
+        Ok(()) => 0,
         Err(diagnostics) => {
             let mut files = SourceFiles::new();
             let id = files.add(file.display().to_string(), text);

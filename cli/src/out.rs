@@ -20,3 +20,34 @@ pub fn line(text: &str) {
     let _ = out.write_all(escape_text(text).as_bytes());
     let _ = out.write_all(b"\n");
 }
+
+/// Standard output written as it is made (a listing or a drawing can be
+/// many times its input), escaped like [`print`] and buffered.
+pub struct Stream {
+    out: std::io::BufWriter<std::io::StdoutLock<'static>>,
+}
+
+impl Stream {
+    pub fn new() -> Self {
+        Stream { out: std::io::BufWriter::new(std::io::stdout().lock()) }
+    }
+
+    /// Writes `text` escaped; a closed standard output is no error here.
+    pub fn text(&mut self, text: &str) {
+        let _ = self.out.write_all(escape_text(text).as_bytes());
+    }
+}
+
+impl Write for Stream {
+    /// Text formatted into the stream is escaped; bytes that are not UTF-8
+    /// are written as the replacement character.
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let text = String::from_utf8_lossy(buf);
+        self.out.write_all(escape_text(&text).as_bytes())?;
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.out.flush()
+    }
+}

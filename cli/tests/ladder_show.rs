@@ -49,3 +49,41 @@ fn values_draw_powered_elements_after_a_run() {
     let o = linc(&["ladder", "show", "examples/ladder/interlock.ld", "--values"]);
     assert_eq!(o.status.code(), Some(2), "--values needs --db");
 }
+
+/// A rung of 3,900 contacts is 66,000 characters wide: `format!` pads to
+/// at most 65,535 and panicked on it. Every rung check accepts is drawn.
+#[test]
+fn a_rung_wider_than_format_can_pad_is_drawn() {
+    let f = temp_dir("ladder-show").join("wide.ld");
+    let src = format!("{}-> (Dig_1b.Out);\n[Dig_1a.In] -> (Dig_1b.Out);\n", "[Dig_1a.In] ".repeat(3_900));
+    std::fs::write(&f, &src).expect("write");
+    let o = linc(&["ladder", "show", f.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", common::stderr(&o));
+    let drawn = stdout(&o);
+    let lines: Vec<&str> = drawn.lines().collect();
+    let wide = format!("  |{}--( Dig_1b.Out )--|", "--[ Dig_1a.In ]--".repeat(3_900));
+    assert!(lines[1] == wide, "the wide rung is drawn whole ({} characters)", lines[1].len());
+    // The short rung keeps the right rail of short rungs.
+    assert_eq!(lines[3], "  |--[ Dig_1a.In ]----( Dig_1b.Out )--|");
+    let o = linc(&["check", "--db", "examples/ladder/plant.json", f.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+}
+
+/// A drawing is as wide as its widest branch on every row: 2,000 branches
+/// beside a series of 600 contacts would be 2,000 rows of 10,000
+/// characters. Such a rung is refused, located, and nothing is drawn.
+#[test]
+fn a_rung_too_large_to_draw_is_refused_at_the_rung() {
+    let f = temp_dir("ladder-show").join("large.ld");
+    let branch = "[Dig_1a.In] ".repeat(600);
+    let rung = format!("({branch}{}) -> (Dig_1b.Out);\n", "| [Dig_2a.In] ".repeat(2_000));
+    let src = format!("[Dig_1a.In] -> (Dig_1b.Out);\n{rung}");
+    std::fs::write(&f, &src).expect("write");
+    let o = linc(&["ladder", "show", f.to_str().unwrap(), "--message-format", "short"]);
+    assert_eq!(o.status.code(), Some(1));
+    let text = stdout(&o);
+    assert!(text.starts_with(&format!("{}:2:1: error[E0314]", f.display())), "{text}");
+    assert!(!text.contains("Dig_1b.Out )"), "nothing is drawn: {text}");
+    let o = linc(&["check", "--db", "examples/ladder/plant.json", f.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+}

@@ -198,7 +198,7 @@ impl SyntaxError {
             }
             SyntaxError::BadActionName { span, name } => {
                 Diagnostic::error("E0014", format!("`{name}` is not a valid action name"), *span)
-                    .label("action names have up to 8 characters a-z, A-Z, 0-9 or _, and do not start with a digit")
+                    .label("action names have up to 8 characters a-z, A-Z, 0-9 or _, do not start with a digit and are not keywords")
             }
             SyntaxError::DoubleOffset { span } => {
                 Diagnostic::error("E0015", "a name part can carry only one offset", *span)
@@ -219,7 +219,7 @@ impl SyntaxError {
                 format!("statements nested more than {} deep", crate::parse_support::MAX_NESTING),
                 *span,
             )
-            .label(format!("this {keyword} holds statements nested {} deep", crate::parse_support::MAX_NESTING))
+            .label(format!("this {keyword} goes over the limit"))
             .help("move the inner part into a separate action, or test conditions in sequence instead of nesting"),
             SyntaxError::ExprTooDeep { span } => Diagnostic::error(
                 "E0022",

@@ -77,6 +77,12 @@ pub enum Tok<'s> {
     /// Injected first token selecting what the parser reads.
     StartFile,
     StartExpr,
+    /// Placeholders from [`crate::depth_guard`] for a part over a depth
+    /// limit, already reported: the inside of a bracket, a run of prefix
+    /// operators, a statement.
+    Skipped,
+    SkippedPrefix,
+    SkippedStatement,
 }
 
 impl Tok<'_> {
@@ -91,12 +97,14 @@ impl Tok<'_> {
             Tok::Time(_) => "time constant".to_string(),
             Tok::Str(_) => "string constant".to_string(),
             Tok::StartFile | Tok::StartExpr => "start of input".to_string(),
+            Tok::Skipped | Tok::SkippedPrefix => "an expression nested too deep".to_string(),
+            Tok::SkippedStatement => "statements nested too deep".to_string(),
             other => format!("`{}`", keyword_text(other)),
         }
     }
 
     /// True for tokens after which an operator is expected.
-    fn ends_operand(&self) -> bool {
+    pub(crate) fn ends_operand(&self) -> bool {
         matches!(
             self,
             Tok::Name(_)

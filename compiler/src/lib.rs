@@ -10,6 +10,7 @@
 pub mod ast;
 pub mod check;
 pub mod codes;
+pub mod depth_guard;
 pub mod diagnostic;
 pub mod errors;
 pub mod files;

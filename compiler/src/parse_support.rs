@@ -111,6 +111,17 @@ fn too_deep(syntax: &mut Capped<SyntaxError>, deepest: u16, span: Span) -> Optio
     None
 }
 
+/// A part the depth guard skipped (and reported): every part around it is
+/// cut off silently.
+pub fn skipped(span: Span) -> Node {
+    cut(span)
+}
+
+/// Statements the depth guard skipped (and reported).
+pub fn skipped_stmt(span: Span) -> SNode {
+    SNode { s: Stmt::Error { span }, depth: CUT }
+}
+
 pub fn leaf(kind: ExprKind, l: usize, r: usize) -> Node {
     Node { e: Box::new(Expr { kind, span: Span::new(l, r) }), depth: 1 }
 }

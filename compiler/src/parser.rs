@@ -2,6 +2,7 @@
 //! (recovered or fatal) into [`SyntaxError`]s.
 
 use crate::ast::{Action, Expr, Ident, SourceFile, Stmt};
+use crate::depth_guard::DepthGuard;
 use crate::diagnostic::{Capped, Omitted};
 use crate::errors::{LexError, SyntaxError};
 use crate::lexer::{Lexer, Spanned, Tok};
@@ -82,9 +83,12 @@ fn run(src: &str, start: Tok<'static>, sink: &mut dyn FnMut(Item)) -> (Option<Pa
     let mut recovered: Capped<ErrorRecovery<usize, Tok, Never>> = Capped::default();
     let mut syntax = Capped::default();
     let parser = grammar::StartParser::new();
-    let tokens = std::iter::once((0, start, 0)).chain(lexer.by_ref()).map(Ok::<Spanned, Never>);
+    let mut guard = DepthGuard::new(lexer.by_ref());
+    let tokens = std::iter::once((0, start, 0)).chain(guard.by_ref()).map(Ok::<Spanned, Never>);
     let result = parser.parse(&mut recovered, &mut syntax, sink, tokens);
     let mut omitted = Omitted::default();
+    let (too_deep, n, first) = guard.errors.into_parts();
+    omitted.add(n, first.as_ref().map(syntax_span));
     let (recovered, n, first) = recovered.into_parts();
     omitted.add(n, first.map(|r| syntax_span(&convert(&lexer.glued, r.error, src.len()))));
     let mut found: Vec<SyntaxError> =
@@ -101,6 +105,7 @@ fn run(src: &str, start: Tok<'static>, sink: &mut dyn FnMut(Item)) -> (Option<Pa
     let (syntax, n, first) = syntax.into_parts();
     omitted.add(n, first.as_ref().map(syntax_span));
     found.extend(syntax);
+    found.extend(too_deep);
     found.sort_by_key(|e| syntax_span(e).start);
     found.dedup_by(|b, a| syntax_span(a) == syntax_span(b));
     let (lex, n, first) = lexer.errors.into_parts();
@@ -157,7 +162,7 @@ fn readable(expected: &[String]) -> Vec<String> {
             "Int" | "Real" => "a number".to_string(),
             "Time" | "Str" | "TRUE" | "FALSE" => "a constant".to_string(),
             "DotName" => "`.name`".to_string(),
-            "StartFile" | "StartExpr" => continue,
+            "StartFile" | "StartExpr" | "Skipped" | "SkippedPrefix" | "SkippedStatement" => continue,
             other => format!("`{}`", other.replace("\\\"", "\"")),
         };
         if !out.contains(&text) {

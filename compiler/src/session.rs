@@ -257,8 +257,9 @@ impl<'a> Session<'a> {
             Input::Actions if crate::ladder::is_ladder(source.name()) => {
                 let mut names = Names { map: &mut self.actions, file, errors: &mut session_errors };
                 let sink = Sink { keep: self.programs.is_some(), stream: self.stream.as_mut() };
-                let (program, tree, errors) = check_ladder(source, self.ctx, &mut checker, &mut names, sink);
-                checked.tree = tree.filter(|_| options.tree).map(Tree::Actions);
+                let (program, tree, errors) =
+                    check_ladder(source, self.ctx, &mut checker, &mut names, sink, options.tree);
+                checked.tree = tree.map(Tree::Actions);
                 ladder_errors = errors;
                 (ParseErrors::default(), Some(program))
             }
@@ -437,29 +438,33 @@ fn check_actions(
 }
 
 /// Desugars a ladder file into ST actions (ADR 0009) and checks them like
-/// the actions of an ST file. Returns the checked program (empty unless
-/// kept), the desugared tree and the ladder front end's own diagnostics.
+/// the actions of an ST file, one action at a time. Returns the checked
+/// program (empty unless kept), the desugared tree (if `tree`) and the
+/// ladder front end's own diagnostics.
 fn check_ladder(
     source: &files::SourceFile,
     ctx: Context,
     checker: &mut Checker,
     names: &mut Names,
     mut sink: Sink,
+    tree: bool,
 ) -> (hir::Program, Option<ast::SourceFile>, Vec<Diagnostic>) {
     let stem = std::path::Path::new(source.name()).file_stem().and_then(|s| s.to_str()).unwrap_or("action");
-    let d = crate::ladder::desugar(source.text(), stem, ctx);
-    let mut actions = Vec::new();
-    for a in &d.st.actions {
+    let (mut actions, mut trees) = (Vec::new(), Vec::new());
+    let diagnostics = crate::ladder::desugar_each(source.text(), stem, ctx, &mut |a| {
         names.define(&a.name, a.header.is_none());
-        let h = checker.action(a);
+        let h = checker.action(&a);
         if let Some(stream) = sink.stream.as_deref_mut() {
             stream.action(&h);
         }
         if sink.keep {
             actions.push(h);
         }
-    }
-    (hir::Program { actions }, Some(d.st), d.diagnostics)
+        if tree {
+            trees.push(a);
+        }
+    });
+    (hir::Program { actions }, tree.then_some(ast::SourceFile { actions: trees }), diagnostics)
 }
 
 /// Every diagnostic of one file, in source order. Lexer errors at bytes

@@ -84,6 +84,44 @@ fn far_too_deep_code_gives_one_error_each() {
 
 #[test]
 fn brackets_alone_add_no_depth() {
-    let src = format!("Recipe.A0 := {}1{};\n", "(".repeat(20_000), ")".repeat(20_000));
+    // 200 brackets around a sum as deep as the limit allows.
+    let e = MAX_EXPR_DEPTH as usize;
+    let src = format!("Recipe.A0 := {}{}{};\n", "(".repeat(e), sum(e), ")".repeat(e));
     assert_eq!(codes(src), Vec::<&str>::new());
+}
+
+/// Code, line and column of each diagnostic of `src`.
+fn located(src: &str) -> Vec<(&'static str, usize)> {
+    let db = db();
+    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let r = linc_compiler::check_source(src, "deep", ctx);
+    r.diagnostics.iter().map(|d| (d.code, d.span.start)).collect()
+}
+
+#[test]
+fn brackets_and_prefix_runs_are_limited_as_they_are_read() {
+    // The parser holds every open bracket and waiting prefix operator, so
+    // they are counted before they close (100 MB of `(` held 7.5 GB).
+    let e = MAX_EXPR_DEPTH as usize;
+    let at = "Recipe.A0 := ".len();
+    let src = format!("Recipe.A0 := {}1{};\n", "(".repeat(20_000), ")".repeat(20_000));
+    assert_eq!(located(&src), [("E0022", at + e)]);
+    let src = format!("Recipe.A0 := {}1;\n", "-".repeat(20_000));
+    assert_eq!(located(&src), [("E0022", at + e)]);
+    let src = format!("Recipe.A0 := {}1;\n", "-".repeat(e));
+    assert_eq!(located(&src), []);
+    // Unclosed: the bracket is reported, and so is the missing `)`.
+    let src = format!("Recipe.A0 := {}1;\nRecipe.A1 := 2;\n", "(".repeat(20_000));
+    let codes: Vec<_> = located(&src).into_iter().map(|c| c.0).collect();
+    assert_eq!(codes, ["E0022", "E0010"]);
+}
+
+#[test]
+fn an_unclosed_statement_over_the_limit_is_reported_at_its_keyword() {
+    let n = MAX_NESTING as usize;
+    let src = "IF Dig_A.Out.Bit0 THEN\n".repeat(20_000);
+    let keyword = "IF Dig_A.Out.Bit0 THEN\n".len() * n;
+    let found = located(&src);
+    assert_eq!(found[0], ("E0021", keyword));
+    assert_eq!(found.iter().map(|c| c.0).collect::<Vec<_>>(), ["E0021", "E0011"]);
 }

@@ -68,3 +68,67 @@ fn compiling_lowers_as_it_checks_and_keeps_no_checked_program() {
     eprintln!("compile: peak heap {peak} bytes for a {size}-byte file, object {object_bytes} bytes");
     assert!(peak < size * 6, "peak heap {peak} bytes for a {size}-byte file");
 }
+
+/// Deep nesting: the parser holds each open bracket, waiting prefix
+/// operator and open statement on its stack, about 100 bytes each, so 1 MB
+/// of `(` held about 110 MB (7.5 GB for 100 MB) before the depth guard.
+#[test]
+fn deep_nesting_needs_little_memory() {
+    let _one = serial();
+    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
+    let n = 1 << 20;
+    let cases = [
+        format!("Recipe.A0 := {}1;\n", "(".repeat(n)),
+        format!("Recipe.A0 := {}1{};\n", "(".repeat(n / 2), ")".repeat(n / 2)),
+        format!("Recipe.A0 := {}1;\n", "- ".repeat(n / 2)),
+        format!("Recipe.A0 := {}1;\n", "-".repeat(n)),
+        format!("Recipe.A0 := {}0;\n", "ABS(".repeat(n / 4)),
+        format!("Recipe.A0 := {}0;\n", "Block_5.Val1{".repeat(n / 13)),
+        "IF 1 THEN\n".repeat(n / 10),
+        "WHILE 1 DO\n".repeat(n / 11) + &"END_WHILE;\n".repeat(n / 11),
+    ];
+    for src in cases {
+        let size = src.len();
+        let head = src[..16].to_string();
+        let mut codes = Vec::new();
+        let peak = peak_of(|| {
+            let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
+            let id = s.add("deep.st", src.into_bytes());
+            let c = s.check(id, CheckOptions::default());
+            codes = c.diagnostics.iter().map(|d| d.code).collect();
+        });
+        assert!(codes[0] == "E0021" || codes[0] == "E0022", "{head}: {codes:?}");
+        assert!(peak < size * 2, "{head}…: peak heap {peak} bytes for a {size}-byte file");
+    }
+}
+
+/// The peak of checking the ladder file `src` (with the ladder example's
+/// database), and its codes.
+fn ladder_peak(src: String) -> (usize, Vec<&'static str>) {
+    let db = Database::from_json(include_str!("../../examples/ladder/plant.json")).expect("ladder db");
+    let mut codes = Vec::new();
+    let peak = peak_of(|| {
+        let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
+        let id = s.add("big.ld", src.into_bytes());
+        codes = s.check(id, CheckOptions::default()).diagnostics.iter().map(|d| d.code).collect();
+    });
+    (peak, codes)
+}
+
+/// A ladder action is read, checked and dropped before the next one, and
+/// holds at most MAX_ELEMENTS elements (about a kilobyte each while it is
+/// checked): a 48 MB series took more than 4 GB.
+#[test]
+fn ladder_needs_memory_for_one_action_at_a_time() {
+    let _one = serial();
+    let series = format!("{}-> (Dig_1b.Out);\n", "[Dig_1a.In] ".repeat(200_000));
+    let size = series.len();
+    let (peak, codes) = ladder_peak(series);
+    assert_eq!(codes, ["E0313"]);
+    assert!(peak < size * 2, "series: peak heap {peak} bytes for a {size}-byte file");
+    let action = |i: usize| format!("ACTION A{i}\n{}-> (Dig_1b.Out);\nEND_ACTION\n", "[Dig_1a.In] ".repeat(2_000));
+    let (two, codes) = ladder_peak((0..2).map(action).collect());
+    assert!(codes.is_empty(), "{codes:?}");
+    let (twenty, _) = ladder_peak((0..20).map(action).collect());
+    assert!(twenty < two * 3 / 2, "20 actions peak at {twenty} bytes, 2 at {two}");
+}

@@ -33,6 +33,28 @@ macro_rules! le_operand {
 }
 le_operand!(u8, u16, u32, i32, f32);
 
+/// An operand that is always 0: its four bytes stay in the encoding (so
+/// objects read as before), but it takes no room in memory. `Clamp`'s lower
+/// bound is one; with it `Op` is 8 bytes instead of 12, and decoded code
+/// needs at most 8 bytes per byte of a file (see `wire::Code`).
+#[derive(Clone, Copy, Default, PartialEq, Eq)]
+pub struct Zero;
+
+impl std::fmt::Debug for Zero {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("0")
+    }
+}
+
+impl Operand for Zero {
+    fn read(code: &[u8], at: &mut usize) -> Option<Self> {
+        (i32::read(code, at)? == 0).then_some(Zero)
+    }
+    fn write(self, out: &mut Vec<u8>) {
+        0i32.write(out);
+    }
+}
+
 /// A property of an instruction, given once in the table's flags column
 /// and read by the verifier, the VM, the compiling tier and the tracer,
 /// instead of each keeping its own list.
@@ -170,7 +192,7 @@ instructions! {
     0x31 RToI {}                     [1 1 0 0] (Compiled) "REAL to INT, rounding halves away from zero.";
     0x32 Decode {}                   [0 0 1 1] (Compiled) "Decode the $-sequences of a string constant or STRING value.";
     0x33 Truth {}                    [1 1 0 0] (Compiled) "INT to BOOL: non-zero is 1.";
-    0x34 Clamp { lo: i32, hi: i32 }  [1 1 0 0] () "Limit an INT to `lo..=hi` (FST values into 8-bit flags).";
+    0x34 Clamp { lo: Zero, hi: i32 } [1 1 0 0] () "Limit an INT to `0..=hi` (FST values into 8-bit flags); `lo` is encoded, and 0.";
     0x35 TruncR {}                   [1 1 0 0] () "REAL to its integer part, as REAL (FST INT).";
     0x40 AddI {}                     [2 1 0 0] (Compiled) "INT +, wrapping.";
     0x41 SubI {}                     [2 1 0 0] (Compiled) "INT -, wrapping.";

@@ -31,6 +31,7 @@ pub use link::{Linked, Program};
 pub use object::ObjectFile;
 pub use store::Store;
 pub use verify::Verified;
+pub use verify_chart::MAX_CHART_DEPTH;
 
 /// Decodes and verifies an object file.
 pub fn load(bytes: &[u8]) -> Result<Verified, LoadError> {

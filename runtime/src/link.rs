@@ -10,7 +10,7 @@
 
 use crate::errors::LoadError;
 use crate::isa::Op;
-use crate::object::{ObjectFile, Sub, Symbol, Unit};
+use crate::object::{CodeBlock, ObjectFile, Sub, Symbol, Unit};
 use crate::store::{class_of, Cell, Store};
 use crate::verify::{Limits, Verified};
 use std::collections::HashMap;
@@ -34,10 +34,13 @@ pub struct Target {
 }
 
 /// One code block ready to run: jumps are instruction indices and symbols
-/// index the program's target table.
+/// index the program's target table. A block with neither runs the
+/// object's instructions as they are, without a copy ([`Linked::ops`]): a
+/// copy of a block of one-byte instructions took 8 bytes per byte.
 #[derive(Clone, Debug)]
 pub struct LinkedBlock {
-    pub ops: Vec<Op>,
+    /// The linked instructions; `None` when they are the object's.
+    ops: Option<Vec<Op>>,
     pub limits: Limits,
 }
 
@@ -110,6 +113,20 @@ impl Linked {
     pub fn unit(&self, program: usize) -> Option<&Unit> {
         self.programs.get(program).and_then(|p| self.object().units.get(p.unit))
     }
+
+    /// The instructions block `block` of `program` runs.
+    pub fn ops(&self, program: usize, block: usize) -> Option<&[Op]> {
+        let linked = self.programs.get(program)?.blocks.get(block)?;
+        let code = self.unit(program)?.blocks.get(block)?;
+        Some(linked.ops_or(code))
+    }
+}
+
+impl LinkedBlock {
+    /// The instructions, given the object's block `code` this was linked from.
+    pub(crate) fn ops_or<'a>(&'a self, code: &'a CodeBlock) -> &'a [Op] {
+        self.ops.as_deref().unwrap_or(&code.ops)
+    }
 }
 
 impl Verified {
@@ -151,6 +168,10 @@ fn link_program(v: &Verified, unit: &Unit, p: Program, store: &Store) -> Result<
     let fst = unit.kind == crate::object::UnitKind::Fst;
     let mut blocks = Vec::with_capacity(unit.blocks.len());
     for (bi, b) in unit.blocks.iter().enumerate() {
+        if b.ops.iter().all(|op| op.target().is_none() && op.symbol().is_none()) {
+            blocks.push(LinkedBlock { ops: None, limits: v.limits(p.unit, bi) });
+            continue;
+        }
         let mut ops = Vec::with_capacity(b.ops.len());
         for op in b.ops.iter() {
             let mut op = match op.target() {
@@ -180,7 +201,7 @@ fn link_program(v: &Verified, unit: &Unit, p: Program, store: &Store) -> Result<
             }
             ops.push(op);
         }
-        blocks.push(LinkedBlock { ops, limits: v.limits(p.unit, bi) });
+        blocks.push(LinkedBlock { ops: Some(ops), limits: v.limits(p.unit, bi) });
     }
     Ok(LinkedProgram { unit: p.unit, own: p.own, targets, symbols, blocks })
 }

@@ -127,7 +127,8 @@ records! {
     /// A straight piece of code with its own labels, locals and tables: an
     /// action body, and later a transition or a step's action of a chart.
     /// Jumps name labels of the same block; a label is an instruction index.
-    CodeBlock "code block" {
+    /// Charts name a unit's blocks by a `u16`, so a unit has at most 65,536.
+    CodeBlock "code block" at most 65536 {
         name: String,
         locals: u8,
         ops: Code,
@@ -202,6 +203,7 @@ pub enum UnitKind {
 }
 
 impl Wire for UnitKind {
+    const MIN: usize = 1;
     fn put(&self, out: &mut Vec<u8>) {
         (*self as u8).put(out);
     }
@@ -215,7 +217,10 @@ impl Wire for UnitKind {
     }
 }
 
+/// Instructions name a symbol by a `u16`, so an object has at most 65,536.
 impl Wire for Symbol {
+    const MIN: usize = 2 + 2 + 1 + 1;
+    const MAX_COUNT: usize = 1 << 16;
     fn put(&self, out: &mut Vec<u8>) {
         self.block.put(out);
         self.field.put(out);

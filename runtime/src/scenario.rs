@@ -367,7 +367,7 @@ fn reads(linked: &Linked, store: &Store, steps: &[String], slots: &[u32]) -> Vec
             out.push((store.describe(t.cell), store.show(t.cell)));
         }
     }
-    let code = prog.blocks.first().map(|b| &b.ops[..]).unwrap_or_default();
+    let code = linked.ops(0, 0).unwrap_or_default();
     for op in code {
         if let Op::LoadRet { n } = *op {
             let (step, x) = (usize::from(n / 2), n % 2 == 0);

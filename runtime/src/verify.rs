@@ -31,8 +31,11 @@ pub struct Limits {
 #[derive(Clone, Debug)]
 pub struct Verified {
     obj: ObjectFile,
-    /// Per unit, per code block.
-    limits: Vec<Vec<Limits>>,
+    /// Per code block, the units' blocks one after another (one table, not
+    /// one per unit: an object of many small units holds no more).
+    limits: Vec<Limits>,
+    /// Where each unit's blocks start in `limits`.
+    first: Vec<u32>,
 }
 
 impl Verified {
@@ -41,7 +44,9 @@ impl Verified {
     }
 
     pub fn limits(&self, unit: usize, block: usize) -> Limits {
-        self.limits.get(unit).and_then(|u| u.get(block)).copied().unwrap_or_default()
+        let at = self.first.get(unit).map(|&f| f as usize + block);
+        let inside = self.first.get(unit + 1).map_or(self.limits.len(), |&f| f as usize);
+        at.filter(|&i| i < inside).and_then(|i| self.limits.get(i)).copied().unwrap_or_default()
     }
 
     /// The unit called `name` (names ignore case).
@@ -63,16 +68,19 @@ pub fn verifications() -> u64 {
 /// Verifies every unit of an object.
 pub fn verify(obj: ObjectFile) -> Result<Verified, LoadError> {
     RUNS.with(|n| n.set(n.get() + 1));
-    let mut limits = Vec::with_capacity(obj.units.len());
+    let mut limits = Vec::with_capacity(obj.units.iter().map(|u| u.blocks.len()).sum());
+    let mut first = Vec::with_capacity(obj.units.len());
     for u in &obj.units {
         if u.blocks.is_empty() {
             return Err(LoadError::Invalid { code: "E0708", action: u.name.clone(), op: 0, what: "no code".into() });
         }
-        let per_block = u.blocks.iter().map(|b| verify_block(&obj, u, b)).collect::<Result<Vec<_>, _>>()?;
+        first.push(limits.len() as u32);
+        for b in &u.blocks {
+            limits.push(verify_block(&obj, u, b)?);
+        }
         crate::verify_chart::check_charts(u)?;
-        limits.push(per_block);
     }
-    Ok(Verified { obj, limits })
+    Ok(Verified { obj, limits, first })
 }
 
 /// Where a finding is: the unit, and the block when the unit has several.
@@ -145,8 +153,8 @@ fn check_operands(obj: &ObjectFile, u: &Unit, b: &CodeBlock, pc: usize, op: &Op)
         Op::HistRead { f } if crate::roc::HistFn::from_u8(f).is_none() => {
             return Err(invalid("E0710", u, b, pc, format!("history read {f} does not exist")));
         }
-        Op::Clamp { lo, hi } if lo > hi => {
-            return Err(invalid("E0710", u, b, pc, format!("Clamp to an empty range {lo}..={hi}")));
+        Op::Clamp { hi, .. } if hi < 0 => {
+            return Err(invalid("E0710", u, b, pc, format!("Clamp to an empty range 0..={hi}")));
         }
         _ => {}
     }
@@ -278,48 +286,91 @@ fn verify_block(obj: &ObjectFile, u: &Unit, b: &CodeBlock) -> Result<Limits, Loa
     for (pc, op) in b.ops.iter().enumerate() {
         check_operands(obj, u, b, pc, op)?;
     }
-    let n = b.ops.len();
     // Abstract interpretation: depths must agree where paths meet; the
-    // reference symbol only falls from known to unknown, so each
-    // instruction is visited at most twice and the walk is linear.
-    let mut state: Vec<Option<State>> = vec![None; n];
-    let mut work = vec![0usize];
-    state[0] = Some(State { num: 0, strs: 0, ref_sym: None });
-    let mut limits = Limits::default();
-    while let Some(pc) = work.pop() {
-        let Some(s) = state[pc] else { continue };
-        let after = step(obj, u, b, pc, s)?;
-        limits.max_num = limits.max_num.max(after.num as usize);
-        limits.max_str = limits.max_str.max(after.strs as usize);
-        let op = &b.ops[pc];
-        let label = |to: u32| b.labels[to as usize] as usize;
-        let next: [Option<usize>; 2] = match *op {
-            Op::Ret {} | Op::Return { .. } => [None, None],
-            Op::Jump { to } => [Some(label(to)), None],
-            Op::JumpIfFalse { to } | Op::JumpIfTrue { to } => [Some(label(to)), Some(pc + 1)],
-            _ => [Some(pc + 1), None],
-        };
-        for t in next.into_iter().flatten() {
-            if t >= n {
-                return Err(invalid("E0708", u, b, pc, "execution runs past the last instruction"));
-            }
-            match state[t] {
-                None => {
-                    state[t] = Some(after);
-                    work.push(t);
-                }
-                Some(d) if (d.num, d.strs) != (after.num, after.strs) => {
-                    let what =
-                        format!("stack depths {:?} and {:?} meet here", (d.num, d.strs), (after.num, after.strs));
-                    return Err(invalid("E0708", u, b, t, what));
-                }
-                Some(d) if d.ref_sym.is_some() && d.ref_sym != after.ref_sym => {
-                    state[t] = Some(State { ref_sym: None, ..d });
-                    work.push(t);
-                }
-                Some(_) => {}
-            }
+    // reference symbol only falls from known to unknown, so each label is
+    // walked from at most twice and the walk is linear. Jumps land only on
+    // labels, so only the states at labels are kept (a state per
+    // instruction took 16 bytes for each byte of one-byte instructions).
+    let mut targets: Vec<u32> = b.labels.clone();
+    targets.sort_unstable();
+    targets.dedup();
+    let mut w =
+        Walk { obj, u, b, states: vec![None; targets.len()], targets, work: Vec::new(), limits: Limits::default() };
+    w.walk(0, State { num: 0, strs: 0, ref_sym: None }, false)?;
+    while let Some(i) = w.work.pop() {
+        if let Some(s) = w.states[i] {
+            w.walk(w.targets[i] as usize, s, true)?;
         }
     }
-    Ok(limits)
+    Ok(w.limits)
+}
+
+/// The verifier's walk over one block: the state at each label, and the
+/// labels still to walk from.
+struct Walk<'a> {
+    obj: &'a ObjectFile,
+    u: &'a Unit,
+    b: &'a CodeBlock,
+    /// The instructions labels point at, sorted, without repeats.
+    targets: Vec<u32>,
+    states: Vec<Option<State>>,
+    work: Vec<usize>,
+    limits: Limits,
+}
+
+impl Walk<'_> {
+    /// Walks straight code from `pc` in state `s` until it ends, jumps, or
+    /// reaches a label (whose state then takes `s` in). `from_label`: `pc`
+    /// is a label being walked from, with its own state.
+    fn walk(&mut self, mut pc: usize, mut s: State, from_label: bool) -> Result<(), LoadError> {
+        let n = self.b.ops.len();
+        let mut next = self.targets.partition_point(|&t| (t as usize) < pc);
+        if from_label {
+            next += 1;
+        }
+        loop {
+            if self.targets.get(next).is_some_and(|&t| t as usize == pc) {
+                return self.meet(next, s);
+            }
+            let after = step(self.obj, self.u, self.b, pc, s)?;
+            self.limits.max_num = self.limits.max_num.max(after.num as usize);
+            self.limits.max_str = self.limits.max_str.max(after.strs as usize);
+            match self.b.ops[pc] {
+                Op::Ret {} | Op::Return { .. } => return Ok(()),
+                Op::Jump { to } => return self.meet_label(to, after),
+                Op::JumpIfFalse { to } | Op::JumpIfTrue { to } => self.meet_label(to, after)?,
+                _ => {}
+            }
+            if pc + 1 >= n {
+                return Err(invalid("E0708", self.u, self.b, pc, "execution runs past the last instruction"));
+            }
+            (pc, s) = (pc + 1, after);
+        }
+    }
+
+    fn meet_label(&mut self, label: u32, s: State) -> Result<(), LoadError> {
+        let at = self.b.labels[label as usize];
+        let i = self.targets.partition_point(|&t| t < at);
+        self.meet(i, s)
+    }
+
+    /// State `s` arrives at the label of `targets[i]`.
+    fn meet(&mut self, i: usize, s: State) -> Result<(), LoadError> {
+        match self.states[i] {
+            None => {
+                self.states[i] = Some(s);
+                self.work.push(i);
+            }
+            Some(d) if (d.num, d.strs) != (s.num, s.strs) => {
+                let what = format!("stack depths {:?} and {:?} meet here", (d.num, d.strs), (s.num, s.strs));
+                return Err(invalid("E0708", self.u, self.b, self.targets[i] as usize, what));
+            }
+            Some(d) if d.ref_sym.is_some() && d.ref_sym != s.ref_sym => {
+                self.states[i] = Some(State { ref_sym: None, ..d });
+                self.work.push(i);
+            }
+            Some(_) => {}
+        }
+        Ok(())
+    }
 }

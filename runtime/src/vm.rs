@@ -133,6 +133,8 @@ struct Running<'a> {
     linked: &'a Linked,
     prog: &'a LinkedProgram,
     block: &'a LinkedBlock,
+    /// The instructions the block runs.
+    ops: &'a [Op],
     /// The object's block, for its tables.
     code: &'a CodeBlock,
     unit: &'a Unit,
@@ -142,7 +144,8 @@ impl<'a> Running<'a> {
     fn of(linked: &'a Linked, act: &Activation) -> Option<Running<'a>> {
         let prog = linked.program(act.program)?;
         let unit = linked.unit(act.program)?;
-        Some(Running { linked, prog, block: prog.blocks.get(act.block)?, code: unit.blocks.get(act.block)?, unit })
+        let (block, code) = (prog.blocks.get(act.block)?, unit.blocks.get(act.block)?);
+        Some(Running { linked, prog, block, ops: block.ops_or(code), code, unit })
     }
 }
 
@@ -354,7 +357,7 @@ impl Vm {
         trace: &mut Tracer,
         (mut budget, mut ref_cell): (u64, u32),
     ) -> Result<Outcome, Fault> {
-        let ops = &l.block.ops[..];
+        let ops = l.ops;
         let mut ref_bit = 0u8;
         // The program counter and budget live in locals (registers) and are
         // written back only when the run stops. A run the compiled tier
@@ -576,9 +579,9 @@ impl Vm {
                     let v = self.pop_i();
                     self.push_i(i32::from(v != 0));
                 }
-                Op::Clamp { lo, hi } => {
+                Op::Clamp { hi, .. } => {
                     let v = self.pop_i();
-                    self.push_i(v.clamp(lo, hi.max(lo)));
+                    self.push_i(v.clamp(0, hi.max(0)));
                 }
                 Op::TruncR {} => {
                     let v = self.pop_r();

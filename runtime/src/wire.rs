@@ -30,12 +30,18 @@ impl<'a> Reader<'a> {
         Ok(out)
     }
 
-    /// An element count; it cannot exceed the bytes left (each element takes
-    /// at least one), which keeps a damaged count from allocating wildly.
-    pub fn count(&mut self, what: &str) -> Result<usize, LoadError> {
+    /// An element count of a table of `T`: it cannot exceed the bytes left
+    /// divided by the fewest bytes a `T` takes, nor `T`'s own limit, so a
+    /// damaged or hostile count can't make the table allocate more than a
+    /// fixed multiple of the file.
+    pub fn count<T: Wire>(&mut self, what: &str) -> Result<usize, LoadError> {
         let n = u32::get(self, what)? as usize;
-        if n > self.data.len() - self.at {
+        if n > (self.data.len() - self.at) / T::MIN.max(1) {
             return Err(LoadError::Truncated { what: what.to_string() });
+        }
+        if n > T::MAX_COUNT {
+            let max = T::MAX_COUNT;
+            return Err(LoadError::Malformed { what: format!("{what}: {n} entries, more than the {max} it may have") });
         }
         Ok(n)
     }
@@ -43,6 +49,11 @@ impl<'a> Reader<'a> {
 
 /// A value with a fixed place in the object encoding.
 pub trait Wire: Sized {
+    /// The fewest bytes an encoded value takes.
+    const MIN: usize;
+    /// The most values a table of them may hold (what the instructions can
+    /// name: a `u16` operand names at most 65,536).
+    const MAX_COUNT: usize = u32::MAX as usize;
     fn put(&self, out: &mut Vec<u8>);
     fn get(r: &mut Reader, what: &str) -> Result<Self, LoadError>;
 }
@@ -50,6 +61,7 @@ pub trait Wire: Sized {
 macro_rules! wire_int {
     ($($t:ty),*) => {$(
         impl Wire for $t {
+            const MIN: usize = std::mem::size_of::<$t>();
             fn put(&self, out: &mut Vec<u8>) {
                 out.extend_from_slice(&self.to_le_bytes());
             }
@@ -64,7 +76,11 @@ wire_int!(u8, u16, u32, u64);
 /// Names: a `u16` byte length and UTF-8. Longer text can't be encoded; the
 /// compiler and the database loader refuse such names before they get here,
 /// so `put` cutting at a character boundary is a last resort, not a path.
+/// The one table of names, an FST table's step listing, is named by the
+/// `u16` of `Step`.
 impl Wire for String {
+    const MIN: usize = 2;
+    const MAX_COUNT: usize = 1 << 16;
     fn put(&self, out: &mut Vec<u8>) {
         let mut n = self.len().min(usize::from(u16::MAX));
         while !self.is_char_boundary(n) {
@@ -85,6 +101,7 @@ impl Wire for String {
 pub struct Bytes(pub Vec<u8>);
 
 impl Wire for Bytes {
+    const MIN: usize = 4;
     fn put(&self, out: &mut Vec<u8>) {
         (self.0.len() as u32).put(out);
         out.extend_from_slice(&self.0);
@@ -97,6 +114,7 @@ impl Wire for Bytes {
 
 /// A table: `u32` count, then the elements.
 impl<T: Wire> Wire for Vec<T> {
+    const MIN: usize = 4;
     fn put(&self, out: &mut Vec<u8>) {
         (self.len() as u32).put(out);
         for e in self {
@@ -104,8 +122,10 @@ impl<T: Wire> Wire for Vec<T> {
         }
     }
     fn get(r: &mut Reader, what: &str) -> Result<Self, LoadError> {
-        let n = r.count(what)?;
-        let mut v = Vec::with_capacity(n.min(4096));
+        // Exactly as many as the count, which `count` bounds by the bytes
+        // left: a table never grows (a doubling would hold 1.5 times).
+        let n = r.count::<T>(what)?;
+        let mut v = Vec::with_capacity(n);
         for _ in 0..n {
             v.push(T::get(r, what)?);
         }
@@ -125,6 +145,7 @@ impl std::ops::Deref for Code {
 }
 
 impl Wire for Code {
+    const MIN: usize = 4;
     fn put(&self, out: &mut Vec<u8>) {
         let mut code = Vec::new();
         for op in &self.0 {
@@ -136,7 +157,12 @@ impl Wire for Code {
     fn get(r: &mut Reader, what: &str) -> Result<Self, LoadError> {
         let n = u32::get(r, what)? as usize;
         let code = r.bytes(n, what)?;
-        let mut ops = Vec::with_capacity(code.len() / 2);
+        // Counted first, so that the instructions take exactly their room.
+        let (mut count, mut at) = (0, 0);
+        while at < code.len() && Op::decode(code, &mut at).is_some() {
+            count += 1;
+        }
+        let mut ops = Vec::with_capacity(count);
         let mut at = 0;
         while at < code.len() {
             let start = at;
@@ -148,15 +174,18 @@ impl Wire for Code {
     }
 }
 
-/// Declares records: the struct and its [`Wire`] encoding, fields in order.
+/// Declares records: the struct and its [`Wire`] encoding, fields in order;
+/// `at most N` limits a table of them to N.
 #[macro_export]
 macro_rules! records {
-    ($( $(#[$m:meta])* $name:ident $what:literal { $( $(#[$fm:meta])* $field:ident : $ty:ty ),* $(,)? } )*) => {$(
+    ($( $(#[$m:meta])* $name:ident $what:literal $(at most $max:literal)? { $( $(#[$fm:meta])* $field:ident : $ty:ty ),* $(,)? } )*) => {$(
         $(#[$m])*
         #[derive(Clone, Debug, Default, PartialEq)]
         pub struct $name { $( $(#[$fm])* pub $field: $ty, )* }
 
         impl $crate::wire::Wire for $name {
+            const MIN: usize = 0 $( + <$ty as $crate::wire::Wire>::MIN )*;
+            $( const MAX_COUNT: usize = $max; )?
             fn put(&self, out: &mut Vec<u8>) {
                 $( $crate::wire::Wire::put(&self.$field, out); )*
             }

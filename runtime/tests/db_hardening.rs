@@ -184,3 +184,27 @@ fn bad_input_is_never_a_panic() {
         assert!(e.span.is_some(), "{text}: {e}");
     }
 }
+
+/// A template of `fields` REAL fields and `blocks` blocks of it.
+fn big_database(fields: usize, blocks: usize) -> String {
+    let f: Vec<String> = (0..fields).map(|i| format!("\"F{i}\": \"REAL\"")).collect();
+    let b: Vec<String> = (0..blocks).map(|i| format!("\"B{i}\": {{ \"type\": \"BIG\" }}")).collect();
+    format!(
+        "{{ \"templates\": {{ \"BIG\": {{ \"fields\": {{ {} }} }} }}, \"blocks\": {{ {} }} }}",
+        f.join(", "),
+        b.join(", ")
+    )
+}
+
+/// Every field of every block is a cell of the store: the blocks of a
+/// database have at most `MAX_CELLS` fields, counted before any cell is
+/// made (240 million cells were declared in 562 KB).
+#[test]
+fn a_database_has_at_most_max_cells_fields() {
+    let max = linc_runtime::db::MAX_CELLS;
+    let db = Database::from_json(&big_database(1 << 12, max >> 12)).expect("exactly the limit loads");
+    assert_eq!(Store::new(db).cells.len(), max);
+    let text = big_database(1 << 12, (max >> 12) + 40);
+    let m = fails(&text, "E0819", &format!("\"B{}\"", max >> 12), 0);
+    assert!(m.contains(&format!("{} fields", max + (1 << 12))) && m.contains("at most 1048576"), "{m}");
+}

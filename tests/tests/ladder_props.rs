@@ -240,10 +240,17 @@ fn deep_branches_and_crossing_jumps_are_bounded() {
     let deep = format!("{}[Dig_1a.In]{} -> (Dig_1b.Out);\n", "(".repeat(100_000), ")".repeat(100_000));
     let rep = linc_compiler::check_ladder(&deep, "case", ctx);
     assert_eq!(rep.diagnostics.iter().map(|d| d.code).collect::<Vec<_>>(), ["E0300"]);
-    // A long series is a balanced tree: 100 000 contacts check and compile.
-    let long = format!("{} -> (Dig_1b.Out);\n", "[Dig_1a.In] ".repeat(100_000));
+    // A long series is a balanced tree: as many contacts as an action may
+    // hold elements (the coil is one) check and compile; one more is E0313,
+    // at the element over the limit, and the rest of the action is skipped.
+    let max = linc_compiler::ladder::parser::MAX_ELEMENTS;
+    let long = format!("{} -> (Dig_1b.Out);\n", "[Dig_1a.In] ".repeat(max - 1));
     let rep = linc_compiler::check_ladder(&long, "case", ctx);
     assert!(rep.diagnostics.is_empty() && rep.program.is_some(), "{:?}", rep.diagnostics);
+    let over = format!("{} -> (Dig_1b.Out);\n[Dig_1a.In] [x -> ;\n", "[Dig_1a.In] ".repeat(max + 5));
+    let rep = linc_compiler::check_ladder(&over, "case", ctx);
+    let found: Vec<_> = rep.diagnostics.iter().map(|d| (d.code, d.span.start)).collect();
+    assert_eq!(found, [("E0313", "[Dig_1a.In] ".len() * max)]);
     // Boxes around a contact that is nearly as deep as ST allows: too deep.
     let inner = format!("{}Dig_1a.In{}", "NOT (".repeat(190), ")".repeat(190));
     let boxed = format!("{}[{inner}]{} -> (Dig_1b.Out);\n", "NOT(".repeat(30), ")".repeat(30));

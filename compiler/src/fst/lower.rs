@@ -11,8 +11,7 @@
 use super::{Arg, Checked, Cmd, Param};
 use crate::lower::LowerError;
 use crate::span::Span;
-use linc_runtime::isa::HistFn;
-use linc_runtime::isa::{Kind, Op};
+use linc_runtime::isa::{HistFn, Kind, Op, Zero};
 use linc_runtime::object::{Class, CodeBlock, LineEntry, ObjectFile, Sub, Symbol, Unit, UnitKind};
 use linc_runtime::wire::{Bytes, Code};
 use std::collections::HashMap;
@@ -164,8 +163,8 @@ impl Lowering {
             c => {
                 self.ops.push(Op::RToI {});
                 match c {
-                    Class::Bits8 => self.ops.push(Op::Clamp { lo: 0, hi: 255 }),
-                    Class::Bits16 => self.ops.push(Op::Clamp { lo: 0, hi: 65_535 }),
+                    Class::Bits8 => self.ops.push(Op::Clamp { lo: Zero, hi: 255 }),
+                    Class::Bits16 => self.ops.push(Op::Clamp { lo: Zero, hi: 65_535 }),
                     Class::Bool => self.ops.push(Op::Truth {}),
                     _ => {}
                 }
@@ -214,7 +213,7 @@ impl Lowering {
         self.ops.push(Op::LoadI { sym });
         self.push(a);
         self.ops.push(Op::RToI {});
-        self.ops.push(Op::Clamp { lo: 0, hi: 255 });
+        self.ops.push(Op::Clamp { lo: Zero, hi: 255 });
         self.ops.push(op);
         self.ops.push(Op::StoreI { sym });
     }
@@ -270,7 +269,7 @@ impl Lowering {
                 if let Arg::Param(timer) = a1 {
                     self.push(a2);
                     self.ops.push(Op::RToI {});
-                    self.ops.push(Op::Clamp { lo: 0, hi: i32::MAX });
+                    self.ops.push(Op::Clamp { lo: Zero, hi: i32::MAX });
                     self.ops.push(Op::IToR {});
                     self.store(timer);
                 }
@@ -319,7 +318,7 @@ impl Lowering {
                 let brk = own("BRK", Class::Int);
                 self.push(a1);
                 self.ops.push(Op::RToI {});
-                self.ops.push(Op::Clamp { lo: 0, hi: 65_535 });
+                self.ops.push(Op::Clamp { lo: Zero, hi: 65_535 });
                 self.ops.push(Op::IToR {});
                 self.store(&brk);
                 self.load(&brk);

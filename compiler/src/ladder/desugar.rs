@@ -105,14 +105,16 @@ impl Desugar<'_> {
     }
 
     /// A rung's whole condition; one that would be deeper than ST allows
-    /// is an error (E0022), so that checking and lowering stay bounded.
+    /// is an error (E0022), so that checking and lowering stay bounded. One
+    /// level is kept for the NOT of a negated coil or a jump, so that the
+    /// ST of every rung (`linc ladder to-st`) is within the limit too.
     fn top(&mut self, c: &Cond) -> Expr {
         let e = self.cond(c);
-        if depth(&e) <= usize::from(MAX_EXPR_DEPTH) {
+        if depth(&e) < usize::from(MAX_EXPR_DEPTH) {
             return e;
         }
         self.errors.push(
-            Diagnostic::error("E0022", format!("rung condition nested more than {MAX_EXPR_DEPTH} deep"), c.span())
+            Diagnostic::error("E0022", format!("rung condition nested {MAX_EXPR_DEPTH} or more deep"), c.span())
                 .label("too many branches and boxes inside each other")
                 .help("split the rung: write part of the condition to a digital variable on an earlier rung"),
         );
@@ -196,9 +198,10 @@ impl Desugar<'_> {
     }
 }
 
-/// How deep an expression is (its own recursion is bounded by the parser's
-/// nesting limit and the balanced folds).
-fn depth(e: &Expr) -> usize {
+/// How deep an expression is, as the parser counts it: operators, calls
+/// and offsets (its own recursion is bounded by the parser's nesting limit
+/// and the balanced folds).
+pub(crate) fn depth(e: &Expr) -> usize {
     1 + match &e.kind {
         ExprKind::Unary(_, a) => depth(a),
         ExprKind::Binary(_, a, b) => depth(a).max(depth(b)),

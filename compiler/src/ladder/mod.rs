@@ -24,60 +24,86 @@ pub fn is_ladder(name: &str) -> bool {
     std::path::Path::new(name).extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("ld"))
 }
 
-/// What the ladder front end makes of a file.
-#[derive(Debug)]
-pub struct Desugared {
-    /// The rungs as read.
-    pub ladder: ast::File,
-    /// The same actions as ST, for the ST checker.
-    pub st: crate::ast::SourceFile,
-    /// The ladder front end's diagnostics (the ST checker's come later), in
-    /// source order.
-    pub diagnostics: Vec<Diagnostic>,
-}
-
-/// Parses a ladder file, checks its labels, jumps, contacts and coils, and
-/// desugars it into ST. `stem` names the action of a file without headers.
-pub fn desugar(src: &str, stem: &str, ctx: Context) -> Desugared {
-    let (ladder, mut diagnostics) = parser::parse(src, stem);
-    let mut actions = Vec::with_capacity(ladder.actions.len());
-    for a in &ladder.actions {
+/// Parses a ladder file one action at a time, checks each action's labels,
+/// jumps, contacts and coils, desugars it into ST and hands the ST action
+/// to `each` before the next action is read: only one action is held.
+/// `stem` names the action of a file without headers. Returns the ladder
+/// front end's diagnostics (the ST checker's come later), in source order.
+pub fn desugar_each(src: &str, stem: &str, ctx: Context, each: &mut dyn FnMut(crate::ast::Action)) -> Vec<Diagnostic> {
+    let mut diagnostics = Vec::new();
+    let mut read = parser::parse_each(src, stem, &mut |a| {
         let (targets, jump_errors) = check::jumps(&a.rungs);
-        let (type_errors, bad) = check::types(a, ctx);
+        let (type_errors, bad) = check::types(&a, ctx);
         diagnostics.extend(jump_errors);
         diagnostics.extend(type_errors);
-        let (st, errors) = desugar::action(a, &targets, &bad);
+        let (st, errors) = desugar::action(&a, &targets, &bad);
+        drop(a);
         diagnostics.extend(errors);
-        actions.push(st);
-    }
+        each(st);
+    });
+    diagnostics.append(&mut read);
     diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
-    Desugared { ladder, st: crate::ast::SourceFile { actions }, diagnostics }
+    diagnostics
 }
 
 /// The equivalent ST of a ladder file, as text (`linc ladder to-st`), or
 /// the diagnostics when it has errors of its own.
 pub fn to_st(src: &str, stem: &str, ctx: Context) -> Result<String, Vec<Diagnostic>> {
-    let d = desugar(src, stem, ctx);
-    if d.diagnostics.iter().any(Diagnostic::is_error) {
-        return Err(d.diagnostics);
-    }
-    Ok(pretty::to_st::file(&d.st))
-}
-
-/// The diagram of a ladder file (`linc ladder show`), or its syntax errors;
-/// `values` gives the state of each element (contact operands and coil
-/// targets, by span), for `--values`.
-pub fn draw(src: &str, stem: &str, values: pretty::draw::Values) -> Result<String, Vec<Diagnostic>> {
-    let (ladder, diagnostics) = parser::parse(src, stem);
+    let mut out = String::new();
+    let diagnostics = desugar_each(src, stem, ctx, &mut |a| pretty::to_st::action_into(&mut out, &a));
     if diagnostics.iter().any(Diagnostic::is_error) {
         return Err(diagnostics);
     }
-    Ok(pretty::draw::file(src, &ladder, values))
+    Ok(out)
+}
+
+/// The diagram of a ladder file (`linc ladder show`), or its syntax errors
+/// and the rungs too large to draw; `values` gives the state of each
+/// element (contact operands and coil targets, by span), for `--values`.
+pub fn draw(src: &str, stem: &str, values: pretty::draw::Values) -> Result<String, Vec<Diagnostic>> {
+    let mut out = String::new();
+    draw_to(src, stem, values, &mut |s| out.push_str(s))?;
+    Ok(out)
+}
+
+/// [`draw`], handing the drawing to `write` one action at a time. The file
+/// is read twice, for the errors and then for the drawing, so that only one
+/// action is held and nothing is drawn when there are errors.
+pub fn draw_to(
+    src: &str,
+    stem: &str,
+    values: pretty::draw::Values,
+    write: &mut dyn FnMut(&str),
+) -> Result<(), Vec<Diagnostic>> {
+    let mut too_large = Vec::new();
+    let mut diagnostics = parser::parse_each(src, stem, &mut |a| too_large.extend(pretty::draw::too_large(src, &a)));
+    diagnostics.extend(too_large);
+    if diagnostics.iter().any(Diagnostic::is_error) {
+        diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+        return Err(diagnostics);
+    }
+    let mut first = true;
+    parser::parse_each(src, stem, &mut |a| {
+        let mut out = String::new();
+        if !std::mem::take(&mut first) {
+            out.push('\n');
+        }
+        if let Err(e) = pretty::draw::action(src, &a, values, &mut out) {
+            diagnostics.extend(e);
+        }
+        write(&out);
+    });
+    if diagnostics.iter().any(Diagnostic::is_error) {
+        return Err(diagnostics);
+    }
+    Ok(())
 }
 
 /// The spans of the elements `--values` shows, for the caller to evaluate.
 pub fn element_spans(src: &str, stem: &str) -> Vec<crate::span::Span> {
-    pretty::draw::element_spans(&parser::parse(src, stem).0)
+    let mut out = Vec::new();
+    parser::parse_each(src, stem, &mut |a| pretty::draw::element_spans(&a, &mut out));
+    out
 }
 
 /// The rungs of a sequence's `ACTION name : LADDER` as one ST action named

@@ -19,35 +19,58 @@ use crate::span::Span;
 /// How deeply branches and boxes may nest (the stack is not unbounded).
 const MAX_DEPTH: usize = 32;
 
+/// The most elements (contacts, function boxes and outputs) one action may
+/// hold. Each costs about a kilobyte while the action is checked (its tree,
+/// its ST, the checked program), so the limit bounds the memory of any
+/// ladder file: a 48 MB series needed more than 4 GB without it. The
+/// LINtools editor draws at most 48 rungs of 8 elements.
+pub const MAX_ELEMENTS: usize = 10_000;
+
 /// Parses a ladder file; `stem` names its action when it has no headers.
 /// Every diagnostic of reading comes back, in the file's coordinates.
 pub fn parse(src: &str, stem: &str) -> (File, Vec<Diagnostic>) {
-    let mut p = Parser { src, b: src.as_bytes(), pos: 0, diags: Vec::new(), depth: 0 };
-    let (mut actions, mut loose) = (Vec::new(), Vec::new());
+    let mut actions = Vec::new();
+    let diags = parse_each(src, stem, &mut |a| actions.push(a));
+    (File { actions }, diags)
+}
+
+/// Parses a ladder file, handing each action to `each` as soon as it is
+/// read, so that only one action is held at a time. Returns every
+/// diagnostic of reading, in the file's coordinates.
+pub fn parse_each(src: &str, stem: &str, each: &mut dyn FnMut(Action)) -> Vec<Diagnostic> {
+    let mut p = Parser { src, b: src.as_bytes(), pos: 0, diags: Vec::new(), depth: 0, elements: 0 };
+    // Rungs before any header are the file's one action, unless a header
+    // follows; then they (and any after an action) are E0309.
+    let (mut loose, mut first_loose, mut headers) = (Vec::new(), None, false);
     loop {
         p.ws();
         if p.pos >= p.b.len() {
             break;
         }
         if p.at_word("ACTION") {
-            actions.push(p.action());
+            headers = true;
+            loose = Vec::new();
+            each(p.action());
         } else if p.at_word("END_ACTION") {
             p.error("a rung or `ACTION`");
             p.pos += "END_ACTION".len();
         } else if let Some(r) = p.rung() {
-            loose.push(r);
+            first_loose.get_or_insert(r.span);
+            if !headers {
+                loose.push(r);
+            }
         }
     }
-    if actions.is_empty() {
+    if !headers {
         let name = Ident { text: stem.to_string(), span: Span::new(0, 0) };
-        actions.push(Action { name, block_type: None, rungs: loose, header: None, span: Span::new(0, src.len()) });
-    } else if let Some(r) = loose.first() {
-        let d = Diagnostic::error("E0309", "rung outside an action", r.span)
+        each(Action { name, block_type: None, rungs: loose, header: None, span: Span::new(0, src.len()) });
+    } else if let Some(span) = first_loose {
+        let d = Diagnostic::error("E0309", "rung outside an action", span)
             .label("this file has ACTION headers, so every rung must be inside one")
             .help("move the rung between `ACTION name` and `END_ACTION`, or remove the headers");
         p.push(d);
     }
-    (File { actions }, p.diags)
+    p.diags
 }
 
 /// An error already reported; the caller recovers.
@@ -61,6 +84,15 @@ struct Parser<'s> {
     pos: usize,
     diags: Vec<Diagnostic>,
     depth: usize,
+    /// Elements read in the current action; past [`MAX_ELEMENTS`] the rest
+    /// of the action is skipped.
+    elements: usize,
+}
+
+/// Whether `text` is an ST keyword, which cannot name an action or a block
+/// type in ST (so its ST, `linc ladder to-st`, would not read back).
+fn keyword(text: &str) -> bool {
+    !matches!(crate::lexer::Lexer::new(text).next(), Some((_, crate::lexer::Tok::Name(_), _)))
 }
 
 fn is_ident(c: u8) -> bool {
@@ -208,6 +240,22 @@ impl Parser<'_> {
         None
     }
 
+    /// Counts one element at `span`; the first over [`MAX_ELEMENTS`] is
+    /// reported (E0313) and stops the rung.
+    fn element(&mut self, span: Span) -> R<()> {
+        self.elements += 1;
+        if self.elements == MAX_ELEMENTS + 1 {
+            let d = Diagnostic::error("E0313", format!("more than {MAX_ELEMENTS} elements in one action"), span)
+                .label(format!("element {}", MAX_ELEMENTS + 1))
+                .help("split the rungs into several actions; the rest of this action is skipped");
+            self.push(d);
+        }
+        if self.elements > MAX_ELEMENTS {
+            return Err(Reported);
+        }
+        Ok(())
+    }
+
     /// Places the ST parser's errors for the slice starting at `at`.
     fn slice_errors(&mut self, errors: ParseErrors, at: usize) {
         let lex = errors.lex.iter().map(|e| e.to_diagnostic());
@@ -242,7 +290,7 @@ impl Parser<'_> {
                 Ident { text: String::new(), span: self.here() }
             }
         };
-        if name.text.chars().count() > 8 || name.text.starts_with(|c: char| c.is_ascii_digit()) {
+        if name.text.chars().count() > 8 || name.text.starts_with(|c: char| c.is_ascii_digit()) || keyword(&name.text) {
             self.push(SyntaxError::BadActionName { span: name.span, name: name.text.clone() }.to_diagnostic());
         }
         self.ws();
@@ -250,13 +298,25 @@ impl Parser<'_> {
         if self.peek() == Some(b':') {
             self.pos += 1;
             self.ws();
+            let at = self.pos;
             block_type = self.ident();
-            if block_type.is_none() {
-                self.error("a block type after `:`");
+            match &block_type {
+                None => {
+                    self.error("a block type after `:`");
+                }
+                // ACTION is a keyword and a block type (as in ST).
+                Some(t) if keyword(&t.text) && !t.text.eq_ignore_ascii_case("ACTION") => {
+                    self.pos = at;
+                    self.error("a block type after `:`");
+                    self.pos = t.span.end;
+                    block_type = None;
+                }
+                Some(_) => {}
             }
         }
         let header = Span::new(l, self.pos);
         let mut rungs = Vec::new();
+        self.elements = 0;
         loop {
             self.ws();
             if self.at_word("END_ACTION") {
@@ -275,11 +335,17 @@ impl Parser<'_> {
                 rungs.push(r);
             }
         }
+        self.elements = 0;
         Action { name, block_type, rungs, header: Some(header), span: Span::new(l, self.pos) }
     }
 
     /// One rung; `None` when it did not parse (reported, skipped).
     fn rung(&mut self) -> Option<Rung> {
+        if self.elements > MAX_ELEMENTS {
+            // Over the limit (reported): skipped unread.
+            self.recover();
+            return None;
+        }
         let start = self.pos;
         match self.rung_body(start) {
             Ok(r) => Some(r),
@@ -385,6 +451,7 @@ impl Parser<'_> {
     /// `[x]` or `[/x]`.
     fn contact(&mut self) -> R<Cond> {
         let open = self.pos;
+        self.element(Span::new(open, open + 1))?;
         self.pos += 1;
         let Some(close) = self.st_end(b']') else {
             let d = Diagnostic::error("E0301", "contact is not closed", Span::new(open, open + 1))
@@ -434,6 +501,7 @@ impl Parser<'_> {
     /// `AND(…)`, `OR(…)`, `XOR(…)`, `NOT(…)`.
     fn function_box(&mut self, op: BoxOp) -> R<Cond> {
         let start = self.pos;
+        self.element(Span::new(start, start + op.name().len()))?;
         self.pos += op.name().len();
         self.ws();
         if self.peek() != Some(b'(') {
@@ -467,6 +535,7 @@ impl Parser<'_> {
     /// A coil, a jump or a variable output.
     fn output(&mut self) -> R<Output> {
         let start = self.pos;
+        self.element(self.here())?;
         if self.peek() == Some(b'(') {
             return self.coil();
         }

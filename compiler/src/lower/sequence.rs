@@ -61,7 +61,13 @@ impl SequenceBuilder {
     }
 
     /// The object holding the sequence `name` with its charts (ROOT first).
-    pub fn finish(self, name: &str, charts: Vec<ChartRec>) -> Result<ObjectFile, Vec<LowerError>> {
+    pub fn finish(mut self, name: &str, charts: Vec<ChartRec>) -> Result<ObjectFile, Vec<LowerError>> {
+        // A unit holds code; a chart without transitions or ST actions
+        // (`INITIAL_STEP S0: END_STEP`) gets one block that nothing runs.
+        if self.blocks.is_empty() {
+            self.l.emit(Op::Ret {});
+            self.blocks.push(self.l.take_block(String::new()));
+        }
         let retained = u16::try_from(2 * self.slots).unwrap_or(u16::MAX);
         let unit = Unit {
             kind: UnitKind::Sequence,

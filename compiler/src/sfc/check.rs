@@ -37,7 +37,11 @@ pub fn check(seq: &Sequence, ctx: Context) -> Vec<Diagnostic> {
     }
     transition_names(&charts, &mut out);
     actions(seq, &charts, &mut out);
+    let before = out.len();
     chart_cycles(seq, &mut out);
+    if out[before..].iter().all(|d| d.code != "E0212") {
+        super::size::check(seq, &mut out);
+    }
     let names: Vec<String> = steps.into_iter().map(|s| s.text.clone()).collect();
     let ctx = Context { steps: Some(&names), ..ctx };
     let mut checker = Checker::new(ctx, Limits::default()).reporting_only();

@@ -92,6 +92,27 @@ pub enum SfcError {
         transition: String,
         step: String,
     },
+    /// A chart action whose chart is deeper below the root than the loader
+    /// allows (at least `depth` levels).
+    ChartsTooDeep {
+        span: Span,
+        action: String,
+        depth: usize,
+        limit: usize,
+    },
+    /// More steps than retained slots can hold.
+    TooManySteps {
+        span: Span,
+        limit: usize,
+    },
+    /// More charts or code blocks, once chart actions are written out for
+    /// each use, than an object's unit can name.
+    TooLarge {
+        span: Span,
+        what: &'static str,
+        count: usize,
+        limit: usize,
+    },
 }
 
 impl SfcError {
@@ -173,6 +194,21 @@ impl SfcError {
             }
             SfcError::Unsafe { span, transition, step } => unsafe_chart(*span, transition, step),
             SfcError::ChartRunsItself { span, chart, action } => runs_itself(*span, chart, action),
+            SfcError::ChartsTooDeep { span, action, depth, limit } => {
+                Diagnostic::error("E0213", format!("chart actions nest more than {limit} deep"), *span)
+                    .label(format!("`{action}` puts a chart {depth} levels below the sequence's chart"))
+                    .help("run some of the nested charts' steps in the chart above them, or split the sequence")
+            }
+            SfcError::TooManySteps { span, limit } => {
+                Diagnostic::error("E0214", format!("more than {limit} steps in one sequence"), *span)
+                    .label(format!("step {}", limit + 1))
+                    .help("each step keeps `.X` and `.T` in two of the sequence's 65,535 retained slots; split the sequence")
+            }
+            SfcError::TooLarge { span, what, count, limit } => {
+                Diagnostic::error("E0215", format!("the sequence needs {count} {what}; an object holds at most {limit}"), *span)
+                    .label("the limit is passed here")
+                    .help("a chart action's chart is written out once for each chart that uses it, with a code block for each of its transitions; use shared chart actions in fewer charts")
+            }
         }
     }
 }

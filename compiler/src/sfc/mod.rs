@@ -15,6 +15,7 @@ pub mod pretty;
 mod refs;
 pub mod resources;
 mod safety;
+pub mod size;
 pub(crate) mod shift;
 
 use crate::check::Context;

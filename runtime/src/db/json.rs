@@ -34,10 +34,16 @@ pub mod code {
     pub const ALIAS_CYCLE: &str = "E0816";
     pub const ALIAS_TOO_BIG: &str = "E0817";
     pub const DEVICE: &str = "E0818";
+    pub const TOO_MANY_CELLS: &str = "E0819";
 }
 
 /// Longest name in bytes: the object file stores names with a u16 length.
 pub const MAX_NAME: usize = 65_535;
+
+/// Most fields all blocks together may have: each is a cell of the store
+/// (about 40 bytes with its flags), so a few hundred kilobytes of blocks of a
+/// template with many fields could otherwise declare hundreds of millions.
+pub const MAX_CELLS: usize = 1 << 20;
 
 /// Most text all alias expansions together may produce, so that aliases
 /// of aliases cannot multiply a small file into an exhausted memory.
@@ -122,11 +128,13 @@ struct Loader<'a> {
     /// Templates this file declares (upper case): a file may override a
     /// built-in template, but not declare one twice.
     declared: HashSet<String>,
+    /// Fields of the blocks read so far: the cells of a store of them.
+    cells: usize,
 }
 
 impl<'a> Loader<'a> {
     fn new(db: &'a mut Database) -> Self {
-        Loader { db, declared: HashSet::new() }
+        Loader { db, declared: HashSet::new(), cells: 0 }
     }
 
     fn load(&mut self, text: &str) -> Result<(), DbError> {
@@ -281,6 +289,15 @@ impl<'a> Loader<'a> {
         let template = self.db.template(tname).ok_or_else(|| {
             DbError::at(code::UNKNOWN_TEMPLATE, format!("block `{name}` has unknown type `{tname}`"), ty.value.span)
         })?;
+        let fields = self.db.templates[template].fields.len();
+        self.cells += fields;
+        if self.cells > MAX_CELLS {
+            let message = format!(
+                "block `{name}` brings the database to {} fields; a database has at most {MAX_CELLS}",
+                self.cells
+            );
+            return Err(DbError::at(code::TOO_MANY_CELLS, message, m.key_span));
+        }
         let task = match get(spec, "task") {
             Some(t) => self.task_of(name, &t.value)?,
             None => Task::DEFAULT.number,

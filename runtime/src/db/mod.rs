@@ -12,7 +12,7 @@ mod roc;
 mod schema;
 pub mod tree;
 
-pub use json::DbError;
+pub use json::{DbError, MAX_CELLS};
 pub use period::{duration_seconds, time_constant, MAX_PERIOD, MIN_PERIOD};
 pub use roc::{same_point, Device, Tlp};
 pub use schema::{Alias, Block, Database, FieldDef, FieldType, InitValue, Task, Template};

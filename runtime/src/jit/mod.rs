@@ -132,9 +132,8 @@ impl Cache {
         // (a whole `linc run`): a block with a loop is compiled at once.
         let looping = *slot.looping.get_or_init(|| {
             linked
-                .program(program)
-                .and_then(|p| p.blocks.get(block))
-                .is_some_and(|b| b.ops.iter().enumerate().any(|(i, op)| op.target().is_some_and(|t| (t as usize) <= i)))
+                .ops(program, block)
+                .is_some_and(|ops| ops.iter().enumerate().any(|(i, op)| op.target().is_some_and(|t| (t as usize) <= i)))
         });
         if !looping && slot.interpreted.load(std::sync::atomic::Ordering::Relaxed) < after {
             return None;
@@ -162,8 +161,15 @@ impl Cache {
     }
 }
 
+/// The most instructions of a block the tier translates. Translating takes
+/// memory in proportion to the block (Cranelift held about 200 bytes per
+/// instruction: a 100 MB block took 21 GB), and real actions are far
+/// smaller; a larger block stays on the interpreter.
+pub const MAX_COMPILED: usize = 1 << 16;
+
 /// Compiles block `block` of `program`, or `None` when it uses anything
-/// outside the subset (the interpreter then runs it).
+/// outside the subset or is larger than [`MAX_COMPILED`] (the interpreter
+/// then runs it).
 pub fn compile(linked: &Linked, store: &Store, program: usize, block: usize) -> Option<Compiled> {
     compile_as(linked, store, (program, block), false)
 }
@@ -173,9 +179,9 @@ pub fn compile(linked: &Linked, store: &Store, program: usize, block: usize) -> 
 fn compile_as(linked: &Linked, store: &Store, (program, block): (usize, usize), traced: bool) -> Option<Compiled> {
     let prog = linked.program(program)?;
     let unit = linked.unit(program)?;
-    let ops = &prog.blocks.get(block)?.ops;
+    let ops = linked.ops(program, block)?;
     let code = unit.blocks.get(block)?;
-    if !ops.iter().all(in_subset) {
+    if ops.len() > MAX_COMPILED || !ops.iter().all(in_subset) {
         return None;
     }
     let plan = Plan::new(ops, &prog.targets, store, traced)?;

@@ -127,7 +127,7 @@ pub(super) fn locate(l: &Running, pc: usize, f: Fault) -> RuntimeError {
         }
     }
     let mut code = f.code;
-    let absent = l.block.ops.get(pc).and_then(|op| op.symbol()).filter(|&s| target(l, s).is_absent());
+    let absent = l.ops.get(pc).and_then(|op| op.symbol()).filter(|&s| target(l, s).is_absent());
     if let Some(s) = absent {
         let sym = l.prog.symbols.get(usize::from(s)).and_then(|&o| l.linked.object().symbols.get(usize::from(o)));
         code = "R0010";

@@ -4,8 +4,29 @@
 //! branch group, coils `( x )` `(/x)` `(S x)` `(R x)`, jumps `>> L`,
 //! variable outputs `{ t := v }`. Element text is the source as written.
 
-use crate::ladder::ast::{Action, CoilKind, Cond, File, Output, Rung};
+use crate::diagnostic::Diagnostic;
+use crate::ladder::ast::{Action, CoilKind, Cond, Output, Rung};
 use crate::span::Span;
+
+/// The most characters one rung's drawing may have. A drawing is as wide as
+/// its widest branch on every row, so a few long contacts in many parallel
+/// branches draw far larger than their text; a rung over this is refused
+/// (E0314) instead of drawn.
+pub const MAX_DRAWN: usize = 1 << 20;
+
+/// Rungs up to this wide share the action's right rail; a wider one (a very
+/// long series) keeps its own, so that it does not widen every other rung.
+const ALIGN: usize = 200;
+
+/// `text` padded with `fill` to `width` characters (`format!`'s width is
+/// limited to 65 535, which a long series exceeds).
+fn pad(text: &str, width: usize, fill: char) -> String {
+    let n = width.saturating_sub(text.chars().count());
+    let mut out = String::with_capacity(text.len() + n);
+    out.push_str(text);
+    out.extend(std::iter::repeat_n(fill, n));
+    out
+}
 
 /// The state of an element after a run (`linc ladder show --values`): the
 /// value of the ST expression at `span` (a contact's operand, a coil's
@@ -40,8 +61,7 @@ impl Cell {
             Some(r) => (r.as_str(), if i == 0 { '-' } else { ' ' }),
             None => ("", ' '),
         };
-        let pad = self.width.saturating_sub(text.chars().count());
-        format!("{text}{}", fill.to_string().repeat(pad))
+        pad(text, self.width, fill)
     }
 }
 
@@ -65,8 +85,7 @@ fn parallel(cells: Vec<Cell>) -> Cell {
     for c in &cells {
         for i in 0..c.rows.len() {
             let at = rows.len();
-            let body = format!("{:-<width$}", c.row(i));
-            let body = if i == 0 { body } else { format!("{:<width$}", c.row(i)) };
+            let body = pad(&c.row(i), width, if i == 0 { '-' } else { ' ' });
             let joint = if i == 0 {
                 '+'
             } else if at < last_wire {
@@ -128,6 +147,43 @@ fn stmt_span(s: &crate::ast::Stmt) -> Span {
     }
 }
 
+/// An upper bound of the width and height of `c`'s drawing, found without
+/// drawing it.
+fn size(c: &Cond) -> (usize, usize) {
+    let many =
+        |v: &[Cond]| v.iter().map(size).fold((0usize, 0usize), |(w, h), (cw, ch)| (w.max(cw), h.saturating_add(ch)));
+    match c {
+        Cond::Contact { expr, .. } => (expr.span.end - expr.span.start + 8, 1),
+        Cond::Series(v) => {
+            v.iter().map(size).fold((0usize, 1usize), |(w, h), (cw, ch)| (w.saturating_add(cw), h.max(ch)))
+        }
+        Cond::Parallel(v, _) if v.len() == 1 => size(&v[0]),
+        Cond::Parallel(v, _) => {
+            let (w, h) = many(v);
+            (w + 6, h)
+        }
+        Cond::Box { args, .. } if args.len() == 1 => {
+            let (w, h) = size(&args[0]);
+            (w + 8, h)
+        }
+        Cond::Box { args, .. } => {
+            let (w, h) = many(args);
+            (w + 14, h)
+        }
+    }
+}
+
+/// An upper bound of the width and height of a rung's drawing.
+fn rung_size(src: &str, r: &Rung) -> (usize, usize) {
+    let (w, h) = r.cond.as_ref().map_or((2, 1), size);
+    let out = match &r.output {
+        Output::Coil { target, .. } => target.span.end - target.span.start + 6,
+        Output::Jump { label, .. } => label.text.len() + 4,
+        Output::Assign(s) => slice(src, stmt_span(s)).len() + 6,
+    };
+    (w + out + 4, h)
+}
+
 /// One rung between the rails, its label on the line above.
 fn rung(src: &str, r: &Rung, width: usize, values: Values, out: &mut String) {
     if let Some(l) = &r.label {
@@ -136,13 +192,37 @@ fn rung(src: &str, r: &Rung, width: usize, values: Values, out: &mut String) {
     let left = r.cond.as_ref().map_or_else(|| Cell::one("--".into()), |c| cond(src, c, values));
     let body = series(vec![left, output(src, &r.output, values)]);
     for i in 0..body.rows.len() {
-        let line = if i == 0 { format!("{:-<width$}--", body.row(0)) } else { format!("{:<width$}  ", body.row(i)) };
+        let line = if i == 0 { pad(&body.row(0), width, '-') + "--" } else { pad(&body.row(i), width, ' ') + "  " };
         out.push_str(&format!("  |{line}|\n"));
     }
     out.push_str("  |\n");
 }
 
-fn action(src: &str, a: &Action, values: Values, out: &mut String) {
+/// The rungs of `a` too large to draw (E0314), each located at its rung.
+pub fn too_large(src: &str, a: &Action) -> Vec<Diagnostic> {
+    let mut errors = Vec::new();
+    for r in &a.rungs {
+        let (w, h) = rung_size(src, r);
+        if w.saturating_mul(h) > MAX_DRAWN {
+            errors.push(
+                Diagnostic::error("E0314", "rung too large to draw", r.span)
+                    .label(format!("its drawing would be about {w} characters wide and {h} rows high"))
+                    .help(format!(
+                        "`linc ladder show` draws rungs of up to {MAX_DRAWN} characters; split the rung, or read it with `linc ladder to-st`"
+                    )),
+            );
+        }
+    }
+    errors
+}
+
+/// Draws one action, elements in the state `values` gives them; `Err` with
+/// the rungs too large to draw, and nothing drawn, if it has any.
+pub fn action(src: &str, a: &Action, values: Values, out: &mut String) -> Result<(), Vec<Diagnostic>> {
+    let errors = too_large(src, a);
+    if !errors.is_empty() {
+        return Err(errors);
+    }
     out.push_str(&format!("(* {} *)\n", a.name.text));
     let width = a
         .rungs
@@ -151,43 +231,31 @@ fn action(src: &str, a: &Action, values: Values, out: &mut String) {
             let left = r.cond.as_ref().map_or(2, |c| cond(src, c, values).width);
             left + output(src, &r.output, values).width
         })
+        .filter(|&w| w <= ALIGN)
         .max()
         .unwrap_or(0);
     for r in &a.rungs {
         rung(src, r, width, values, out);
     }
     out.push_str("  |_End\n");
+    Ok(())
 }
 
-/// Draws every action of a parsed ladder file, elements in the state
-/// `values` gives them.
-pub fn file(src: &str, f: &File, values: Values) -> String {
-    let mut out = String::new();
-    for (i, a) in f.actions.iter().enumerate() {
-        if i > 0 {
-            out.push('\n');
-        }
-        action(src, a, values, &mut out);
-    }
-    out
-}
-
-/// Every span whose value `--values` shows: contacts' operands and coils' targets.
-pub fn element_spans(f: &File) -> Vec<Span> {
+/// Adds every span of `a` whose value `--values` shows to `out`: contacts'
+/// operands and coils' targets.
+pub fn element_spans(a: &Action, out: &mut Vec<Span>) {
     fn walk(c: &Cond, out: &mut Vec<Span>) {
         match c {
             Cond::Contact { expr, .. } => out.push(expr.span),
             Cond::Series(v) | Cond::Parallel(v, _) | Cond::Box { args: v, .. } => v.iter().for_each(|x| walk(x, out)),
         }
     }
-    let mut out = Vec::new();
-    for r in f.actions.iter().flat_map(|a| &a.rungs) {
+    for r in &a.rungs {
         if let Some(c) = &r.cond {
-            walk(c, &mut out);
+            walk(c, out);
         }
         if let Output::Coil { target, .. } = &r.output {
             out.push(target.span);
         }
     }
-    out
 }
