@@ -165,7 +165,7 @@ fn tables_longer_than_their_names_allow_are_refused_unread() {
 }
 
 /// Translating a block takes memory in proportion to it (a 100 MB block
-/// took 21 GB in Cranelift), so a block of more than `MAX_COMPILED`
+/// took 21 GB in Cranelift), so a block of more than `MAX_BLOCK_OPS`
 /// instructions stays on the interpreter; the same code, shorter, compiles.
 #[test]
 fn a_block_too_large_to_translate_is_left_to_the_interpreter() {
@@ -182,7 +182,7 @@ fn a_block_too_large_to_translate_is_left_to_the_interpreter() {
         linc_runtime::jit::compile(&linked.expect("links"), &store, 0, 0).is_some()
     };
     assert!(compiles(&code(100)));
-    assert!(!compiles(&code(linc_runtime::jit::MAX_COMPILED + 1)));
+    assert!(!compiles(&code(linc_runtime::jit::MAX_BLOCK_OPS + 1)));
 }
 
 /// Linking copies only the blocks it changes (those with symbols or jumps):

@@ -21,8 +21,8 @@ use cranelift_module::{default_libcall_names, Linkage, Module};
 use std::mem::offset_of;
 
 /// The type of a stack entry.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Ty {
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(super) enum Ty {
     I,
     F,
 }
@@ -174,6 +174,12 @@ struct Emitter<'a, 'f> {
     /// Stack types at the instruction being translated.
     stack: Vec<Ty>,
     block_end: usize,
+    /// The shared exit blocks made so far ([`exits`]), and in the order
+    /// made (the order they are emitted in).
+    exits: std::collections::HashMap<ExitKey, Block>,
+    exit_order: Vec<(ExitKey, Block)>,
+    /// The first instruction of the basic block being translated.
+    leader: usize,
 }
 
 fn frame_off(off: usize) -> i32 {
@@ -211,6 +217,9 @@ impl<'a, 'f> Emitter<'a, 'f> {
             retained: None,
             stack: Vec::new(),
             block_end: 0,
+            exits: Default::default(),
+            exit_order: Vec::new(),
+            leader: 0,
         }
     }
 
@@ -285,32 +294,32 @@ impl<'a, 'f> Emitter<'a, 'f> {
                 self.block(pc)?;
             }
         }
+        self.exit_blocks();
         Some(())
     }
 
     /// One basic block: the budget check, then its instructions.
     fn block(&mut self, start: usize) -> Option<()> {
         self.stack = self.s.states[start].clone()?;
+        self.leader = start;
         if start == self.s.ops.len() {
             // Ran off the end: the interpreter reports it.
-            self.bail(start, 0);
+            self.exit_now(Exit::Budget, start);
             return Some(());
         }
         let end = self.ends[start];
         self.block_end = end;
         let n = (end - start) as i64;
         let bud = self.b.use_var(self.budget);
-        let enough = self.b.ins().icmp_imm(IntCC::UnsignedGreaterThanOrEqual, bud, n);
-        let (cont, out) = (self.b.create_block(), self.b.create_block());
-        self.b.set_cold_block(out);
-        self.b.ins().brif(enough, cont, &[], out, &[]);
-        self.b.switch_to_block(out);
-        self.bail(start, 0);
-        self.b.switch_to_block(cont);
+        let short = self.b.ins().icmp_imm(IntCC::UnsignedLessThan, bud, n);
+        self.exit_if(short, Exit::Budget, start);
         let left = self.b.ins().iadd_imm(bud, -n);
         self.b.def_var(self.budget, left);
         for pc in start..end {
             self.op(pc)?;
+            if self.b.func.dfg.num_insts() > super::MAX_BLOCK_IR {
+                return None;
+            }
         }
         let last = self.s.ops.get(end - 1)?;
         if !ends_block(last) {
@@ -343,57 +352,6 @@ impl<'a, 'f> Emitter<'a, 'f> {
             (Ty::F, Ty::I) => self.b.ins().bitcast(types::I32, MemFlags::new(), v),
             _ => v,
         })
-    }
-
-    /// Stores promoted slots back to memory (at every exit).
-    fn flush(&mut self) {
-        let Some(mem) = self.mem else { return };
-        for slot in 0..self.slots.len() {
-            if let Some(var) = self.slots[slot] {
-                let v = self.b.use_var(var);
-                self.b.ins().store(MemFlags::trusted(), v, mem, (slot * 4) as i32);
-            }
-        }
-    }
-
-    /// Leaves with the interpreter's state before instruction `pc`;
-    /// `refund` is the budget charged for instructions not run.
-    fn bail(&mut self, pc: usize, refund: usize) {
-        let st = self.s.states.get(pc).cloned().flatten().unwrap_or_default();
-        let stack = self.load_ptr(offset_of!(Frame, stack));
-        for (d, &ty) in st.iter().enumerate() {
-            let v = self.b.use_var(self.var(d, ty));
-            self.b.ins().store(MemFlags::trusted(), v, stack, (d * 4) as i32);
-        }
-        let locals = self.load_ptr(offset_of!(Frame, locals));
-        for i in 0..self.locals.len() {
-            let v = self.b.use_var(self.locals[i]);
-            self.b.ins().store(MemFlags::trusted(), v, locals, (i * 4) as i32);
-        }
-        self.flush();
-        let f = self.frame();
-        let r = self.b.use_var(self.ref_slot);
-        self.b.ins().store(MemFlags::trusted(), r, f, frame_off(offset_of!(Frame, ref_slot)));
-        let bud = self.b.use_var(self.budget);
-        let bud = self.b.ins().iadd_imm(bud, refund as i64);
-        self.b.ins().store(MemFlags::trusted(), bud, f, frame_off(offset_of!(Frame, budget)));
-        let pcv = self.b.ins().iconst(types::I32, pc as i64);
-        self.b.ins().store(MemFlags::trusted(), pcv, f, frame_off(offset_of!(Frame, pc)));
-        let depth = self.b.ins().iconst(types::I32, st.len() as i64);
-        self.b.ins().store(MemFlags::trusted(), depth, f, frame_off(offset_of!(Frame, depth)));
-        let one = self.b.ins().iconst(types::I32, 1);
-        self.b.ins().return_(&[one]);
-    }
-
-    /// Bails out before `pc` when `fault` is true.
-    fn check(&mut self, pc: usize, fault: Value) {
-        let (out, cont) = (self.b.create_block(), self.b.create_block());
-        self.b.set_cold_block(out);
-        self.b.ins().brif(fault, out, &[], cont, &[]);
-        self.b.switch_to_block(out);
-        let refund = self.block_end - pc;
-        self.bail(pc, refund);
-        self.b.switch_to_block(cont);
     }
 
     fn bool32(&mut self, c: Value) -> Value {
@@ -444,5 +402,8 @@ impl<'a, 'f> Emitter<'a, 'f> {
     }
 }
 
+mod exits;
 mod ops;
 mod services;
+
+use exits::{Exit, ExitKey};

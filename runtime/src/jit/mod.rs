@@ -23,6 +23,20 @@ use std::sync::{Arc, OnceLock};
 
 pub(crate) use plan::{Plan, BOOL, INT, READONLY, REAL};
 
+/// The largest block the tier translates, in instructions; a larger one
+/// stays on the interpreter. Translating costs about 5–30 µs per
+/// instruction (Cranelift's optimiser and register allocator), so a block
+/// at this limit takes up to about 100 ms, which is the most `--tier auto`
+/// spends on one block before running it; a 2.5 MB action (400,000
+/// instructions in one loop) took 28 s and 730 MB to translate before there
+/// was a limit (`docs/adr/0011-compiling-tier.md`).
+pub const MAX_BLOCK_OPS: usize = 2_048;
+
+/// The most Cranelift instructions a block may translate to (a second
+/// bound, for instructions that expand to many, such as calls and string
+/// services); translation stops as soon as it is passed.
+pub(crate) const MAX_BLOCK_IR: usize = 8 * MAX_BLOCK_OPS;
+
 /// The state handed between the VM and compiled code; the layout is read
 /// by the generated code at fixed offsets.
 #[repr(C)]
@@ -161,14 +175,8 @@ impl Cache {
     }
 }
 
-/// The most instructions of a block the tier translates. Translating takes
-/// memory in proportion to the block (Cranelift held about 200 bytes per
-/// instruction: a 100 MB block took 21 GB), and real actions are far
-/// smaller; a larger block stays on the interpreter.
-pub const MAX_COMPILED: usize = 1 << 16;
-
 /// Compiles block `block` of `program`, or `None` when it uses anything
-/// outside the subset or is larger than [`MAX_COMPILED`] (the interpreter
+/// outside the subset or is larger than [`MAX_BLOCK_OPS`] (the interpreter
 /// then runs it).
 pub fn compile(linked: &Linked, store: &Store, program: usize, block: usize) -> Option<Compiled> {
     compile_as(linked, store, (program, block), false)
@@ -181,7 +189,7 @@ fn compile_as(linked: &Linked, store: &Store, (program, block): (usize, usize), 
     let unit = linked.unit(program)?;
     let ops = linked.ops(program, block)?;
     let code = unit.blocks.get(block)?;
-    if ops.len() > MAX_COMPILED || !ops.iter().all(in_subset) {
+    if ops.len() > MAX_BLOCK_OPS || !ops.iter().all(in_subset) {
         return None;
     }
     let plan = Plan::new(ops, &prog.targets, store, traced)?;

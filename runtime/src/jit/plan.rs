@@ -19,6 +19,15 @@ pub(crate) const READONLY: u8 = 4;
 /// Most slots kept in registers; the rest stay in memory.
 const MAX_PROMOTED: usize = 48;
 
+/// Promoted slots times instructions, at most. Every exit of the code (a
+/// check that may bail out, a block's budget check) hands every promoted
+/// slot back, and a block has about as many exits as instructions: without
+/// a bound, translating a long block with many cells spent most of its
+/// time moving promoted slots to exits (1,000 instructions of `IF`s over
+/// 58 cells: 110 µs per instruction). Blocks of up to 256 instructions,
+/// where a loop's speed matters, keep all 48.
+const PROMOTION_BUDGET: usize = MAX_PROMOTED * 256;
+
 pub(crate) struct Plan {
     /// Store cell of each slot.
     pub cells: Vec<u32>,
@@ -85,13 +94,14 @@ impl Plan {
             sym_cell: targets.iter().map(|t| t.cell).collect(),
         };
         let mut promoted = 0;
+        let max_promoted = (PROMOTION_BUDGET / ops.len().max(1)).min(MAX_PROMOTED);
         for (a, b, r) in merged {
             for c in a..=b {
                 plan.cells.push(c);
                 plan.kinds.push(kind_of(store, c)?);
                 // Traced code keeps every cell in memory, where the trace
                 // reads it after each write.
-                plan.promoted.push(!r && !traced && promoted < MAX_PROMOTED);
+                plan.promoted.push(!r && !traced && promoted < max_promoted);
                 promoted += usize::from(!r);
             }
         }

@@ -133,7 +133,8 @@ impl Strategy {
     }
 
     /// A CRC-32 of the strategy's shape: every block with its template and
-    /// fields' names and types, and every program's object file.
+    /// fields' names and types, and every program's object file without its
+    /// source file names.
     fn fingerprint(&self) -> String {
         let db = &self.store.db;
         let mut shape = String::new();
@@ -147,7 +148,15 @@ impl Strategy {
         }
         let mut sums = Vec::with_capacity(self.objects.len());
         for o in &self.objects {
-            sums.push(crc32(&o.object().to_bytes()));
+            // The file names say where the sources were read from, not what
+            // the programs are: the same plant named by another path
+            // (`./plant.json`, an absolute path) is the same strategy.
+            let mut content = o.object().clone();
+            content.source.clear();
+            for u in &mut content.units {
+                u.file.clear();
+            }
+            sums.push(crc32(&content.to_bytes()));
         }
         for m in &self.members {
             let sum = sums.get(m.object).copied().unwrap_or(0);

@@ -1,7 +1,9 @@
 //! Instructions the compiled code hands to the runtime's services
-//! ([`crate::jit::host`]): strings and library calls.
+//! ([`crate::jit::host`]): strings and library calls. A service that
+//! faults leaves through [`Exit::Fault`]: the cells written so far go back
+//! to the store, as the interpreter's writes stay when it faults.
 
-use super::{frame_off, Emitter, Ty};
+use super::{frame_off, Emitter, Exit, Ty};
 use crate::isa::{Kind, Op};
 use crate::jit::host::{self, Service};
 use crate::jit::Frame;
@@ -28,12 +30,7 @@ impl Emitter<'_, '_> {
         args.extend(words);
         let call = self.b.ins().call_indirect(sig, callee, &args);
         let status = *self.b.inst_results(call).first()?;
-        let (out, cont) = (self.b.create_block(), self.b.create_block());
-        self.b.set_cold_block(out);
-        self.b.ins().brif(status, out, &[], cont, &[]);
-        self.b.switch_to_block(out);
-        self.fault_exit(pc);
-        self.b.switch_to_block(cont);
+        self.exit_if(status, Exit::Fault, pc);
         Some(())
     }
 
@@ -57,17 +54,6 @@ impl Emitter<'_, '_> {
             self.serve(pc, host::note, [cell, 0, 0])?;
         }
         Some(())
-    }
-
-    /// Leaves after a service faulted at `pc`: the cells written so far go
-    /// back to the store, as the interpreter's writes stay when it faults.
-    fn fault_exit(&mut self, pc: usize) {
-        self.flush();
-        let f = self.frame();
-        let pcv = self.b.ins().iconst(types::I32, pc as i64);
-        self.b.ins().store(MemFlags::trusted(), pcv, f, frame_off(offset_of!(Frame, pc)));
-        let two = self.b.ins().iconst(types::I32, 2);
-        self.b.ins().return_(&[two]);
     }
 
     /// The numeric result a service left in the frame.

@@ -1,0 +1,148 @@
+//! The compiling tier's size limit (ADR 0011, docs/semantics.md §24): a
+//! block longer than `jit::MAX_BLOCK_OPS` instructions stays on the
+//! interpreter, so `--tier auto` never spends more than one bounded
+//! translation on a block, however large the action; a block within the
+//! limit translates in time and memory linear in its size. A 2.5 MB action
+//! (one loop around 40,000 assignments) took 28 s and 730 MB to translate
+//! before the limit.
+
+use linc_conformance::exec::compile;
+use linc_conformance::guide_db;
+use linc_runtime::jit::{self, MAX_BLOCK_OPS};
+use linc_runtime::store::Store;
+use linc_runtime::vm::{Activation, Clock, Tier, Vm, DEFAULT_WATCHDOG};
+use linc_runtime::{Linked, Program};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::time::{Duration, Instant};
+
+struct Counting;
+
+thread_local! {
+    /// Live heap bytes allocated by this thread, and their peak (other
+    /// threads of the harness allocate now and then).
+    static LIVE: Cell<isize> = const { Cell::new(0) };
+    static PEAK: Cell<isize> = const { Cell::new(0) };
+}
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let _ = LIVE.try_with(|l| {
+            l.set(l.get() + layout.size() as isize);
+            let _ = PEAK.try_with(|p| p.set(p.get().max(l.get())));
+        });
+        // SAFETY: forwarded unchanged to the system allocator.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        let _ = LIVE.try_with(|l| l.set(l.get() - layout.size() as isize));
+        // SAFETY: forwarded unchanged to the system allocator.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// What `f` returns, the peak of live heap bytes beyond those live before
+/// it, and how long it took.
+fn measure<T>(f: impl FnOnce() -> T) -> (T, usize, Duration) {
+    let before = LIVE.with(Cell::get);
+    PEAK.with(|p| p.set(before));
+    let start = Instant::now();
+    let t = f();
+    let time = start.elapsed();
+    (t, (PEAK.with(Cell::get) - before).max(0) as usize, time)
+}
+
+/// One loop around `n` statements of the kinds that make exits: REAL
+/// stores (checked for non-finite values), INT division and MOD, and IFs
+/// (basic blocks, each with a budget check).
+fn action(n: usize) -> String {
+    let fields = ["PV", "SL", "TrimSP", "OP", "HR", "LR", "XP", "TI", "TD"];
+    let pids = ["TIC_100", "HEAT_PID", "PIC_004", "PIC_005", "pid1"];
+    let real = |i: usize| format!("{}.{}", pids[i % pids.len()], fields[i / pids.len() % fields.len()]);
+    let mut s = String::from("FOR Counters.N0 := 1 TO 3 DO\n");
+    for i in 0..n {
+        let line = match i % 3 {
+            0 => format!("  {} := {} * 0.5 - {} * 0.25 + {}.25;\n", real(i), real(i + 7), real(i + 11), i % 97),
+            1 => format!("  Counters.N1 := Counters.N1 + Counters.N0 * {} / {} MOD 7;\n", i % 89, i % 13 + 1),
+            _ => {
+                format!("  IF {} > {}.5 THEN {} := {} + 1.0; END_IF;\n", real(i + 3), i % 89, real(i + 5), real(i + 5))
+            }
+        };
+        s.push_str(&line);
+    }
+    s.push_str("END_FOR;\n");
+    s
+}
+
+struct Case {
+    linked: Linked,
+    ops: usize,
+}
+
+fn case(n: usize) -> Case {
+    let verified = linc_runtime::load(&compile(&action(n), guide_db())).expect("loads");
+    let store = Store::new(guide_db().clone());
+    let linked = verified.link(&store, &[Program { unit: 0, own: None }]).expect("links");
+    let ops = linked.program(0).and_then(|p| p.blocks.first()).map_or(0, |b| b.ops.len());
+    Case { linked, ops }
+}
+
+/// The database after one run on `tier`, as text (so -0.0 differs from 0.0).
+fn run(c: &Case, tier: Tier) -> String {
+    let mut store = Store::new(guide_db().clone());
+    let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0));
+    vm.set_tier(tier);
+    let mut act = Activation::new(&c.linked, 0, 0);
+    vm.run(&c.linked, &mut act, &mut store, None).expect("runs");
+    format!("{:?}", store.cells)
+}
+
+#[test]
+fn a_block_over_the_limit_runs_on_the_interpreter_at_once() {
+    let c = case(700);
+    assert!(c.ops > MAX_BLOCK_OPS, "{} instructions: not over the limit", c.ops);
+    let store = Store::new(guide_db().clone());
+    let (code, peak, time) = measure(|| jit::compile(&c.linked, &store, 0, 0));
+    assert!(code.is_none(), "a block of {} instructions was translated", c.ops);
+    // Refused before anything is built (translating it took seconds and
+    // hundreds of megabytes before).
+    assert!(peak < 1 << 16, "refusing took {peak} bytes");
+    assert!(time < Duration::from_millis(200), "refusing took {time:?}");
+    let interpreted = run(&c, Tier::Interpreter);
+    let auto = run(&c, Tier::Auto);
+    assert_eq!(c.linked.compiled_blocks(), (0, 1), "the loop ran compiled");
+    assert!(auto == interpreted, "--tier auto differs from the interpreter");
+}
+
+#[test]
+fn a_block_within_the_limit_translates_in_linear_time_and_memory() {
+    let big = case(205);
+    assert!(big.ops <= MAX_BLOCK_OPS && big.ops * 10 > MAX_BLOCK_OPS * 9, "{} instructions", big.ops);
+    let small = case(51);
+    let store = Store::new(guide_db().clone());
+    let cost = |c: &Case| {
+        (0..3)
+            .map(|_| {
+                let (code, peak, time) = measure(|| jit::compile(&c.linked, &store, 0, 0));
+                assert!(code.is_some(), "a block of {} instructions was not translated", c.ops);
+                (peak, time)
+            })
+            .min_by_key(|&(_, t)| t)
+            .unwrap_or_default()
+    };
+    let ((small_peak, small_time), (big_peak, big_time)) = (cost(&small), cost(&big));
+    let n = big.ops as f64 / small.ops as f64;
+    let time = big_time.as_secs_f64() / small_time.as_secs_f64();
+    let peak = big_peak as f64 / small_peak as f64;
+    eprintln!(
+        "{} → {} instructions: translated in {small_time:?} → {big_time:?}, peak {small_peak} → {big_peak} bytes",
+        small.ops, big.ops
+    );
+    assert!(time < 2.0 * n, "{n:.1}× the instructions took {time:.1}× the time");
+    assert!(peak < 2.0 * n, "{n:.1}× the instructions took {peak:.1}× the memory");
+    assert!(run(&big, Tier::Compiled) == run(&big, Tier::Interpreter), "the tiers differ");
+    assert_eq!(big.linked.compiled_blocks(), (1, 1));
+}
