@@ -82,10 +82,8 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> DepthGuard<'s, I> {
                 }
                 self.statements.push(end_of(&t.1));
             }
-            Tok::EndIf | Tok::EndFor | Tok::EndWhile | Tok::EndRepeat => {
-                if self.statements.last() == Some(&t.1) {
-                    self.statements.pop();
-                }
+            Tok::EndIf | Tok::EndFor | Tok::EndWhile | Tok::EndRepeat if self.statements.last() == Some(&t.1) => {
+                self.statements.pop();
             }
             _ if prefix && self.run > MAX_EXPR_DEPTH => {
                 self.errors.push(SyntaxError::ExprTooDeep { span: Span::new(t.0, t.2) });
@@ -132,7 +130,7 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> DepthGuard<'s, I> {
     /// its END keyword, or to the end of the text.
     fn skip_statement(&mut self, start: usize) {
         let (mut open, mut end) = (1u64, start);
-        while let Some(t) = self.inner.next() {
+        for t in self.inner.by_ref() {
             end = t.2;
             match t.1 {
                 Tok::If | Tok::For | Tok::While | Tok::Repeat => open += 1,

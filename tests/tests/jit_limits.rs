@@ -12,47 +12,19 @@ use linc_runtime::jit::{self, MAX_BLOCK_OPS};
 use linc_runtime::store::Store;
 use linc_runtime::vm::{Activation, Clock, Tier, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{Linked, Program};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
+use linc_test_support::alloc::{peak_of, serial, Counting};
 use std::time::{Duration, Instant};
-
-struct Counting;
-
-thread_local! {
-    /// Live heap bytes allocated by this thread, and their peak (other
-    /// threads of the harness allocate now and then).
-    static LIVE: Cell<isize> = const { Cell::new(0) };
-    static PEAK: Cell<isize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let _ = LIVE.try_with(|l| {
-            l.set(l.get() + layout.size() as isize);
-            let _ = PEAK.try_with(|p| p.set(p.get().max(l.get())));
-        });
-        // SAFETY: forwarded unchanged to the system allocator.
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        let _ = LIVE.try_with(|l| l.set(l.get() - layout.size() as isize));
-        // SAFETY: forwarded unchanged to the system allocator.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
 /// What `f` returns, the peak of live heap bytes beyond those live before
-/// it, and how long it took.
+/// it, and how long it took (callers hold [`serial`]).
 fn measure<T>(f: impl FnOnce() -> T) -> (T, usize, Duration) {
-    let before = LIVE.with(Cell::get);
-    PEAK.with(|p| p.set(before));
     let start = Instant::now();
-    let t = f();
-    let time = start.elapsed();
-    (t, (PEAK.with(Cell::get) - before).max(0) as usize, time)
+    let mut t = None;
+    let peak = peak_of(|| t = Some(f()));
+    (t.expect("ran"), peak, start.elapsed())
 }
 
 /// One loop around `n` statements of the kinds that make exits: REAL
@@ -86,7 +58,7 @@ fn case(n: usize) -> Case {
     let verified = linc_runtime::load(&compile(&action(n), guide_db())).expect("loads");
     let store = Store::new(guide_db().clone());
     let linked = verified.link(&store, &[Program { unit: 0, own: None }]).expect("links");
-    let ops = linked.program(0).and_then(|p| p.blocks.first()).map_or(0, |b| b.ops.len());
+    let ops = linked.ops(0, 0).map_or(0, <[_]>::len);
     Case { linked, ops }
 }
 
@@ -102,6 +74,7 @@ fn run(c: &Case, tier: Tier) -> String {
 
 #[test]
 fn a_block_over_the_limit_runs_on_the_interpreter_at_once() {
+    let _one = serial();
     let c = case(700);
     assert!(c.ops > MAX_BLOCK_OPS, "{} instructions: not over the limit", c.ops);
     let store = Store::new(guide_db().clone());
@@ -119,6 +92,7 @@ fn a_block_over_the_limit_runs_on_the_interpreter_at_once() {
 
 #[test]
 fn a_block_within_the_limit_translates_in_linear_time_and_memory() {
+    let _one = serial();
     let big = case(205);
     assert!(big.ops <= MAX_BLOCK_OPS && big.ops * 10 > MAX_BLOCK_OPS * 9, "{} instructions", big.ops);
     let small = case(51);

@@ -5,7 +5,6 @@
 
 use super::ast::{Action, ActionBody, Assoc, Chart, Sequence, Step};
 use super::errors::SfcError;
-use super::lower::{MAX_BLOCKS, MAX_STEPS};
 use super::safety::{unsafe_edge, Edge};
 use crate::ast::Ident;
 use crate::check::{Checker, Context, Limits};
@@ -30,7 +29,6 @@ pub fn check(seq: &Sequence, ctx: Context) -> Vec<Diagnostic> {
     }
     let mut out = Vec::new();
     let steps = step_names(&charts, &mut out);
-    limits(seq, &charts, &steps, &mut out);
     let home = step_charts(&charts);
     for c in &charts {
         chart(c, &home, &mut out);
@@ -96,29 +94,6 @@ fn step_names<'a>(charts: &[Named<'a>], out: &mut Vec<Diagnostic>) -> Vec<&'a Id
         }
     }
     names
-}
-
-/// The limits of the object format (E0132), as the lowering meets them:
-/// two retained slots a step, one code block a transition and an ST
-/// action, each numbered in 16 bits. Reported at the first one over.
-fn limits(seq: &Sequence, charts: &[Named], steps: &[&Ident], out: &mut Vec<Diagnostic>) {
-    if let Some(s) = steps.get(MAX_STEPS) {
-        out.push(too_many(
-            s.span,
-            "steps in one sequence",
-            "a sequence has at most 32,767 steps (two 16-bit retained slots each); split it",
-        ));
-    }
-    let transitions = charts.iter().flat_map(|c| &c.chart.transitions).map(|t| t.span);
-    let actions = seq.actions.iter().filter(|a| matches!(a.body, ActionBody::St(_))).map(|a| a.name.span);
-    if let Some(span) = transitions.chain(actions).nth(MAX_BLOCKS) {
-        let limit = "a sequence's transitions and ST actions are at most 65,535 code blocks; split it";
-        out.push(too_many(span, "transitions and actions in one sequence", limit));
-    }
-}
-
-fn too_many(span: Span, what: &'static str, limit: &'static str) -> Diagnostic {
-    crate::check::CheckError::TooMany { span, what, limit }.to_diagnostic()
 }
 
 /// Each step name (upper case) and the chart it is first in.

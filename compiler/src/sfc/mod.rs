@@ -15,8 +15,8 @@ pub mod pretty;
 mod refs;
 pub mod resources;
 mod safety;
-pub mod size;
 pub(crate) mod shift;
+pub mod size;
 
 use crate::check::Context;
 use crate::diagnostic::Diagnostic;

@@ -8,7 +8,7 @@
 //!   `u16` count: at most [`MAX_STEPS`] (E0214);
 //! - lowering writes a chart for each use of a chart action, a code block
 //!   for each transition of each such chart and one for each ST action:
-//!   charts and blocks are named by a `u16`, so at most 65,536 of each
+//!   charts and blocks are named by a `u16`: at most 65,535 of each
 //!   (E0215). Counting expands nothing: each chart action's share is
 //!   computed once.
 
@@ -23,10 +23,11 @@ pub const MAX_DEPTH: usize = linc_runtime::MAX_CHART_DEPTH;
 
 /// Most steps of a sequence: `.X` and `.T` of each are retained slots,
 /// counted in a `u16`.
-pub const MAX_STEPS: usize = (u16::MAX as usize - 1) / 2;
+pub use super::lower::MAX_STEPS;
 
-/// Most charts and most code blocks of a sequence's unit.
-pub const MAX_TABLE: usize = 1 << 16;
+/// Most charts and most code blocks of a sequence's unit (the lowering's
+/// numbering stops at the same number).
+pub const MAX_TABLE: usize = super::lower::MAX_BLOCKS;
 
 /// What one use of a chart adds to the object.
 #[derive(Clone, Copy, Default)]
@@ -54,7 +55,7 @@ pub fn check(seq: &Sequence, out: &mut Vec<Diagnostic>) {
     let mut s = Sizer { seq, by_name, shares: HashMap::new(), levels: HashMap::new() };
     match s.below(&seq.chart, 0) {
         Ok(_) => s.tables(out),
-        Err(d) => out.push(d),
+        Err(d) => out.push(*d),
     }
 }
 
@@ -69,7 +70,7 @@ fn steps(seq: &Sequence, out: &mut Vec<Diagnostic>) {
     }
 }
 
-impl Sizer<'_> {
+impl<'s> Sizer<'s> {
     /// The chart actions `c`'s steps name, each once, with the association
     /// that names it first (lowering's order).
     fn children(&self, c: &Chart) -> Vec<(usize, Span)> {
@@ -84,8 +85,9 @@ impl Sizer<'_> {
         seen
     }
 
-    fn chart_of(&self, g: usize) -> Option<&Chart> {
-        match &self.seq.actions[g].body {
+    fn chart_of(&self, g: usize) -> Option<&'s Chart> {
+        let seq: &'s Sequence = self.seq;
+        match &seq.actions[g].body {
             ActionBody::Chart(c) => Some(c),
             ActionBody::St(_) => None,
         }
@@ -95,13 +97,18 @@ impl Sizer<'_> {
     /// root; E0213 at the association that puts a chart deeper than
     /// [`MAX_DEPTH`]. The walk stops one level past the limit, and each
     /// chart action's levels are counted once.
-    fn below(&mut self, c: &Chart, depth: usize) -> Result<usize, Diagnostic> {
+    fn below(&mut self, c: &Chart, depth: usize) -> Result<usize, Box<Diagnostic>> {
         let mut most = 0;
         for (g, span) in self.children(c) {
             let Some(child) = self.chart_of(g) else { continue };
             let too_deep = |levels: usize| {
                 let action = self.seq.actions[g].name.text.clone();
-                Diagnostic::from(SfcError::ChartsTooDeep { span, action, depth: depth + levels, limit: MAX_DEPTH })
+                Box::new(Diagnostic::from(SfcError::ChartsTooDeep {
+                    span,
+                    action,
+                    depth: depth + levels,
+                    limit: MAX_DEPTH,
+                }))
             };
             if depth + 1 > MAX_DEPTH {
                 return Err(too_deep(1));
@@ -146,7 +153,7 @@ impl Sizer<'_> {
         s
     }
 
-    /// E0215 where the charts or code blocks of the object pass 65,536: at
+    /// E0215 where the charts or code blocks of the object pass 65,535: at
     /// the root's association whose chart action takes them over, or at the
     /// root's transition that does.
     fn tables(&mut self, out: &mut Vec<Diagnostic>) {
