@@ -256,3 +256,32 @@ fn the_same_plant_named_by_another_path_warm_starts() {
         }
     }
 }
+
+/// A state whose program would resume inside an expression or past the end
+/// of its code is refused (E0842): a run resumes only where the verified
+/// code suspends (issue 16; a resealed state used to run on from there,
+/// with wrong results and exit 0).
+#[test]
+fn a_resume_point_where_the_code_cannot_stop_is_refused() {
+    for plant in [SEQ_PLANT, FST_PLANT] {
+        let state = temp("resume", "plant.state");
+        ok(&run(plant, "150s", &["--state", &state, "--cold"]));
+        let bytes = read(&state);
+        let nl = bytes.iter().position(|&b| b == b'\n').expect("header") + 1;
+        let doc: serde_json::Value = serde_json::from_slice(&bytes[nl..]).expect("body");
+        let members = doc["members"].as_array().expect("members").len();
+        assert!(members > 0, "{plant}: no programs");
+        let bad = temp("resume", "bad.state");
+        for (m, at) in (0..members).flat_map(|m| [(m, 1u64), (m, 1 << 20)]) {
+            let mut d = doc.clone();
+            d["members"][m]["resume"] = at.into();
+            let body = serde_json::to_vec(&d).expect("json");
+            let header =
+                serde_json::json!({"linc-state": 1, "crc32": linc_runtime::object::crc32(&body), "length": body.len()});
+            std::fs::write(&bad, [header.to_string().as_bytes(), b"\n", &body].concat()).expect("write");
+            let o = run(plant, "1s", &["--state", &bad]);
+            assert_eq!(o.status.code(), Some(2), "{plant} member {m} at {at}: {}", stderr(&o));
+            assert!(stderr(&o).contains("error[E0842]") && stderr(&o).contains("resume"), "{}", stderr(&o));
+        }
+    }
+}

@@ -128,6 +128,16 @@ impl Activation {
     }
 }
 
+/// Whether a run of `ops` may resume at `at`: at a `Step` (an FST run that
+/// spent its step budget resumes at the step) or after a `Yield` or a
+/// `Pause`. Those are the only places a run suspends, and the verifier
+/// checks that both stacks are empty there (a restored state is checked
+/// against this).
+pub(crate) fn can_resume_at(ops: &[Op], at: usize) -> bool {
+    matches!(ops.get(at), Some(Op::Step { .. }))
+        || at.checked_sub(1).and_then(|p| ops.get(p)).is_some_and(|op| matches!(op, Op::Yield {} | Op::Pause { .. }))
+}
+
 /// The code an activation runs, looked up once per run.
 struct Running<'a> {
     linked: &'a Linked,

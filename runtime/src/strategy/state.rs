@@ -201,6 +201,9 @@ impl Strategy {
                 let fits = match &cell {
                     Cell::Enum { idx } => usize::from(*idx) < self.store.enum_names(i as u32).len(),
                     Cell::Bits { v, width } => *width >= 16 || u32::from(*v) >> width == 0,
+                    // What the loader and the VM never let into a field.
+                    Cell::Real(x) => x.is_finite(),
+                    Cell::Text(b) | Cell::Bseq(b) | Cell::Wstr(b) => b.len() <= crate::vm::MAX_STRING,
                     _ => true,
                 };
                 fits.then_some(cell).ok_or_else(|| misfit(format!("{at} holds a value out of its field's range")))
@@ -210,7 +213,7 @@ impl Strategy {
         let members = members
             .iter()
             .zip(&self.members)
-            .map(|(v, m)| member_from(v, m))
+            .map(|(v, m)| member_from(v, m, &self.objects[m.object]))
             .collect::<Result<Vec<MemberState>, _>>()?;
         let now_us = uint(&clock["elapsed_us"], "the clock")?;
         // A task is next due after now and within one period: a schedule
@@ -291,7 +294,7 @@ fn member_json(m: &super::Member) -> Value {
     })
 }
 
-fn member_from(v: &Value, m: &super::Member) -> Result<MemberState, StateError> {
+fn member_from(v: &Value, m: &super::Member, linked: &crate::Linked) -> Result<MemberState, StateError> {
     let retained = parts::u32s(&v["retained"], "a program's retained slots")?;
     if retained.len() != m.act.retained.len() {
         return Err(misfit("a program's retained slots"));
@@ -300,6 +303,18 @@ fn member_from(v: &Value, m: &super::Member) -> Result<MemberState, StateError> 
         Value::Null => None,
         r => Some(u32::try_from(uint(r, "a resume point")?).map_err(|_| misfit("a resume point"))?),
     };
+    let locals = parts::u32s(&v["locals"], "a program's locals")?;
+    if let Some(at) = resume {
+        // Only where the verified code suspends, with its locals: resuming
+        // anywhere else would start inside an expression, with stacks the
+        // verifier never saw, or past the end of the code.
+        let (program, block) = (m.act.program, m.act.block);
+        let ops = linked.ops(program, block).unwrap_or_default();
+        let locals_of = linked.unit(program).and_then(|u| u.blocks.get(block)).map(|b| usize::from(b.locals));
+        if !crate::vm::can_resume_at(ops, at as usize) || locals_of != Some(locals.len()) {
+            return Err(misfit("a program's resume point is not where its code can stop"));
+        }
+    }
     let q = &v["qual"];
     let qual = QualState {
         was: parts::boolean(&q["was"], "a qualifier")?,
@@ -321,7 +336,7 @@ fn member_from(v: &Value, m: &super::Member) -> Result<MemberState, StateError> 
     Ok(MemberState {
         stopped: parts::boolean(&v["stopped"], "a program's stop")?,
         resume,
-        locals: parts::u32s(&v["locals"], "a program's locals")?,
+        locals,
         retained,
         qual,
         seq,

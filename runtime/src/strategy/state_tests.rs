@@ -29,7 +29,7 @@ fn set(s: &mut Strategy, block: usize, field: &str, v: Cell) {
 fn changed() -> Strategy {
     let mut s = strategy(DB);
     s.run_for(90_000_000, None);
-    set(&mut s, 0, "A0", Cell::Real(f32::NAN));
+    set(&mut s, 0, "A0", Cell::Real(f32::MAX));
     set(&mut s, 1, "A0", Cell::Real(-0.0));
     set(&mut s, 0, "N0", Cell::Int(-42));
     set(&mut s, 0, "Flags", Cell::Bits { v: 0x8001, width: 16 });
@@ -53,7 +53,7 @@ fn a_saved_state_restores_every_value_and_the_clock() {
     assert_eq!(t.restore_state(&bytes), Ok(()));
     assert_eq!(t.elapsed_us(), 90_000_000);
     assert_eq!(t.store.now, 1_767_225_690.0, "a warm start continues the same day");
-    // NaN is not equal to itself: compare the cells' saved forms, then the rest.
+    // Compare the cells' saved forms (-0.0 differs from 0.0), then the rest.
     let form = |s: &Strategy| s.store.cells.iter().map(parts::cell_json).collect::<Vec<_>>();
     assert_eq!(form(&t), form(&s));
     assert_eq!(t.store.cells[1], Cell::Int(-42));
@@ -157,6 +157,35 @@ fn a_checksummed_body_that_does_not_fit_is_refused() {
     doc["cells"] = json!([]);
     let body = serde_json::to_vec(&doc).expect("json");
     assert_eq!(strategy(DB).restore_state(&sealed(1, &body)).map_err(|e| e.code), Err("E0842"));
+}
+
+/// What the loader refuses in a database (a REAL that is not finite, a
+/// string over 65,535 bytes) is refused in a saved state too.
+#[test]
+fn a_value_the_loader_would_refuse_is_refused() {
+    let s = changed();
+    let a0 = s.store.cell_of(0, "A0").expect("A0") as usize;
+    let tag = s.store.cell_of(1, "Tag").expect("Tag") as usize;
+    let long = "41".repeat(crate::vm::MAX_STRING + 1);
+    let cases = [
+        (a0, json!(["R", f32::NAN.to_bits()])),
+        (a0, json!(["R", f32::INFINITY.to_bits()])),
+        (a0, json!(["R", f32::NEG_INFINITY.to_bits()])),
+        (tag, json!(["T", long])),
+    ];
+    for (cell, value) in cases {
+        let mut doc = s.state_json();
+        doc["cells"][cell] = value;
+        let body = serde_json::to_vec(&doc).expect("json");
+        let e = strategy(DB).restore_state(&sealed(1, &body)).expect_err("refused");
+        assert_eq!(e.code, "E0842", "{e}");
+        assert!(e.message.contains("range"), "{e}");
+    }
+    // At the limit, a string is kept.
+    let mut doc = s.state_json();
+    doc["cells"][tag] = json!(["T", "41".repeat(crate::vm::MAX_STRING)]);
+    let body = serde_json::to_vec(&doc).expect("json");
+    assert_eq!(strategy(DB).restore_state(&sealed(1, &body)), Ok(()));
 }
 
 #[test]
