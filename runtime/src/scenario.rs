@@ -23,6 +23,17 @@ pub trait Driver {
     fn strategy_mut(&mut self) -> &mut Strategy;
     /// One console line; one reply or error (`code`, `message`) per command.
     fn command(&mut self, line: &str) -> Vec<Result<String, (String, String)>>;
+    /// The commands of one line, in order (a line may hold several, split
+    /// by `;`).
+    fn split<'l>(&self, line: &'l str) -> Vec<&'l str> {
+        vec![line]
+    }
+    /// How far one command moves the clock when it runs the strategy
+    /// (`ADVANCE`, `SCAN`): the scenario runs those scans itself, checking
+    /// its expectations after each, as it does between its own lines.
+    fn advances(&self, _command: &str) -> Option<Result<u64, (String, String)>> {
+        None
+    }
 }
 
 /// When an expectation must hold (µs from its line's time).
@@ -132,13 +143,7 @@ pub fn run(driver: &mut dyn Driver, steps: Vec<Step>, watch: &[String]) -> Repor
                     continue;
                 }
                 r.advance(driver, at_us);
-                r.fresh = false;
-                for reply in driver.command(&command) {
-                    if let Err((code, message)) = reply {
-                        r.fail(line, at_us, format!("`{command}` was refused ({code}): {message}"), Vec::new());
-                    }
-                }
-                r.check(driver.strategy_mut());
+                r.commands(driver, line, &command);
             }
             Step::Expect { line, check, text, object } => r.expect(driver.strategy_mut(), line, check, text, object),
             Step::Run { line: _, for_us } => {
@@ -207,6 +212,30 @@ fn samples(s: &Strategy, watch: &[String]) -> Samples {
 impl Runner {
     fn fail(&mut self, line: u32, at_us: u64, message: String, values: Vec<(String, String)>) {
         self.report.failures.push(Failure { line, at_us, message, values });
+    }
+
+    /// The commands of a scenario line at its time. One that runs the
+    /// strategy (`ADVANCE 1h`) runs scan by scan like the scenario's own
+    /// lines, so `never`, `always` and `within` are checked at every scan
+    /// it runs, not only at its end.
+    fn commands(&mut self, driver: &mut dyn Driver, line: u32, text: &str) {
+        for command in driver.split(text) {
+            let at_us = driver.strategy().elapsed_us();
+            let refused = |code: &str, message: &str| format!("`{}` was refused ({code}): {message}", command.trim());
+            match driver.advances(command) {
+                Some(Ok(us)) => self.advance(driver, at_us.saturating_add(us)),
+                Some(Err((code, message))) => self.fail(line, at_us, refused(&code, &message), Vec::new()),
+                None => {
+                    self.fresh = false;
+                    for reply in driver.command(command) {
+                        if let Err((code, message)) = reply {
+                            self.fail(line, at_us, refused(&code, &message), Vec::new());
+                        }
+                    }
+                    self.check(driver.strategy_mut());
+                }
+            }
+        }
     }
 
     /// Runs scan by scan up to `to`, checking after each.
@@ -397,5 +426,13 @@ impl Driver for crate::console::Console {
 
     fn command(&mut self, line: &str) -> Vec<Result<String, (String, String)>> {
         self.execute(line).into_iter().map(|r| r.map_err(|e| (e.code.to_string(), e.message))).collect()
+    }
+
+    fn split<'l>(&self, line: &'l str) -> Vec<&'l str> {
+        crate::console::commands(line).into_iter().filter(|c| !c.trim().is_empty()).collect()
+    }
+
+    fn advances(&self, command: &str) -> Option<Result<u64, (String, String)>> {
+        self.advance_of(command).map(|r| r.map_err(|e| (e.code.to_string(), e.message)))
     }
 }

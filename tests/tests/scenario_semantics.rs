@@ -173,3 +173,42 @@ fn expectations_are_set_up_in_linear_time() {
     let r = t4.as_secs_f64() / t1.as_secs_f64().max(1e-9);
     assert!(r < 7.0, "4x the expectations took {r:.1}x the time ({t1:?}, {t4:?})");
 }
+
+/// Runs the scenario against the real console, whose ADVANCE and SCAN
+/// commands run the strategy.
+fn go_console(action: &str, steps: impl FnOnce(&Strategy) -> Vec<Step>) -> Report {
+    let s = strategy(action);
+    let steps = steps(&s);
+    run(&mut linc_runtime::console::Console::new(s), steps, &["REC.N0".to_string()])
+}
+
+#[test]
+fn expectations_are_checked_at_every_scan_a_console_advance_runs() {
+    // `at 0s ADVANCE 1h`: N0 passes 5 in the first half second of the
+    // hour; `never` fails at that scan, not after the hour (it used to be
+    // checked only when the ADVANCE had finished, and passed).
+    let r = go_console(COUNT, |s| {
+        vec![
+            expect(s, 1, Check::Never, "REC.N0 = 5"),
+            Step::At { line: 2, at_us: 0, command: "ADVANCE 1h".into() },
+        ]
+    });
+    assert_eq!(failed_at(&r), [(1, 500_000)]);
+    assert_eq!(r.end_us, 3_600_000_000);
+    // `within` is decided at the first scan that holds during the ADVANCE.
+    let r = go_console(COUNT, |s| {
+        vec![
+            expect(s, 1, Check::Within(1_000_000), "REC.N0 >= 10"),
+            expect(s, 2, Check::Always, "REC.N0 < 30"),
+            Step::At { line: 3, at_us: 0, command: "NOW; ADVANCE 5s; SCAN".into() },
+        ]
+    });
+    assert_eq!(failed_at(&r), [(2, 3_000_000)], "{:?}", r.failures);
+    assert_eq!(r.end_us, 5_100_000, "ADVANCE 5s then one 100 ms SCAN");
+    // Every scan is sampled for the VCD, as between lines.
+    assert_eq!(r.samples.changes.len(), 52, "the start and 51 scans");
+    // An ADVANCE that does not parse is refused, located at its line.
+    let r = go_console(COUNT, |_| vec![Step::At { line: 4, at_us: 0, command: "ADVANCE never".into() }]);
+    assert_eq!(failed_at(&r), [(4, 0)]);
+    assert!(r.failures[0].message.contains("C0008"), "{}", r.failures[0].message);
+}

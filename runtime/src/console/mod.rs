@@ -118,6 +118,23 @@ impl Console {
         std::mem::take(&mut self.failures)
     }
 
+    /// How far `text` runs the strategy when it is an `ADVANCE` or a
+    /// `SCAN` (a scenario runs those scans itself); `None` for any other
+    /// command, or one that does not parse (running it reports why).
+    pub fn advance_of(&self, text: &str) -> Option<Result<u64, ConsoleError>> {
+        match parse::parse(text, &duration) {
+            Ok(Command::Advance(us)) => Some(Ok(us)),
+            Ok(Command::Scan) => Some(self.scan_us()),
+            _ => None,
+        }
+    }
+
+    fn scan_us(&self) -> Result<u64, ConsoleError> {
+        self.strategy.fastest_period_us().ok_or_else(|| {
+            ConsoleError::new("C0006", "the strategy has no task to scan: use ADVANCE to move the clock")
+        })
+    }
+
     fn one(&mut self, text: &str, trace: Option<&mut Trace>) -> Result<String, ConsoleError> {
         match parse::parse(text, &duration)? {
             Command::Display(paths) => self.display(&paths),
@@ -131,9 +148,7 @@ impl Console {
             Command::ForceTrans { block, transition, force } => self.force_trans(&block, &transition, force),
             Command::Advance(us) => Ok(self.advance(us, trace)),
             Command::Scan => {
-                let us = self.strategy.fastest_period_us().ok_or_else(|| {
-                    ConsoleError::new("C0006", "the strategy has no task to scan: use ADVANCE to move the clock")
-                })?;
+                let us = self.scan_us()?;
                 Ok(self.advance(us, trace))
             }
             Command::Now => Ok(self.strategy.now_text()),
@@ -378,7 +393,7 @@ impl Console {
 }
 
 /// The commands of a line: split at `;` outside quotes (`M X.S='a;b'`).
-fn commands(line: &str) -> Vec<&str> {
+pub(crate) fn commands(line: &str) -> Vec<&str> {
     let mut out = Vec::new();
     let (mut start, mut quote) = (0, None);
     for (i, ch) in line.char_indices() {
