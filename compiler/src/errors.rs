@@ -163,6 +163,11 @@ pub enum SyntaxError {
     ExprTooDeep {
         span: Span,
     },
+    /// The parser stopped reading the file at `span`, having recovered from
+    /// [`crate::diagnostic::MAX_ERRORS`] syntax errors.
+    Stopped {
+        span: Span,
+    },
 }
 
 impl SyntaxError {
@@ -228,6 +233,14 @@ impl SyntaxError {
             )
             .label("this part is too deep")
             .help("compute the expression in parts, storing each part in a field, then combine the parts"),
+            SyntaxError::Stopped { span } => {
+                Diagnostic::error("E0023", "too many syntax errors: the rest of the file is not read", *span)
+                    .label("reading stopped here")
+                    .help(format!(
+                        "linc reads on through at most {} syntax errors of a file; fix these and check again",
+                        crate::diagnostic::MAX_ERRORS
+                    ))
+            }
         }
     }
 }

@@ -6,7 +6,27 @@
 use crate::ast::{Action, BinOp, Expr, ExprKind, Ident, Seg, Stmt, UnOp, Var};
 use crate::diagnostic::Capped;
 use crate::errors::SyntaxError;
+use crate::lexer::Tok;
 use crate::span::Span;
+use lalrpop_util::ErrorRecovery;
+use std::cell::Cell;
+use std::rc::Rc;
+
+/// The errors the grammar recovered from (`!`), with a count the parser's
+/// feed of tokens can read while the grammar holds the list: reading stops
+/// once [`crate::diagnostic::MAX_ERRORS`] are reported (`parser::run`).
+#[derive(Debug, Default)]
+pub struct Recovered<'s> {
+    pub kept: Capped<ErrorRecovery<usize, Tok<'s>, Never>>,
+    pub count: Rc<Cell<usize>>,
+}
+
+impl<'s> Recovered<'s> {
+    pub fn push(&mut self, e: ErrorRecovery<usize, Tok<'s>, Never>) {
+        self.count.set(self.count.get() + 1);
+        self.kept.push(e);
+    }
+}
 
 /// The parser's user error type: the lexer reports its own errors, so the
 /// parser never receives one.

@@ -3,12 +3,13 @@
 
 use crate::ast::{Action, Expr, Ident, SourceFile, Stmt};
 use crate::depth_guard::DepthGuard;
-use crate::diagnostic::{Capped, Omitted};
+use crate::diagnostic::{Capped, Omitted, MAX_ERRORS};
 use crate::errors::{LexError, SyntaxError};
 use crate::lexer::{Lexer, Spanned, Tok};
-use crate::parse_support::{Item, Never, Parsed};
+use crate::parse_support::{Item, Never, Parsed, Recovered};
 use crate::span::Span;
-use lalrpop_util::{lalrpop_mod, ErrorRecovery, ParseError};
+use lalrpop_util::{lalrpop_mod, ParseError};
+use std::cell::Cell;
 
 lalrpop_mod!(
     #[allow(clippy::all, clippy::pedantic, unused_qualifications, unused_parens)]
@@ -80,22 +81,39 @@ pub fn parse_expr(src: &str) -> (Option<Expr>, ParseErrors) {
 
 fn run(src: &str, start: Tok<'static>, sink: &mut dyn FnMut(Item)) -> (Option<Parsed>, ParseErrors) {
     let mut lexer = Lexer::new(src);
-    let mut recovered: Capped<ErrorRecovery<usize, Tok, Never>> = Capped::default();
+    let mut recovered = Recovered::default();
     let mut syntax = Capped::default();
     let parser = grammar::StartParser::new();
     let mut guard = DepthGuard::new(lexer.by_ref());
-    let tokens = std::iter::once((0, start, 0)).chain(guard.by_ref()).map(Ok::<Spanned, Never>);
+    // Once as many syntax errors are reported as are shown, the rest of the
+    // file is not read: each recovery costs the parser a search of its
+    // states, and a file of a million errors would take seconds to report
+    // a thousand.
+    let (count, stopped) = (recovered.count.clone(), Cell::new(None));
+    let feed = guard.by_ref().map_while(|t| {
+        if count.get() < MAX_ERRORS {
+            return Some(t);
+        }
+        stopped.set(Some(Span::new(t.0, t.2)));
+        None
+    });
+    let tokens = std::iter::once((0, start, 0)).chain(feed).map(Ok::<Spanned, Never>);
     let result = parser.parse(&mut recovered, &mut syntax, sink, tokens);
     let mut omitted = Omitted::default();
     let (too_deep, n, first) = guard.errors.into_parts();
     omitted.add(n, first.as_ref().map(syntax_span));
-    let (recovered, n, first) = recovered.into_parts();
+    let (recovered, n, first) = recovered.kept.into_parts();
     omitted.add(n, first.map(|r| syntax_span(&convert(&lexer.glued, r.error, src.len()))));
     let mut found: Vec<SyntaxError> =
         recovered.into_iter().map(|r| convert(&lexer.glued, r.error, src.len())).collect();
-    let parsed = match result {
-        Ok(p) => Some(p),
-        Err(e) => {
+    let parsed = match (result, stopped.get()) {
+        (Ok(p), None) => Some(p),
+        // The end the parser met is not the file's: say where reading stopped.
+        (_, Some(span)) => {
+            found.push(SyntaxError::Stopped { span });
+            None
+        }
+        (Err(e), None) => {
             found.push(convert(&lexer.glued, e, src.len()));
             None
         }
@@ -126,7 +144,8 @@ pub fn syntax_span(e: &SyntaxError) -> Span {
         | SyntaxError::StatementOutsideAction { span }
         | SyntaxError::MissingFinalSemicolon { span }
         | SyntaxError::NestedTooDeep { span, .. }
-        | SyntaxError::ExprTooDeep { span } => *span,
+        | SyntaxError::ExprTooDeep { span }
+        | SyntaxError::Stopped { span } => *span,
     }
 }
 

@@ -157,3 +157,40 @@ fn generic_sequences_check_with_a_map_in_linear_time() {
     });
     assert!(r < 7.0, "4x the entries and steps took {r:.1}x the time");
 }
+
+/// One error deep inside 99 nested IFs, followed by `n` tokens up to the
+/// `;`: lalrpop's own recovery searched the whole parser stack for every
+/// token it dropped (0.2 MB took 2.2 s in a release build; 90 KB/s).
+fn junk_after_an_error(n: usize) -> String {
+    format!("ACTION A\n{}X := ) {}\nEND_ACTION\n", "IF X THEN ".repeat(99), "+ ".repeat(n))
+}
+
+fn syntax_errors(src: &str) -> Vec<&'static str> {
+    let (_, errors) = linc_compiler::parser::parse_file(src, "a");
+    errors.syntax.iter().map(|e| e.to_diagnostic().code).collect()
+}
+
+#[test]
+fn tokens_after_a_syntax_error_are_skipped_in_linear_time() {
+    let r = ratio(20_000, junk_after_an_error, |src| assert!(!syntax_errors(src).is_empty()));
+    assert!(r < 7.0, "4x the tokens took {r:.1}x the time");
+    let t = best(|| drop(syntax_errors(&junk_after_an_error(100_000))));
+    assert!(t < Duration::from_secs(2), "0.2 MB of tokens after one error took {t:?}");
+}
+
+#[test]
+fn reading_stops_after_the_errors_that_are_shown() {
+    // A file of `;`: every one an error. Reading stops after the errors
+    // that are shown (E0023 where it stopped), so a file four times as
+    // long costs no more.
+    let semis = |n: usize| format!("ACTION A\n{}\nEND_ACTION\n", ";".repeat(n));
+    let errors = syntax_errors(&semis(100_000));
+    assert_eq!(errors.last(), Some(&"E0023"), "{:?}", &errors[errors.len().saturating_sub(3)..]);
+    assert!(errors.len() <= MAX_ERRORS + 2, "{} errors", errors.len());
+    let r = ratio(50_000, semis, |src| drop(syntax_errors(src)));
+    assert!(r < 2.0, "4x the errors took {r:.1}x the time");
+    // Under the limit, every error is read and reported.
+    let errors = syntax_errors(&semis(10));
+    assert_eq!(errors.len(), 10, "{errors:?}");
+    assert!(!errors.contains(&"E0023"));
+}

@@ -188,10 +188,7 @@ fn expectations_are_checked_at_every_scan_a_console_advance_runs() {
     // hour; `never` fails at that scan, not after the hour (it used to be
     // checked only when the ADVANCE had finished, and passed).
     let r = go_console(COUNT, |s| {
-        vec![
-            expect(s, 1, Check::Never, "REC.N0 = 5"),
-            Step::At { line: 2, at_us: 0, command: "ADVANCE 1h".into() },
-        ]
+        vec![expect(s, 1, Check::Never, "REC.N0 = 5"), Step::At { line: 2, at_us: 0, command: "ADVANCE 1h".into() }]
     });
     assert_eq!(failed_at(&r), [(1, 500_000)]);
     assert_eq!(r.end_us, 3_600_000_000);

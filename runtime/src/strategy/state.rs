@@ -333,14 +333,7 @@ fn member_from(v: &Value, m: &super::Member, linked: &crate::Linked) -> Result<M
         }
         _ => return Err(misfit("a program is a sequence in one and not the other")),
     };
-    Ok(MemberState {
-        stopped: parts::boolean(&v["stopped"], "a program's stop")?,
-        resume,
-        locals,
-        retained,
-        qual,
-        seq,
-    })
+    Ok(MemberState { stopped: parts::boolean(&v["stopped"], "a program's stop")?, resume, locals, retained, qual, seq })
 }
 
 #[cfg(test)]
