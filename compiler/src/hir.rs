@@ -4,7 +4,7 @@
 
 use crate::ast::BinOp;
 use crate::span::Span;
-use linc_runtime::object::Class;
+use linc_format::object::Class;
 use linc_stdlib::Ty;
 
 #[derive(Clone, Debug, PartialEq)]

@@ -2,7 +2,7 @@
 //!
 //! Data flows one way: bytes → [`files`] text → [`lexer`] tokens →
 //! [`parser`] syntax tree ([`ast`]), one action at a time → [`check`]ed
-//! against a [`linc_runtime::Database`] into the checked program ([`hir`]) →
+//! against a [`linc_format::Database`] into the checked program ([`hir`]) →
 //! [`lower`]ed to an object file. A [`session::Session`] drives this for the
 //! files of one run. Every stage reports plain-data errors that become
 //! [`Diagnostic`]s, rendered in one place ([`render`]).

@@ -17,7 +17,7 @@ use crate::check::Context;
 use crate::diagnostic::Diagnostic;
 use crate::lower::Lines;
 use crate::span::Span;
-use linc_runtime::object::ObjectFile;
+use linc_format::object::ObjectFile;
 
 /// What a scenario runs.
 #[derive(Clone, Debug, PartialEq)]
@@ -69,7 +69,7 @@ pub struct Scenario {
 
 /// A duration or time like `5m`, `1h30m`, `2.5s`, `T#100ms`, in µs.
 pub fn duration(text: &str) -> Result<u64, String> {
-    let secs = linc_runtime::db::duration_seconds(text)
+    let secs = linc_format::db::duration_seconds(text)
         .map_err(|why| format!("`{text}` is not a time like 10s, 5m or 1h30m: {why}"))?;
     if !secs.is_finite() || !(0.0..=366.0 * 86_400.0).contains(&secs) {
         return Err(format!("`{text}`: times are from 0 to 366 days"));
@@ -240,7 +240,7 @@ fn expect(text: &str, rest: &str) -> Result<Action, Box<Diagnostic>> {
 /// step variables. Diagnostics are located within `expr`.
 pub fn compile_expectation(
     expr: &str,
-    db: &linc_runtime::Database,
+    db: &linc_format::Database,
     steps: &[String],
 ) -> Result<ObjectFile, Vec<Diagnostic>> {
     let ctx = Context { db, resolve_blocks: true, steps: Some(steps) };
@@ -256,7 +256,7 @@ pub fn compile_expectation(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use linc_runtime::isa::Op;
+    use linc_format::isa::Op;
 
     #[test]
     fn the_issue_example_reads() {
@@ -302,7 +302,7 @@ mod tests {
 
     #[test]
     fn expectations_compile_with_step_variables() {
-        let db = linc_runtime::Database::from_json(r#"{"blocks": {"R": {"type": "RECIPE"}}}"#).unwrap();
+        let db = linc_format::Database::from_json(r#"{"blocks": {"R": {"type": "RECIPE"}}}"#).unwrap();
         let steps = vec!["Fill".to_string(), "Heat".to_string()];
         let obj = compile_expectation("Heat.X AND R.A0 > 1.0", &db, &steps).expect("compiles");
         let code = &obj.units[0].blocks[0].ops.0;

@@ -18,7 +18,7 @@ use crate::lower::{self, Lines, Unit};
 use crate::parse_support::Item;
 use crate::parser::{self, ParseErrors};
 use crate::span::{FileId, Span};
-use linc_runtime::ObjectFile;
+use linc_format::ObjectFile;
 use std::collections::hash_map::Entry;
 use std::collections::HashMap;
 
@@ -225,7 +225,7 @@ impl<'a> Session<'a> {
     /// bytes that are not UTF-8 are replaced one for one and reported when
     /// the file is checked.
     pub fn add(&mut self, name: impl Into<String>, bytes: Vec<u8>) -> FileId {
-        let object = bytes.starts_with(linc_runtime::object::MAGIC);
+        let object = bytes.starts_with(linc_format::object::MAGIC);
         let (text, invalid) = if object { (String::new(), Vec::new()) } else { files::decode(bytes) };
         self.objects.push(object);
         self.files.add_decoded(name.into(), text, invalid)

@@ -8,22 +8,18 @@
 //! [`vm::Activation`] that the caller owns. [`load`] does the first two.
 
 pub mod console;
-pub mod db;
+pub use linc_format::{db, isa, object, records, text, wire};
 pub mod errors;
-pub mod isa;
 pub mod jit;
 pub mod link;
-pub mod object;
 pub mod roc;
 pub mod scenario;
 pub mod sequence;
 pub mod store;
 pub mod strategy;
-pub mod text;
 pub mod verify;
 mod verify_chart;
 pub mod vm;
-pub mod wire;
 
 pub use db::{Database, DbError, FieldDef, FieldType, Template};
 pub use errors::{LoadError, RuntimeError};

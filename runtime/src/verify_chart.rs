@@ -8,8 +8,7 @@ use crate::isa::{Kind, Op};
 use crate::object::{ChartRec, Unit, UnitKind};
 use crate::sequence::chart::qualifier_of;
 
-/// Deepest nesting of chart actions an object may have.
-pub const MAX_CHART_DEPTH: usize = 32;
+pub use linc_format::object::MAX_CHART_DEPTH;
 
 fn bad(u: &Unit, what: impl Into<String>) -> LoadError {
     LoadError::Invalid { code: "E0714", action: u.name.clone(), op: 0, what: what.into() }

@@ -162,8 +162,7 @@ impl<'a> Running<'a> {
 /// What a run reports as it writes, for `--trace`.
 pub type Tracer<'t> = Option<&'t mut dyn FnMut(&Store, u32)>;
 
-/// Most bytes one string value may hold.
-pub const MAX_STRING: usize = 65_535;
+pub use linc_format::MAX_STRING;
 
 /// Default bytes of string values one run may produce.
 pub const DEFAULT_STRING_BUDGET: usize = 16 << 20;

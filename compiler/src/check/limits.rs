@@ -11,7 +11,7 @@ use std::hash::{BuildHasherDefault, Hasher};
 
 /// Arguments of one call: the call instruction types each in 2 bits of a
 /// 32-bit word.
-pub const MAX_CALL_ARGS: usize = linc_runtime::isa::MAX_CALL_ARGS;
+pub const MAX_CALL_ARGS: usize = linc_format::isa::MAX_CALL_ARGS;
 
 /// FOR loops in one action: each keeps its limit in a local, numbered by
 /// one byte with the last number reserved.

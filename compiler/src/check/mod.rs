@@ -16,7 +16,7 @@ use crate::ast::{Action, Expr, ExprKind, Stmt};
 use crate::diagnostic::{Capped, Omitted};
 use crate::hir;
 use limits::ActionLimits;
-use linc_runtime::Database;
+use linc_format::Database;
 use linc_stdlib::Ty;
 use std::collections::HashMap;
 

@@ -10,9 +10,9 @@ use super::Checker;
 use crate::ast::{Expr, Var};
 use crate::hir::{self, Place, Target};
 use crate::span::Span;
-use linc_runtime::object::class_of;
-use linc_runtime::object::Class;
-use linc_runtime::{FieldType, Template};
+use linc_format::object::class_of;
+use linc_format::object::Class;
+use linc_format::{FieldType, Template};
 use linc_stdlib::Ty;
 
 /// What a reference denotes: the place, and whether it may be written.

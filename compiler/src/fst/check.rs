@@ -9,9 +9,9 @@ use super::tlp::{self, distance, Points, ResolveError, Syntax, SyntaxError};
 use super::{Arg, Cell, Checked, Cmd, Param, Row, Step, Table};
 use crate::diagnostic::{Diagnostic, MAX_ERRORS};
 use crate::span::Span;
-use linc_runtime::object::class_of;
-use linc_runtime::object::Class;
-use linc_runtime::Database;
+use linc_format::object::class_of;
+use linc_format::object::Class;
+use linc_format::Database;
 use std::collections::HashMap;
 
 /// Checks a table read by [`super::reader::read`]. An unknown command was

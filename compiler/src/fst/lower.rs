@@ -11,9 +11,9 @@
 use super::{Arg, Checked, Cmd, Param};
 use crate::lower::LowerError;
 use crate::span::Span;
-use linc_runtime::isa::{HistFn, Kind, Op, Zero};
-use linc_runtime::object::{Class, CodeBlock, LineEntry, ObjectFile, Sub, Symbol, Unit, UnitKind};
-use linc_runtime::wire::{Bytes, Code};
+use linc_format::isa::{HistFn, Kind, Op, Zero};
+use linc_format::object::{Class, CodeBlock, LineEntry, ObjectFile, Sub, Symbol, Unit, UnitKind};
+use linc_format::wire::{Bytes, Code};
 use std::collections::HashMap;
 
 /// Most steps one table may have (step numbers are 16-bit in the code).

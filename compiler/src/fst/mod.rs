@@ -17,8 +17,8 @@ pub use commands::Cmd;
 
 use crate::diagnostic::Diagnostic;
 use crate::span::Span;
-use linc_runtime::object::{Class, ObjectFile};
-use linc_runtime::Database;
+use linc_format::object::{Class, ObjectFile};
+use linc_format::Database;
 
 /// One cell of the table as written, with where it is in the CSV text.
 #[derive(Clone, Debug, PartialEq)]

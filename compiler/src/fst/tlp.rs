@@ -3,8 +3,8 @@
 //! TLP against a database. ROCLINK writes TLPs either way depending on an
 //! option, so a table may hold both.
 
-use linc_runtime::db::Tlp;
-use linc_runtime::Database;
+use linc_format::db::Tlp;
+use linc_format::Database;
 use std::collections::HashMap;
 
 /// What an argument cell says, before anything is looked up.

@@ -3,7 +3,7 @@
 use super::Lowerer;
 use crate::ast::BinOp;
 use crate::hir::{Expr, ExprKind};
-use linc_runtime::isa::{Kind, Op};
+use linc_format::isa::{Kind, Op};
 use linc_stdlib::{Param, Ty, SIGNATURES};
 
 /// A folded numeric constant.
@@ -270,7 +270,7 @@ impl Lowerer {
         let Some(sig) = SIGNATURES.get(index) else {
             return;
         };
-        if args.len() > linc_runtime::isa::MAX_CALL_ARGS {
+        if args.len() > linc_format::isa::MAX_CALL_ARGS {
             let span = args.last().map(|a| a.span).unwrap_or_default();
             self.errors.push(super::LowerError::TooMany { span, what: "arguments in one call (16 at most)" });
             return;

@@ -12,11 +12,9 @@ pub mod sequence;
 use crate::diagnostic::Diagnostic;
 use crate::hir::{self, Place, Stmt, Target};
 use crate::span::Span;
-use linc_runtime::isa::Op;
-use linc_runtime::object::{
-    Class, CodeBlock, LineEntry, LoopEntry, ObjectFile, Sub, Symbol, Unit as ObjUnit, UnitKind,
-};
-use linc_runtime::wire::{Bytes, Code};
+use linc_format::isa::Op;
+use linc_format::object::{Class, CodeBlock, LineEntry, LoopEntry, ObjectFile, Sub, Symbol, Unit as ObjUnit, UnitKind};
+use linc_format::wire::{Bytes, Code};
 use linc_stdlib::Ty;
 use std::collections::HashMap;
 

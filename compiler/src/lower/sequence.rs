@@ -6,14 +6,14 @@
 
 use super::{Lines, LowerError, Lowerer};
 use crate::hir;
-use linc_runtime::isa::{Kind, Op};
-use linc_runtime::object::{ChartRec, ObjectFile, Unit, UnitKind};
+use linc_format::isa::{Kind, Op};
+use linc_format::object::{ChartRec, ObjectFile, Unit, UnitKind};
 use linc_stdlib::Ty;
 
 /// Builds one sequence unit, block by block.
 pub struct SequenceBuilder {
     l: Lowerer,
-    blocks: Vec<linc_runtime::object::CodeBlock>,
+    blocks: Vec<linc_format::object::CodeBlock>,
     slots: usize,
 }
 

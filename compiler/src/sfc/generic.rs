@@ -14,9 +14,9 @@ use super::ast::Sequence;
 use super::refs::references;
 use crate::diagnostic::Diagnostic;
 use crate::span::Span;
-use linc_runtime::db::tree::{self, Json};
-use linc_runtime::db::Alias;
-use linc_runtime::Database;
+use linc_format::db::tree::{self, Json};
+use linc_format::db::Alias;
+use linc_format::Database;
 use std::collections::HashMap;
 
 /// Generic names are at most this long (guide §9.1).

@@ -9,7 +9,7 @@ use crate::check::{Checker, Context, Limits};
 use crate::lower::sequence::SequenceBuilder;
 use crate::lower::{Lines, LowerError};
 use crate::span::Span;
-use linc_runtime::object::{ActionRec, AssocRec, ChartRec, ObjectFile, StepRec, TransitionRec};
+use linc_format::object::{ActionRec, AssocRec, ChartRec, ObjectFile, StepRec, TransitionRec};
 use std::collections::HashMap;
 
 /// Every step name, in slot order.

@@ -53,7 +53,7 @@ pub fn compile_sequence(
     name: &str,
     file: &str,
     ctx: Context,
-) -> (Vec<Diagnostic>, Option<linc_runtime::ObjectFile>) {
+) -> (Vec<Diagnostic>, Option<linc_format::ObjectFile>) {
     lower_checked(check_sequence(src, ctx), src, (name, file), ctx)
 }
 
@@ -63,7 +63,7 @@ fn lower_checked(
     src: &str,
     (name, file): (&str, &str),
     ctx: Context,
-) -> (Vec<Diagnostic>, Option<linc_runtime::ObjectFile>) {
+) -> (Vec<Diagnostic>, Option<linc_format::ObjectFile>) {
     let (Some(tree), Some(())) = (&report.tree, report.program) else {
         return (report.diagnostics, None);
     };
@@ -108,6 +108,6 @@ pub fn compile_generic(
     (name, file): (&str, &str),
     ctx: Context,
     map: &generic::Named,
-) -> (Vec<Diagnostic>, Option<linc_runtime::ObjectFile>) {
+) -> (Vec<Diagnostic>, Option<linc_format::ObjectFile>) {
     lower_checked(check_generic(src, ctx, map, false), src, (name, file), ctx)
 }

@@ -19,7 +19,7 @@ use crate::span::Span;
 use std::collections::HashMap;
 
 /// Deepest nesting of chart actions below the root chart.
-pub const MAX_DEPTH: usize = linc_runtime::MAX_CHART_DEPTH;
+pub const MAX_DEPTH: usize = linc_format::MAX_CHART_DEPTH;
 
 /// Most steps of a sequence: `.X` and `.T` of each are retained slots,
 /// counted in a `u16`.

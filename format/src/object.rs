@@ -367,3 +367,6 @@ pub fn class_of(ty: &crate::db::FieldType) -> Class {
         FieldType::Alarms(_) => Class::Alarms,
     }
 }
+
+/// Deepest nesting of chart actions an object may have.
+pub const MAX_CHART_DEPTH: usize = 32;

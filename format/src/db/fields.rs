@@ -161,12 +161,9 @@ fn init_value(ty: &FieldType, node: &Node) -> Result<InitValue, ValueError> {
         (FieldType::String | FieldType::Date | FieldType::Time | FieldType::Bseq | FieldType::Wstr, Json::Str(s)) => {
             // The VM's limit on a string, so that no program starts with a
             // value it could not have written itself.
-            if s.len() > crate::vm::MAX_STRING {
-                let why = format!(
-                    "the text is {} bytes long; a string field holds at most {}",
-                    s.len(),
-                    crate::vm::MAX_STRING
-                );
+            if s.len() > crate::MAX_STRING {
+                let why =
+                    format!("the text is {} bytes long; a string field holds at most {}", s.len(), crate::MAX_STRING);
                 return Err((code::OUT_OF_RANGE, why));
             }
             Ok(InitValue::Text(s.clone()))

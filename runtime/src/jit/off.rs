@@ -1,0 +1,29 @@
+//! The compiling tier left out (built without the `jit` feature): nothing
+//! compiles, and every block runs on the interpreter, which is the
+//! reference anyway (`--tier compiled` then reports 0 blocks compiled).
+
+use super::{Buffers, JitRun, Services};
+use crate::link::Linked;
+use crate::store::Store;
+
+/// Compiled code, of which there is none without the feature.
+pub struct Compiled {
+    never: std::convert::Infallible,
+}
+
+impl Compiled {
+    pub(crate) fn run(
+        &self,
+        _store: &mut Store,
+        _retained: &mut [u32],
+        _budget: u64,
+        _buf: Buffers<'_>,
+        _services: Services<'_, '_>,
+    ) -> JitRun {
+        match self.never {}
+    }
+}
+
+pub(super) fn compile_as(_: &Linked, _: &Store, _: (usize, usize), _: bool) -> Option<Compiled> {
+    None
+}
