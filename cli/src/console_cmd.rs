@@ -5,6 +5,7 @@
 use crate::run_cmd::Common;
 use crate::strategy_cmd::{self, Options as StrategyOptions};
 use linc_driver::Reporter;
+use linc_format::Code;
 use linc_runtime::console::{Console, ConsoleError};
 use linc_runtime::strategy::trace::Trace;
 use std::io::IsTerminal;
@@ -180,7 +181,7 @@ fn script(
             Ok(l) => l,
             Err(length) => {
                 let why = format!("a console line is at most {MAX_LINE} bytes; this one has {length}");
-                crate::out::line(&error_text(&ConsoleError { code: "C0002", message: why }, r));
+                crate::out::line(&error_text(&ConsoleError { code: Code::C0002, message: why }, r));
                 ok = false;
                 continue;
             }
@@ -201,7 +202,7 @@ fn interactive(console: &mut Console, r: &mut Reporter, mut trace: Option<&mut T
     let mut editor = match rustyline::DefaultEditor::new() {
         Ok(e) => e,
         Err(e) => {
-            r.command("E0900", format!("can't open the terminal: {e}"));
+            r.command(Code::E0900, format!("can't open the terminal: {e}"));
             return 2;
         }
     };

@@ -1,6 +1,7 @@
 //! `linc disasm OUT.sto`: a readable listing of an object file.
 
 use linc_driver::Reporter;
+use linc_format::Code;
 use linc_runtime::isa::Op;
 use linc_runtime::object::{CodeBlock, ObjectFile};
 use linc_runtime::text::format_value;
@@ -12,7 +13,7 @@ use std::path::Path;
 pub fn run(path: &Path, r: &mut Reporter) -> u8 {
     let name = path.display().to_string();
     let loaded = linc_driver::files::read_input(path)
-        .map_err(|e| ("E0900", format!("can't read `{name}`: {e}")))
+        .map_err(|e| (Code::E0900, format!("can't read `{name}`: {e}")))
         .and_then(|bytes| linc_runtime::load(&bytes).map_err(|e| (e.code(), e.to_string())));
     match loaded {
         Ok(obj) => {

@@ -7,8 +7,8 @@ pub fn run(code: Option<&str>, list: bool, r: &mut linc_driver::Reporter) -> u8 
     match code {
         Some(c) if !list => match lookup(c) {
             Some(entry) => {
-                crate::out::print(entry.explanation);
-                if !entry.explanation.ends_with('\n') {
+                crate::out::print(entry.explanation());
+                if !entry.explanation().ends_with('\n') {
                     crate::out::line("");
                 }
                 0
@@ -20,7 +20,7 @@ pub fn run(code: Option<&str>, list: bool, r: &mut linc_driver::Reporter) -> u8 
         },
         _ => {
             for c in CODES {
-                crate::out::line(&format!("{}  {}", c.code, c.title));
+                crate::out::line(&format!("{}  {}", c, c.title()));
             }
             0
         }

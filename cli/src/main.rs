@@ -21,6 +21,7 @@ mod test_report;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use linc_driver::Reporter;
+use linc_format::Code;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -395,7 +396,7 @@ fn refused_arguments(e: clap::Error) -> ExitCode {
     let text = e.render().to_string();
     let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
     let first = lines.next().unwrap_or_default();
-    let mut d = linc_compiler::Diagnostic::command("E0903", first.strip_prefix("error: ").unwrap_or(first));
+    let mut d = linc_compiler::Diagnostic::command(Code::E0903, first.strip_prefix("error: ").unwrap_or(first));
     for line in lines {
         d = d.help(line.strip_prefix("tip: ").unwrap_or(line));
     }

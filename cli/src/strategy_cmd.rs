@@ -10,6 +10,7 @@ use linc_driver::database::{duration, set_and_show, start_time, write_db};
 use linc_driver::single::SequenceRun;
 use linc_driver::strategy::{compile_wants, strategy_diagnostic};
 use linc_driver::Reporter;
+use linc_format::Code;
 use linc_runtime::console::fields::show_value;
 use linc_runtime::strategy::{self, trace::Trace, Strategy, StrategyError, Want};
 use linc_runtime::vm::{Clock, Vm};
@@ -257,6 +258,6 @@ fn write_outputs(o: &Options, db_text: &str, store: &Store, r: &mut Reporter) ->
 /// A trace that could not be written to the end (E0900, exit status 2).
 pub fn trace_unwritten(path: Option<&Path>, e: &std::io::Error, r: &mut Reporter) -> u8 {
     let name = path.map_or("-".into(), |p| p.display().to_string());
-    r.command("E0900", format!("can't write the trace `{name}`: {e}"));
+    r.command(Code::E0900, format!("can't write the trace `{name}`: {e}"));
     2
 }

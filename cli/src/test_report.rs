@@ -2,6 +2,7 @@
 //! fields each scenario names. Both are deterministic: no wall-clock times.
 
 use linc_driver::scenarios::Outcome;
+use linc_format::Code;
 use std::path::{Path, PathBuf};
 
 /// Text with `&`, `<`, `>`, `"` and `'` escaped, and control characters
@@ -147,7 +148,7 @@ pub fn vcd_targets(path: &Path, scenarios: &[PathBuf]) -> Vec<PathBuf> {
 /// directory of `NAME.vcd` files (made if missing).
 pub fn write_vcds(path: &Path, outcomes: &[Outcome], r: &mut linc_driver::Reporter) -> Result<(), u8> {
     let mut fail = |e: &dyn std::fmt::Display| {
-        r.command("E0900", format!("can't write `{}`: {e}", path.display()));
+        r.command(Code::E0900, format!("can't write `{}`: {e}", path.display()));
         2
     };
     if outcomes.len() > 1 {

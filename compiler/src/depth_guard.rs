@@ -195,7 +195,7 @@ mod tests {
     fn guarded(src: &str) -> (Vec<Tok<'_>>, Vec<&'static str>) {
         let mut g = DepthGuard::new(Lexer::new(src));
         let toks = g.by_ref().map(|t| t.1).collect();
-        let codes = g.errors.into_parts().0.iter().map(|e| e.to_diagnostic().code).collect();
+        let codes = g.errors.into_parts().0.iter().map(|e| e.to_diagnostic().code.as_str()).collect();
         (toks, codes)
     }
 

@@ -6,6 +6,7 @@
 //! only place that formats them.
 
 use crate::span::{FileId, Span};
+use linc_format::Code;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Severity {
@@ -26,7 +27,7 @@ pub struct Label {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Diagnostic {
     pub severity: Severity,
-    pub code: &'static str,
+    pub code: Code,
     pub message: String,
     /// The file `span` points into.
     pub file: FileId,
@@ -38,7 +39,7 @@ pub struct Diagnostic {
 }
 
 impl Diagnostic {
-    pub fn error(code: &'static str, message: impl Into<String>, span: Span) -> Diagnostic {
+    pub fn error(code: Code, message: impl Into<String>, span: Span) -> Diagnostic {
         Diagnostic {
             severity: Severity::Error,
             code,
@@ -53,11 +54,11 @@ impl Diagnostic {
 
     /// An error about the command itself (an option, an argument), which
     /// belongs to no file: printed without a location.
-    pub fn command(code: &'static str, message: impl Into<String>) -> Diagnostic {
+    pub fn command(code: Code, message: impl Into<String>) -> Diagnostic {
         Diagnostic::error(code, message, Span::default()).in_file(FileId::NONE)
     }
 
-    pub fn warning(code: &'static str, message: impl Into<String>, span: Span) -> Diagnostic {
+    pub fn warning(code: Code, message: impl Into<String>, span: Span) -> Diagnostic {
         Diagnostic { severity: Severity::Warning, ..Diagnostic::error(code, message, span) }
     }
 

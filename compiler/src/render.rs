@@ -403,7 +403,11 @@ mod tests {
     fn one(src: &str, span: Span, format: Format) -> String {
         let mut files = SourceFiles::new();
         let id = files.add("a.st".into(), src.into());
-        render(&files, &Diagnostic::error("E0001", "bad \u{1b}[31m", span).in_file(id).label("here"), format)
+        render(
+            &files,
+            &Diagnostic::error(linc_format::Code::E0001, "bad \u{1b}[31m", span).in_file(id).label("here"),
+            format,
+        )
     }
 
     #[test]

@@ -18,6 +18,7 @@ use crate::diagnostic::Diagnostic;
 use crate::lower::Lines;
 use crate::span::Span;
 use linc_format::object::ObjectFile;
+use linc_format::Code;
 
 /// What a scenario runs.
 #[derive(Clone, Debug, PartialEq)]
@@ -77,7 +78,7 @@ pub fn duration(text: &str) -> Result<u64, String> {
     Ok((secs * 1e6).round() as u64)
 }
 
-fn error(code: &'static str, message: impl Into<String>, span: Span, label: &str) -> Diagnostic {
+fn error(code: Code, message: impl Into<String>, span: Span, label: &str) -> Diagnostic {
     Diagnostic::error(code, message, span).label(label)
 }
 
@@ -129,7 +130,8 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
     let (blanked, unclosed) = blank_comments(text);
     if let Some(at) = unclosed {
         diags.push(
-            error("E0503", "a comment is not closed", Span::new(at, at + 2), "opened here").help("close it with `*)`"),
+            error(Code::E0503, "a comment is not closed", Span::new(at, at + 2), "opened here")
+                .help("close it with `*)`"),
         );
     }
     let text = blanked.as_str();
@@ -151,7 +153,7 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
         let rest_span = span_of(text, rest);
         match keyword.to_ascii_lowercase().as_str() {
             "strategy" | "db" | "program" if rest.is_empty() => {
-                diags.push(error("E0500", format!("`{keyword}` names a file"), span, "no file given"));
+                diags.push(error(Code::E0500, format!("`{keyword}` names a file"), span, "no file given"));
             }
             "strategy" => set_target(&mut s, Target::Strategy(rest.to_string()), span, &mut diags),
             "db" => db = Some(rest.to_string()),
@@ -163,20 +165,22 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
                         line: number,
                         action: Action::At { at_us, command: command.trim_end().to_string() },
                     }),
-                    Ok(_) => diags.push(error("E0501", "`at` needs a time and a console command", span, "no command")),
-                    Err(why) => diags.push(error("E0502", why, rest_span, "not a time")),
+                    Ok(_) => {
+                        diags.push(error(Code::E0501, "`at` needs a time and a console command", span, "no command"))
+                    }
+                    Err(why) => diags.push(error(Code::E0502, why, rest_span, "not a time")),
                 }
             }
             "run" => match duration(rest) {
                 Ok(for_us) => s.lines.push(Line { line: number, action: Action::Run { for_us } }),
-                Err(why) => diags.push(error("E0502", why, rest_span, "not a time")),
+                Err(why) => diags.push(error(Code::E0502, why, rest_span, "not a time")),
             },
             "expect" => match expect(text, rest) {
                 Ok(action) => s.lines.push(Line { line: number, action }),
                 Err(d) => diags.push(*d),
             },
             _ => diags.push(
-                error("E0503", format!("`{keyword}` does not start a scenario line"), span, "unknown line")
+                error(Code::E0503, format!("`{keyword}` does not start a scenario line"), span, "unknown line")
                     .help("a line is `strategy`, `program`, `db`, `at TIME COMMAND`, `expect …` or `run TIME`"),
             ),
         }
@@ -187,12 +191,12 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
             set_target(&mut s, Target::Program { file, db }, span, &mut diags);
         }
         (Some((_, span)), None) => {
-            diags.push(error("E0500", "`program` needs a `db` line naming its database", span, "no database"))
+            diags.push(error(Code::E0500, "`program` needs a `db` line naming its database", span, "no database"))
         }
         _ => {}
     }
     if s.target.is_none() && diags.is_empty() {
-        let d = error("E0500", "the scenario names nothing to run", Span::new(0, 0), "no `strategy` line")
+        let d = error(Code::E0500, "the scenario names nothing to run", Span::new(0, 0), "no `strategy` line")
             .help("start with `strategy PLANT.json`, or `program FILE` and `db DB.json`");
         diags.push(d);
     }
@@ -201,7 +205,7 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
 
 fn set_target(s: &mut Scenario, t: Target, span: Span, diags: &mut Vec<Diagnostic>) {
     if s.target.is_some() {
-        diags.push(error("E0500", "a scenario runs one strategy or program", span, "second target"));
+        diags.push(error(Code::E0500, "a scenario runs one strategy or program", span, "second target"));
     } else {
         s.target = Some(t);
     }
@@ -213,7 +217,7 @@ fn expect(text: &str, rest: &str) -> Result<Action, Box<Diagnostic>> {
     let (how, tail) = word(rest);
     let timed = |make: fn(u64) -> How| -> Result<(How, &str), Box<Diagnostic>> {
         let (time, expr) = word(tail);
-        let d = duration(time).map_err(|why| Box::new(error("E0502", why, span, "not a time")))?;
+        let d = duration(time).map_err(|why| Box::new(error(Code::E0502, why, span, "not a time")))?;
         Ok((make(d), expr))
     };
     let (how, expr) = match how.to_ascii_lowercase().as_str() {
@@ -224,12 +228,12 @@ fn expect(text: &str, rest: &str) -> Result<Action, Box<Diagnostic>> {
         _ => {
             let hint =
                 "write `expect within 5m EXPR`, `expect after 10s EXPR`, `expect always EXPR` or `expect never EXPR`";
-            let e = error("E0504", format!("`expect {how}` is not a kind of expectation"), span, "unknown kind");
+            let e = error(Code::E0504, format!("`expect {how}` is not a kind of expectation"), span, "unknown kind");
             return Err(Box::new(e.help(hint)));
         }
     };
     if expr.is_empty() {
-        return Err(Box::new(error("E0504", "the expectation has no expression", span, "nothing to check")));
+        return Err(Box::new(error(Code::E0504, "the expectation has no expression", span, "nothing to check")));
     }
     Ok(Action::Expect { how, expr: expr.to_string(), span: span_of(text, expr) })
 }

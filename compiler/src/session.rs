@@ -18,6 +18,7 @@ use crate::lower::{self, Lines, Unit};
 use crate::parse_support::Item;
 use crate::parser::{self, ParseErrors};
 use crate::span::{FileId, Span};
+use linc_format::Code;
 use linc_format::ObjectFile;
 use std::collections::hash_map::Entry;
 use std::collections::HashMap;
@@ -114,7 +115,7 @@ impl SessionError {
     pub fn to_diagnostic(&self) -> Diagnostic {
         match self {
             SessionError::DuplicateAction { span, name, first, by_file } => {
-                let d = Diagnostic::error("E0117", format!("action `{name}` is defined twice"), *span)
+                let d = Diagnostic::error(Code::E0117, format!("action `{name}` is defined twice"), *span)
                     .label(if *by_file {
                         "this file has no ACTION header, so its action is named after the file"
                     } else {
@@ -129,7 +130,7 @@ impl SessionError {
                 }
             }
             SessionError::NotUtf8 { span, byte, more } => {
-                let d = Diagnostic::error("E0017", format!("byte 0x{byte:02X} is not UTF-8"), *span)
+                let d = Diagnostic::error(Code::E0017, format!("byte 0x{byte:02X} is not UTF-8"), *span)
                     .label("not valid UTF-8")
                     .help("linc reads source files as UTF-8; save the file as UTF-8 (in Latin-1, a degree sign is the byte 0xB0)");
                 if *more > 0 {
@@ -143,19 +144,19 @@ impl SessionError {
                 }
             }
             SessionError::Omitted { span, count } => Diagnostic::error(
-                "E0023",
+                Code::E0023,
                 format!("{count} more error{} in this file not shown", plural(*count)),
                 *span,
             )
             .label("the first of them")
             .help(format!("linc keeps at most {MAX_ERRORS} errors of each kind per file; fix these and check again")),
-            SessionError::ObjectFile { name } => {
-                Diagnostic::error("E0018", format!("`{name}` is a linc object file, not ST source"), Span::default())
-                    .label("compiled object")
-                    .help(format!(
-                        "to list its instructions, run `linc disasm {name}`; to run it, `linc run {name} --db DB`"
-                    ))
-            }
+            SessionError::ObjectFile { name } => Diagnostic::error(
+                Code::E0018,
+                format!("`{name}` is a linc object file, not ST source"),
+                Span::default(),
+            )
+            .label("compiled object")
+            .help(format!("to list its instructions, run `linc disasm {name}`; to run it, `linc run {name} --db DB`")),
         }
     }
 }

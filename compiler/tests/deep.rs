@@ -26,7 +26,7 @@ fn codes(src: String) -> Vec<&'static str> {
             if let Some(p) = &r.program {
                 lower::lower_program(p, "deep.st", &Lines::new(&src)).expect("lowers");
             }
-            r.diagnostics.iter().map(|d| d.code).collect()
+            r.diagnostics.iter().map(|d| d.code.as_str()).collect()
         })
         .expect("thread")
         .join()
@@ -95,7 +95,7 @@ fn located(src: &str) -> Vec<(&'static str, usize)> {
     let db = db();
     let ctx = Context { db: &db, resolve_blocks: true, steps: None };
     let r = linc_compiler::check_source(src, "deep", ctx);
-    r.diagnostics.iter().map(|d| (d.code, d.span.start)).collect()
+    r.diagnostics.iter().map(|d| (d.code.as_str(), d.span.start)).collect()
 }
 
 #[test]

@@ -173,7 +173,7 @@ fn check_and_compile(db: &Database, bytes: &[u8]) -> (Vec<&'static str>, Vec<&'s
                 let _ = render(s.files(), d, f);
             }
         }
-        codes.push(diagnostics.iter().filter(|d| d.is_error()).map(|d| d.code).collect());
+        codes.push(diagnostics.iter().filter(|d| d.is_error()).map(|d| d.code.as_str()).collect());
     }
     let compiled = codes.pop().unwrap_or_default();
     (codes.pop().unwrap_or_default(), compiled)

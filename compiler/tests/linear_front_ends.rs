@@ -98,7 +98,7 @@ fn fst_errors_over_the_cap_cost_no_search() {
     let r = ratio(1_000, unknown_labels, |t| {
         let (table, _) = linc_compiler::fst::reader::read(t);
         let (_, d) = linc_compiler::fst::check::check(&table, Some(&db));
-        assert_eq!(d.last().map(|d| d.code), Some("E0023"));
+        assert_eq!(d.last().map(|d| d.code.as_str()), Some("E0023"));
     });
     assert!(r < 8.0, "4x the rows took {r:.1}x the time");
 }
@@ -167,7 +167,7 @@ fn junk_after_an_error(n: usize) -> String {
 
 fn syntax_errors(src: &str) -> Vec<&'static str> {
     let (_, errors) = linc_compiler::parser::parse_file(src, "a");
-    errors.syntax.iter().map(|e| e.to_diagnostic().code).collect()
+    errors.syntax.iter().map(|e| e.to_diagnostic().code.as_str()).collect()
 }
 
 #[test]

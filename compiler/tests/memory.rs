@@ -95,7 +95,7 @@ fn deep_nesting_needs_little_memory() {
             let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
             let id = s.add("deep.st", src.into_bytes());
             let c = s.check(id, CheckOptions::default());
-            codes = c.diagnostics.iter().map(|d| d.code).collect();
+            codes = c.diagnostics.iter().map(|d| d.code.as_str()).collect();
         });
         assert!(codes[0] == "E0021" || codes[0] == "E0022", "{head}: {codes:?}");
         assert!(peak < size * 2, "{head}…: peak heap {peak} bytes for a {size}-byte file");
@@ -110,7 +110,7 @@ fn ladder_peak(src: String) -> (usize, Vec<&'static str>) {
     let peak = peak_of(|| {
         let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
         let id = s.add("big.ld", src.into_bytes());
-        codes = s.check(id, CheckOptions::default()).diagnostics.iter().map(|d| d.code).collect();
+        codes = s.check(id, CheckOptions::default()).diagnostics.iter().map(|d| d.code.as_str()).collect();
     });
     (peak, codes)
 }

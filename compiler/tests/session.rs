@@ -124,7 +124,7 @@ fn control_characters_never_reach_the_output_raw() {
     let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
     let id = s.add("esc.st", "PIC_004.PV := '\u{1b}[31m'; (* \u{1b}[2J *) \u{1b}\u{7}\n".as_bytes().to_vec());
     let d = s.check(id, CheckOptions { tree: true, ..Default::default() });
-    let codes: Vec<&str> = d.diagnostics.iter().map(|d| d.code).collect();
+    let codes: Vec<&str> = d.diagnostics.iter().map(|d| d.code.as_str()).collect();
     // The stray ESC and BEL are one run of characters: one error.
     assert_eq!(codes, ["E0103", "E0001"]);
     for diag in &d.diagnostics {

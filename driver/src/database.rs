@@ -6,6 +6,7 @@ use crate::report::usage;
 use crate::Reporter;
 use linc_compiler::render::SourceFiles;
 use linc_compiler::Diagnostic;
+use linc_format::Code;
 use linc_runtime::console::fields::{address, set, Addr};
 use linc_runtime::{text, Database, Store};
 use std::path::Path;
@@ -85,7 +86,7 @@ pub fn duration(text: &str) -> Result<u64, String> {
 /// Writes the database with the store's values, in the input's JSON shape.
 pub fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<(), crate::files::Refused> {
     let json_error = |e: serde_json::Error| crate::files::Refused {
-        code: "E0900",
+        code: Code::E0900,
         message: format!("can't write `{}`: {e}", out.display()),
     };
     let mut root: serde_json::Value = serde_json::from_str(&without_bom(original)).map_err(json_error)?;

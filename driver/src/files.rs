@@ -4,6 +4,7 @@
 //! memory), and outputs replace a regular file atomically or not at all
 //! (never a link, a device, a FIFO or one of the inputs).
 
+use linc_format::Code;
 use std::fmt;
 use std::fs::{self, Metadata};
 use std::io::{self, Read, Write};
@@ -152,7 +153,7 @@ fn read_limited(path: &Path, limit: u64, remember: bool) -> io::Result<Vec<u8>> 
 /// 2); reported through [`crate::Reporter`] like any other error.
 #[derive(Debug)]
 pub struct Refused {
-    pub code: &'static str,
+    pub code: Code,
     pub message: String,
 }
 
@@ -169,7 +170,7 @@ impl fmt::Display for Refused {
 }
 
 fn cant_write(path: &Path, e: impl fmt::Display) -> Refused {
-    Refused { code: "E0900", message: format!("can't write `{}`: {e}", path.display()) }
+    Refused { code: Code::E0900, message: format!("can't write `{}`: {e}", path.display()) }
 }
 
 /// The existing file at `path` (not following a symlink), if any; E0901 if
@@ -180,7 +181,7 @@ fn existing_output(path: &Path) -> Result<Option<Metadata>, Refused> {
         Ok(meta) => match kind(&meta) {
             None => Ok(Some(meta)),
             Some(what) => Err(Refused {
-                code: "E0901",
+                code: Code::E0901,
                 message: format!("won't write `{}`: it is {what}, not a regular file", path.display()),
             }),
         },
@@ -205,7 +206,7 @@ fn same_file(a: &Metadata, b: &Metadata) -> bool {
 
 fn is_input(out: &Path, input: &Path) -> Refused {
     Refused {
-        code: "E0902",
+        code: Code::E0902,
         message: format!("won't write `{}`: it is the input `{}`", out.display(), input.display()),
     }
 }
@@ -258,7 +259,7 @@ pub fn check_distinct(outputs: &[(&str, &Path)]) -> Result<(), Refused> {
             } || destination(a) == destination(b);
             if same {
                 return Err(Refused {
-                    code: "E0902",
+                    code: Code::E0902,
                     message: format!(
                         "won't write `{}` for {flag_b}: {flag_a} writes the same file `{}`",
                         b.display(),

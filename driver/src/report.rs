@@ -13,6 +13,7 @@
 
 use linc_compiler::render::{self, Format, SourceFiles};
 use linc_compiler::{Diagnostic, FileId, Span};
+use linc_format::Code;
 use linc_runtime::RuntimeError;
 use std::io::Write;
 
@@ -109,13 +110,13 @@ impl Reporter {
     }
 
     /// Reports an error about the command itself (E0903, E0904 …).
-    pub fn command(&mut self, code: &'static str, message: impl Into<String>) {
+    pub fn command(&mut self, code: Code, message: impl Into<String>) {
         self.emit_own(Diagnostic::command(code, message));
     }
 
     /// Reports an error that belongs to a whole file (an unreadable input,
     /// a damaged object), shown against the file's name without a snippet.
-    pub fn whole_file(&mut self, file: &str, code: &'static str, message: impl Into<String>) {
+    pub fn whole_file(&mut self, file: &str, code: Code, message: impl Into<String>) {
         let id = self.file(file, String::new());
         self.emit_own(Diagnostic::error(code, message, Span::new(0, 0)).in_file(id));
     }
@@ -123,7 +124,7 @@ impl Reporter {
     /// Reports that `path` could not be read (E0900).
     pub fn unreadable(&mut self, path: &std::path::Path, e: &std::io::Error) {
         let name = path.display().to_string();
-        self.whole_file(&name, "E0900", format!("can't read `{name}`: {e}"));
+        self.whole_file(&name, Code::E0900, format!("can't read `{name}`: {e}"));
     }
 
     /// Reports a runtime fault at its place in its source. When the source
@@ -158,7 +159,7 @@ impl Reporter {
 
 /// Reports a refused option or argument (E0903) and gives exit status 2.
 pub fn usage(r: &mut Reporter, msg: impl std::fmt::Display) -> u8 {
-    r.command("E0903", msg.to_string());
+    r.command(Code::E0903, msg.to_string());
     2
 }
 
@@ -182,16 +183,16 @@ mod tests {
     #[test]
     fn command_errors_have_no_location_in_any_format() {
         let mut r = Reporter::in_memory(Format::Short);
-        r.command("E0903", "--for `0s`: the duration must be more than 0");
+        r.command(Code::E0903, "--for `0s`: the duration must be more than 0");
         assert_eq!(r.take(), "error[E0903]: --for `0s`: the duration must be more than 0\n");
         let mut r = Reporter::in_memory(Format::Json);
-        r.command("E0903", "bad");
+        r.command(Code::E0903, "bad");
         let v: serde_json::Value = serde_json::from_str(r.take().trim()).expect("one JSON object");
         assert_eq!(v["code"], "E0903");
         assert_eq!(v["file"], serde_json::Value::Null);
         assert_eq!(v["message"], "bad");
         let mut r = Reporter::in_memory(Format::Human);
-        r.command("E0903", "bad\u{1b}[2J");
+        r.command(Code::E0903, "bad\u{1b}[2J");
         let text = r.take();
         assert!(text.starts_with("error[E0903]: bad\\u{1b}[2J"), "{text}");
         assert_eq!(r.errors(), 1);
@@ -201,7 +202,7 @@ mod tests {
     fn runtime_errors_point_at_their_line_and_column() {
         let mut r = Reporter::in_memory(Format::Short);
         let e = RuntimeError {
-            code: "R0001",
+            code: Code::R0001,
             message: "division by zero".into(),
             action: "fault".into(),
             file: "rt.st".into(),

@@ -7,6 +7,7 @@
 use crate::Reporter;
 use linc_compiler::render::{Format, SourceFiles};
 use linc_compiler::scenario::{self, Action, How, Target};
+use linc_format::Code;
 use linc_runtime::scenario::{Check, Report, Step};
 use linc_runtime::strategy::{Strategy, Want};
 use linc_runtime::vm::{Clock, Vm};
@@ -187,7 +188,7 @@ fn build(dir: &Path, target: Option<&Target>, r: &mut Reporter) -> Result<Strate
         Some(Target::Strategy(db)) => (dir.join(db), None),
         Some(Target::Program { file, db }) => (dir.join(db), Some(dir.join(file))),
         None => {
-            r.command("E0500", "the scenario names nothing to run: write `strategy PLANT.json`");
+            r.command(Code::E0500, "the scenario names nothing to run: write `strategy PLANT.json`");
             return Err(());
         }
     };

@@ -4,6 +4,7 @@
 //! `--show Step.X` / `Step.T`.
 
 use linc_compiler::Diagnostic;
+use linc_format::Code;
 use linc_runtime::db::Task;
 use linc_runtime::sequence::Sequence;
 use linc_runtime::strategy::{Want, WantKind};
@@ -52,7 +53,7 @@ impl Kind {
 /// The block that runs the program: an SFC_CON block for a sequence, an
 /// FST block for a table (`--block`, or the only one); E0904 otherwise.
 pub fn find_block(db: &Database, named: Option<&str>, kind: Kind) -> Result<usize, Box<Diagnostic>> {
-    let refuse = |why: String| Box::new(Diagnostic::command("E0904", why));
+    let refuse = |why: String| Box::new(Diagnostic::command(Code::E0904, why));
     let (template, what) = match kind {
         Kind::Sequence => ("SFC_CON", "the sequence"),
         Kind::Fst => ("FST", "the table"),
@@ -100,7 +101,7 @@ pub fn want_for(file: &std::path::Path, kind: Kind, block: usize) -> Want {
 /// Applies `--hold-step` and `--force NAME=hold|continue|normal`, and
 /// checks that every `--show Step.X` names a step (E0903).
 pub fn monitor(seq: &mut Sequence, o: &SequenceRun, step_shows: &[String]) -> Result<(), Box<Diagnostic>> {
-    let usage = |why: String| Box::new(Diagnostic::command("E0903", why));
+    let usage = |why: String| Box::new(Diagnostic::command(Code::E0903, why));
     for p in step_shows {
         let step = p.split_once('.').map_or(p.as_str(), |(s, _)| s);
         if !seq.chart.has_step(step) {

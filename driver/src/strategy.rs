@@ -6,6 +6,7 @@ use crate::build::{compile, Failed};
 use crate::Reporter;
 use linc_compiler::span::FileId;
 use linc_compiler::{Diagnostic, Span};
+use linc_format::Code;
 use linc_runtime::strategy::{StrategyError, Want};
 use linc_runtime::{Database, Store, Verified};
 use std::collections::HashMap;
@@ -39,7 +40,7 @@ pub fn compile_wants(dir: &Path, db: &Database, wants: &[Want], r: &mut Reporter
 /// compiled against `db`. Errors are printed; `Err` carries the exit status.
 pub fn program_object(path: &Path, db: &Database, r: &mut Reporter) -> Result<Verified, u8> {
     let name = path.display().to_string();
-    let mut fail = |code: &'static str, message: String| {
+    let mut fail = |code: Code, message: String| {
         r.whole_file(&name, code, message);
         2
     };
@@ -50,7 +51,7 @@ pub fn program_object(path: &Path, db: &Database, r: &mut Reporter) -> Result<Ve
             2
         });
     }
-    let bytes = crate::files::read_input(path).map_err(|e| fail("E0900", format!("can't read `{name}`: {e}")))?;
+    let bytes = crate::files::read_input(path).map_err(|e| fail(Code::E0900, format!("can't read `{name}`: {e}")))?;
     linc_runtime::load(&bytes).map_err(|e| fail(e.code(), e.to_string()))
 }
 
@@ -68,13 +69,13 @@ pub fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result
     let t = store.db.template(block_type);
     if let Some(n) = named {
         let b = store.db.block(n).ok_or_else(|| {
-            Box::new(Diagnostic::command("E0904", format!("--block: the database has no block `{n}`")))
+            Box::new(Diagnostic::command(Code::E0904, format!("--block: the database has no block `{n}`")))
         })?;
         let actual = store.db.blocks[b].template;
         if !block_type.is_empty() && Some(actual) != t {
             let name = &store.db.templates[actual].name;
             return Err(Box::new(Diagnostic::command(
-                "E0904",
+                Code::E0904,
                 format!("--block {n} has type {name}, but the action runs on a block of type {block_type}"),
             )));
         }
@@ -89,5 +90,5 @@ pub fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result
         [] => format!("the action runs on a {block_type} block and the database has none"),
         _ => format!("the database has several {block_type} blocks; choose one with --block"),
     };
-    Err(Box::new(Diagnostic::command("E0904", why)))
+    Err(Box::new(Diagnostic::command(Code::E0904, why)))
 }

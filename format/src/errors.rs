@@ -1,6 +1,7 @@
 //! Why an object file was refused, as plain data (the loader's error: it
 //! belongs to the format, which the compiler shares).
 
+use crate::code::Code;
 use std::fmt;
 
 /// Why an object file was refused. Each has a code with an explanation page.
@@ -29,7 +30,7 @@ pub enum LoadError {
     },
     /// A verifier finding: `what` says which rule, at instruction `op`.
     Invalid {
-        code: &'static str,
+        code: Code,
         action: String,
         op: usize,
         what: String,
@@ -42,15 +43,15 @@ pub enum LoadError {
 }
 
 impl LoadError {
-    pub fn code(&self) -> &'static str {
+    pub fn code(&self) -> Code {
         match self {
-            LoadError::BadMagic => "E0700",
-            LoadError::BadVersion { .. } => "E0701",
-            LoadError::BadChecksum { .. } => "E0702",
-            LoadError::Truncated { .. } | LoadError::Malformed { .. } => "E0703",
-            LoadError::BadInstruction { .. } => "E0704",
-            LoadError::Invalid { code, .. } => code,
-            LoadError::Link { .. } => "E0709",
+            LoadError::BadMagic => Code::E0700,
+            LoadError::BadVersion { .. } => Code::E0701,
+            LoadError::BadChecksum { .. } => Code::E0702,
+            LoadError::Truncated { .. } | LoadError::Malformed { .. } => Code::E0703,
+            LoadError::BadInstruction { .. } => Code::E0704,
+            LoadError::Invalid { code, .. } => *code,
+            LoadError::Link { .. } => Code::E0709,
         }
     }
 }

@@ -5,6 +5,7 @@
 //! writes objects against a database with these and never needs the VM,
 //! the verifier or the engines (ADR 0013).
 
+pub mod code;
 pub mod db;
 pub mod errors;
 pub mod isa;
@@ -12,6 +13,7 @@ pub mod object;
 pub mod text;
 pub mod wire;
 
+pub use code::Code;
 pub use db::{Database, DbError, FieldDef, FieldType, Template};
 pub use errors::LoadError;
 pub use object::{ObjectFile, MAX_CHART_DEPTH};

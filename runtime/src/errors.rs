@@ -1,5 +1,6 @@
 //! Errors of loading an object and of running it, as plain data.
 
+use linc_format::Code;
 use std::fmt;
 
 pub use linc_format::errors::LoadError;
@@ -8,7 +9,7 @@ pub use linc_format::errors::LoadError;
 /// stops at the failing statement and writes made before it stay.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RuntimeError {
-    pub code: &'static str,
+    pub code: Code,
     pub message: String,
     pub action: String,
     pub file: String,
@@ -34,12 +35,12 @@ impl RuntimeError {
 /// A fault before it is located: the VM adds action, file and position.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Fault {
-    pub code: &'static str,
+    pub code: Code,
     pub message: String,
 }
 
 impl Fault {
-    pub fn new(code: &'static str, message: impl Into<String>) -> Fault {
+    pub fn new(code: Code, message: impl Into<String>) -> Fault {
         Fault { code, message: message.into() }
     }
 }

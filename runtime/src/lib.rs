@@ -23,6 +23,7 @@ pub mod vm;
 
 pub use db::{Database, DbError, FieldDef, FieldType, Template};
 pub use errors::{LoadError, RuntimeError};
+pub use linc_format::Code;
 pub use link::{Linked, Program};
 pub use object::ObjectFile;
 pub use store::Store;

@@ -16,6 +16,7 @@
 use crate::errors::LoadError;
 use crate::isa::{Flag, Kind, Op, MAX_CALL_ARGS};
 use crate::object::{Class, CodeBlock, ObjectFile, Sub, Symbol, Unit, UnitKind};
+use linc_format::Code;
 use linc_stdlib::SIGNATURES;
 use std::cell::Cell;
 
@@ -72,7 +73,12 @@ pub fn verify(obj: ObjectFile) -> Result<Verified, LoadError> {
     let mut first = Vec::with_capacity(obj.units.len());
     for u in &obj.units {
         if u.blocks.is_empty() {
-            return Err(LoadError::Invalid { code: "E0708", action: u.name.clone(), op: 0, what: "no code".into() });
+            return Err(LoadError::Invalid {
+                code: Code::E0708,
+                action: u.name.clone(),
+                op: 0,
+                what: "no code".into(),
+            });
         }
         first.push(limits.len() as u32);
         for b in &u.blocks {
@@ -92,7 +98,7 @@ fn place(u: &Unit, b: &CodeBlock) -> String {
     }
 }
 
-fn invalid(code: &'static str, u: &Unit, b: &CodeBlock, op: usize, what: impl Into<String>) -> LoadError {
+fn invalid(code: Code, u: &Unit, b: &CodeBlock, op: usize, what: impl Into<String>) -> LoadError {
     LoadError::Invalid { code, action: place(u, b), op, what: what.into() }
 }
 
@@ -100,20 +106,20 @@ fn invalid(code: &'static str, u: &Unit, b: &CodeBlock, op: usize, what: impl In
 fn check_tables(u: &Unit, b: &CodeBlock) -> Result<(), LoadError> {
     let n = b.ops.len();
     if n == 0 {
-        return Err(invalid("E0708", u, b, 0, "empty code (a block ends with Ret)"));
+        return Err(invalid(Code::E0708, u, b, 0, "empty code (a block ends with Ret)"));
     }
     if let Some(l) = b.labels.iter().position(|&at| at as usize >= n) {
-        return Err(invalid("E0705", u, b, 0, format!("label {l} is past the last instruction")));
+        return Err(invalid(Code::E0705, u, b, 0, format!("label {l} is past the last instruction")));
     }
     let mut last = 0;
     for e in &b.lines {
         if e.op as usize >= n || e.op < last {
-            return Err(invalid("E0712", u, b, e.op as usize, "line table out of order or past the code"));
+            return Err(invalid(Code::E0712, u, b, e.op as usize, "line table out of order or past the code"));
         }
         last = e.op;
     }
     if let Some(lp) = b.loops.iter().find(|lp| lp.start > lp.end || lp.end as usize > n) {
-        return Err(invalid("E0712", u, b, lp.start as usize, "loop table entry outside the code"));
+        return Err(invalid(Code::E0712, u, b, lp.start as usize, "loop table entry outside the code"));
     }
     Ok(())
 }
@@ -122,39 +128,51 @@ fn check_tables(u: &Unit, b: &CodeBlock) -> Result<(), LoadError> {
 fn check_operands(obj: &ObjectFile, u: &Unit, b: &CodeBlock, pc: usize, op: &Op) -> Result<(), LoadError> {
     if let Some(t) = op.target() {
         if t as usize >= b.labels.len() {
-            return Err(invalid("E0705", u, b, pc, format!("jump to label {t}, but the block has {}", b.labels.len())));
+            return Err(invalid(
+                Code::E0705,
+                u,
+                b,
+                pc,
+                format!("jump to label {t}, but the block has {}", b.labels.len()),
+            ));
         }
     }
     match *op {
         Op::PushS { k } if k as usize >= obj.strings.len() => {
-            return Err(invalid("E0706", u, b, pc, format!("string constant {k} does not exist")));
+            return Err(invalid(Code::E0706, u, b, pc, format!("string constant {k} does not exist")));
         }
         Op::Return { kind } if kind > 3 => {
-            return Err(invalid("E0710", u, b, pc, format!("result kind {kind} does not exist")));
+            return Err(invalid(Code::E0710, u, b, pc, format!("result kind {kind} does not exist")));
         }
         Op::LoadLoc { n } | Op::StoreLoc { n } if n >= b.locals => {
-            return Err(invalid("E0711", u, b, pc, format!("local {n} does not exist (the block has {})", b.locals)));
+            return Err(invalid(
+                Code::E0711,
+                u,
+                b,
+                pc,
+                format!("local {n} does not exist (the block has {})", b.locals),
+            ));
         }
         Op::LoadRet { n } | Op::StoreRet { n } if n >= u.retained => {
             let what = format!("retained slot {n} does not exist (the unit has {})", u.retained);
-            return Err(invalid("E0711", u, b, pc, what));
+            return Err(invalid(Code::E0711, u, b, pc, what));
         }
         Op::Call { func, argc, ret, types } => check_call(u, b, pc, func, argc, ret, types)?,
         _ if fst_only(op) && u.kind != UnitKind::Fst => {
-            return Err(invalid("E0710", u, b, pc, format!("{} belongs to FST tables only", op.name())));
+            return Err(invalid(Code::E0710, u, b, pc, format!("{} belongs to FST tables only", op.name())));
         }
         Op::Step { n } if usize::from(n) >= u.steps.len() || usize::from(n) >= b.labels.len() => {
             let what = format!("step {n} does not exist (the table lists {})", u.steps.len());
-            return Err(invalid("E0710", u, b, pc, what));
+            return Err(invalid(Code::E0710, u, b, pc, what));
         }
         Op::Pause { why: 2.. } | Op::DayTime { what: 2.. } | Op::Log { which: 2.. } | Op::HistWrite { time: 2.. } => {
-            return Err(invalid("E0710", u, b, pc, format!("{} has no variant {:?}", op.name(), op.operands())));
+            return Err(invalid(Code::E0710, u, b, pc, format!("{} has no variant {:?}", op.name(), op.operands())));
         }
         Op::HistRead { f } if crate::roc::HistFn::from_u8(f).is_none() => {
-            return Err(invalid("E0710", u, b, pc, format!("history read {f} does not exist")));
+            return Err(invalid(Code::E0710, u, b, pc, format!("history read {f} does not exist")));
         }
         Op::Clamp { hi, .. } if hi < 0 => {
-            return Err(invalid("E0710", u, b, pc, format!("Clamp to an empty range 0..={hi}")));
+            return Err(invalid(Code::E0710, u, b, pc, format!("Clamp to an empty range 0..={hi}")));
         }
         _ => {}
     }
@@ -162,10 +180,10 @@ fn check_operands(obj: &ObjectFile, u: &Unit, b: &CodeBlock, pc: usize, op: &Op)
         let sym = obj
             .symbols
             .get(usize::from(s))
-            .ok_or_else(|| invalid("E0707", u, b, pc, format!("symbol {s} does not exist")))?;
+            .ok_or_else(|| invalid(Code::E0707, u, b, pc, format!("symbol {s} does not exist")))?;
         if !symbol_fits(op, sym) {
             let what = format!("{} can't use `{}` ({:?})", op.name(), sym.text(), sym.class);
-            return Err(invalid("E0707", u, b, pc, what));
+            return Err(invalid(Code::E0707, u, b, pc, what));
         }
     }
     Ok(())
@@ -174,10 +192,10 @@ fn check_operands(obj: &ObjectFile, u: &Unit, b: &CodeBlock, pc: usize, op: &Op)
 fn check_call(u: &Unit, b: &CodeBlock, pc: usize, func: u8, argc: u8, ret: u8, types: u32) -> Result<(), LoadError> {
     let sig = SIGNATURES
         .get(usize::from(func))
-        .ok_or_else(|| invalid("E0710", u, b, pc, format!("function {func} does not exist")))?;
+        .ok_or_else(|| invalid(Code::E0710, u, b, pc, format!("function {func} does not exist")))?;
     let argc = usize::from(argc);
     if argc > MAX_CALL_ARGS || !sig.arity_ok(argc) || ret > 3 {
-        return Err(invalid("E0710", u, b, pc, format!("{} can't be called with {argc} arguments", sig.name)));
+        return Err(invalid(Code::E0710, u, b, pc, format!("{} can't be called with {argc} arguments", sig.name)));
     }
     for i in 0..argc {
         let k = Kind::arg(types, i);
@@ -188,7 +206,7 @@ fn check_call(u: &Unit, b: &CodeBlock, pc: usize, func: u8, argc: u8, ret: u8, t
         };
         if !ok {
             let what = format!("argument {} of {} has the wrong kind", i + 1, sig.name);
-            return Err(invalid("E0710", u, b, pc, what));
+            return Err(invalid(Code::E0710, u, b, pc, what));
         }
     }
     Ok(())
@@ -249,12 +267,12 @@ fn step(obj: &ObjectFile, u: &Unit, b: &CodeBlock, pc: usize, s: State) -> Resul
     let op = &b.ops[pc];
     let e = op.effect();
     if s.num < e.num_pop || s.strs < e.str_pop {
-        return Err(invalid("E0708", u, b, pc, format!("{} pops an empty stack", op.name())));
+        return Err(invalid(Code::E0708, u, b, pc, format!("{} pops an empty stack", op.name())));
     }
     if uses_ref(op) {
         let Some(held) = s.ref_sym else {
             let what = format!("{} uses the reference register before it is set", op.name());
-            return Err(invalid("E0713", u, b, pc, what));
+            return Err(invalid(Code::E0713, u, b, pc, what));
         };
         let width = obj.symbols.get(usize::from(held)).and_then(|sym| sym.class.bits());
         let bits_ok = match *op {
@@ -263,13 +281,13 @@ fn step(obj: &ObjectFile, u: &Unit, b: &CodeBlock, pc: usize, s: State) -> Resul
         };
         if op.symbol().is_some_and(|named| named != held) || !bits_ok {
             let what = format!("{} does not fit the field the reference register points at", op.name());
-            return Err(invalid("E0713", u, b, pc, what));
+            return Err(invalid(Code::E0713, u, b, pc, what));
         }
     }
     let num = s.num - e.num_pop + e.num_push;
     let strs = s.strs - e.str_pop + e.str_push;
     if suspends(op) && (num, strs) != (0, 0) {
-        return Err(invalid("E0708", u, b, pc, format!("{} with values left on the stack", op.name())));
+        return Err(invalid(Code::E0708, u, b, pc, format!("{} with values left on the stack", op.name())));
     }
     let ref_sym = match *op {
         Op::Ref { sym } | Op::RefOff { sym } => Some(sym),
@@ -342,7 +360,7 @@ impl Walk<'_> {
                 _ => {}
             }
             if pc + 1 >= n {
-                return Err(invalid("E0708", self.u, self.b, pc, "execution runs past the last instruction"));
+                return Err(invalid(Code::E0708, self.u, self.b, pc, "execution runs past the last instruction"));
             }
             (pc, s) = (pc + 1, after);
         }
@@ -363,7 +381,7 @@ impl Walk<'_> {
             }
             Some(d) if (d.num, d.strs) != (s.num, s.strs) => {
                 let what = format!("stack depths {:?} and {:?} meet here", (d.num, d.strs), (s.num, s.strs));
-                return Err(invalid("E0708", self.u, self.b, self.targets[i] as usize, what));
+                return Err(invalid(Code::E0708, self.u, self.b, self.targets[i] as usize, what));
             }
             Some(d) if d.ref_sym.is_some() && d.ref_sym != s.ref_sym => {
                 self.states[i] = Some(State { ref_sym: None, ..d });

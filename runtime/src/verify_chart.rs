@@ -7,11 +7,12 @@ use crate::errors::LoadError;
 use crate::isa::{Kind, Op};
 use crate::object::{ChartRec, Unit, UnitKind};
 use crate::sequence::chart::qualifier_of;
+use linc_format::Code;
 
 pub use linc_format::object::MAX_CHART_DEPTH;
 
 fn bad(u: &Unit, what: impl Into<String>) -> LoadError {
-    LoadError::Invalid { code: "E0714", action: u.name.clone(), op: 0, what: what.into() }
+    LoadError::Invalid { code: Code::E0714, action: u.name.clone(), op: 0, what: what.into() }
 }
 
 /// An FST unit is one code block whose label `n` is the `Step n` that
@@ -118,7 +119,7 @@ fn check_block_ends(u: &Unit, b: usize, used: Use) -> Result<(), LoadError> {
     };
     match u.blocks[b].ops.iter().position(|op| !ok(op)) {
         Some(at) => Err(LoadError::Invalid {
-            code: "E0714",
+            code: Code::E0714,
             action: u.name.clone(),
             op: at,
             what: format!(

@@ -19,6 +19,7 @@ use crate::object::{CodeBlock, Unit};
 use crate::store::{Cell, Store};
 use cells::{cell, corrupt, load_bit, load_int, locate, note, store_bit, store_int, target, writable};
 use fst_ops::FstFlow;
+use linc_format::Code;
 use linc_stdlib::value::round_to_i32;
 use linc_stdlib::{Env, FnError, Value};
 use std::mem::take;
@@ -290,7 +291,7 @@ impl Vm {
         mut trace: Tracer,
     ) -> Result<Outcome, RuntimeError> {
         let Some(l) = Running::of(linked, act) else {
-            let f = Fault::new("E0708", format!("no block {} in program {}", act.block, act.program));
+            let f = Fault::new(Code::E0708, format!("no block {} in program {}", act.block, act.program));
             return Err(RuntimeError::unlocated(f));
         };
         self.num.clear();
@@ -374,14 +375,14 @@ impl Vm {
         let mut pc = *pc_out;
         let result = loop {
             let Some(&op) = ops.get(pc) else {
-                break Err(Fault::new("E0708", "ran past the end of the code"));
+                break Err(Fault::new(Code::E0708, "ran past the end of the code"));
             };
             if budget == 0 {
                 // Point past the instruction that did not run, so the fault
                 // is located at it (faults are reported at `pc - 1`).
                 pc += 1;
                 break Err(Fault::new(
-                    "R0006",
+                    Code::R0006,
                     format!("watchdog: more than {} instructions in one run", self.watchdog),
                 ));
             }
@@ -470,7 +471,7 @@ impl Vm {
                         if matches!(op, Op::StoreR { .. }) { cell(l, sym) } else { tri!(writable(store, ref_cell)) };
                     let v = self.pop_r();
                     if !v.is_finite() {
-                        break Err(Fault::new("R0005", format!("the result is {v}, which can't be stored")));
+                        break Err(Fault::new(Code::R0005, format!("the result is {v}, which can't be stored")));
                     }
                     if store.refuse_forced(c) {
                         continue;
@@ -541,7 +542,7 @@ impl Vm {
                     let room = t.run_end.saturating_sub(t.cell);
                     if n < 0 || n as u32 > room {
                         break Err(Fault::new(
-                            "R0003",
+                            Code::R0003,
                             format!(
                                 "offset {n} from {} leaves its run of {} same-typed fields",
                                 store.describe(t.cell),
@@ -562,7 +563,7 @@ impl Vm {
                     let b = i64::from(bit) + i64::from(n);
                     if n < 0 || b >= width {
                         break Err(Fault::new(
-                            "R0003",
+                            Code::R0003,
                             format!(
                                 "bit offset {n} from Bit{bit} of {} is beyond Bit{}",
                                 store.describe(ref_cell),
@@ -579,7 +580,7 @@ impl Vm {
                 Op::RToI {} => {
                     let v = self.pop_r();
                     if !v.is_finite() {
-                        break Err(Fault::new("R0005", format!("{v} can't be converted to an integer")));
+                        break Err(Fault::new(Code::R0005, format!("{v} can't be converted to an integer")));
                     }
                     self.push_i(round_to_i32(v));
                 }
@@ -605,7 +606,7 @@ impl Vm {
                     if b == 0 {
                         let what = if matches!(op, Op::DivI {}) { "division" } else { "MOD" };
                         break Err(Fault::new(
-                            if what == "MOD" { "R0002" } else { "R0001" },
+                            if what == "MOD" { Code::R0002 } else { Code::R0001 },
                             format!("{what} by zero"),
                         ));
                     }
@@ -622,7 +623,7 @@ impl Vm {
                     let b = self.pop_r();
                     let a = self.pop_r();
                     if b == 0.0 {
-                        break Err(Fault::new("R0001", "division by zero"));
+                        break Err(Fault::new(Code::R0001, "division by zero"));
                     }
                     self.push_r(a / b);
                 }
@@ -630,7 +631,7 @@ impl Vm {
                     let b = self.pop_r();
                     let a = self.pop_r();
                     // The library's message says why: which rule A or B breaks, or an overflow.
-                    let r = linc_stdlib::power(a, b).map_err(|FnError::Domain(why)| Fault::new("R0005", why));
+                    let r = linc_stdlib::power(a, b).map_err(|FnError::Domain(why)| Fault::new(Code::R0005, why));
                     let r = tri!(r);
                     self.push_r(r);
                 }

@@ -9,7 +9,7 @@ fn span(text: &str, needle: &str) -> Option<(usize, usize)> {
 
 fn fails(text: &str, code: &str, needle: &str) -> String {
     let e = Database::from_json(text).expect_err(text);
-    assert_eq!((e.code, e.span), (code, span(text, needle)), "{}", e.message);
+    assert_eq!((e.code.as_str(), e.span), (code, span(text, needle)), "{}", e.message);
     e.message
 }
 

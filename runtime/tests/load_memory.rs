@@ -223,7 +223,7 @@ fn blocks_need_memory_in_proportion_to_their_text() {
     let (base, cells) = peak_of(|| Database::from_json(&one).map(|db| Store::new(db).cells.len()));
     assert_eq!(cells, Ok(10_000));
     let (peak, cells) = peak_of(|| Database::from_json(&many).map(|db| Store::new(db).cells.len()));
-    assert_eq!(cells.map_err(|e| e.code), Err("E0819"));
+    assert_eq!(cells.map_err(|e| e.code.as_str()), Err("E0819"));
     // The JSON tree and the database hold about 20 bytes per byte of block
     // text (a remaining factor of the JSON loader); the cells of the 3
     // million fields were some 12,000 times the text.

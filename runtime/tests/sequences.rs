@@ -21,7 +21,7 @@ impl Host for Fake {
     }
     fn action(&mut self, code: usize) -> Result<(), RuntimeError> {
         if self.fail_action == Some(code) {
-            return Err(RuntimeError::unlocated(Fault::new("R0001", "division by zero")));
+            return Err(RuntimeError::unlocated(Fault::new(linc_runtime::Code::R0001, "division by zero")));
         }
         Ok(())
     }
@@ -259,7 +259,7 @@ fn a_runtime_error_stops_the_sequence_until_reset() {
     let mut seq = three_steps();
     seq.command(Command::Run);
     let mut host = Fake { conds: vec![false], fail_action: Some(0), ..Fake::default() };
-    assert_eq!(seq.scan(0, &mut host).map_err(|e| e.code), Err("R0001"));
+    assert_eq!(seq.scan(0, &mut host).map_err(|e| e.code.as_str()), Err("R0001"));
     assert_eq!(seq.status, Status::Error);
     seq.command(Command::Run);
     assert_eq!(seq.status, Status::Error, "Run does not clear an error");

@@ -44,7 +44,7 @@ pub struct Outcome {
 pub fn check_and_compile(src: &str) -> (Vec<&'static str>, Vec<&'static str>) {
     use linc_compiler::session::{CheckOptions, Session};
     let ctx = Context { db: guide_db(), resolve_blocks: true, steps: None };
-    let errors = |d: &[Diagnostic]| d.iter().filter(|d| d.is_error()).map(|d| d.code).collect::<Vec<_>>();
+    let errors = |d: &[Diagnostic]| d.iter().filter(|d| d.is_error()).map(|d| d.code.as_str()).collect::<Vec<_>>();
     let mut check = Session::new(ctx);
     let id = check.add("case.st", src.as_bytes().to_vec());
     let checked = errors(&check.check(id, CheckOptions::default()).diagnostics);
@@ -95,7 +95,7 @@ pub fn run(section: &str, src: &str, mode: Mode) -> Outcome {
     for d in &diagnostics {
         snapshot.push_str(&render::render(&files, &d.clone().in_file(id), Format::Human));
     }
-    Outcome { codes: diagnostics.iter().map(|d| d.code).collect(), snapshot }
+    Outcome { codes: diagnostics.iter().map(|d| d.code.as_str()).collect(), snapshot }
 }
 
 /// A case that must check clean (warnings allowed only when listed).
@@ -184,7 +184,7 @@ pub mod exec {
         }
 
         pub fn code(&self) -> Option<&'static str> {
-            self.error.as_ref().map(|e| e.code)
+            self.error.as_ref().map(|e| e.code.as_str())
         }
     }
 

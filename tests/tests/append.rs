@@ -60,7 +60,7 @@ fn past_the_string_limit_both_forms_stop_at_the_statement_and_keep_the_field() {
     for src in [grow.to_string(), long] {
         let r = run(&src);
         let e = r.error.as_ref().expect("stops");
-        assert_eq!((e.code, e.line), ("R0007", 3), "{e}");
+        assert_eq!((e.code.as_str(), e.line), ("R0007", 3), "{e}");
         assert!(e.message.contains("65536 bytes"), "{e}");
         assert_eq!(r.store.show(cell(&r, "Buffer1")).len(), 32_768 + 2, "the last good value stays (quoted)");
     }

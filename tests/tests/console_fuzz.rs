@@ -125,7 +125,7 @@ fn random_console_lines_never_panic_and_refusals_are_coded() {
             match reply {
                 Ok(_) => ok += 1,
                 Err(e) => {
-                    assert!(e.code.starts_with('C'), "{text:?} gave {e:?}");
+                    assert!(e.code.as_str().starts_with('C'), "{text:?} gave {e:?}");
                     refused += 1;
                 }
             }
@@ -175,7 +175,7 @@ fn random_scenario_texts_never_panic() {
         let text: String = (0..n).map(|_| PIECES[rng.below(PIECES.len())]).collect::<Vec<_>>().join(" ");
         let (scenario, diagnostics) = linc_compiler::scenario::parse(&text);
         for d in &diagnostics {
-            assert!(d.code.starts_with("E05"), "{d:?}");
+            assert!(d.code.as_str().starts_with("E05"), "{d:?}");
             assert!(d.span.end <= text.len() && text.is_char_boundary(d.span.start), "{d:?} in {text:?}");
         }
         for l in &scenario.lines {

@@ -96,7 +96,7 @@ fn outcome(src: &str) -> Option<Outcome> {
     let linked = verified.link(&store, &[Program { unit: 0, own: None }]).expect("links");
     let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0));
     let mut act = Activation::new(&linked, 0, 0);
-    let fault = vm.run(&linked, &mut act, &mut store, None).err().map(|e| (e.code, e.line));
+    let fault = vm.run(&linked, &mut act, &mut store, None).err().map(|e| (e.code.as_str(), e.line));
     let recipe = db.block("Recipe").expect("Recipe");
     let fields = db.block_template(recipe).fields.len() as u32;
     let first = store.cell_of(recipe, "A0").expect("A0");

@@ -56,7 +56,7 @@ macro_rules! case {
             let src = format!("{HEADER}{}", $rows);
             let (checked, diagnostics) = run(&src);
             insta::assert_snapshot!(stringify!($name), snapshot($section, &src, &diagnostics));
-            let codes: Vec<&str> = diagnostics.iter().map(|d| d.code).collect();
+            let codes: Vec<&str> = diagnostics.iter().map(|d| d.code.as_str()).collect();
             let expected: &[&str] = &[$($code),*];
             assert_eq!(codes, expected, "diagnostic codes");
             assert_eq!(checked.is_some(), expected.iter().all(|c| c.starts_with('W')));
@@ -69,7 +69,7 @@ fn e0400_no_header() {
     let src = "0,,VAL,\"AIN 3-1,EU\",,\n1,,END,,,\n";
     let (checked, diagnostics) = run(src);
     insta::assert_snapshot!("e0400_no_header", snapshot("B.1: the header row", src, &diagnostics));
-    assert_eq!(diagnostics.iter().map(|d| d.code).collect::<Vec<_>>(), ["E0400"]);
+    assert_eq!(diagnostics.iter().map(|d| d.code.as_str()).collect::<Vec<_>>(), ["E0400"]);
     assert!(checked.is_none());
 }
 
@@ -183,16 +183,16 @@ fn the_manuals_tables_check_clean() {
 /// clean, the Wrong one gives the page's code.
 #[test]
 fn the_explanations_examples_hold() {
-    let fst_codes = linc_compiler::codes::CODES.iter().filter(|c| c.code[1..].starts_with("04"));
+    let fst_codes = linc_compiler::codes::CODES.iter().filter(|c| c.as_str()[1..].starts_with("04"));
     let mut pages = 0;
     for code in fst_codes {
         let blocks: Vec<&str> =
-            code.explanation.split("```csv\n").skip(1).filter_map(|b| b.split("```").next()).collect();
-        let [wrong, right] = blocks[..] else { panic!("{}: one Wrong and one Right table", code.code) };
+            code.explanation().split("```csv\n").skip(1).filter_map(|b| b.split("```").next()).collect();
+        let [wrong, right] = blocks[..] else { panic!("{code}: one Wrong and one Right table") };
         let (_, d) = run(right);
-        assert!(d.is_empty(), "{} Right: {d:?}", code.code);
+        assert!(d.is_empty(), "{code} Right: {d:?}");
         let (_, d) = run(wrong);
-        assert!(d.iter().any(|d| d.code == code.code), "{} Wrong gives {:?}", code.code, d);
+        assert!(d.iter().any(|d| d.code == *code), "{code} Wrong gives {d:?}");
         pages += 1;
     }
     assert_eq!(pages, 30);

@@ -264,7 +264,7 @@ fn exercise(text: &str, db: &Database, store: &Store, tally: &mut Tally) {
         .unwrap_or_else(|e| panic!("compiled table does not link: {e:?}\n{text}"));
     let errors = s.run_for(1_000_000, None);
     if let Some(e) = errors.first() {
-        assert!(e.code.starts_with('R'), "a run fails with a runtime code: {e:?}\n{text}");
+        assert!(e.code.as_str().starts_with('R'), "a run fails with a runtime code: {e:?}\n{text}");
         tally.faulted += 1;
     }
 }

@@ -35,7 +35,7 @@ fn case(section: &str, src: &str) -> (Vec<&'static str>, String) {
     for d in &r.diagnostics {
         s.push_str(&render::render(&files, &d.clone().in_file(id), Format::Human));
     }
-    (r.diagnostics.iter().map(|d| d.code).collect(), s)
+    (r.diagnostics.iter().map(|d| d.code.as_str()).collect(), s)
 }
 
 macro_rules! valid {

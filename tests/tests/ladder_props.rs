@@ -239,7 +239,7 @@ fn deep_branches_and_crossing_jumps_are_bounded() {
     let ctx = Context { db: &db, resolve_blocks: true, steps: None };
     let deep = format!("{}[Dig_1a.In]{} -> (Dig_1b.Out);\n", "(".repeat(100_000), ")".repeat(100_000));
     let rep = linc_compiler::check_ladder(&deep, "case", ctx);
-    assert_eq!(rep.diagnostics.iter().map(|d| d.code).collect::<Vec<_>>(), ["E0300"]);
+    assert_eq!(rep.diagnostics.iter().map(|d| d.code.as_str()).collect::<Vec<_>>(), ["E0300"]);
     // A long series is a balanced tree: as many contacts as an action may
     // hold elements (the coil is one) check and compile; one more is E0313,
     // at the element over the limit, and the rest of the action is skipped.
@@ -249,13 +249,13 @@ fn deep_branches_and_crossing_jumps_are_bounded() {
     assert!(rep.diagnostics.is_empty() && rep.program.is_some(), "{:?}", rep.diagnostics);
     let over = format!("{} -> (Dig_1b.Out);\n[Dig_1a.In] [x -> ;\n", "[Dig_1a.In] ".repeat(max + 5));
     let rep = linc_compiler::check_ladder(&over, "case", ctx);
-    let found: Vec<_> = rep.diagnostics.iter().map(|d| (d.code, d.span.start)).collect();
+    let found: Vec<_> = rep.diagnostics.iter().map(|d| (d.code.as_str(), d.span.start)).collect();
     assert_eq!(found, [("E0313", "[Dig_1a.In] ".len() * max)]);
     // Boxes around a contact that is nearly as deep as ST allows: too deep.
     let inner = format!("{}Dig_1a.In{}", "NOT (".repeat(190), ")".repeat(190));
     let boxed = format!("{}[{inner}]{} -> (Dig_1b.Out);\n", "NOT(".repeat(30), ")".repeat(30));
     let rep = linc_compiler::check_ladder(&boxed, "case", ctx);
-    assert_eq!(rep.diagnostics.iter().map(|d| d.code).collect::<Vec<_>>(), ["E0022"]);
+    assert_eq!(rep.diagnostics.iter().map(|d| d.code.as_str()).collect::<Vec<_>>(), ["E0022"]);
     // Each jump crosses the next one's label: written out, rungs would repeat 2^n times.
     let mut src = String::new();
     for i in 0..60 {
@@ -264,6 +264,6 @@ fn deep_branches_and_crossing_jumps_are_bounded() {
     src.push_str("L60: -> (Dig_1b.Out);\nL61: -> (Dig_2c.Out);\n");
     let start = std::time::Instant::now();
     let rep = linc_compiler::check_ladder(&src, "case", ctx);
-    assert_eq!(rep.diagnostics.iter().map(|d| d.code).collect::<Vec<_>>(), ["E0312"]);
+    assert_eq!(rep.diagnostics.iter().map(|d| d.code.as_str()).collect::<Vec<_>>(), ["E0312"]);
     assert!(start.elapsed().as_secs() < 20, "took {:?}", start.elapsed());
 }

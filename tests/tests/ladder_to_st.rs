@@ -252,9 +252,11 @@ fn the_st_of_each_found_case_reads_back() {
     assert_eq!(to_st::expr(&e), "\"it's\" = 'a$'b'");
     // One level deeper is refused by the ladder itself, and a keyword is no action name.
     let deep = format!("[{}Dig_1a.In{}] -> (/Dig_1b.Out);\n", "NOT (".repeat(199), ")".repeat(199));
-    let codes: Vec<_> = linc_compiler::check_ladder(&deep, "case", ctx).diagnostics.iter().map(|d| d.code).collect();
+    let codes: Vec<_> =
+        linc_compiler::check_ladder(&deep, "case", ctx).diagnostics.iter().map(|d| d.code.as_str()).collect();
     assert_eq!(codes, ["E0022"]);
     let keyword = "ACTION END_FOR\n[Dig_1a.In] -> (Dig_1b.Out);\nEND_ACTION\n";
-    let codes: Vec<_> = linc_compiler::check_ladder(keyword, "case", ctx).diagnostics.iter().map(|d| d.code).collect();
+    let codes: Vec<_> =
+        linc_compiler::check_ladder(keyword, "case", ctx).diagnostics.iter().map(|d| d.code.as_str()).collect();
     assert_eq!(codes, ["E0014"]);
 }

@@ -79,7 +79,7 @@ fn retained_slots_survive_from_run_to_run() {
 }
 
 fn verify_code(ops: Vec<Op>, labels: Vec<u32>) -> Option<&'static str> {
-    verify::verify(object(ops, labels, 0, 0)).err().map(|e| e.code())
+    verify::verify(object(ops, labels, 0, 0)).err().map(|e| e.code().as_str())
 }
 
 #[test]
@@ -110,7 +110,7 @@ fn the_reference_register_is_used_with_the_symbol_it_was_set_from() {
         0,
     );
     obj.symbols.push(Symbol { block: "Dig_A".into(), field: "Out".into(), sub: Sub::Field, class: Class::Bits8 });
-    assert_eq!(verify::verify(obj.clone()).err().map(|e| e.code()), Some("E0713"));
+    assert_eq!(verify::verify(obj.clone()).err().map(|e| e.code().as_str()), Some("E0713"));
     // Set from the bitfield itself, it verifies.
     obj.units[0].blocks[0].ops.0[0] = Ref { sym: 1 };
     obj.units[0].blocks[0].ops.0[4] = StoreI { sym: 0 };
@@ -118,7 +118,7 @@ fn the_reference_register_is_used_with_the_symbol_it_was_set_from() {
     // A bit beyond the held bitfield's width (found by the fuzz test too).
     let mut wide = obj.clone();
     wide.units[0].blocks[0].ops.0[2] = RefBitOff { bit: 8 };
-    assert_eq!(verify::verify(wide).err().map(|e| e.code()), Some("E0713"));
+    assert_eq!(verify::verify(wide).err().map(|e| e.code().as_str()), Some("E0713"));
     // Paths that set it from different symbols meet: unknown, refused.
     let meet = vec![
         LoadI { sym: 0 },
@@ -132,7 +132,7 @@ fn the_reference_register_is_used_with_the_symbol_it_was_set_from() {
     ];
     let mut obj = object(meet, vec![4, 5], 0, 0);
     obj.symbols.push(Symbol { block: "Dig_A".into(), field: "Out".into(), sub: Sub::Field, class: Class::Bits8 });
-    assert_eq!(verify::verify(obj).err().map(|e| e.code()), Some("E0713"));
+    assert_eq!(verify::verify(obj).err().map(|e| e.code().as_str()), Some("E0713"));
 }
 
 #[test]
@@ -143,10 +143,10 @@ fn labels_retained_slots_and_tables_are_checked() {
     assert_eq!(verify_code(vec![LoadRet { n: 0 }, StoreI { sym: 0 }, Ret {}], vec![]), Some("E0711"));
     let mut obj = object(vec![Ret {}], vec![], 0, 0);
     obj.units[0].blocks[0].lines = vec![LineEntry { op: 5, line: 1, col: 1 }];
-    assert_eq!(verify::verify(obj).err().map(|e| e.code()), Some("E0712"));
+    assert_eq!(verify::verify(obj).err().map(|e| e.code().as_str()), Some("E0712"));
     let mut obj = object(vec![PushI { v: 1 }, StoreI { sym: 0 }, Ret {}], vec![], 0, 0);
     obj.units[0].blocks[0].lines = vec![LineEntry { op: 1, line: 2, col: 1 }, LineEntry { op: 0, line: 1, col: 1 }];
-    assert_eq!(verify::verify(obj).err().map(|e| e.code()), Some("E0712"), "out of order");
+    assert_eq!(verify::verify(obj).err().map(|e| e.code().as_str()), Some("E0712"), "out of order");
 }
 
 #[test]
@@ -209,7 +209,7 @@ fn an_offset_write_into_a_read_only_field_is_a_runtime_error() {
     let linked = verify::verify(obj).unwrap().link(&store, &[Program { unit: 0, own: None }]).expect("links");
     let mut act = Activation::new(&linked, 0, 0);
     let e = Vm::new(100, Clock::new(1, 0)).run(&linked, &mut act, &mut store, None).expect_err("read-only");
-    assert_eq!(e.code, "R0008");
+    assert_eq!(e.code.as_str(), "R0008");
     assert!(e.message.contains("B.W is read-only"), "{e}");
 }
 
@@ -227,7 +227,7 @@ fn an_action_for_one_block_type_refuses_another() {
 fn a_doubling_concat_loop_is_a_located_runtime_error() {
     let r = run("RAW_COM.Buffer1 := 'x';\nWHILE 1 DO\n  RAW_COM.Buffer1 := CONCAT(RAW_COM.Buffer1, RAW_COM.Buffer1);\nEND_WHILE;\n");
     let e = r.error.as_ref().expect("stops");
-    assert_eq!((e.code, e.line), ("R0007", 3), "{e}");
+    assert_eq!((e.code.as_str(), e.line), ("R0007", 3), "{e}");
     assert_eq!(r.get("RAW_COM.Buffer1").len(), 32_768 + 2, "the last good value stays");
 }
 
@@ -244,6 +244,6 @@ fn the_string_budget_holds_for_a_hand_made_object() {
     let linked = v.link(&store, &[Program { unit: 0, own: None }]).expect("links");
     let mut act = Activation::new(&linked, 0, 0);
     let e = Vm::new(u64::MAX, Clock::new(1, 0)).run(&linked, &mut act, &mut store, None).expect_err("budget");
-    assert_eq!(e.code, "R0007");
+    assert_eq!(e.code.as_str(), "R0007");
     assert!(e.message.contains("16777216 bytes"), "{e}");
 }

@@ -71,12 +71,12 @@ fn session_codes(db: &Database, files: &[&str], compile: bool) -> Vec<(&'static 
     for (i, src) in files.iter().enumerate() {
         let id = s.add(format!("f{i}.st"), src.as_bytes().to_vec());
         for d in s.check(id, CheckOptions::default()).diagnostics {
-            out.push((d.code, linc_compiler::render::line_col(s.files(), d.file, d.span.start).0));
+            out.push((d.code.as_str(), linc_compiler::render::line_col(s.files(), d.file, d.span.start).0));
         }
     }
     if compile {
         for d in s.compile().err().unwrap_or_default() {
-            out.push((d.code, linc_compiler::render::line_col(s.files(), d.file, d.span.start).0));
+            out.push((d.code.as_str(), linc_compiler::render::line_col(s.files(), d.file, d.span.start).0));
         }
     }
     out

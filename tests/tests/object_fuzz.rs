@@ -518,7 +518,7 @@ fn exercise_sequence(linked: &linc_runtime::Linked, vm: &mut Vm, store: &mut Sto
         match seq.scan(scan * 500_000, &mut host) {
             Ok(()) => t.done += 1,
             Err(e) => {
-                *t.faults.entry(e.code).or_default() += 1;
+                *t.faults.entry(e.code.as_str()).or_default() += 1;
                 seq.command(Command::Reset);
                 seq.command(Command::Run);
             }
@@ -594,7 +594,7 @@ fn exercise(case: u64, bytes: &[u8], base: &Store, t: &mut Tally) {
     let verified = match linc_runtime::load(bytes) {
         Ok(v) => v,
         Err(e) => {
-            *t.rejected.entry(e.code()).or_default() += 1;
+            *t.rejected.entry(e.code().as_str()).or_default() += 1;
             return;
         }
     };
@@ -621,7 +621,7 @@ fn exercise(case: u64, bytes: &[u8], base: &Store, t: &mut Tally) {
                 match vm.run(&linked, &mut act, &mut store, None) {
                     Ok(Outcome::Done) => t.done += 1,
                     Ok(Outcome::Suspended) => t.suspended += 1,
-                    Err(e) => *t.faults.entry(e.code).or_default() += 1,
+                    Err(e) => *t.faults.entry(e.code.as_str()).or_default() += 1,
                 }
                 store.now += 1.0;
             }

@@ -219,11 +219,11 @@ fn watchdog_stops_an_endless_loop_within_a_second_naming_its_line() {
     let r = run("Counters.N0 := 0;\nWHILE 1 DO\n  Counters.N0 := Counters.N0 + 1;\nEND_WHILE;\n");
     let e = r.error.expect("watchdog");
     assert!(start.elapsed() < std::time::Duration::from_secs(1), "took {:?}", start.elapsed());
-    assert_eq!((e.code, e.line, e.col), ("R0006", 2, 1));
+    assert_eq!((e.code.as_str(), e.line, e.col), ("R0006", 2, 1));
     assert!(e.message.contains("line 2"), "{}", e.message);
     // A FOR whose body resets its index never ends (a step of 0 is E0121).
     let r = run("REPEAT\n  FOR Counters.N0 := 1 TO 10 DO Counters.N0 := 1;\n  END_FOR;\nUNTIL FALSE END_REPEAT;\n");
-    assert_eq!(r.error.map(|e| (e.code, e.line)), Some(("R0006", 2)));
+    assert_eq!(r.error.map(|e| (e.code.as_str(), e.line)), Some(("R0006", 2)));
 }
 
 #[test]

@@ -64,7 +64,7 @@ fn doubled(n: usize) -> String {
 fn errors(src: &str) -> Vec<(&'static str, String)> {
     let db = db();
     let ctx = Context { db: &db, resolve_blocks: true, steps: None };
-    let at = |d: &linc_compiler::Diagnostic| (d.code, src[d.span.start..d.span.end].to_string());
+    let at = |d: &linc_compiler::Diagnostic| (d.code.as_str(), src[d.span.start..d.span.end].to_string());
     sfc::check_sequence(src, ctx).diagnostics.iter().filter(|d| d.is_error()).map(at).collect()
 }
 
@@ -102,7 +102,7 @@ fn a_sequence_has_at_most_65535_code_blocks() {
     let ctx = Context { db: &db, resolve_blocks: true, steps: None };
     let d = sfc::check_sequence(&src, ctx).diagnostics;
     let d: Vec<_> = d.iter().filter(|d| d.is_error()).collect();
-    assert_eq!(d.iter().map(|d| d.code).collect::<Vec<_>>(), ["E0215"]);
+    assert_eq!(d.iter().map(|d| d.code.as_str()).collect::<Vec<_>>(), ["E0215"]);
     let at = &src[d[0].span.start..];
     assert!(at.starts_with("TRANSITION FROM S21844 TO S21845 := S21844.T >= 2.0"), "{}", &at[..60]);
 }

@@ -109,7 +109,7 @@ fn a_sequence_unit_runs_its_code_blocks_and_code_reads_step_flags() {
 fn refused(edit: impl FnOnce(&mut Unit)) -> Option<&'static str> {
     let mut obj = sequence();
     edit(&mut obj.units[0]);
-    verify::verify(obj).err().map(|e| e.code())
+    verify::verify(obj).err().map(|e| e.code().as_str())
 }
 
 #[test]

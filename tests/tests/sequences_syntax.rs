@@ -43,7 +43,7 @@ fn run(section: &str, src: &str, db: Db) -> Outcome {
         snapshot.push_str(&render::render(&files, &d.clone().in_file(id), Format::Human));
     }
     assert_eq!(r.program.is_some(), !r.has_errors(), "a checked sequence exactly when there are no errors");
-    Outcome { codes: r.diagnostics.iter().map(|d| d.code).collect(), snapshot }
+    Outcome { codes: r.diagnostics.iter().map(|d| d.code.as_str()).collect(), snapshot }
 }
 
 /// A case that gives exactly these codes (none for a valid one), in order.

@@ -123,9 +123,9 @@ fn the_first_error_is_kept_and_only_its_program_stops() {
     let mut s = strategy(&db, FAULT_ACTIONS);
     let failures = s.run_for(micros(10.0), None);
     // BAD fails in its third run (t = 2 s, line 3), LATE in its fifth (t = 4 s, line 10).
-    assert_eq!(failures.iter().map(|e| (e.code, e.line)).collect::<Vec<_>>(), [("R0001", 3), ("R0005", 10)]);
+    assert_eq!(failures.iter().map(|e| (e.code.as_str(), e.line)).collect::<Vec<_>>(), [("R0001", 3), ("R0005", 10)]);
     let st = s.error().expect("error status");
-    assert_eq!((st.error.code, st.block.as_str(), st.at_us), ("R0001", "BAD", 2_000_000));
+    assert_eq!((st.error.code.as_str(), st.block.as_str(), st.at_us), ("R0001", "BAD", 2_000_000));
     assert_eq!(get(&s, "R.N0"), "3", "BAD stopped after its third run");
     assert_eq!(get(&s, "R.N3"), "5", "LATE stopped too, but its error was not entered");
     assert_eq!(get(&s, "R.N2"), "10", "GOOD went on");
@@ -204,6 +204,6 @@ fn a_missing_action_is_located_at_its_block() {
     let store = Store::new(db);
     let wants: Vec<_> = wanted(&store).into_iter().map(|w| (w, 0)).collect();
     let e = Strategy::build(store, vec![object], &wants, Vm::new(10, Clock::new(1, 0)), 0.0).err().expect("fails");
-    assert_eq!((e.code, e.block.as_str()), ("E0831", "F"));
+    assert_eq!((e.code.as_str(), e.block.as_str()), ("E0831", "F"));
     assert_eq!(e.message, "`a.st` has no action `Nope` (it has Count)");
 }

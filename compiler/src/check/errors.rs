@@ -2,6 +2,7 @@
 
 use crate::diagnostic::Diagnostic;
 use crate::span::Span;
+use linc_format::Code;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum CheckError {
@@ -123,7 +124,7 @@ impl CheckError {
     pub fn to_diagnostic(&self) -> Diagnostic {
         match self {
             CheckError::UnknownName { span, name, suggestion } => {
-                let d = Diagnostic::error("E0100", format!("can't find `{name}`"), *span)
+                let d = Diagnostic::error(Code::E0100, format!("can't find `{name}`"), *span)
                     .label("not a block, alias or field of this action's block");
                 match suggestion {
                     Some(s) => d.help(format!("did you mean `{s}`?")),
@@ -133,7 +134,7 @@ impl CheckError {
                 }
             }
             CheckError::UnknownField { span, field, owner, template, known } => {
-                let d = Diagnostic::error("E0101", format!("`{owner}` has no field `{field}`"), *span)
+                let d = Diagnostic::error(Code::E0101, format!("`{owner}` has no field `{field}`"), *span)
                     .label(format!("not a field of block type {template}"));
                 if known.is_empty() {
                     d
@@ -142,7 +143,7 @@ impl CheckError {
                 }
             }
             CheckError::UnknownSubField { span, sub, field, field_type } => {
-                let d = Diagnostic::error("E0102", format!("`{field}` has no sub-field `{sub}`"), *span)
+                let d = Diagnostic::error(Code::E0102, format!("`{field}` has no sub-field `{sub}`"), *span)
                     .label(format!("`{field}` is a {field_type} field"));
                 match *field_type {
                     "BITS8" => d.help("the bits of an 8-bit bitfield are Bit0 to Bit7"),
@@ -152,7 +153,7 @@ impl CheckError {
                 }
             }
             CheckError::AssignType { span, target, expected, found } => {
-                Diagnostic::error("E0103", format!("can't store a {found} value in a {expected} field"), *span)
+                Diagnostic::error(Code::E0103, format!("can't store a {found} value in a {expected} field"), *span)
                     .label(format!("this is {found}"))
                     .with(*target, format!("this field is {expected}"))
                     .help(match (expected.as_str(), found.as_str()) {
@@ -162,33 +163,33 @@ impl CheckError {
                     })
             }
             CheckError::BadEnumValue { span, value, field, values } => {
-                Diagnostic::error("E0104", format!("`{value}` is not a value of `{field}`"), *span)
+                Diagnostic::error(Code::E0104, format!("`{value}` is not a value of `{field}`"), *span)
                     .label("unknown enumeration value")
                     .help(format!("`{field}` takes one of: {} (case does not matter)", values.join(", ")))
             }
             CheckError::ModNotInteger { span, found } => {
-                Diagnostic::error("E0105", format!("MOD needs integer operands, found {found}"), *span)
+                Diagnostic::error(Code::E0105, format!("MOD needs integer operands, found {found}"), *span)
                     .label("not an integer")
                     .help("use TRUNC or ROUND to make an integer first")
             }
             CheckError::ForByNotLiteral { span } => {
-                Diagnostic::error("E0106", "the step of a FOR loop must be a constant", *span)
+                Diagnostic::error(Code::E0106, "the step of a FOR loop must be a constant", *span)
                     .label("not a literal")
                     .help("write `BY 2` or `BY -1`; the step is fixed when the loop is compiled (§12.4.3)")
             }
-            CheckError::ExitOutsideLoop { span } => Diagnostic::error("E0107", "EXIT outside a loop", *span)
+            CheckError::ExitOutsideLoop { span } => Diagnostic::error(Code::E0107, "EXIT outside a loop", *span)
                 .label("there is no FOR, WHILE or REPEAT around this")
                 .help("EXIT ends the innermost loop; to end an action early, wrap its rest in IF"),
             CheckError::NotWritable { span, what, why } => {
-                Diagnostic::error("E0108", format!("can't assign to `{what}`"), *span).label(*why)
+                Diagnostic::error(Code::E0108, format!("can't assign to `{what}`"), *span).label(*why)
             }
             CheckError::BadOffsetBase { span, base, why } => {
-                Diagnostic::error("E0109", format!("`{base}` can't be the base of an offset"), *span)
+                Diagnostic::error(Code::E0109, format!("`{base}` can't be the base of an offset"), *span)
                     .label(why.clone())
                     .help("the base must be followed, in template order, by fields (or bits) of the same type (§12.12)")
             }
             CheckError::UnknownFunction { span, name, suggestion } => {
-                let d = Diagnostic::error("E0110", format!("`{name}` is not an ST function"), *span)
+                let d = Diagnostic::error(Code::E0110, format!("`{name}` is not an ST function"), *span)
                     .label("unknown function");
                 match suggestion {
                     Some(s) => d.help(format!("did you mean `{s}`?")),
@@ -196,19 +197,21 @@ impl CheckError {
                 }
             }
             CheckError::WrongArity { span, name, found, signature } => Diagnostic::error(
-                "E0111",
+                Code::E0111,
                 format!("`{name}` called with {found} argument{}", if *found == 1 { "" } else { "s" }),
                 *span,
             )
             .label("wrong number of arguments")
             .help(format!("expected {signature}")),
-            CheckError::WrongArgType { span, index, found, expected, signature } => {
-                Diagnostic::error("E0112", format!("argument {} should be {expected}, found {found}", index + 1), *span)
-                    .label(format!("this is {found}"))
-                    .help(format!("expected {signature}"))
-            }
+            CheckError::WrongArgType { span, index, found, expected, signature } => Diagnostic::error(
+                Code::E0112,
+                format!("argument {} should be {expected}, found {found}", index + 1),
+                *span,
+            )
+            .label(format!("this is {found}"))
+            .help(format!("expected {signature}")),
             CheckError::StepOutsideSequence { span, name } => {
-                Diagnostic::error("E0113", format!("step variable `{name}` outside a sequence"), *span)
+                Diagnostic::error(Code::E0113, format!("step variable `{name}` outside a sequence"), *span)
                     .label("`.X` and `.T` of a step exist only in sequence actions and transitions")
             }
             CheckError::OperandTypes { span, op, left, right, help } => {
@@ -216,21 +219,23 @@ impl CheckError {
                     Some(r) => format!("can't apply `{op}` to {left} and {r}"),
                     None => format!("can't apply `{op}` to {left}"),
                 };
-                Diagnostic::error("E0114", msg, *span).label("operand types do not fit").help(*help)
+                Diagnostic::error(Code::E0114, msg, *span).label("operand types do not fit").help(*help)
             }
             CheckError::NotAValue { span, what } => {
-                Diagnostic::error("E0115", format!("`{what}` is not a value"), *span)
+                Diagnostic::error(Code::E0115, format!("`{what}` is not a value"), *span)
                     .label("name a field, bit or alarm")
             }
             CheckError::UnknownBlockType { span, name } => {
-                Diagnostic::error("E0116", format!("unknown block type `{name}`"), *span)
+                Diagnostic::error(Code::E0116, format!("unknown block type `{name}`"), *span)
                     .label("not a built-in template nor one in the database")
             }
             CheckError::TooMany { span, what, limit } => {
-                Diagnostic::error("E0132", format!("too many {what}"), *span).label("limit reached here").help(*limit)
+                Diagnostic::error(Code::E0132, format!("too many {what}"), *span)
+                    .label("limit reached here")
+                    .help(*limit)
             }
             CheckError::ForStepZero { span, rounded } => {
-                let d = Diagnostic::error("E0121", "the step of this FOR loop is 0", *span);
+                let d = Diagnostic::error(Code::E0121, "the step of this FOR loop is 0", *span);
                 let d = if *rounded {
                     d.label("this is 0 once converted to the loop variable's type")
                 } else {
@@ -239,16 +244,17 @@ impl CheckError {
                 d.help("the step is added to the loop variable after each pass (§12.4.3); use a step of at least 1 for an INT loop")
             }
             CheckError::OffsetNotNumber { span, found } => {
-                Diagnostic::error("E0118", format!("an offset must be a number, found {found}"), *span)
+                Diagnostic::error(Code::E0118, format!("an offset must be a number, found {found}"), *span)
                     .label("not a number")
             }
             CheckError::ConditionType { span, found } => {
-                Diagnostic::error("E0119", format!("a condition must be BOOL or INT, found {found}"), *span)
+                Diagnostic::error(Code::E0119, format!("a condition must be BOOL or INT, found {found}"), *span)
                     .label("not a truth value")
                     .help("compare it with something, e.g. `X.PV > 0.5`")
             }
             CheckError::UnknownStep { span, name } => {
-                Diagnostic::error("E0120", format!("the sequence has no step `{name}`"), *span).label("unknown step")
+                Diagnostic::error(Code::E0120, format!("the sequence has no step `{name}`"), *span)
+                    .label("unknown step")
             }
         }
     }

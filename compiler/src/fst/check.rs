@@ -492,7 +492,7 @@ mod tests {
     }
 
     fn codes(rows: &[&str]) -> Vec<&'static str> {
-        run(rows, Some(&db())).1.iter().map(|d| d.code).collect()
+        run(rows, Some(&db())).1.iter().map(|d| d.code.as_str()).collect()
     }
 
     fn steps(rows: &[&str]) -> Vec<Step> {
@@ -657,7 +657,7 @@ mod tests {
         let rows = vec![",VAL,1,"; MAX_STEPS];
         let (_, d, src) = run(&rows, Some(&db()));
         let line = src[..d[0].span.start].matches('\n').count() + 1;
-        assert_eq!((d[0].code, line), ("E0132", MAX_STEPS + 1), "the appended END is charged to the last row");
+        assert_eq!((d[0].code.as_str(), line), ("E0132", MAX_STEPS + 1), "the appended END is charged to the last row");
         assert!(d[0].label.contains("END appended"), "{:?}", d[0]);
     }
 

@@ -301,7 +301,7 @@ mod tests {
     use super::*;
 
     fn codes(d: &[Diagnostic]) -> Vec<&'static str> {
-        d.iter().map(|d| d.code).collect()
+        d.iter().map(|d| d.code.as_str()).collect()
     }
 
     fn at(text: &str, span: Span) -> &str {

@@ -8,6 +8,7 @@ use super::ast::{Action, Cond, Output, Rung};
 use crate::check::{Checker, Context, Limits};
 use crate::diagnostic::Diagnostic;
 use crate::span::Span;
+use linc_format::Code;
 use linc_stdlib::Ty;
 use std::collections::{HashMap, HashSet};
 
@@ -26,15 +27,19 @@ pub fn jumps(rungs: &[Rung]) -> (Vec<Option<usize>>, Vec<Diagnostic>) {
         let Some(l) = &r.label else { continue };
         if l.text.chars().count() > MAX_LABEL {
             diags.push(
-                Diagnostic::error("E0302", format!("label `{}` is longer than {MAX_LABEL} characters", l.text), l.span)
-                    .label(format!("{} characters", l.text.chars().count()))
-                    .help(format!("labels have up to {MAX_LABEL} characters 0-9, A-Z, a-z and _ (§20.8.1)")),
+                Diagnostic::error(
+                    Code::E0302,
+                    format!("label `{}` is longer than {MAX_LABEL} characters", l.text),
+                    l.span,
+                )
+                .label(format!("{} characters", l.text.chars().count()))
+                .help(format!("labels have up to {MAX_LABEL} characters 0-9, A-Z, a-z and _ (§20.8.1)")),
             );
         }
         let key = l.text.to_ascii_uppercase();
         if key == END_LABEL.to_ascii_uppercase() {
             diags.push(
-                Diagnostic::error("E0303", "label `_End` is defined twice", l.span)
+                Diagnostic::error(Code::E0303, "label `_End` is defined twice", l.span)
                     .label("`_End` already stands after the last rung")
                     .help("choose another name; jump to `_End` to skip to the end"),
             );
@@ -42,7 +47,7 @@ pub fn jumps(rungs: &[Rung]) -> (Vec<Option<usize>>, Vec<Diagnostic>) {
         }
         match labels.get(&key) {
             Some(&(_, first)) => diags.push(
-                Diagnostic::error("E0303", format!("label `{}` is defined twice", l.text), l.span)
+                Diagnostic::error(Code::E0303, format!("label `{}` is defined twice", l.text), l.span)
                     .label("second definition")
                     .with(first, "first defined here")
                     .help("labels ignore case and are unique within an action"),
@@ -64,15 +69,19 @@ pub fn jumps(rungs: &[Rung]) -> (Vec<Option<usize>>, Vec<Diagnostic>) {
             match labels.get(&key) {
                 None => {
                     diags.push(
-                        Diagnostic::error("E0304", format!("unresolved jump: no label `{}`", label.text), label.span)
-                            .label("no rung of this action has this label")
-                            .help("a jump goes to a label of the same action, or to `_End` after the last rung"),
+                        Diagnostic::error(
+                            Code::E0304,
+                            format!("unresolved jump: no label `{}`", label.text),
+                            label.span,
+                        )
+                        .label("no rung of this action has this label")
+                        .help("a jump goes to a label of the same action, or to `_End` after the last rung"),
                     );
                     None
                 }
                 Some(&(t, at)) if t <= i => {
                     diags.push(
-                        Diagnostic::error("E0305", format!("backward jump to `{}`", label.text), label.span)
+                        Diagnostic::error(Code::E0305, format!("backward jump to `{}`", label.text), label.span)
                             .label("this jump goes back")
                             .with(at, "the label is here, at or above the jump")
                             .help("jumps go only forwards (§11.1.3); a loop is not allowed in a ladder"),
@@ -127,7 +136,7 @@ impl Types<'_> {
                     return;
                 }
                 let d = Diagnostic::error(
-                    "E0306",
+                    Code::E0306,
                     format!("a contact needs a digital value, not {}", ty_name(ty)),
                     expr.span,
                 )
@@ -152,7 +161,7 @@ impl Types<'_> {
     fn coil(&mut self, target: &crate::ast::Expr, span: Span) {
         if !matches!(target.kind, crate::ast::ExprKind::Var(_)) {
             self.diags.push(
-                Diagnostic::error("E0308", "a coil's target is not a variable", target.span)
+                Diagnostic::error(Code::E0308, "a coil's target is not a variable", target.span)
                     .label("a coil writes a digital variable")
                     .help("to write a value computed from an expression, use a variable output: `-> target := value;`"),
             );
@@ -163,7 +172,7 @@ impl Types<'_> {
         if !matches!(ty, Ty::Bool | Ty::Any) {
             self.diags.push(
                 Diagnostic::error(
-                    "E0307",
+                    Code::E0307,
                     format!("a coil needs a digital variable, not {}", ty_name(ty)),
                     target.span,
                 )

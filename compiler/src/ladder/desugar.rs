@@ -14,6 +14,7 @@ use crate::ast::{self, BinOp, Expr, ExprKind, Stmt, UnOp};
 use crate::diagnostic::Diagnostic;
 use crate::parse_support::MAX_EXPR_DEPTH;
 use crate::span::Span;
+use linc_format::Code;
 use std::collections::HashSet;
 
 /// How deeply jumps may nest, and how many rungs crossing jumps may make
@@ -56,7 +57,7 @@ impl Desugar<'_> {
             if depth > MAX_NESTING || self.emitted > MAX_EMITTED {
                 self.stopped = true;
                 self.errors.push(
-                    Diagnostic::error("E0312", "jumps nest or cross too deeply", rung.span)
+                    Diagnostic::error(Code::E0312, "jumps nest or cross too deeply", rung.span)
                         .label("here the jumps around this rung are too many to compile")
                         .help(format!("at most {MAX_NESTING} jumps may skip one rung; split the action")),
                 );
@@ -114,7 +115,7 @@ impl Desugar<'_> {
             return e;
         }
         self.errors.push(
-            Diagnostic::error("E0022", format!("rung condition nested {MAX_EXPR_DEPTH} or more deep"), c.span())
+            Diagnostic::error(Code::E0022, format!("rung condition nested {MAX_EXPR_DEPTH} or more deep"), c.span())
                 .label("too many branches and boxes inside each other")
                 .help("split the rung: write part of the condition to a digital variable on an earlier rung"),
         );

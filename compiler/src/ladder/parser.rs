@@ -15,6 +15,7 @@ use crate::errors::SyntaxError;
 use crate::parser::{parse_expr, parse_file, ParseErrors};
 use crate::sfc::shift;
 use crate::span::Span;
+use linc_format::Code;
 
 /// How deeply branches and boxes may nest (the stack is not unbounded).
 const MAX_DEPTH: usize = 32;
@@ -65,7 +66,7 @@ pub fn parse_each(src: &str, stem: &str, each: &mut dyn FnMut(Action)) -> Vec<Di
         let name = Ident { text: stem.to_string(), span: Span::new(0, 0) };
         each(Action { name, block_type: None, rungs: loose, header: None, span: Span::new(0, src.len()) });
     } else if let Some(span) = first_loose {
-        let d = Diagnostic::error("E0309", "rung outside an action", span)
+        let d = Diagnostic::error(Code::E0309, "rung outside an action", span)
             .label("this file has ACTION headers, so every rung must be inside one")
             .help("move the rung between `ACTION name` and `END_ACTION`, or remove the headers");
         p.push(d);
@@ -128,7 +129,7 @@ impl Parser<'_> {
                 Some(i) => self.pos = start + 2 + i + 2,
                 None => {
                     self.pos = self.b.len();
-                    let d = Diagnostic::error("E0003", "comment is not closed", Span::new(start, start + 2))
+                    let d = Diagnostic::error(Code::E0003, "comment is not closed", Span::new(start, start + 2))
                         .label("this comment has no `*)`");
                     self.push(d);
                 }
@@ -157,9 +158,9 @@ impl Parser<'_> {
     fn error(&mut self, expected: &str) -> Reported {
         let span = self.here();
         let d = match self.src[self.pos.min(self.src.len())..].chars().next() {
-            None => Diagnostic::error("E0300", format!("unexpected end of file, expected {expected}"), span)
+            None => Diagnostic::error(Code::E0300, format!("unexpected end of file, expected {expected}"), span)
                 .label(format!("expected {expected}")),
-            Some(c) => Diagnostic::error("E0300", format!("unexpected `{c}`, expected {expected}"), span)
+            Some(c) => Diagnostic::error(Code::E0300, format!("unexpected `{c}`, expected {expected}"), span)
                 .label(format!("expected {expected}")),
         };
         self.push(d);
@@ -245,7 +246,7 @@ impl Parser<'_> {
     fn element(&mut self, span: Span) -> R<()> {
         self.elements += 1;
         if self.elements == MAX_ELEMENTS + 1 {
-            let d = Diagnostic::error("E0313", format!("more than {MAX_ELEMENTS} elements in one action"), span)
+            let d = Diagnostic::error(Code::E0313, format!("more than {MAX_ELEMENTS} elements in one action"), span)
                 .label(format!("element {}", MAX_ELEMENTS + 1))
                 .help("split the rungs into several actions; the rest of this action is skipped");
             self.push(d);
@@ -372,7 +373,7 @@ impl Parser<'_> {
         let end = self.pos;
         self.ws();
         if self.peek() != Some(b';') {
-            let d = Diagnostic::error("E0300", "expected `;` after the rung's output", Span::new(end, end))
+            let d = Diagnostic::error(Code::E0300, "expected `;` after the rung's output", Span::new(end, end))
                 .label("`;` expected here")
                 .help("every rung ends with `;`, the last one too");
             self.push(d);
@@ -437,7 +438,7 @@ impl Parser<'_> {
         if self.depth >= MAX_DEPTH {
             let span = self.here();
             self.push(
-                Diagnostic::error("E0300", "branches nested too deeply", span)
+                Diagnostic::error(Code::E0300, "branches nested too deeply", span)
                     .label(format!("more than {MAX_DEPTH} branches or boxes inside each other")),
             );
             return Err(Reported);
@@ -454,7 +455,7 @@ impl Parser<'_> {
         self.element(Span::new(open, open + 1))?;
         self.pos += 1;
         let Some(close) = self.st_end(b']') else {
-            let d = Diagnostic::error("E0301", "contact is not closed", Span::new(open, open + 1))
+            let d = Diagnostic::error(Code::E0301, "contact is not closed", Span::new(open, open + 1))
                 .label("this `[` has no `]` before the end of the rung");
             self.push(d);
             return Err(Reported);
@@ -470,7 +471,8 @@ impl Parser<'_> {
         self.pos = close + 1;
         if self.src[a..close].trim().is_empty() {
             self.push(
-                Diagnostic::error("E0311", "empty contact", span).label("a contact needs a variable or a condition"),
+                Diagnostic::error(Code::E0311, "empty contact", span)
+                    .label("a contact needs a variable or a condition"),
             );
             return Err(Reported);
         }
@@ -525,7 +527,7 @@ impl Parser<'_> {
         let ok = if op == BoxOp::Not { args.len() == 1 } else { args.len() >= 2 };
         if !ok {
             let want = if op == BoxOp::Not { "exactly one input" } else { "two or more inputs" };
-            let d = Diagnostic::error("E0310", format!("{} box with {} input(s)", op.name(), args.len()), span)
+            let d = Diagnostic::error(Code::E0310, format!("{} box with {} input(s)", op.name(), args.len()), span)
                 .label(format!("{} takes {want}", op.name()));
             self.push(d);
         }
@@ -596,7 +598,9 @@ impl Parser<'_> {
         self.pos = close + 1;
         let span = Span::new(open, self.pos);
         if self.src[a..close].trim().is_empty() {
-            self.push(Diagnostic::error("E0308", "coil without a variable", span).label("a coil writes a variable"));
+            self.push(
+                Diagnostic::error(Code::E0308, "coil without a variable", span).label("a coil writes a variable"),
+            );
             return Err(Reported);
         }
         let target = self.st_expr(a, close).ok_or(Reported)?;

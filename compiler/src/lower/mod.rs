@@ -14,7 +14,8 @@ use crate::hir::{self, Place, Stmt, Target};
 use crate::span::Span;
 use linc_format::isa::Op;
 use linc_format::object::{Class, CodeBlock, LineEntry, LoopEntry, ObjectFile, Sub, Symbol, Unit as ObjUnit, UnitKind};
-use linc_format::wire::{Bytes, Code};
+use linc_format::wire::{self, Bytes};
+use linc_format::Code;
 use linc_stdlib::Ty;
 use std::collections::HashMap;
 
@@ -47,23 +48,23 @@ impl LowerError {
     pub fn to_diagnostic(&self) -> Diagnostic {
         match self {
             LowerError::Unresolved { span, path } => {
-                Diagnostic::error("E0130", format!("the type of `{path}` is unknown"), *span)
+                Diagnostic::error(Code::E0130, format!("the type of `{path}` is unknown"), *span)
                     .label("not resolved")
                     .help("compiling needs the database that defines this block: pass --db")
             }
             LowerError::StepVariable { span, path } => Diagnostic::error(
-                "E0131",
+                Code::E0131,
                 format!("step variable `{path}` can't be compiled into a plain action"),
                 *span,
             )
             .label("only sequences have steps"),
             LowerError::ChartAction { span, name, why } => {
-                Diagnostic::error("E0133", format!("chart action `{name}` {why}"), *span)
+                Diagnostic::error(Code::E0133, format!("chart action `{name}` {why}"), *span)
                     .label("used here")
                     .help("a chart action's chart may use other actions, but not itself")
             }
             LowerError::TooMany { span, what } => {
-                Diagnostic::error("E0132", format!("too many {what} in one object file"), *span)
+                Diagnostic::error(Code::E0132, format!("too many {what} in one object file"), *span)
                     .label("limit reached here")
             }
         }
@@ -284,7 +285,7 @@ impl Lowerer {
         CodeBlock {
             name,
             locals: std::mem::take(&mut self.locals),
-            ops: Code(ops),
+            ops: wire::Code(ops),
             labels,
             lines: std::mem::take(&mut self.line_table),
             loops: std::mem::take(&mut self.loops),

@@ -10,6 +10,7 @@ use crate::ast::Ident;
 use crate::check::{Checker, Context, Limits};
 use crate::diagnostic::Diagnostic;
 use crate::span::Span;
+use linc_format::Code;
 use std::collections::HashMap;
 
 /// A chart with what the diagnostics call it.
@@ -37,7 +38,7 @@ pub fn check(seq: &Sequence, ctx: Context) -> Vec<Diagnostic> {
     actions(seq, &charts, &mut out);
     let before = out.len();
     chart_cycles(seq, &mut out);
-    if out[before..].iter().all(|d| d.code != "E0212") {
+    if out[before..].iter().all(|d| d.code != Code::E0212) {
         super::size::check(seq, &mut out);
     }
     let names: Vec<String> = steps.into_iter().map(|s| s.text.clone()).collect();

@@ -3,6 +3,7 @@
 
 use crate::diagnostic::Diagnostic;
 use crate::span::Span;
+use linc_format::Code;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum SfcError {
@@ -119,49 +120,49 @@ impl SfcError {
     pub fn to_diagnostic(&self) -> Diagnostic {
         match self {
             SfcError::Unexpected { span, found, expected } => {
-                Diagnostic::error("E0200", format!("unexpected {found} in a sequence"), *span)
+                Diagnostic::error(Code::E0200, format!("unexpected {found} in a sequence"), *span)
                     .label(format!("expected {expected}"))
             }
             SfcError::UnexpectedEof { span, expected } => {
-                Diagnostic::error("E0201", "unexpected end of file in a sequence", *span)
+                Diagnostic::error(Code::E0201, "unexpected end of file in a sequence", *span)
                     .label(format!("expected {expected}"))
             }
             SfcError::NoInitialStep { span, chart } => {
-                Diagnostic::error("E0202", format!("{chart} has no initial step"), *span)
+                Diagnostic::error(Code::E0202, format!("{chart} has no initial step"), *span)
                     .label("no INITIAL_STEP")
                     .help("a chart starts at its initial steps: write `INITIAL_STEP name: … END_STEP` for one of them")
             }
             SfcError::DuplicateStep { span, name, first } => {
-                Diagnostic::error("E0203", format!("step `{name}` is defined twice"), *span)
+                Diagnostic::error(Code::E0203, format!("step `{name}` is defined twice"), *span)
                     .label("second definition")
                     .with(*first, "first defined here")
                     .help("step names are unique in the whole sequence, nested charts included, ignoring case")
             }
             SfcError::UnknownStep { span, name, other_chart } => {
                 let d =
-                    Diagnostic::error("E0204", format!("the chart has no step `{name}`"), *span).label("unknown step");
+                    Diagnostic::error(Code::E0204, format!("the chart has no step `{name}`"), *span).label("unknown step");
                 match other_chart {
                     Some(c) => d.help(format!("`{name}` is a step of {c}: a transition joins steps of one chart")),
                     None => d,
                 }
             }
             SfcError::UnknownAction { span, name } => {
-                Diagnostic::error("E0205", format!("the sequence has no action `{name}`"), *span)
+                Diagnostic::error(Code::E0205, format!("the sequence has no action `{name}`"), *span)
                     .label("unknown action")
                     .help("define it after the chart: `ACTION name … END_ACTION`")
             }
             SfcError::DuplicateAction { span, name, first } => {
-                Diagnostic::error("E0206", format!("action `{name}` is defined twice in the sequence"), *span)
+                Diagnostic::error(Code::E0206, format!("action `{name}` is defined twice in the sequence"), *span)
                     .label("second definition")
                     .with(*first, "first defined here")
             }
             SfcError::UnknownQualifier { span, text } => {
-                Diagnostic::error("E0207", format!("`{text}` is not an action qualifier"), *span)
+                Diagnostic::error(Code::E0207, format!("`{text}` is not an action qualifier"), *span)
                     .label("unknown qualifier")
                     .help("LIN's qualifiers are P N L D E F S R (§20.5.5)")
             }
             SfcError::IecQualifier { span, text, lin } => {
-                let d = Diagnostic::error("E0208", format!("LIN has no qualifier `{text}`"), *span)
+                let d = Diagnostic::error(Code::E0208, format!("LIN has no qualifier `{text}`"), *span)
                     .label("IEC 61131-3 qualifier");
                 match lin {
                     Some(q) => d.help(format!("write `{q}`, LIN's qualifier for this")),
@@ -169,43 +170,43 @@ impl SfcError {
                 }
             }
             SfcError::MissingTime { span, qualifier } => {
-                Diagnostic::error("E0209", format!("qualifier `{qualifier}` needs a time"), *span)
+                Diagnostic::error(Code::E0209, format!("qualifier `{qualifier}` needs a time"), *span)
                     .label("no time given")
                     .help(format!("write it after the qualifier, e.g. `Act({qualifier}, T#10s)`"))
             }
             SfcError::ExtraTime { span, qualifier } => {
-                Diagnostic::error("E0210", format!("qualifier `{qualifier}` takes no time"), *span)
+                Diagnostic::error(Code::E0210, format!("qualifier `{qualifier}` takes no time"), *span)
                     .label("remove this time")
                     .help("only L, D and E take a time")
             }
             SfcError::DuplicateTransition { span, name, first } => {
-                Diagnostic::error("E0211", format!("transition `{name}` is defined twice"), *span)
+                Diagnostic::error(Code::E0211, format!("transition `{name}` is defined twice"), *span)
                     .label("second definition")
                     .with(*first, "first defined here")
             }
             SfcError::UnusedAction { span, name } => {
-                Diagnostic::warning("W0200", format!("action `{name}` is never used"), *span)
+                Diagnostic::warning(Code::W0200, format!("action `{name}` is never used"), *span)
                     .label("no step names this action")
             }
             SfcError::UnreachableStep { span, name } => {
-                Diagnostic::warning("W0201", format!("step `{name}` can never become active"), *span)
+                Diagnostic::warning(Code::W0201, format!("step `{name}` can never become active"), *span)
                     .label("unreachable")
                     .help("it is not an initial step and no transition from a reachable step leads to it")
             }
             SfcError::Unsafe { span, transition, step } => unsafe_chart(*span, transition, step),
             SfcError::ChartRunsItself { span, chart, action } => runs_itself(*span, chart, action),
             SfcError::ChartsTooDeep { span, action, depth, limit } => {
-                Diagnostic::error("E0213", format!("chart actions nest more than {limit} deep"), *span)
+                Diagnostic::error(Code::E0213, format!("chart actions nest more than {limit} deep"), *span)
                     .label(format!("`{action}` puts a chart {depth} levels below the sequence's chart"))
                     .help("run some of the nested charts' steps in the chart above them, or split the sequence")
             }
             SfcError::TooManySteps { span, limit } => {
-                Diagnostic::error("E0214", format!("more than {limit} steps in one sequence"), *span)
+                Diagnostic::error(Code::E0214, format!("more than {limit} steps in one sequence"), *span)
                     .label(format!("step {}", limit + 1))
                     .help("each step keeps `.X` and `.T` in two of the sequence's 65,535 retained slots; split the sequence")
             }
             SfcError::TooLarge { span, what, count, limit } => {
-                Diagnostic::error("E0215", format!("the sequence needs {count} {what}; an object holds at most {limit}"), *span)
+                Diagnostic::error(Code::E0215, format!("the sequence needs {count} {what}; an object holds at most {limit}"), *span)
                     .label("the limit is passed here")
                     .help("a chart action's chart is written out once for each chart that uses it, with a code block for each of its transitions; use shared chart actions in fewer charts")
             }
@@ -216,7 +217,7 @@ impl SfcError {
 /// W0202, whose message needs the most words.
 fn unsafe_chart(span: Span, transition: &str, step: &str) -> Diagnostic {
     Diagnostic::warning(
-        "W0202",
+        Code::W0202,
         format!("unsafe chart: transition `{transition}` can activate step `{step}` while it is active"),
         span,
     )
@@ -232,7 +233,7 @@ fn runs_itself(span: Span, chart: &str, action: &str) -> Diagnostic {
     } else {
         format!("the chart of `{chart}` runs `{action}`, which leads back to `{chart}`")
     };
-    Diagnostic::error("E0212", format!("chart action `{action}` runs itself"), span)
+    Diagnostic::error(Code::E0212, format!("chart action `{action}` runs itself"), span)
         .label(label)
         .help("a chart action's chart cannot run the action it belongs to: charts would nest without end")
 }

@@ -16,6 +16,7 @@ use crate::diagnostic::Diagnostic;
 use crate::span::Span;
 use linc_format::db::tree::{self, Json};
 use linc_format::db::Alias;
+use linc_format::Code;
 use linc_format::Database;
 use std::collections::HashMap;
 
@@ -86,7 +87,7 @@ pub fn step_collisions(seq: &Sequence, map: &Named) -> Vec<Diagnostic> {
         .map(|s| {
             let name = &s.name.text;
             Diagnostic::error(
-                "E0255",
+                Code::E0255,
                 format!("step `{name}` has the name of a generic name of `{}`", map.file),
                 s.name.span,
             )
@@ -112,20 +113,20 @@ pub enum MapError {
 impl MapError {
     pub fn to_diagnostic(&self) -> Diagnostic {
         match self {
-            MapError::Shape { span, message } => Diagnostic::error("E0251", message.clone(), *span)
+            MapError::Shape { span, message } => Diagnostic::error(Code::E0251, message.clone(), *span)
                 .label("here")
                 .help(r#"a map is one JSON object of strings: { "KilnController": "TIC015" }"#),
             MapError::UnknownBlock { span, block } => {
-                Diagnostic::error("E0252", format!("the database has no block `{block}`"), *span)
+                Diagnostic::error(Code::E0252, format!("the database has no block `{block}`"), *span)
                     .label("target of this map entry")
                     .help("a target starts with a block (or alias) of the database given with --db")
             }
             MapError::BadName { span, name, why } => {
-                Diagnostic::error("E0253", format!("`{name}` can't be a generic name: {why}"), *span)
+                Diagnostic::error(Code::E0253, format!("`{name}` can't be a generic name: {why}"), *span)
                     .label("generic name")
             }
             MapError::BadTarget { span, target } => {
-                Diagnostic::error("E0254", format!("`{target}` is not a database name"), *span)
+                Diagnostic::error(Code::E0254, format!("`{target}` is not a database name"), *span)
                     .label("target of this map entry")
                     .help("write BLOCK, BLOCK.FIELD or BLOCK.FIELD.SUBFIELD, or \"\" while it is not known")
             }
@@ -219,7 +220,7 @@ pub fn with_map(diagnostics: Vec<Diagnostic>, src: &str, map_file: &str, allow: 
     diagnostics
         .into_iter()
         .map(|d| {
-            if d.code != "E0100" {
+            if d.code != Code::E0100 {
                 return d;
             }
             let name = src.get(d.span.start..d.span.end).unwrap_or("?").to_string();
@@ -247,20 +248,26 @@ pub fn lift_long_names(seq: &mut Sequence, diagnostics: Vec<Diagnostic>) -> Vec<
         let from = errors.partition_point(|d| d.span.start < v.span.start);
         let starting = errors[from..].iter().take_while(|d| d.span.start <= v.span.end);
         let mut inside = starting.filter(|d| d.span.end <= v.span.end);
-        let only = inside.all(|d| d.code == "E0005" && d.span == first.span);
+        let only = inside.all(|d| d.code == Code::E0005 && d.span == first.span);
         if only {
             v.malformed = false;
             lifted.insert((first.span.start, first.span.end));
         }
     });
-    diagnostics.into_iter().filter(|d| !(d.code == "E0005" && lifted.contains(&(d.span.start, d.span.end)))).collect()
+    diagnostics
+        .into_iter()
+        .filter(|d| !(d.code == Code::E0005 && lifted.contains(&(d.span.start, d.span.end))))
+        .collect()
 }
 
 /// E0250 or W0250 for an unknown name, keeping a "did you mean" of E0100.
 fn unmapped(d: &Diagnostic, name: &str, map_file: &str, allow: bool) -> Diagnostic {
     let message = format!("can't find `{name}` in the database or in the map `{map_file}`");
-    let made =
-        if allow { Diagnostic::warning("W0250", message, d.span) } else { Diagnostic::error("E0250", message, d.span) };
+    let made = if allow {
+        Diagnostic::warning(Code::W0250, message, d.span)
+    } else {
+        Diagnostic::error(Code::E0250, message, d.span)
+    };
     let mut made = made.label("a generic name with no target");
     for h in d.help.iter().filter(|h| h.starts_with("did you mean")) {
         made = made.help(h.clone());
@@ -277,7 +284,7 @@ pub fn allow_long_names(diagnostics: Vec<Diagnostic>, src: &str) -> Vec<Diagnost
         .into_iter()
         .filter(|d| {
             let len = src.get(d.span.start..d.span.end).map_or(usize::MAX, |n| n.chars().count());
-            !(d.code == "E0005" && len <= MAX_GENERIC)
+            !(d.code == Code::E0005 && len <= MAX_GENERIC)
         })
         .collect()
 }

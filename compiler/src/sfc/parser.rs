@@ -18,6 +18,7 @@ use crate::errors::SyntaxError;
 use crate::lexer::{lex, Spanned, Tok};
 use crate::parser::{parse_expr, parse_file, ParseErrors};
 use crate::span::Span;
+use linc_format::Code;
 
 /// Parses a sequence; every diagnostic of lexing and parsing comes back,
 /// placed in the file (not yet sorted or deduplicated).
@@ -389,8 +390,8 @@ impl Parser<'_> {
         let syntax = errors.syntax.iter().map(|e| e.to_diagnostic());
         for mut d in lex.chain(syntax).collect::<Vec<_>>() {
             shift::diagnostic(&mut d, at);
-            if let (Some((l, t, r)), "E0011", true) = (self.toks.get(next), d.code, d.span.start >= end) {
-                d.code = "E0010";
+            if let (Some((l, t, r)), Code::E0011, true) = (self.toks.get(next), d.code, d.span.start >= end) {
+                d.code = Code::E0010;
                 d.message = format!("unexpected {}", t.describe());
                 d.span = Span::new(*l, *r);
             }

@@ -5,6 +5,7 @@
 use super::ast::{ActionBody, Chart, Sequence};
 use crate::diagnostic::Diagnostic;
 use crate::span::Span;
+use linc_format::Code;
 
 /// Which instrument's limits: the guide gives each limit as a pair.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -69,7 +70,7 @@ pub fn over_limit(uses: &[Use], instrument: Instrument) -> Vec<Diagnostic> {
         .filter(|u| u.used > u.limit)
         .map(|u| {
             Diagnostic::warning(
-                "W0251",
+                Code::W0251,
                 format!(
                     "the sequence uses {} {}; a {} instrument loads at most {}",
                     u.used,

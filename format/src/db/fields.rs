@@ -3,6 +3,7 @@
 use super::json::{check_name, code, object, DbError};
 use super::schema::{FieldDef, FieldType, InitValue, Template};
 use super::tree::{get, Json, Member, Node};
+use crate::code::Code;
 use std::collections::HashSet;
 
 /// Most values an ENUM may have: the store keeps the index in a u16.
@@ -138,7 +139,7 @@ pub(super) fn init_values(block: &str, t: &Template, node: &Node) -> Result<Vec<
     Ok(values)
 }
 
-type ValueError = (&'static str, String);
+type ValueError = (Code, String);
 
 fn wrong(why: String) -> ValueError {
     (code::INIT_VALUE, why)

@@ -9,32 +9,35 @@ use super::period::{check_period, time_constant};
 use super::roc::Device;
 use super::schema::{Alias, Block, Database, Task, Template};
 use super::tree::{self, get, Json, Member, Node, Span};
+use crate::code::Code;
 use std::collections::HashSet;
 use std::fmt;
 
 /// Every code the loader emits, in one place (the code registry's test
 /// reads this file to check that each one is registered).
 pub mod code {
-    pub const NOT_JSON: &str = "E0800";
-    pub const SHAPE: &str = "E0801";
-    pub const FIELD_TYPE: &str = "E0802";
-    pub const UNKNOWN_TEMPLATE: &str = "E0803";
-    pub const INIT_VALUE: &str = "E0804";
-    pub const ALIAS_TARGET: &str = "E0805";
-    pub const TWICE: &str = "E0806";
-    pub const DUPLICATE_KEY: &str = "E0807";
-    pub const TASK_NUMBER: &str = "E0808";
-    pub const TASK_PERIOD: &str = "E0809";
-    pub const UNDEFINED_TASK: &str = "E0810";
-    pub const EMPTY_NAME: &str = "E0811";
-    pub const LONG_NAME: &str = "E0812";
-    pub const ENUM_TOO_BIG: &str = "E0813";
-    pub const READONLY: &str = "E0814";
-    pub const OUT_OF_RANGE: &str = "E0815";
-    pub const ALIAS_CYCLE: &str = "E0816";
-    pub const ALIAS_TOO_BIG: &str = "E0817";
-    pub const DEVICE: &str = "E0818";
-    pub const TOO_MANY_CELLS: &str = "E0819";
+    use crate::code::Code;
+
+    pub const NOT_JSON: Code = Code::E0800;
+    pub const SHAPE: Code = Code::E0801;
+    pub const FIELD_TYPE: Code = Code::E0802;
+    pub const UNKNOWN_TEMPLATE: Code = Code::E0803;
+    pub const INIT_VALUE: Code = Code::E0804;
+    pub const ALIAS_TARGET: Code = Code::E0805;
+    pub const TWICE: Code = Code::E0806;
+    pub const DUPLICATE_KEY: Code = Code::E0807;
+    pub const TASK_NUMBER: Code = Code::E0808;
+    pub const TASK_PERIOD: Code = Code::E0809;
+    pub const UNDEFINED_TASK: Code = Code::E0810;
+    pub const EMPTY_NAME: Code = Code::E0811;
+    pub const LONG_NAME: Code = Code::E0812;
+    pub const ENUM_TOO_BIG: Code = Code::E0813;
+    pub const READONLY: Code = Code::E0814;
+    pub const OUT_OF_RANGE: Code = Code::E0815;
+    pub const ALIAS_CYCLE: Code = Code::E0816;
+    pub const ALIAS_TOO_BIG: Code = Code::E0817;
+    pub const DEVICE: Code = Code::E0818;
+    pub const TOO_MANY_CELLS: Code = Code::E0819;
 }
 
 /// Longest name in bytes: the object file stores names with a u16 length.
@@ -52,14 +55,14 @@ const MAX_EXPANDED: usize = 1 << 24;
 /// Something wrong with a database file.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DbError {
-    pub code: &'static str,
+    pub code: Code,
     pub message: String,
     /// Byte range in the database text, when it can be located.
     pub span: Option<(usize, usize)>,
 }
 
 impl DbError {
-    pub(super) fn at(code: &'static str, message: String, span: Span) -> DbError {
+    pub(super) fn at(code: Code, message: String, span: Span) -> DbError {
         DbError { code, message, span: Some(span) }
     }
 }

@@ -345,7 +345,7 @@ mod tests {
 
     fn err(text: &str) -> (&'static str, Option<Span>) {
         let e = parse(text).expect_err(text);
-        (e.code, e.span)
+        (e.code.as_str(), e.span)
     }
 
     #[test]

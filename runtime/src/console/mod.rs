@@ -12,6 +12,7 @@ use crate::store::Store;
 use crate::strategy::trace::Trace;
 use crate::strategy::{ProgramState, Strategy};
 use fields::{address, parse_value, show_value, Addr};
+use linc_format::Code;
 use parse::{Command, SeqControl, TransForce};
 
 /// Fields shown by a range display (`D REC1.A0-`).
@@ -22,18 +23,29 @@ pub const MAX_ADVANCE_US: u64 = 366 * 86_400 * 1_000_000;
 
 /// Runtime error codes `ERRRAISE` accepts (a raise enters the status as
 /// one of these would).
-pub const RAISABLE: &[&str] =
-    &["R0001", "R0002", "R0003", "R0004", "R0005", "R0006", "R0007", "R0008", "R0010", "R0011", "R0099"];
+pub const RAISABLE: &[Code] = &[
+    Code::R0001,
+    Code::R0002,
+    Code::R0003,
+    Code::R0004,
+    Code::R0005,
+    Code::R0006,
+    Code::R0007,
+    Code::R0008,
+    Code::R0010,
+    Code::R0011,
+    Code::R0099,
+];
 
 /// Why a command was refused; it changed nothing.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ConsoleError {
-    pub code: &'static str,
+    pub code: Code,
     pub message: String,
 }
 
 impl ConsoleError {
-    pub fn new(code: &'static str, message: impl Into<String>) -> ConsoleError {
+    pub fn new(code: Code, message: impl Into<String>) -> ConsoleError {
         ConsoleError { code, message: message.into() }
     }
 }
@@ -66,7 +78,7 @@ pub struct Console {
 }
 
 fn not_found(why: String) -> ConsoleError {
-    ConsoleError::new("C0003", why)
+    ConsoleError::new(Code::C0003, why)
 }
 
 impl Console {
@@ -131,7 +143,7 @@ impl Console {
 
     fn scan_us(&self) -> Result<u64, ConsoleError> {
         self.strategy.fastest_period_us().ok_or_else(|| {
-            ConsoleError::new("C0006", "the strategy has no task to scan: use ADVANCE to move the clock")
+            ConsoleError::new(Code::C0006, "the strategy has no task to scan: use ADVANCE to move the clock")
         })
     }
 
@@ -155,7 +167,7 @@ impl Console {
             Command::Save => {
                 if !self.can_save {
                     return Err(ConsoleError::new(
-                        "C0012",
+                        Code::C0012,
                         "SAVE needs a state file: start the console with --state FILE",
                     ));
                 }
@@ -199,12 +211,12 @@ impl Console {
         let a = self.addr(path)?;
         if self.store().is_readonly(a.cell) {
             let why = format!("{} is read-only: the block computes it", self.store().describe(a.cell));
-            return Err(ConsoleError::new("C0005", why));
+            return Err(ConsoleError::new(Code::C0005, why));
         }
         if matches!(self.store().cells.get(a.cell as usize), Some(crate::store::Cell::Alarms(_))) {
-            return Err(ConsoleError::new("C0004", "alarm states can't be modified or forced"));
+            return Err(ConsoleError::new(Code::C0004, "alarm states can't be modified or forced"));
         }
-        let cell = parse_value(self.store(), a, value).map_err(|why| ConsoleError::new("C0004", why))?;
+        let cell = parse_value(self.store(), a, value).map_err(|why| ConsoleError::new(Code::C0004, why))?;
         Ok((a, cell))
     }
 
@@ -212,7 +224,7 @@ impl Console {
         let (a, cell) = self.new_value(path, value)?;
         if self.store().is_forced(a.cell) {
             let why = format!("{path} is forced: release it first (F {path}=N)");
-            return Err(ConsoleError::new("C0009", why));
+            return Err(ConsoleError::new(Code::C0009, why));
         }
         if let Some(slot) = self.strategy.store.cells.get_mut(a.cell as usize) {
             *slot = cell;
@@ -224,7 +236,7 @@ impl Console {
         let Some(value) = value else {
             let a = self.addr(path)?;
             if !self.store().is_forced(a.cell) {
-                return Err(ConsoleError::new("C0009", format!("{path} is not forced")));
+                return Err(ConsoleError::new(Code::C0009, format!("{path} is not forced")));
             }
             self.strategy.store.set_forced(a.cell, false);
             return Ok(format!("{path} released = {}", show_value(self.store(), a)));
@@ -272,7 +284,7 @@ impl Console {
     fn program(&mut self, name: &str, state: ProgramState) -> Result<String, ConsoleError> {
         let b = self.block(name)?;
         if !self.strategy.set_program_state(b, state) {
-            return Err(ConsoleError::new("C0006", format!("block `{name}` runs no program")));
+            return Err(ConsoleError::new(Code::C0006, format!("block `{name}` runs no program")));
         }
         let done = match state {
             ProgramState::Running => "started",
@@ -286,7 +298,7 @@ impl Console {
         let b = self.block(name)?;
         match self.strategy.sequence_mut(b) {
             Some(s) => Ok((b, s)),
-            None => Err(ConsoleError::new("C0006", format!("block `{name}` runs no sequence"))),
+            None => Err(ConsoleError::new(Code::C0006, format!("block `{name}` runs no sequence"))),
         }
     }
 
@@ -299,7 +311,7 @@ impl Console {
             if control == SeqControl::Stop {
                 return self.program(name, ProgramState::Inactive);
             }
-            return Err(ConsoleError::new("C0006", format!("block `{name}` runs no sequence")));
+            return Err(ConsoleError::new(Code::C0006, format!("block `{name}` runs no sequence")));
         }
         let writes: &[(&str, bool)] = match control {
             SeqControl::Reset => &[("Reset", true)],
@@ -322,7 +334,7 @@ impl Console {
     fn hold_step(&mut self, name: &str, step: &str, hold: bool) -> Result<String, ConsoleError> {
         let (_, seq) = self.sequence_of(name)?;
         if seq.step(step).is_none() {
-            return Err(ConsoleError::new("C0007", format!("the sequence of `{name}` has no step `{step}`")));
+            return Err(ConsoleError::new(Code::C0007, format!("the sequence of `{name}` has no step `{step}`")));
         }
         let held = &mut seq.monitor.held;
         held.retain(|h| !h.eq_ignore_ascii_case(step));
@@ -335,7 +347,7 @@ impl Console {
     fn force_trans(&mut self, name: &str, t: &str, force: TransForce) -> Result<String, ConsoleError> {
         let (_, seq) = self.sequence_of(name)?;
         if !has_transition(&seq.chart, t) {
-            return Err(ConsoleError::new("C0007", format!("the sequence of `{name}` has no transition `{t}`")));
+            return Err(ConsoleError::new(Code::C0007, format!("the sequence of `{name}` has no transition `{t}`")));
         }
         let forced = &mut seq.monitor.forced;
         forced.retain(|n, _| !n.eq_ignore_ascii_case(t));
@@ -376,9 +388,12 @@ impl Console {
 
     fn raise(&mut self, code: &str, block: Option<&str>) -> Result<String, ConsoleError> {
         let code = code.to_ascii_uppercase();
-        let Some(&code) = RAISABLE.iter().find(|c| **c == code) else {
-            let why = format!("`{code}` is not a runtime error code ({})", RAISABLE.join(", "));
-            return Err(ConsoleError::new("C0010", why));
+        let Some(&code) = RAISABLE.iter().find(|c| c.as_str() == code.as_str()) else {
+            let why = format!(
+                "`{code}` is not a runtime error code ({})",
+                RAISABLE.iter().map(|c| c.as_str()).collect::<Vec<_>>().join(", ")
+            );
+            return Err(ConsoleError::new(Code::C0010, why));
         };
         let name = match block {
             Some(b) => self.store().db.blocks[self.block(b)?].name.clone(),
@@ -386,7 +401,7 @@ impl Console {
         };
         if !self.strategy.raise_error(code, &name, None) {
             let why = "the error status already holds an error (clear it first with ERRCLR)";
-            return Err(ConsoleError::new("C0011", why));
+            return Err(ConsoleError::new(Code::C0011, why));
         }
         Ok(self.error_text())
     }

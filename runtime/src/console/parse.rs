@@ -5,6 +5,7 @@
 
 use super::ConsoleError;
 use crate::strategy::ProgramState;
+use linc_format::Code;
 
 /// An SFC_CON command, applied through the block's fields.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -80,7 +81,7 @@ fn verb(text: &str) -> (String, &str) {
 }
 
 fn usage(form: &str) -> ConsoleError {
-    ConsoleError::new("C0002", format!("expected `{form}`"))
+    ConsoleError::new(Code::C0002, format!("expected `{form}`"))
 }
 
 /// `PATH=VALUE`, or `PATH VALUE` when the path has no `=`.
@@ -155,7 +156,7 @@ pub fn parse(text: &str, duration: &dyn Fn(&str) -> Result<u64, String>) -> Resu
             Ok(Command::ForceTrans { block: w[0].to_string(), transition: w[1].to_string(), force })
         }
         "ADVANCE" => {
-            let d = duration(args).map_err(|why| ConsoleError::new("C0008", why))?;
+            let d = duration(args).map_err(|why| ConsoleError::new(Code::C0008, why))?;
             Ok(Command::Advance(d))
         }
         "SCAN" if args.is_empty() => Ok(Command::Scan),
@@ -171,9 +172,9 @@ pub fn parse(text: &str, duration: &dyn Fn(&str) -> Result<u64, String>) -> Resu
             Ok(Command::ErrorRaise { code, block: (!rest.is_empty()).then(|| rest.to_string()) })
         }
         "F?" | "FORCES" | "P?" | "PROGRAMS" | "SCAN" | "NOW" | "SAVE" | "ERR?" | "ERROR" | "ERRCLR" | "CLEARERROR" => {
-            Err(ConsoleError::new("C0002", format!("`{v}` takes no arguments")))
+            Err(ConsoleError::new(Code::C0002, format!("`{v}` takes no arguments")))
         }
-        _ => Err(ConsoleError::new("C0001", format!("unknown command `{v}`"))),
+        _ => Err(ConsoleError::new(Code::C0001, format!("unknown command `{v}`"))),
     }
 }
 
@@ -237,17 +238,17 @@ mod tests {
     #[test]
     fn time_and_errors() {
         assert_eq!(p("ADVANCE 10s"), Ok(Command::Advance(10_000_000)));
-        assert_eq!(p("advance soon").map_err(|e| e.code), Err("C0008"));
+        assert_eq!(p("advance soon").map_err(|e| e.code.as_str()), Err("C0008"));
         assert_eq!(p("RAISE R0001 PUMP"), Ok(Command::ErrorRaise { code: "R0001".into(), block: Some("PUMP".into()) }));
     }
 
     #[test]
     fn mistakes_have_codes() {
-        assert_eq!(p("FROB X").map_err(|e| e.code), Err("C0001"));
-        assert_eq!(p("M PIC1.SL").map_err(|e| e.code), Err("C0002"));
-        assert_eq!(p("D ").map_err(|e| e.code), Err("C0002"));
-        assert_eq!(p("NOW later").map_err(|e| e.code), Err("C0002"));
-        assert_eq!(p("FORCETRANS SFC1 T1 maybe").map_err(|e| e.code), Err("C0002"));
-        assert_eq!(p("START").map_err(|e| e.code), Err("C0002"));
+        assert_eq!(p("FROB X").map_err(|e| e.code.as_str()), Err("C0001"));
+        assert_eq!(p("M PIC1.SL").map_err(|e| e.code.as_str()), Err("C0002"));
+        assert_eq!(p("D ").map_err(|e| e.code.as_str()), Err("C0002"));
+        assert_eq!(p("NOW later").map_err(|e| e.code.as_str()), Err("C0002"));
+        assert_eq!(p("FORCETRANS SFC1 T1 maybe").map_err(|e| e.code.as_str()), Err("C0002"));
+        assert_eq!(p("START").map_err(|e| e.code.as_str()), Err("C0002"));
     }
 }

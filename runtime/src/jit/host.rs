@@ -13,6 +13,7 @@ use crate::isa::Op;
 use crate::store::Store;
 use crate::vm::Vm;
 use crate::wire::Bytes;
+use linc_format::Code;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 /// The shape of every service.
@@ -41,7 +42,7 @@ fn serve(frame: *mut Frame, f: impl FnOnce(&mut Host<'_>) -> Result<u32, Fault>)
         }
     };
     let result = catch_unwind(AssertUnwindSafe(|| f(&mut host)))
-        .unwrap_or_else(|_| Err(Fault::new("R0099", "internal error in a runtime service")));
+        .unwrap_or_else(|_| Err(Fault::new(Code::R0099, "internal error in a runtime service")));
     match result {
         Ok(v) => {
             frame.ret = v;
@@ -142,7 +143,7 @@ pub(crate) extern "C" fn note(frame: *mut Frame, what: u32, is_slot: u32, _: u32
     if noted.is_err() {
         // SAFETY: as above; the tracer's borrow of the store has ended.
         let vm = unsafe { &mut *frame.vm };
-        vm.jit_fault = Some(Fault::new("R0099", "internal error while tracing a write"));
+        vm.jit_fault = Some(Fault::new(Code::R0099, "internal error while tracing a write"));
         return 1;
     }
     0

@@ -10,6 +10,7 @@
 use super::clock::{self, civil};
 use super::real;
 use crate::db::{Database, InitValue};
+use linc_format::Code;
 use serde_json::{json, Value};
 use std::fmt;
 
@@ -30,7 +31,7 @@ pub const MAX_PERIODIC: usize = 8784;
 /// The most daily entries a point may have (a leap year of days).
 pub const MAX_DAILY: usize = 366;
 /// The code of every [`HistError`]: the FST halts.
-pub const HALT: &str = "R0011";
+pub const HALT: Code = Code::R0011;
 
 /// ARCHTYP: what fills a history point.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -74,7 +75,7 @@ pub use crate::isa::HistFn;
 /// sets run flag 5). Always code [`HALT`].
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct HistError {
-    pub code: &'static str,
+    pub code: Code,
     pub message: String,
 }
 

@@ -8,6 +8,7 @@ use super::{Strategy, WantKind};
 use crate::errors::RuntimeError;
 use crate::sequence::Status;
 use crate::store::Cell;
+use linc_format::Code;
 
 /// A program as the console sees it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -179,7 +180,7 @@ impl Strategy {
     /// the error status like a runtime error of `block`'s program (so the
     /// error program runs), without stopping any program. `false` if the
     /// status already holds an error (it is kept) or every program is halted.
-    pub fn raise_error(&mut self, code: &'static str, block: &str, trace: Option<&mut Trace>) -> bool {
+    pub fn raise_error(&mut self, code: Code, block: &str, trace: Option<&mut Trace>) -> bool {
         if self.error.is_some() || self.halted {
             return false;
         }

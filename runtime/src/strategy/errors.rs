@@ -9,6 +9,7 @@ use super::trace::{seconds, Trace};
 use super::Strategy;
 use crate::errors::RuntimeError;
 use crate::store::Cell;
+use linc_format::Code;
 use std::fmt;
 
 /// Template name of the block that shows the error status (and names the
@@ -18,13 +19,13 @@ pub const SYSTEM: &str = "SYSTEM";
 /// Why a strategy could not be built, located at a block of the database.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StrategyError {
-    pub code: &'static str,
+    pub code: Code,
     pub block: String,
     pub message: String,
 }
 
 impl StrategyError {
-    pub fn new(code: &'static str, block: String, message: impl Into<String>) -> StrategyError {
+    pub fn new(code: Code, block: String, message: impl Into<String>) -> StrategyError {
         StrategyError { code, block, message: message.into() }
     }
 }
@@ -50,7 +51,7 @@ pub struct ErrorStatus {
 impl ErrorStatus {
     /// The number shown in `SYSTEM.ErrNum`: the digits of the code (R0001 → 1).
     pub fn number(&self) -> i32 {
-        self.error.code.get(1..).and_then(|d| d.parse().ok()).unwrap_or(99)
+        self.error.code.as_str().get(1..).and_then(|d| d.parse().ok()).unwrap_or(99)
     }
 }
 
@@ -127,7 +128,7 @@ impl Strategy {
         let text = |s: &str| Cell::Text(s.as_bytes().to_vec());
         let values = [
             ("ErrNum", Cell::Int(e.as_ref().map_or(0, ErrorStatus::number))),
-            ("ErrCode", text(e.as_ref().map_or("", |e| e.error.code))),
+            ("ErrCode", text(e.as_ref().map_or("", |e| e.error.code.as_str()))),
             ("ErrBlock", text(e.as_ref().map_or("", |e| e.block.as_str()))),
             ("ErrLine", Cell::Int(e.as_ref().map_or(0, |e| e.error.line as i32))),
             ("Double", Cell::Bool(e.as_ref().is_some_and(|e| e.double))),

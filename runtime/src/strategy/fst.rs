@@ -16,6 +16,7 @@ use crate::object::{Unit, UnitKind};
 use crate::store::{Cell, Store};
 use crate::verify::Verified;
 use crate::vm::Outcome;
+use linc_format::Code;
 
 /// Steps one cycle may execute when the block's STEPS is 0.
 pub const DEFAULT_STEPS: u32 = 20;
@@ -40,7 +41,7 @@ pub(super) fn unit_of(v: &Verified, w: &Want, block_name: &dyn Fn(usize) -> Stri
         .units
         .iter()
         .position(|u| u.kind == UnitKind::Fst)
-        .ok_or_else(|| StrategyError::new("E0834", block_name(w.block), format!("`{}` holds no FST table", w.file)))
+        .ok_or_else(|| StrategyError::new(Code::E0834, block_name(w.block), format!("`{}` holds no FST table", w.file)))
 }
 
 /// The cells of an FST block the engine reads and writes.

@@ -20,6 +20,7 @@ pub mod trace;
 
 pub use control::{ProgramInfo, ProgramState};
 pub use errors::{ErrorStatus, StrategyError};
+use linc_format::Code;
 pub use state::StateError;
 
 use crate::link::{Linked, Program};
@@ -61,7 +62,7 @@ impl Want {
             _ => return Ok(()),
         };
         let block = store.db.blocks[self.block].name.clone();
-        Err(StrategyError::new("E0830", block, format!("the block names no action: its {missing} is empty")))
+        Err(StrategyError::new(Code::E0830, block, format!("the block names no action: its {missing} is empty")))
     }
 }
 
@@ -185,7 +186,7 @@ fn action_unit(v: &Verified, w: &Want, block_name: &dyn Fn(usize) -> String) -> 
     unit.ok_or_else(|| {
         let have: Vec<&str> = v.object().units.iter().map(|u| u.name.as_str()).collect();
         let msg = format!("`{}` has no action `{}` (it has {})", w.file, w.action, have.join(", "));
-        StrategyError::new("E0831", block_name(w.block), msg)
+        StrategyError::new(Code::E0831, block_name(w.block), msg)
     })
 }
 
@@ -208,7 +209,7 @@ impl Strategy {
         let mut programs: Vec<Vec<Program>> = vec![Vec::new(); objects.len()];
         let mut members = Vec::with_capacity(wants.len());
         for (w, o) in wants {
-            let v = objects.get(*o).ok_or_else(|| StrategyError::new("E0831", block_name(w.block), "no object"))?;
+            let v = objects.get(*o).ok_or_else(|| StrategyError::new(Code::E0831, block_name(w.block), "no object"))?;
             let unit = match w.kind {
                 WantKind::Action => action_unit(v, w, &block_name)?,
                 WantKind::Sequence => sequences::unit_of(v, w, &block_name)?,
@@ -291,7 +292,7 @@ impl Strategy {
             .and_then(|b| self.members.iter().position(|m| m.block == b && m.seq.is_none() && m.fst.is_none()));
         let sys_name = self.store.db.blocks[sys].name.clone();
         let member = member.ok_or_else(|| {
-            StrategyError::new("E0832", sys_name, format!("the error program `{name}` is not an action-type block"))
+            StrategyError::new(Code::E0832, sys_name, format!("the error program `{name}` is not an action-type block"))
         })?;
         self.error_program = Some(member);
         Ok(())

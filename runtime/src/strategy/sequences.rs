@@ -11,6 +11,7 @@ use crate::sequence::host::{Traced, VmHost};
 use crate::sequence::{Command, Status};
 use crate::store::{Cell, Store};
 use crate::verify::Verified;
+use linc_format::Code;
 
 /// Whether a block is a sequence control block (an SFC_CON, or any
 /// template with SFC_CON's command fields and no `ActName`).
@@ -26,7 +27,7 @@ pub(super) fn unit_of(v: &Verified, w: &Want, block_name: &dyn Fn(usize) -> Stri
         .units
         .iter()
         .position(|u| u.kind == UnitKind::Sequence)
-        .ok_or_else(|| StrategyError::new("E0833", block_name(w.block), format!("`{}` holds no sequence", w.file)))
+        .ok_or_else(|| StrategyError::new(Code::E0833, block_name(w.block), format!("`{}` holds no sequence", w.file)))
 }
 
 /// A BOOL field's value (FALSE when the block has no such field).

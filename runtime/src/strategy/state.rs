@@ -17,6 +17,7 @@ use crate::sequence::engine::ChartState;
 use crate::sequence::Status;
 use crate::store::Cell;
 use crate::strategy::qualifier::QualState;
+use linc_format::Code;
 use serde_json::{json, Value};
 use std::fmt;
 
@@ -30,12 +31,12 @@ const HEADER_MAX: usize = 128;
 /// version, E0842 made for another strategy.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct StateError {
-    pub code: &'static str,
+    pub code: Code,
     pub message: String,
 }
 
 impl StateError {
-    pub fn new(code: &'static str, message: impl Into<String>) -> StateError {
+    pub fn new(code: Code, message: impl Into<String>) -> StateError {
         StateError { code, message: message.into() }
     }
 }
@@ -49,7 +50,7 @@ impl fmt::Display for StateError {
 impl std::error::Error for StateError {}
 
 fn damaged(what: impl fmt::Display) -> StateError {
-    StateError::new("E0840", format!("the state file is damaged or cut short: {what}"))
+    StateError::new(Code::E0840, format!("the state file is damaged or cut short: {what}"))
 }
 
 /// The body of a state file, once its header, length and checksum hold.
@@ -65,7 +66,7 @@ fn body(bytes: &[u8]) -> Result<&[u8], StateError> {
     let (crc, length) = (number("crc32")?, number("length")?);
     if version != VERSION {
         return Err(StateError::new(
-            "E0841",
+            Code::E0841,
             format!("the state file is of version {version}; this linc reads version {VERSION}"),
         ));
     }

@@ -11,12 +11,13 @@ use crate::sequence::chart::{Body, Chart};
 use crate::sequence::engine::ChartState;
 use crate::sequence::Status;
 use crate::store::{Alarms, Cell};
+use linc_format::Code;
 use serde_json::{json, Value};
 
 /// A file whose checksum holds but whose content does not fit: made by
 /// something else than `save_state`, or for another strategy.
 pub(super) fn misfit(what: impl std::fmt::Display) -> StateError {
-    StateError::new("E0842", format!("the state does not fit this strategy: {what}"))
+    StateError::new(Code::E0842, format!("the state does not fit this strategy: {what}"))
 }
 
 pub(super) fn uint(v: &Value, what: &str) -> Result<u64, StateError> {
@@ -162,9 +163,20 @@ pub(super) fn status_from(v: &Value) -> Result<Status, StateError> {
 }
 
 /// Runtime error codes a strategy can hold in its error status (the
-/// status keeps a `&'static str`; an unknown one reads as R0099).
-const RUNTIME_CODES: [&str; 11] =
-    ["R0001", "R0002", "R0003", "R0004", "R0005", "R0006", "R0007", "R0008", "R0010", "R0011", "R0099"];
+/// status keeps a [`Code`]; an unknown one reads as R0099).
+const RUNTIME_CODES: [Code; 11] = [
+    Code::R0001,
+    Code::R0002,
+    Code::R0003,
+    Code::R0004,
+    Code::R0005,
+    Code::R0006,
+    Code::R0007,
+    Code::R0008,
+    Code::R0010,
+    Code::R0011,
+    Code::R0099,
+];
 
 pub(super) fn error_json(e: &ErrorStatus) -> Value {
     let r = &e.error;
@@ -181,7 +193,7 @@ pub(super) fn error_from(v: &Value) -> Result<Option<ErrorStatus>, StateError> {
     let text = |k: &str| v[k].as_str().map(str::to_string).ok_or_else(|| misfit("the error status"));
     let small = |k: &str| uint(&v[k], "the error status").map(|n| n.min(u64::from(u32::MAX)) as u32);
     let code = v["code"].as_str().unwrap_or("");
-    let code = RUNTIME_CODES.iter().find(|c| **c == code).copied().unwrap_or("R0099");
+    let code = RUNTIME_CODES.iter().find(|c| **c == code).copied().unwrap_or(Code::R0099);
     let error = RuntimeError {
         code,
         message: text("message")?,

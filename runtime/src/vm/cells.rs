@@ -5,9 +5,10 @@ use super::Running;
 use crate::errors::{Fault, RuntimeError};
 use crate::link::Target;
 use crate::store::{bits_value, Cell, Store};
+use linc_format::Code;
 
 pub(super) fn corrupt() -> Fault {
-    Fault::new("R0099", "the object does not match the database (field of another type)")
+    Fault::new(Code::R0099, "the object does not match the database (field of another type)")
 }
 
 pub(super) fn target(l: &Running, sym: u16) -> Target {
@@ -28,7 +29,10 @@ pub(super) fn note(trace: &mut super::Tracer, store: &Store, cell: u32) {
 /// run (PID's SP sits between PV and SL); direct writes are refused at link.
 pub(super) fn writable(store: &Store, c: u32) -> Result<u32, Fault> {
     if store.is_readonly(c) {
-        return Err(Fault::new("R0008", format!("{} is read-only; an offset led the write to it", store.describe(c))));
+        return Err(Fault::new(
+            Code::R0008,
+            format!("{} is read-only; an offset led the write to it", store.describe(c)),
+        ));
     }
     Ok(c)
 }
@@ -96,7 +100,7 @@ pub(super) fn store_str(store: &mut Store, c: u32, s: Vec<u8>) -> Result<Vec<u8>
                 store.describe(c),
                 names.join(", ")
             );
-            return Err(Fault::new("R0004", msg));
+            return Err(Fault::new(Code::R0004, msg));
         };
         if let Some(Cell::Enum { idx: i }) = store.cells.get_mut(c as usize) {
             *i = idx as u16;
@@ -118,7 +122,7 @@ pub(super) fn locate(l: &Running, pc: usize, f: Fault) -> RuntimeError {
     let stmt = a.lines[..a.lines.partition_point(|e| e.op as usize <= pc)].last();
     let mut at = stmt.map(|e| (e.line, e.col)).unwrap_or((0, 0));
     let mut message = f.message;
-    if f.code == "R0006" {
+    if f.code == Code::R0006 {
         let inner =
             a.loops.iter().filter(|lp| (lp.start as usize..lp.end as usize).contains(&pc)).max_by_key(|lp| lp.start);
         if let Some(lp) = inner {
@@ -130,7 +134,7 @@ pub(super) fn locate(l: &Running, pc: usize, f: Fault) -> RuntimeError {
     let absent = l.ops.get(pc).and_then(|op| op.symbol()).filter(|&s| target(l, s).is_absent());
     if let Some(s) = absent {
         let sym = l.prog.symbols.get(usize::from(s)).and_then(|&o| l.linked.object().symbols.get(usize::from(o)));
-        code = "R0010";
+        code = Code::R0010;
         message = format!(
             "invalid point reference: the database has no {}",
             sym.map_or_else(|| "such point".to_string(), |s| format!("`{}`", s.text()))

@@ -14,6 +14,7 @@ use crate::isa::{Kind, Op};
 use crate::store::{Cell, Store};
 use crate::vm::MAX_STRING;
 use crate::wire::Bytes;
+use linc_format::Code;
 use linc_stdlib::value::decode_dollar;
 use linc_stdlib::{FnError, Value};
 
@@ -33,12 +34,12 @@ impl Vm {
     /// limits.
     fn count(&mut self, len: usize) -> Result<(), Fault> {
         if len > MAX_STRING {
-            return Err(Fault::new("R0007", format!("a string of {len} bytes; the limit is {MAX_STRING}")));
+            return Err(Fault::new(Code::R0007, format!("a string of {len} bytes; the limit is {MAX_STRING}")));
         }
         self.string_used += len;
         if self.string_used > self.string_budget {
             let what = format!("more than {} bytes of strings made in one run", self.string_budget);
-            return Err(Fault::new("R0007", what));
+            return Err(Fault::new(Code::R0007, what));
         }
         Ok(())
     }
@@ -187,7 +188,7 @@ impl Vm {
             }
         }
         self.args = args;
-        let v = result.map_err(|FnError::Domain(why)| Fault::new("R0005", why))?;
+        let v = result.map_err(|FnError::Domain(why)| Fault::new(Code::R0005, why))?;
         Ok(match Kind::from_bits(u32::from(ret)) {
             Kind::Int => Some(v.as_int() as u32),
             Kind::Real => Some(v.as_real().to_bits()),

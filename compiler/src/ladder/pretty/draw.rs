@@ -7,6 +7,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::ladder::ast::{Action, CoilKind, Cond, Output, Rung};
 use crate::span::Span;
+use linc_format::Code;
 
 /// The most characters one rung's drawing may have. A drawing is as wide as
 /// its widest branch on every row, so a few long contacts in many parallel
@@ -205,7 +206,7 @@ pub fn too_large(src: &str, a: &Action) -> Vec<Diagnostic> {
         let (w, h) = rung_size(src, r);
         if w.saturating_mul(h) > MAX_DRAWN {
             errors.push(
-                Diagnostic::error("E0314", "rung too large to draw", r.span)
+                Diagnostic::error(Code::E0314, "rung too large to draw", r.span)
                     .label(format!("its drawing would be about {w} characters wide and {h} rows high"))
                     .help(format!(
                         "`linc ladder show` draws rungs of up to {MAX_DRAWN} characters; split the rung, or read it with `linc ladder to-st`"
