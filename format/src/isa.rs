@@ -95,6 +95,17 @@ macro_rules! instructions {
         }
 
         impl Op {
+    /// Whether the value this instruction pushes on the numeric stack is a
+    /// REAL (the table's `Real` flag; `Call` says so in its `ret`). The
+    /// verifier records the types at every label from this, and the
+    /// compiling tier keeps REALs in float registers by it.
+    pub fn pushes_real(&self) -> bool {
+        match self {
+            Op::Call { ret, .. } => Kind::from_bits(u32::from(*ret)) == Kind::Real,
+            _ => self.has(Flag::Real),
+        }
+    }
+
             /// The opcode byte.
             pub fn code(&self) -> u8 {
                 match self { $( Op::$name { .. } => $code, )* }

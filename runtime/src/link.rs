@@ -114,6 +114,12 @@ impl Linked {
         self.programs.get(program).and_then(|p| self.object().units.get(p.unit))
     }
 
+    /// The numeric stack's shape at each reached label of a block, as the
+    /// verifier found it (the compiling tier types its stack from these).
+    pub fn shapes(&self, program: usize, block: usize) -> &[(u32, crate::verify::Shape)] {
+        self.programs.get(program).map_or(&[], |p| self.verified.shapes(p.unit, block))
+    }
+
     /// The instructions block `block` of `program` runs.
     pub fn ops(&self, program: usize, block: usize) -> Option<&[Op]> {
         let linked = self.programs.get(program)?.blocks.get(block)?;

@@ -27,11 +27,33 @@ pub struct Limits {
     pub max_str: usize,
 }
 
+/// The numeric stack where paths meet (at a label), as the verifier found
+/// it: its depth and which entries are REAL (bit `i` for entry `i` from the
+/// bottom). `known` is false when paths bring different types, or the
+/// stack is deeper than the 64 entries typed: the values are 32-bit words
+/// either way, so that is no error, but the compiling tier, which keeps
+/// REALs in float registers, leaves such a block to the interpreter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shape {
+    pub depth: u32,
+    pub reals: u64,
+    pub known: bool,
+}
+
+/// A block's shapes at its reached labels, by instruction.
+type LabelShapes = Box<[(u32, Shape)]>;
+
+/// Deepest numeric stack whose types [`Shape`] records.
+pub const TYPED_DEPTH: u32 = 64;
+
 /// An object that passed the verifier; the fields are private so that no
 /// other path can make one.
 #[derive(Clone, Debug)]
 pub struct Verified {
     obj: ObjectFile,
+    /// Per code block (as `limits`), the stack's shape at each instruction a
+    /// label points at and some path reaches, by instruction.
+    shapes: Vec<LabelShapes>,
     /// Per code block, the units' blocks one after another (one table, not
     /// one per unit: an object of many small units holds no more).
     limits: Vec<Limits>,
@@ -45,9 +67,19 @@ impl Verified {
     }
 
     pub fn limits(&self, unit: usize, block: usize) -> Limits {
+        self.index(unit, block).and_then(|i| self.limits.get(i)).copied().unwrap_or_default()
+    }
+
+    /// The numeric stack's shape at each reached label of a block, sorted
+    /// by instruction.
+    pub fn shapes(&self, unit: usize, block: usize) -> &[(u32, Shape)] {
+        self.index(unit, block).and_then(|i| self.shapes.get(i)).map_or(&[], |s| &s[..])
+    }
+
+    fn index(&self, unit: usize, block: usize) -> Option<usize> {
         let at = self.first.get(unit).map(|&f| f as usize + block);
         let inside = self.first.get(unit + 1).map_or(self.limits.len(), |&f| f as usize);
-        at.filter(|&i| i < inside).and_then(|i| self.limits.get(i)).copied().unwrap_or_default()
+        at.filter(|&i| i < inside)
     }
 
     /// The unit called `name` (names ignore case).
@@ -70,6 +102,7 @@ pub fn verifications() -> u64 {
 pub fn verify(obj: ObjectFile) -> Result<Verified, LoadError> {
     RUNS.with(|n| n.set(n.get() + 1));
     let mut limits = Vec::with_capacity(obj.units.iter().map(|u| u.blocks.len()).sum());
+    let mut shapes = Vec::with_capacity(limits.capacity());
     let mut first = Vec::with_capacity(obj.units.len());
     for u in &obj.units {
         if u.blocks.is_empty() {
@@ -82,11 +115,13 @@ pub fn verify(obj: ObjectFile) -> Result<Verified, LoadError> {
         }
         first.push(limits.len() as u32);
         for b in &u.blocks {
-            limits.push(verify_block(&obj, u, b)?);
+            let (l, s) = verify_block(&obj, u, b)?;
+            limits.push(l);
+            shapes.push(s);
         }
         crate::verify_chart::check_charts(u)?;
     }
-    Ok(Verified { obj, limits, first })
+    Ok(Verified { obj, shapes, limits, first })
 }
 
 /// Where a finding is: the unit, and the block when the unit has several.
@@ -240,6 +275,9 @@ struct State {
     num: u32,
     strs: u32,
     ref_sym: Option<u16>,
+    /// Which numeric entries are REAL ([`Shape`]); 0 when `mixed`.
+    reals: u64,
+    mixed: bool,
 }
 
 /// Instructions that only an FST unit may hold (the FST engine gives them
@@ -295,18 +333,35 @@ fn step(obj: &ObjectFile, u: &Unit, b: &CodeBlock, pc: usize, s: State) -> Resul
         _ if suspends(op) => None,
         _ => s.ref_sym,
     };
-    Ok(State { num, strs, ref_sym })
+    let (reals, mixed) = types_after(op, &s, num);
+    Ok(State { num, strs, ref_sym, reals, mixed })
 }
 
-/// Verifies one code block; returns the stack sizes it needs.
-fn verify_block(obj: &ObjectFile, u: &Unit, b: &CodeBlock) -> Result<Limits, LoadError> {
+/// The numeric stack's types after `op` (which leaves `num` entries).
+fn types_after(op: &Op, s: &State, num: u32) -> (u64, bool) {
+    let e = op.effect();
+    let kept = s.num - e.num_pop;
+    if s.mixed || num > TYPED_DEPTH || e.num_push > 1 {
+        return (0, true);
+    }
+    let mut reals = if kept >= 64 { s.reals } else { s.reals & ((1u64 << kept) - 1) };
+    if e.num_push == 1 && op.pushes_real() {
+        reals |= 1 << kept;
+    }
+    (reals, false)
+}
+
+/// Verifies one code block; returns the stack sizes it needs and the
+/// numeric stack's shape at its reached labels.
+fn verify_block(obj: &ObjectFile, u: &Unit, b: &CodeBlock) -> Result<(Limits, LabelShapes), LoadError> {
     check_tables(u, b)?;
     for (pc, op) in b.ops.iter().enumerate() {
         check_operands(obj, u, b, pc, op)?;
     }
     // Abstract interpretation: depths must agree where paths meet; the
-    // reference symbol only falls from known to unknown, so each label is
-    // walked from at most twice and the walk is linear. Jumps land only on
+    // reference symbol only falls from known to unknown and the types from
+    // known to mixed, so each label is walked from at most three times and
+    // the walk is linear. Jumps land only on
     // labels, so only the states at labels are kept (a state per
     // instruction took 16 bytes for each byte of one-byte instructions).
     let mut targets: Vec<u32> = b.labels.clone();
@@ -314,13 +369,16 @@ fn verify_block(obj: &ObjectFile, u: &Unit, b: &CodeBlock) -> Result<Limits, Loa
     targets.dedup();
     let mut w =
         Walk { obj, u, b, states: vec![None; targets.len()], targets, work: Vec::new(), limits: Limits::default() };
-    w.walk(0, State { num: 0, strs: 0, ref_sym: None }, false)?;
+    w.walk(0, State { num: 0, strs: 0, ref_sym: None, reals: 0, mixed: false }, false)?;
     while let Some(i) = w.work.pop() {
         if let Some(s) = w.states[i] {
             w.walk(w.targets[i] as usize, s, true)?;
         }
     }
-    Ok(w.limits)
+    let shapes = (w.targets.iter().zip(&w.states))
+        .filter_map(|(&pc, s)| s.map(|s| (pc, Shape { depth: s.num, reals: s.reals, known: !s.mixed })))
+        .collect();
+    Ok((w.limits, shapes))
 }
 
 /// The verifier's walk over one block: the state at each label, and the
@@ -383,11 +441,15 @@ impl Walk<'_> {
                 let what = format!("stack depths {:?} and {:?} meet here", (d.num, d.strs), (s.num, s.strs));
                 return Err(invalid(Code::E0708, self.u, self.b, self.targets[i] as usize, what));
             }
-            Some(d) if d.ref_sym.is_some() && d.ref_sym != s.ref_sym => {
-                self.states[i] = Some(State { ref_sym: None, ..d });
-                self.work.push(i);
+            Some(d) => {
+                let ref_sym = if d.ref_sym == s.ref_sym { d.ref_sym } else { None };
+                let mixed = d.mixed || s.mixed || d.reals != s.reals;
+                let met = State { ref_sym, mixed, reals: if mixed { 0 } else { d.reals }, ..d };
+                if met != d {
+                    self.states[i] = Some(met);
+                    self.work.push(i);
+                }
             }
-            Some(_) => {}
         }
         Ok(())
     }

@@ -2,7 +2,7 @@
 //!
 //! The operand stack lives in Cranelift variables (one per depth and type,
 //! so REAL arithmetic stays in float registers); its shape before every
-//! instruction is computed first, as the verifier does. Every point where
+//! instruction follows from the verifier's shapes at labels. Every point where
 //! the interpreter could fault, and every block entry where the watchdog
 //! budget would run out inside the block, leads to a cold *bail-out* that
 //! writes the stack, locals, promoted cells, reference and budget into the
@@ -10,7 +10,8 @@
 
 use super::plan::{Plan, REAL};
 use super::{Entry, Frame};
-use crate::isa::{Kind, Op};
+use crate::isa::Op;
+use crate::verify::Shape as LabelShape;
 use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{types, AbiParam, Block, InstBuilder, MemFlags, Type, Value};
 use cranelift_codegen::isa::CallConv;
@@ -30,61 +31,41 @@ pub(super) enum Ty {
 /// Deepest numeric stack the tier compiles.
 const MAX_DEPTH: usize = 256;
 
-fn result_ty(op: &Op) -> Ty {
-    match op {
-        Op::Call { ret, .. } if Kind::from_bits(u32::from(*ret)) == Kind::Real => Ty::F,
-        _ if op.has(crate::isa::Flag::Real) => Ty::F,
-        _ => Ty::I,
-    }
-}
-
 /// Whether control never falls through to the next instruction.
 fn ends_block(op: &Op) -> bool {
     matches!(op, Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {} | Op::Return { .. })
 }
 
-/// What may follow an instruction.
-fn successors(op: &Op, pc: usize) -> Vec<usize> {
-    match *op {
-        Op::Jump { to } => vec![to as usize],
-        Op::JumpIfFalse { to } | Op::JumpIfTrue { to } => vec![pc + 1, to as usize],
-        Op::Ret {} | Op::Return { .. } => vec![],
-        _ => vec![pc + 1],
-    }
-}
-
 /// The stack types before each instruction (`None`: unreachable); index
-/// `ops.len()` is "ran off the end". `None` overall when the shapes do not
-/// agree at a join or a jump leaves the code.
-fn analyse(ops: &[Op]) -> Option<Vec<Option<Vec<Ty>>>> {
-    let mut states: Vec<Option<Vec<Ty>>> = vec![None; ops.len() + 1];
-    states[0] = Some(Vec::new());
-    let mut work = vec![0usize];
-    while let Some(pc) = work.pop() {
-        let Some(op) = ops.get(pc) else { continue };
-        let mut st = states[pc].clone()?;
-        let e = op.effect();
-        for _ in 0..e.num_pop {
-            st.pop()?;
-        }
-        if e.num_push == 1 {
-            st.push(result_ty(op));
-        }
-        if st.len() > MAX_DEPTH {
-            return None;
-        }
-        for t in successors(op, pc) {
-            let slot = states.get_mut(t)?;
-            match slot {
-                None => {
-                    *slot = Some(st.clone());
-                    work.push(t);
-                }
-                Some(s) if *s == st => {}
-                Some(_) => return None,
+/// `ops.len()` is "ran off the end". Where paths meet (at labels) the types
+/// are the verifier's (`shapes`, sorted by instruction), and straight code
+/// follows from them, so the tier does no flow analysis of its own. `None`
+/// overall when the verifier found different types meeting at a label, or
+/// a stack deeper than it types.
+fn stack_types(ops: &[Op], shapes: &[(u32, LabelShape)]) -> Option<Vec<Option<Vec<Ty>>>> {
+    let mut states: Vec<Option<Vec<Ty>>> = Vec::with_capacity(ops.len() + 1);
+    let mut at = shapes.iter().peekable();
+    let mut cur = Some(Vec::new());
+    for (pc, op) in ops.iter().enumerate() {
+        if let Some(&(_, shape)) = at.next_if(|(p, _)| *p as usize == pc) {
+            if !shape.known || shape.depth as usize > MAX_DEPTH {
+                return None;
             }
+            cur = Some((0..shape.depth).map(|i| if shape.reals >> i & 1 == 1 { Ty::F } else { Ty::I }).collect());
+        }
+        states.push(cur.clone());
+        let Some(mut st) = cur.take() else { continue };
+        let e = op.effect();
+        st.truncate(st.len().checked_sub(e.num_pop as usize)?);
+        if e.num_push == 1 {
+            st.push(if op.pushes_real() { Ty::F } else { Ty::I });
+        }
+        // Only a jump or a return never falls through.
+        if !matches!(op, Op::Jump { .. } | Op::Ret {} | Op::Return { .. }) {
+            cur = Some(st);
         }
     }
+    states.push(cur);
     Some(states)
 }
 
@@ -100,12 +81,12 @@ fn new_module() -> Option<JITModule> {
 /// Compiles `ops`; returns the entry point, the module owning its code and
 /// the deepest stack a bail-out can write.
 pub(super) fn emit(
-    ops: &[Op],
+    (ops, shapes): (&[Op], &[(u32, LabelShape)]),
     plan: &Plan,
     (locals, retained): (usize, usize),
     traced: bool,
 ) -> Option<(Entry, JITModule, usize)> {
-    let states = analyse(ops)?;
+    let states = stack_types(ops, shapes)?;
     let max_depth = states.iter().flatten().map(Vec::len).max().unwrap_or(0);
     let mut module = new_module()?;
     let ptr = module.target_config().pointer_type();

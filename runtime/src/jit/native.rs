@@ -83,7 +83,8 @@ pub(super) fn compile_as(
     let plan = Plan::new(ops, &prog.targets, store, traced)?;
     let locals = usize::from(code.locals);
     let retained = usize::from(unit.retained);
-    let (entry, module, max_depth) = emit::emit(ops, &plan, (locals, retained), traced)?;
+    let shapes = linked.shapes(program, block);
+    let (entry, module, max_depth) = emit::emit((ops, shapes), &plan, (locals, retained), traced)?;
     Some(Compiled { entry, module: Some(module), plan, max_depth, locals, retained })
 }
 
