@@ -46,18 +46,12 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     let extra =
         crate::sequence_src::Extra { map: bound.as_ref(), allow_unmapped: o.allow_unmapped, resources: o.resources };
     let input = if o.transition { Input::Transition } else { Input::Actions };
+    // A sequence checked with a map, its resources or its tree goes through
+    // the sequence front end's own options; every other file, whatever its
+    // kind, through the session.
+    let sequence_options = bound.is_some() || o.allow_unmapped || o.resources.is_some() || o.tree;
     for path in &o.files {
-        if linc_driver::source::is_fst(path) {
-            match crate::fst_src::check(path, resolve_blocks.then_some(&db), r) {
-                Ok(c) => {
-                    errors += c.errors;
-                    warnings += c.warnings;
-                }
-                Err(()) => status = 2,
-            }
-            continue;
-        }
-        if linc_driver::source::is_sequence(path) {
+        if sequence_options && linc_driver::source::is_sequence(path) {
             let seq_db = bound.as_ref().map_or(&db, |b| &b.db);
             let ctx = Context { db: seq_db, resolve_blocks, steps: None };
             match crate::sequence_src::check_with(path, ctx, &extra, (false, o.tree), r) {

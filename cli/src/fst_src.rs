@@ -1,31 +1,10 @@
-//! FST tables (`.csv`, as ROCLINK 800 exports them) for `linc check` and
-//! `linc fst list`: read through the driver, checked by the compiler's FST
-//! front end, diagnostics reported, the listing printed.
+//! `linc fst list`: an FST table (`.csv`, as ROCLINK 800 exports it) read
+//! through the driver and listed as the FST Editor shows it (`linc check`
+//! checks tables in the compile session like any source).
 
 use linc_compiler::fst;
 use linc_driver::{source, Reporter};
-use linc_runtime::Database;
 use std::path::Path;
-
-/// What checking one table gave.
-pub struct Checked {
-    pub errors: usize,
-    pub warnings: usize,
-}
-
-/// Reads and checks one table (against the database, when there is one),
-/// reporting its diagnostics. `Err` is an I/O failure, reported.
-pub fn check(path: &Path, db: Option<&Database>, r: &mut Reporter) -> Result<Checked, ()> {
-    let (text, files, id) = source::read(path, r).map_err(|_| ())?;
-    let Some(text) = text else {
-        return Ok(Checked { errors: 1, warnings: 0 });
-    };
-    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("fst");
-    let (diagnostics, _) = fst::compile(&text, stem, &path.display().to_string(), db);
-    let errors = diagnostics.iter().filter(|d| d.is_error()).count();
-    r.emit_all(&files, &diagnostics.iter().map(|d| d.clone().in_file(id)).collect::<Vec<_>>());
-    Ok(Checked { errors, warnings: diagnostics.len() - errors })
-}
 
 /// `linc fst list TABLE.csv [--db DB]`: the table as the FST Editor shows
 /// it, with each step's instruction offset when a database lets it compile.

@@ -49,10 +49,14 @@ fn errors_are_located_at_their_cell() {
     let out = stderr(&o);
     assert!(out.contains("bad.csv:2:8: error[E0421]"), "{out}");
     assert!(out.contains("bad.csv:3:7: error[E0407]"), "{out}");
-    // Compiling a table needs its point database.
+    // Compiling a table needs its point database, and is done on its own.
     let o = linc(&["compile", "examples/fst/alarm.csv", "-o", &temp("a.sto")]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("pass --db"), "{}", stderr(&o));
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("error[E0025]") && stderr(&o).contains("--db"), "{}", stderr(&o));
+    let both = ["compile", "examples/fst/alarm.csv", "examples/guide/control.stx", "--db", PLANT, "-o", &temp("b.sto")];
+    let o = linc(&both);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("error[E0024]: `examples/fst/alarm.csv` is an FST table"), "{}", stderr(&o));
 }
 
 /// Runs the example strategy for a day; returns stdout and the output database.

@@ -26,6 +26,7 @@ pub mod render;
 pub mod scenario;
 pub mod session;
 pub mod sfc;
+pub mod source_kind;
 pub mod span;
 pub mod token;
 

@@ -17,6 +17,7 @@ use crate::hir;
 use crate::lower::{self, Lines, Unit};
 use crate::parse_support::Item;
 use crate::parser::{self, ParseErrors};
+use crate::source_kind::{self, SourceKind};
 use crate::span::{FileId, Span};
 use linc_format::Code;
 use linc_format::ObjectFile;
@@ -173,7 +174,8 @@ fn plural(n: usize) -> &'static str {
 pub struct Session<'a> {
     ctx: Context<'a>,
     files: SourceFiles,
-    objects: Vec<bool>,
+    /// Each file's kind ([`SourceKind`]), by file id.
+    kinds: Vec<SourceKind>,
     /// Action names seen so far, in upper case, with where each was first defined.
     actions: HashMap<String, (FileId, Span), FastHash>,
     limits: Option<Limits>,
@@ -190,7 +192,7 @@ impl<'a> Session<'a> {
         Session {
             ctx,
             files: SourceFiles::new(),
-            objects: Vec::new(),
+            kinds: Vec::new(),
             actions: HashMap::default(),
             limits: Some(Limits::default()),
             programs: None,
@@ -226,17 +228,58 @@ impl<'a> Session<'a> {
     /// bytes that are not UTF-8 are replaced one for one and reported when
     /// the file is checked.
     pub fn add(&mut self, name: impl Into<String>, bytes: Vec<u8>) -> FileId {
-        let object = bytes.starts_with(linc_format::object::MAGIC);
+        let name = name.into();
+        let kind = SourceKind::of(&name, &bytes);
+        let object = kind == SourceKind::Object && bytes.starts_with(linc_format::object::MAGIC);
         let (text, invalid) = if object { (String::new(), Vec::new()) } else { files::decode(bytes) };
-        self.objects.push(object);
-        self.files.add_decoded(name.into(), text, invalid)
+        self.kinds.push(if object { SourceKind::Object } else { kind });
+        self.files.add_decoded(name, text, invalid)
+    }
+
+    /// The kind of a file added to the session.
+    pub fn kind(&self, file: FileId) -> SourceKind {
+        self.kinds.get(file.index()).copied().unwrap_or(SourceKind::Actions)
+    }
+
+    /// Checks a sequence or an FST table: each is a unit of its own.
+    fn check_alone(&mut self, file: FileId, kind: SourceKind) -> Checked {
+        let mut checked = Checked { file, diagnostics: Vec::new(), tree: None, expr: None };
+        let Some(source) = self.files.file(file) else { return checked };
+        let not_utf8 = SessionError::not_utf8(source.invalid_bytes()).map(|e| e.to_diagnostic().in_file(file));
+        checked.diagnostics.extend(not_utf8);
+        if checked.diagnostics.is_empty() {
+            let found = source_kind::check_alone(kind, source.name(), source.text(), self.ctx);
+            checked.diagnostics.extend(found.into_iter().map(|d| d.in_file(file)));
+        }
+        self.failed |= checked.has_errors();
+        checked
+    }
+
+    /// Compiles the session's one sequence or FST table.
+    fn compile_alone(&mut self, file: FileId, kind: SourceKind) -> Result<ObjectFile, Vec<Diagnostic>> {
+        if self.kinds.len() > 1 {
+            let name = self.files.file(file).map(|f| f.name().to_string()).unwrap_or_default();
+            return Err(vec![source_kind::not_alone(kind, &name)]);
+        }
+        if self.failed {
+            return Err(Vec::new());
+        }
+        let Some(source) = self.files.file(file) else { return Err(Vec::new()) };
+        source_kind::compile_alone(kind, source.name(), source.text(), self.ctx).map_err(|found| {
+            // An error about the command (no database) stays without a file.
+            found.into_iter().map(|d| if d.file == FileId::NONE { d } else { d.in_file(file) }).collect()
+        })
     }
 
     /// Checks one file.
     pub fn check(&mut self, file: FileId, options: CheckOptions) -> Checked {
         let mut checked = Checked { file, diagnostics: Vec::new(), tree: None, expr: None };
+        let kind = self.kind(file);
+        if kind.stands_alone() {
+            return self.check_alone(file, kind);
+        }
         let Some(source) = self.files.file(file) else { return checked };
-        if self.objects.get(file.index()).copied().unwrap_or(false) {
+        if kind == SourceKind::Object {
             let name = source.name().to_string();
             checked.diagnostics.push(SessionError::ObjectFile { name }.to_diagnostic().in_file(file));
             self.failed = true;
@@ -316,6 +359,9 @@ impl<'a> Session<'a> {
     /// errors (they were reported when it was checked) or nothing was kept.
     /// The programs are handed over: a second call gives an empty `Err`.
     pub fn compile(&mut self) -> Result<ObjectFile, Vec<Diagnostic>> {
+        if let Some(i) = self.kinds.iter().position(|k| k.stands_alone()) {
+            return self.compile_alone(FileId(i as u32), self.kinds[i]);
+        }
         if let Some(stream) = self.stream.take() {
             if self.failed {
                 return Err(Vec::new());

@@ -155,3 +155,46 @@ fn a_misspelt_block_is_an_unknown_name_not_a_step() {
     );
     assert_eq!(d[0].help, ["did you mean `PIC_004`?"]);
 }
+
+/// One session classifies every source (issue 16): action and ladder files
+/// are checked together, a sequence and an FST table each alone, and
+/// compiling takes one of those only on its own.
+#[test]
+fn one_session_checks_and_compiles_every_kind_of_source() {
+    use linc_compiler::source_kind::SourceKind;
+    let db = Database::from_json(include_str!("../../examples/sequences/plant.json")).expect("db");
+    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let seq = "INITIAL_STEP S0: Count(N); END_STEP\nACTION Count\n    R1.Batches := R1.Batches + 1;\nEND_ACTION\n";
+    let mut s = Session::compiling(ctx);
+    let id = s.add("batch.sfc", seq.as_bytes().to_vec());
+    assert_eq!(s.kind(id), SourceKind::Sequence);
+    assert!(s.check(id, CheckOptions::default()).diagnostics.is_empty());
+    let object = s.compile().expect("a sequence alone compiles");
+    assert_eq!(object.units.len(), 1);
+    // A sequence with an error is reported like any source, in its file.
+    let mut s = Session::compiling(ctx);
+    let id = s.add("bad.sfc", b"INITIAL_STEP S0: Nope(N); END_STEP\n".to_vec());
+    let d = s.check(id, CheckOptions::default()).diagnostics;
+    assert!(d.iter().any(|d| d.is_error() && d.file == id), "{d:?}");
+    assert!(s.compile().is_err());
+    // With another file: E0024 at compile time (checking each is fine).
+    let mut s = Session::compiling(ctx);
+    let a = s.add("batch.sfc", seq.as_bytes().to_vec());
+    let b = s.add("count.stx", b"R1.Batches := 0;\n".to_vec());
+    assert_eq!((s.kind(a), s.kind(b)), (SourceKind::Sequence, SourceKind::Actions));
+    assert!(s.check(a, CheckOptions::default()).diagnostics.is_empty());
+    assert!(s.check(b, CheckOptions::default()).diagnostics.is_empty());
+    let e = s.compile().expect_err("not alone");
+    assert_eq!(e.iter().map(|d| d.code.as_str()).collect::<Vec<_>>(), ["E0024"]);
+    // An FST table without a database: checked for its form, not compiled.
+    let table = "STEP,LABEL,CMD,ARGUMENT1,ARGUMENT2,COMMENT\n0,,VAL,1,,\n1,,END,,,\n";
+    let bare = Context { resolve_blocks: false, ..ctx };
+    let mut s = Session::compiling(bare);
+    let id = s.add("t.csv", table.as_bytes().to_vec());
+    assert_eq!(s.kind(id), SourceKind::FstTable);
+    assert!(s.check(id, CheckOptions::default()).diagnostics.is_empty());
+    let e = s.compile().expect_err("no points");
+    assert_eq!(e.iter().map(|d| d.code.as_str()).collect::<Vec<_>>(), ["E0025"]);
+    // An object is never a source, whatever its name.
+    assert_eq!(SourceKind::of("x.stx", linc_format::object::MAGIC), SourceKind::Object);
+}

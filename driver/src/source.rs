@@ -5,26 +5,28 @@
 
 use crate::Reporter;
 use linc_compiler::render::SourceFiles;
+use linc_compiler::source_kind::SourceKind;
 use linc_compiler::FileId;
 use std::path::Path;
 
-fn extension_is(path: &Path, ext: &str) -> bool {
-    path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case(ext))
+/// The kind of source a path names, by its name (the compiler decides).
+pub fn kind(path: &Path) -> SourceKind {
+    SourceKind::of(&path.to_string_lossy(), &[])
 }
 
 /// Whether a path names a sequence source (`.sfc`).
 pub fn is_sequence(path: &Path) -> bool {
-    extension_is(path, "sfc")
+    kind(path) == SourceKind::Sequence
 }
 
 /// Whether a path names an FST table (`.csv`, as ROCLINK 800 exports it).
 pub fn is_fst(path: &Path) -> bool {
-    extension_is(path, "csv")
+    kind(path) == SourceKind::FstTable
 }
 
 /// Whether a path names a compiled object (`.sto`).
 pub fn is_object(path: &Path) -> bool {
-    extension_is(path, "sto")
+    kind(path) == SourceKind::Object
 }
 
 /// Reads `path` as a source: its text (`None` when it is not UTF-8, which

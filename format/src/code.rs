@@ -69,6 +69,8 @@ codes! {
     E0021 => "statements nested too deeply",
     E0022 => "expression nested too deeply",
     E0023 => "more errors in a file than are shown",
+    E0024 => "sequence or FST table compiled with other files",
+    E0025 => "FST table compiled without its point database",
     W0001 => "last statement without a semicolon",
     E0100 => "unknown name",
     E0101 => "unknown field",
