@@ -5,9 +5,9 @@
 use crate::run_cmd::Common;
 use crate::strategy_cmd::{self, Options as StrategyOptions};
 use linc_driver::Reporter;
+use linc_engines::console::{Console, ConsoleError};
+use linc_engines::strategy::trace::Trace;
 use linc_format::Code;
-use linc_runtime::console::{Console, ConsoleError};
-use linc_runtime::strategy::trace::Trace;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 

@@ -35,7 +35,7 @@ pub struct Options {
     pub common: Common,
 }
 
-pub use linc_runtime::console::fields::show_value;
+pub use linc_engines::console::fields::show_value;
 
 pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     // `--out` and `--trace FILE` may not replace an input or anything but a

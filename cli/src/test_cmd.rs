@@ -1,7 +1,7 @@
 //! `linc test [PATH…]`: runs scenario files (`*.ltest`, a directory is
 //! searched) and reports like `cargo test`. The scenario language is the
 //! compiler's (`linc_compiler::scenario`), running it the runtime's
-//! (`linc_runtime::scenario`); this reads files, builds strategies, runs
+//! (`linc_engines::scenario`); this reads files, builds strategies, runs
 //! scenarios on all cores and prints (`docs/testing.md`).
 
 use crate::report::usage;

@@ -39,7 +39,7 @@ pub fn junit(outcomes: &[Outcome]) -> String {
         let classname =
             Path::new(&o.name).parent().map(|p| p.display().to_string().replace('/', ".")).unwrap_or_default();
         out.push_str(&format!("    <testcase name=\"{}\" classname=\"{}\"", xml(&o.name), xml(&classname)));
-        let simulated = linc_runtime::scenario::time(o.report.end_us);
+        let simulated = linc_engines::scenario::time(o.report.end_us);
         let summary = format!("simulated {simulated}, {} scans", o.report.scans);
         if o.passed {
             out.push_str(&format!(">\n      <system-out>{}</system-out>\n    </testcase>\n", xml(&summary)));

@@ -232,7 +232,7 @@ fn sources(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
 fn no_source_writes_an_error_by_hand() {
     let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
     let mut files = Vec::new();
-    for krate in ["cli/src", "driver/src", "compiler/src", "runtime/src", "stdlib/src"] {
+    for krate in ["cli/src", "driver/src", "compiler/src", "format/src", "runtime/src", "engines/src", "stdlib/src"] {
         sources(&root.join(krate), &mut files);
     }
     let hand: Vec<String> = files

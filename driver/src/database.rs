@@ -6,8 +6,8 @@ use crate::report::usage;
 use crate::Reporter;
 use linc_compiler::render::SourceFiles;
 use linc_compiler::Diagnostic;
+use linc_engines::console::fields::{address, set, Addr};
 use linc_format::Code;
-use linc_runtime::console::fields::{address, set, Addr};
 use linc_runtime::{text, Database, Store};
 use std::path::Path;
 
@@ -80,7 +80,7 @@ pub fn duration(text: &str) -> Result<u64, String> {
             "--for `{text}`: the duration must be at least the clock's microsecond (1us) and at most 366 days"
         ));
     }
-    Ok(linc_runtime::strategy::micros(secs))
+    Ok(linc_engines::strategy::micros(secs))
 }
 
 /// Writes the database with the store's values, in the input's JSON shape.

@@ -7,9 +7,9 @@
 use crate::Reporter;
 use linc_compiler::render::{Format, SourceFiles};
 use linc_compiler::scenario::{self, Action, How, Target};
+use linc_engines::scenario::{Check, Report, Step};
+use linc_engines::strategy::{Strategy, Want};
 use linc_format::Code;
-use linc_runtime::scenario::{Check, Report, Step};
-use linc_runtime::strategy::{Strategy, Want};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::Store;
 use std::path::{Path, PathBuf};
@@ -91,8 +91,8 @@ pub fn run_one(file: &Path, vcd: bool) -> Outcome {
     }
     let watch = if vcd { watched(&sc) } else { Vec::new() };
     strategy.store.now = START;
-    let mut console = linc_runtime::console::Console::new(strategy);
-    let report = linc_runtime::scenario::run(&mut console, steps, &watch);
+    let mut console = linc_engines::console::Console::new(strategy);
+    let report = linc_engines::scenario::run(&mut console, steps, &watch);
     let details = details(&name, &report);
     Outcome { name, passed: report.failures.is_empty(), details, report }
 }
@@ -102,7 +102,7 @@ fn details(name: &str, r: &Report) -> String {
     let mut out = String::new();
     for f in &r.failures {
         let line = if f.line == 0 { String::new() } else { format!(":{}", f.line) };
-        out.push_str(&format!("{name}{line}: at {}: {}\n", linc_runtime::scenario::time(f.at_us), f.message));
+        out.push_str(&format!("{name}{line}: at {}: {}\n", linc_engines::scenario::time(f.at_us), f.message));
         for (field, value) in &f.values {
             out.push_str(&format!("    {field} = {value}\n"));
         }
@@ -197,14 +197,14 @@ fn build(dir: &Path, target: Option<&Target>, r: &mut Reporter) -> Result<Strate
     let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
     let store = Store::new(db.clone());
     let wants: Vec<Want> = match &single {
-        None => linc_runtime::strategy::wanted(&store),
+        None => linc_engines::strategy::wanted(&store),
         Some(file) => {
             let kind = crate::single::Kind::of(file);
             let block = crate::single::find_block(&db, None, kind).map_err(|d| r.emit_own(*d))?;
             vec![crate::single::want_for(file, kind, block)]
         }
     };
-    let located = |e: &linc_runtime::strategy::StrategyError| {
+    let located = |e: &linc_engines::strategy::StrategyError| {
         crate::strategy::strategy_diagnostic(linc_compiler::FileId(0), &db_text, e)
     };
     if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {

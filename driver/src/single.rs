@@ -4,10 +4,10 @@
 //! `--show Step.X` / `Step.T`.
 
 use linc_compiler::Diagnostic;
+use linc_engines::sequence::Sequence;
+use linc_engines::strategy::{Want, WantKind};
 use linc_format::Code;
 use linc_runtime::db::Task;
-use linc_runtime::sequence::Sequence;
-use linc_runtime::strategy::{Want, WantKind};
 use linc_runtime::Database;
 use std::path::PathBuf;
 

@@ -5,7 +5,7 @@
 //! while saving leaves the last good state in place.
 
 use crate::Reporter;
-use linc_runtime::strategy::Strategy;
+use linc_engines::strategy::Strategy;
 use std::io;
 use std::path::Path;
 

@@ -370,3 +370,12 @@ pub fn class_of(ty: &crate::db::FieldType) -> Class {
 
 /// Deepest nesting of chart actions an object may have.
 pub const MAX_CHART_DEPTH: usize = 32;
+
+/// The action qualifiers a chart's association may hold, as stored (one
+/// letter each, IEC 61131-3's N, P, L, D, E, F, S and R).
+pub const QUALIFIERS: &[u8] = b"NPLDEFSR";
+
+/// Whether `letter` is a stored qualifier (either case).
+pub fn is_qualifier(letter: u8) -> bool {
+    QUALIFIERS.contains(&letter.to_ascii_uppercase())
+}

@@ -1,22 +1,21 @@
-//! The linc runtime: the function-block database, the instruction set, the
-//! `.sto` object format with its verifier and linker, and the VM that runs
-//! compiled programs against a live database.
+//! The linc runtime: the verifier and linker of `.sto` objects, the live
+//! store of a database, the VM that runs programs against it (with its
+//! compiling tier, feature `jit`) and the ROC device state FST programs
+//! use. The engines that schedule programs (strategies, sequences, FST
+//! tables, the console, scenarios) are `linc-engines`, above this crate;
+//! the format both read is `linc-format`, beneath it (ADR 0013).
 //!
 //! Lifecycle, in the types (ADR 0005): bytes → [`ObjectFile::from_bytes`]
 //! (framing, checksum) → [`verify::verify`] → [`Verified`] →
 //! [`Verified::link`] to a [`Store`] → [`Linked`] → [`vm::Vm::run`] of an
 //! [`vm::Activation`] that the caller owns. [`load`] does the first two.
 
-pub mod console;
 pub use linc_format::{db, isa, object, records, text, wire};
 pub mod errors;
 pub mod jit;
 pub mod link;
 pub mod roc;
-pub mod scenario;
-pub mod sequence;
 pub mod store;
-pub mod strategy;
 pub mod verify;
 mod verify_chart;
 pub mod vm;

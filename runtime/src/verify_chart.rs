@@ -6,7 +6,6 @@
 use crate::errors::LoadError;
 use crate::isa::{Kind, Op};
 use crate::object::{ChartRec, Unit, UnitKind};
-use crate::sequence::chart::qualifier_of;
 use linc_format::Code;
 
 pub use linc_format::object::MAX_CHART_DEPTH;
@@ -90,7 +89,7 @@ fn check_steps(u: &Unit, c: &ChartRec) -> Result<(), LoadError> {
             return Err(bad(u, format!("step `{}` has no retained slots for .X and .T", s.name)));
         }
         for a in &s.assocs {
-            if usize::from(a.action) >= c.actions.len() || qualifier_of(a.qualifier).is_none() {
+            if usize::from(a.action) >= c.actions.len() || !crate::object::is_qualifier(a.qualifier) {
                 return Err(bad(u, format!("step `{}` has an association out of range", s.name)));
             }
         }

@@ -109,12 +109,12 @@ impl Activation {
     }
 
     /// The resume point and the locals kept with it (a saved state).
-    pub(crate) fn resume_point(&self) -> (Option<u32>, &[u32]) {
+    pub fn resume_point(&self) -> (Option<u32>, &[u32]) {
         (self.resume, &self.locals)
     }
 
     /// Resumes at `at` with `locals` at the next run (a restored state).
-    pub(crate) fn set_resume_point(&mut self, at: Option<u32>, locals: Vec<u32>) {
+    pub fn set_resume_point(&mut self, at: Option<u32>, locals: Vec<u32>) {
         self.resume = at;
         self.locals = locals;
     }
@@ -134,7 +134,7 @@ impl Activation {
 /// `Pause`. Those are the only places a run suspends, and the verifier
 /// checks that both stacks are empty there (a restored state is checked
 /// against this).
-pub(crate) fn can_resume_at(ops: &[Op], at: usize) -> bool {
+pub fn can_resume_at(ops: &[Op], at: usize) -> bool {
     matches!(ops.get(at), Some(Op::Step { .. }))
         || at.checked_sub(1).and_then(|p| ops.get(p)).is_some_and(|op| matches!(op, Op::Yield {} | Op::Pause { .. }))
 }
@@ -171,7 +171,7 @@ pub const DEFAULT_STRING_BUDGET: usize = 16 << 20;
 /// The random generator and clock the library sees.
 #[derive(Clone, Debug)]
 pub struct Clock {
-    pub(crate) state: u64,
+    pub state: u64,
     /// Seconds to add to system time for local time.
     pub utc_offset: i64,
     now: f64,

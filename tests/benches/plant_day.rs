@@ -5,7 +5,7 @@
 //! second; prints the best of five runs each.
 
 use linc_conformance::exec::compile;
-use linc_runtime::strategy::{wanted, Strategy};
+use linc_engines::strategy::{wanted, Strategy};
 use linc_runtime::vm::{Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{Database, Store};
 use std::time::Instant;

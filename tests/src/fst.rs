@@ -1,8 +1,8 @@
 //! Running FST tables in tests: a table and a ROC database in, a strategy
 //! out, built the way `linc run TABLE.csv --db DB.json` builds it.
 
+use linc_engines::strategy::{trace::Trace, Strategy, Want, WantKind};
 use linc_runtime::store::Cell;
-use linc_runtime::strategy::{trace::Trace, Strategy, Want, WantKind};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::{Database, Store};
 

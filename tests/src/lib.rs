@@ -147,13 +147,13 @@ pub mod exec {
 
     /// A strategy of the database `db` (JSON) whose action-type blocks all
     /// name actions of the one action file `actions`, its clock at 10^6 s.
-    pub fn strategy(db: &str, actions: &str) -> linc_runtime::strategy::Strategy {
+    pub fn strategy(db: &str, actions: &str) -> linc_engines::strategy::Strategy {
         let db = Database::from_json(db).unwrap_or_else(|e| panic!("db: {e}"));
         let object = linc_runtime::load(&compile(actions, &db)).expect("loads");
         let store = Store::new(db);
-        let wants: Vec<_> = linc_runtime::strategy::wanted(&store).into_iter().map(|w| (w, 0)).collect();
+        let wants: Vec<_> = linc_engines::strategy::wanted(&store).into_iter().map(|w| (w, 0)).collect();
         let vm = Vm::new(100_000, Clock::new(1, 0));
-        linc_runtime::strategy::Strategy::build(store, vec![object], &wants, vm, 1_000_000.0)
+        linc_engines::strategy::Strategy::build(store, vec![object], &wants, vm, 1_000_000.0)
             .unwrap_or_else(|e| panic!("build: {e}"))
     }
 

@@ -2,8 +2,8 @@
 //! against every write path of the VM and the engine, dropped writes are
 //! traced, and the console's contract (`;` lines, failures, programs).
 use linc_conformance::exec::strategy;
-use linc_runtime::console::Console;
-use linc_runtime::strategy::{micros, trace::Trace, ProgramState};
+use linc_engines::console::Console;
+use linc_engines::strategy::{micros, trace::Trace, ProgramState};
 
 const DB: &str = r#"{
   "templates": { "T": { "fields": {

@@ -5,8 +5,8 @@
 
 use linc_conformance::exec::compile;
 use linc_conformance::rng::Rng;
-use linc_runtime::console::Console;
-use linc_runtime::strategy::{Strategy, Want, WantKind};
+use linc_engines::console::Console;
+use linc_engines::strategy::{Strategy, Want, WantKind};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::{Database, Store};
 

@@ -6,7 +6,7 @@
 use linc_conformance::fst::{num, run, table, text, traced, POINTS};
 
 /// Runs rows for one cycle (time 0 only).
-fn once(rows: &[&str], fst: &str) -> linc_runtime::strategy::Strategy {
+fn once(rows: &[&str], fst: &str) -> linc_engines::strategy::Strategy {
     run(&table(rows), fst, 50)
 }
 
@@ -597,10 +597,10 @@ fn ip_points_at_the_next_step_to_run() {
 
 #[test]
 fn a_table_stopped_and_started_again_begins_at_step_0_at_once() {
-    use linc_runtime::strategy::ProgramState;
+    use linc_engines::strategy::ProgramState;
     // Each pass counts in R1, then sleeps 10 s.
     let t = table(&[",VAL,\"FST 1,R1\",", ",+,1,", ",SAV,\"FST 1,R1\",", ",WT,10,", ",END,,"]);
-    let runflg = |s: &mut linc_runtime::strategy::Strategy, v: i32| {
+    let runflg = |s: &mut linc_engines::strategy::Strategy, v: i32| {
         let c = s.store.cell_of(s.store.db.block("FST 1").unwrap(), "RUNFLG").unwrap();
         s.store.cells[c as usize] = linc_runtime::store::Cell::Int(v);
     };
@@ -647,14 +647,14 @@ fn a_missing_point_stops_the_table_with_run_flag_5() {
     let other = linc_runtime::Database::from_json(&text).expect("database");
     let store = linc_runtime::Store::new(other);
     let block = store.db.block("FST 1").unwrap();
-    let want = linc_runtime::strategy::Want {
+    let want = linc_engines::strategy::Want {
         block,
         file: "t.csv".into(),
         action: String::new(),
-        kind: linc_runtime::strategy::WantKind::Fst,
+        kind: linc_engines::strategy::WantKind::Fst,
     };
     let vm = linc_runtime::vm::Vm::new(1_000_000, linc_runtime::vm::Clock::new(1, 0));
-    let mut s = linc_runtime::strategy::Strategy::build(store, vec![verified], &[(want, 0)], vm, 0.0).expect("links");
+    let mut s = linc_engines::strategy::Strategy::build(store, vec![verified], &[(want, 0)], vm, 0.0).expect("links");
     let errors = s.run_for(250_000, None);
     assert_eq!(errors.len(), 1, "stopped once, not at every cycle");
     assert_eq!(errors[0].code, "R0010");

@@ -9,7 +9,7 @@
 
 use linc_conformance::fst::{table, START};
 use linc_conformance::rng::Rng;
-use linc_runtime::strategy::{Strategy, Want, WantKind};
+use linc_engines::strategy::{Strategy, Want, WantKind};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::{Database, Store};
 

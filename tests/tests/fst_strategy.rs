@@ -5,7 +5,7 @@
 
 use linc_conformance::exec::compile;
 use linc_conformance::fst::{num, table, START};
-use linc_runtime::strategy::{Strategy, Want, WantKind};
+use linc_engines::strategy::{Strategy, Want, WantKind};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::{Database, Store};
 

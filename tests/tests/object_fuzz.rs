@@ -507,7 +507,7 @@ fn mutate_object(rng: &mut Rng, obj: &mut ObjectFile, other: &ObjectFile) -> &'s
 
 /// Runs a linked sequence unit through the engine for a few scans.
 fn exercise_sequence(linked: &linc_runtime::Linked, vm: &mut Vm, store: &mut Store, t: &mut Tally) {
-    use linc_runtime::sequence::{chart::Chart, host::VmHost, Command, Sequence};
+    use linc_engines::sequence::{chart::Chart, host::VmHost, Command, Sequence};
     let Some(unit) = linked.unit(0) else { return };
     let mut seq = Sequence::new(Chart::from_unit(unit, 0));
     seq.command(Command::Run);

@@ -5,8 +5,8 @@
 //! every 100 ms scan; the driver here has no console commands.
 
 use linc_conformance::exec::compile;
-use linc_runtime::scenario::{run, Check, Driver, Report, Step};
-use linc_runtime::strategy::{Strategy, Want, WantKind};
+use linc_engines::scenario::{run, Check, Driver, Report, Step};
+use linc_engines::strategy::{Strategy, Want, WantKind};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::{Database, Store};
 
@@ -179,7 +179,7 @@ fn expectations_are_set_up_in_linear_time() {
 fn go_console(action: &str, steps: impl FnOnce(&Strategy) -> Vec<Step>) -> Report {
     let s = strategy(action);
     let steps = steps(&s);
-    run(&mut linc_runtime::console::Console::new(s), steps, &["REC.N0".to_string()])
+    run(&mut linc_engines::console::Console::new(s), steps, &["REC.N0".to_string()])
 }
 
 #[test]

@@ -3,13 +3,13 @@
 //! reads. The charts are written here as object tables (the `.sfc` front
 //! end will produce the same).
 use linc_conformance::guide_db;
+use linc_engines::sequence::chart::Chart;
+use linc_engines::sequence::host::{Traced, VmHost};
+use linc_engines::sequence::{Command, Sequence};
 use linc_runtime::isa::Op::{self, *};
 use linc_runtime::object::{
     ActionRec, AssocRec, ChartRec, Class, CodeBlock, ObjectFile, StepRec, Sub, Symbol, TransitionRec, Unit, UnitKind,
 };
-use linc_runtime::sequence::chart::Chart;
-use linc_runtime::sequence::host::{Traced, VmHost};
-use linc_runtime::sequence::{Command, Sequence};
 use linc_runtime::store::Store;
 use linc_runtime::vm::{Activation, Clock, Vm};
 use linc_runtime::wire::Code;
@@ -87,7 +87,7 @@ fn a_sequence_unit_runs_its_code_blocks_and_code_reads_step_flags() {
     let mut act = Activation::new(&linked, 0, 0);
     let mut vm = Vm::new(10_000, Clock::new(1, 0));
     let mut out = Vec::new();
-    let mut trace = linc_runtime::strategy::trace::Trace::new(&mut out, &store);
+    let mut trace = linc_engines::strategy::trace::Trace::new(&mut out, &store);
     for second in 0..5u64 {
         let traced = Traced { trace: &mut trace, now_us: second * 1_000_000, task: 1, program: "SEQ" };
         let mut host = VmHost { vm: &mut vm, linked: &linked, act: &mut act, store: &mut store, trace: Some(traced) };
@@ -138,13 +138,13 @@ fn the_verifier_checks_every_chart_table() {
 }
 
 /// A strategy with one SFC_CON block running `sequence()` every second.
-fn strategy(run: bool) -> linc_runtime::strategy::Strategy {
+fn strategy(run: bool) -> linc_engines::strategy::Strategy {
     strategy_of(sequence(), run)
 }
 
 /// A strategy with one SFC_CON block running `obj` every second.
-fn strategy_of(obj: ObjectFile, run: bool) -> linc_runtime::strategy::Strategy {
-    use linc_runtime::strategy::{wanted, Strategy};
+fn strategy_of(obj: ObjectFile, run: bool) -> linc_engines::strategy::Strategy {
+    use linc_engines::strategy::{wanted, Strategy};
     let db = linc_runtime::Database::from_json(&format!(
         r#"{{ "tasks": {{ "1": {{ "period": "T#1s" }} }}, "blocks": {{
             "Counters": {{ "type": "RECIPE" }},
@@ -154,12 +154,12 @@ fn strategy_of(obj: ObjectFile, run: bool) -> linc_runtime::strategy::Strategy {
     let store = Store::new(db);
     let wants: Vec<_> = wanted(&store).into_iter().map(|w| (w, 0)).collect();
     assert_eq!(wants.len(), 1);
-    assert_eq!(wants[0].0.kind, linc_runtime::strategy::WantKind::Sequence);
+    assert_eq!(wants[0].0.kind, linc_engines::strategy::WantKind::Sequence);
     let v = verify::verify(obj).expect("verifies");
     Strategy::build(store, vec![v], &wants, Vm::new(10_000, Clock::new(1, 0)), 0.0).expect("builds")
 }
 
-fn field(s: &linc_runtime::strategy::Strategy, path: &str) -> String {
+fn field(s: &linc_engines::strategy::Strategy, path: &str) -> String {
     let (b, f) = path.split_once('.').unwrap();
     s.store.show(s.store.cell_of(s.store.db.block(b).unwrap(), f).unwrap())
 }
@@ -168,7 +168,7 @@ fn field(s: &linc_runtime::strategy::Strategy, path: &str) -> String {
 fn an_sfc_con_block_runs_its_sequence_in_a_strategy() {
     let mut s = strategy(true);
     let mut out = Vec::new();
-    let mut trace = linc_runtime::strategy::trace::Trace::new(&mut out, &s.store);
+    let mut trace = linc_engines::strategy::trace::Trace::new(&mut out, &s.store);
     let failures = s.run_for(5_000_000, Some(&mut trace));
     trace.finish().expect("trace");
     assert!(failures.is_empty(), "{failures:?}");
@@ -190,7 +190,7 @@ fn sfc_con_fields_command_the_sequence() {
     let mut s = strategy(false);
     s.run_for(2_000_000, None);
     assert_eq!([field(&s, "SEQ.Status"), field(&s, "Counters.N0"), field(&s, "SEQ.Init")], ["'RESET'", "0", "TRUE"]);
-    let set = |s: &mut linc_runtime::strategy::Strategy, path: &str, v: bool| {
+    let set = |s: &mut linc_engines::strategy::Strategy, path: &str, v: bool| {
         let (b, f) = path.split_once('.').unwrap();
         let c = s.store.cell_of(s.store.db.block(b).unwrap(), f).unwrap();
         s.store.cells[c as usize] = linc_runtime::store::Cell::Bool(v);
@@ -270,7 +270,7 @@ fn a_sequence_that_releases_its_own_hold_runs_on() {
     assert_eq!(field(&s, "SEQ.Status"), "'RUNNING'", "read at the next scan");
 }
 
-fn set_flag(s: &mut linc_runtime::strategy::Strategy, path: &str, v: bool) {
+fn set_flag(s: &mut linc_engines::strategy::Strategy, path: &str, v: bool) {
     let (b, f) = path.split_once('.').unwrap();
     let c = s.store.cell_of(s.store.db.block(b).unwrap(), f).unwrap();
     s.store.cells[c as usize] = linc_runtime::store::Cell::Bool(v);

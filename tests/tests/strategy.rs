@@ -2,7 +2,7 @@
 //! blocks, the error status and the error program, determinism.
 use linc_conformance::exec::compile;
 use linc_conformance::exec::strategy;
-use linc_runtime::strategy::{micros, trace::Trace, wanted, Strategy};
+use linc_engines::strategy::{micros, trace::Trace, wanted, Strategy};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::{Database, Store};
 

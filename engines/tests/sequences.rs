@@ -1,10 +1,10 @@
 //! The sequence engine (docs/sequences.md), with a host whose conditions the
 //! test sets and which records the actions that ran in each scan.
+use linc_engines::sequence::chart::{Action, Assoc, Body, Chart, Step, Transition};
+use linc_engines::sequence::engine::{Event, Host};
+use linc_engines::sequence::{Command, Sequence, Status};
+use linc_engines::strategy::qualifier::Qualifier;
 use linc_runtime::errors::{Fault, RuntimeError};
-use linc_runtime::sequence::chart::{Action, Assoc, Body, Chart, Step, Transition};
-use linc_runtime::sequence::engine::{Event, Host};
-use linc_runtime::sequence::{Command, Sequence, Status};
-use linc_runtime::strategy::qualifier::Qualifier;
 
 /// Conditions by code; the names of the actions run, per scan.
 #[derive(Default)]

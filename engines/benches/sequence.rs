@@ -3,11 +3,11 @@
 //! scan; the host's code does nothing, so the figure is the engine's own.
 //! Beside it, the same bookkeeping written directly in Rust (a baseline).
 use criterion::{criterion_group, Criterion};
+use linc_engines::sequence::chart::{Action, Assoc, Body, Chart, Step, Transition};
+use linc_engines::sequence::engine::Host;
+use linc_engines::sequence::{Command, Sequence};
+use linc_engines::strategy::qualifier::Qualifier;
 use linc_runtime::errors::RuntimeError;
-use linc_runtime::sequence::chart::{Action, Assoc, Body, Chart, Step, Transition};
-use linc_runtime::sequence::engine::Host;
-use linc_runtime::sequence::{Command, Sequence};
-use linc_runtime::strategy::qualifier::Qualifier;
 use std::hint::black_box;
 use std::time::Instant;
 

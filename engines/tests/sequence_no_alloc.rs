@@ -1,10 +1,10 @@
 //! A sequence scan allocates nothing once the chart has run a scan: its
 //! working sets are kept in the chart's state.
+use linc_engines::sequence::chart::{Action, Assoc, Body, Chart, Step, Transition};
+use linc_engines::sequence::engine::Host;
+use linc_engines::sequence::{Command, Sequence};
+use linc_engines::strategy::qualifier::Qualifier;
 use linc_runtime::errors::RuntimeError;
-use linc_runtime::sequence::chart::{Action, Assoc, Body, Chart, Step, Transition};
-use linc_runtime::sequence::engine::Host;
-use linc_runtime::sequence::{Command, Sequence};
-use linc_runtime::strategy::qualifier::Qualifier;
 use linc_test_support::alloc::{allocations_in, Counting};
 
 #[global_allocator]
