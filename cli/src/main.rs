@@ -352,11 +352,6 @@ fn format(m: MessageFormat) -> linc_compiler::render::Format {
     }
 }
 
-/// Whether a path names a compiled object.
-fn is_object(path: &std::path::Path) -> bool {
-    path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("sto"))
-}
-
 fn sfc(command: SfcCommand, r: &mut Reporter) -> u8 {
     use sfc_cmd::Direction;
     match command {
@@ -519,7 +514,7 @@ fn run_command(a: RunArgs, r: &mut Reporter) -> u8 {
             run_cmd::run(&run_cmd::Options { file, db, action, block, cycles, period, common }, r)
         }
         (Some(db), Some(duration))
-            if linc_driver::source::is_sequence(&file) || linc_driver::source::is_fst(&file) || is_object(&file) =>
+            if linc_driver::source::kind(&file).stands_alone() || linc_driver::source::is_object(&file) =>
         {
             let kind = linc_driver::single::Kind::of(&file);
             let (block, period, hold_steps, force) = (a.block, a.period, a.hold_step, a.force);

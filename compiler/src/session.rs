@@ -176,6 +176,8 @@ pub struct Session<'a> {
     files: SourceFiles,
     /// Each file's kind ([`SourceKind`]), by file id.
     kinds: Vec<SourceKind>,
+    /// The object of a sequence or FST table, made when it was checked.
+    alone: Option<ObjectFile>,
     /// Action names seen so far, in upper case, with where each was first defined.
     actions: HashMap<String, (FileId, Span), FastHash>,
     limits: Option<Limits>,
@@ -193,6 +195,7 @@ impl<'a> Session<'a> {
             ctx,
             files: SourceFiles::new(),
             kinds: Vec::new(),
+            alone: None,
             actions: HashMap::default(),
             limits: Some(Limits::default()),
             programs: None,
@@ -230,9 +233,9 @@ impl<'a> Session<'a> {
     pub fn add(&mut self, name: impl Into<String>, bytes: Vec<u8>) -> FileId {
         let name = name.into();
         let kind = SourceKind::of(&name, &bytes);
-        let object = kind == SourceKind::Object && bytes.starts_with(linc_format::object::MAGIC);
-        let (text, invalid) = if object { (String::new(), Vec::new()) } else { files::decode(bytes) };
-        self.kinds.push(if object { SourceKind::Object } else { kind });
+        let (text, invalid) =
+            if kind == SourceKind::Object { (String::new(), Vec::new()) } else { files::decode(bytes) };
+        self.kinds.push(kind);
         self.files.add_decoded(name, text, invalid)
     }
 
@@ -241,33 +244,41 @@ impl<'a> Session<'a> {
         self.kinds.get(file.index()).copied().unwrap_or(SourceKind::Actions)
     }
 
-    /// Checks a sequence or an FST table: each is a unit of its own.
+    /// Checks a sequence or an FST table: each is a unit of its own, read
+    /// once by its front end; a compiling session keeps the object it made.
     fn check_alone(&mut self, file: FileId, kind: SourceKind) -> Checked {
         let mut checked = Checked { file, diagnostics: Vec::new(), tree: None, expr: None };
         let Some(source) = self.files.file(file) else { return checked };
         let not_utf8 = SessionError::not_utf8(source.invalid_bytes()).map(|e| e.to_diagnostic().in_file(file));
         checked.diagnostics.extend(not_utf8);
         if checked.diagnostics.is_empty() {
-            let found = source_kind::check_alone(kind, source.name(), source.text(), self.ctx);
+            let lower = self.stream.is_some() || self.programs.is_some();
+            let (found, object) = source_kind::read_alone(kind, (source.name(), source.text()), self.ctx, lower);
             checked.diagnostics.extend(found.into_iter().map(|d| d.in_file(file)));
+            self.alone = object;
         }
         self.failed |= checked.has_errors();
         checked
     }
 
-    /// Compiles the session's one sequence or FST table.
+    /// The object of the session's one sequence or FST table, made when it
+    /// was checked.
     fn compile_alone(&mut self, file: FileId, kind: SourceKind) -> Result<ObjectFile, Vec<Diagnostic>> {
+        let name = self.files.file(file).map(|f| f.name().to_string()).unwrap_or_default();
         if self.kinds.len() > 1 {
-            let name = self.files.file(file).map(|f| f.name().to_string()).unwrap_or_default();
             return Err(vec![source_kind::not_alone(kind, &name)]);
         }
         if self.failed {
             return Err(Vec::new());
         }
-        let Some(source) = self.files.file(file) else { return Err(Vec::new()) };
-        source_kind::compile_alone(kind, source.name(), source.text(), self.ctx).map_err(|found| {
-            // An error about the command (no database) stays without a file.
-            found.into_iter().map(|d| if d.file == FileId::NONE { d } else { d.in_file(file) }).collect()
+        self.alone.take().ok_or_else(|| {
+            // Clean but not lowered: a table checked without its points.
+            let no_points = kind == SourceKind::FstTable && !self.ctx.resolve_blocks;
+            if no_points {
+                vec![source_kind::needs_points(&name)]
+            } else {
+                Vec::new()
+            }
         })
     }
 

@@ -22,16 +22,14 @@ pub enum SourceKind {
     Sequence,
     /// An FST table (`.csv`, as ROCLINK 800 exports it).
     FstTable,
-    /// A compiled object (`.sto`, or any file starting with its magic).
+    /// A compiled object (by name `.sto`; by contents its magic number).
     Object,
 }
 
 impl SourceKind {
-    /// The kind of the file `name` whose contents start with `head`.
-    pub fn of(name: &str, head: &[u8]) -> SourceKind {
-        if head.starts_with(linc_format::object::MAGIC) {
-            return SourceKind::Object;
-        }
+    /// The kind a file's name says, before it is read: a command loads a
+    /// `.sto` file as an object (the loader refuses one that is not).
+    pub fn of_name(name: &str) -> SourceKind {
         let ext = Path::new(name).extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
         match ext.as_str() {
             "ld" => SourceKind::Ladder,
@@ -39,6 +37,19 @@ impl SourceKind {
             "csv" => SourceKind::FstTable,
             "sto" => SourceKind::Object,
             _ => SourceKind::Actions,
+        }
+    }
+
+    /// The kind of a file given to a compile session, by its name and
+    /// contents: an object is known by its magic number whatever its name,
+    /// and a `.sto` file without it is text like any other (read as ST).
+    pub fn of(name: &str, contents: &[u8]) -> SourceKind {
+        if contents.starts_with(linc_format::object::MAGIC) {
+            return SourceKind::Object;
+        }
+        match SourceKind::of_name(name) {
+            SourceKind::Object => SourceKind::Actions,
+            kind => kind,
         }
     }
 
@@ -59,35 +70,25 @@ fn points<'d>(ctx: &Context<'d>) -> Option<&'d linc_format::Database> {
     ctx.resolve_blocks.then_some(ctx.db)
 }
 
-/// Checks a sequence or an FST table (unlocated diagnostics: the caller
-/// puts them in the file).
-pub(crate) fn check_alone(kind: SourceKind, name: &str, text: &str, ctx: Context) -> Vec<Diagnostic> {
+/// Reads a sequence or an FST table by its own front end, once: its
+/// diagnostics (unlocated: the caller puts them in the file) and, when
+/// `lower` and it is clean, its object (a table only with its points).
+pub(crate) fn read_alone(
+    kind: SourceKind,
+    (name, text): (&str, &str),
+    ctx: Context,
+    lower: bool,
+) -> (Vec<Diagnostic>, Option<ObjectFile>) {
+    let ctx = Context { steps: None, ..ctx };
     match kind {
-        SourceKind::Sequence => crate::sfc::check_sequence(text, Context { steps: None, ..ctx }).diagnostics,
-        _ => crate::fst::compile(text, stem(name, "fst"), name, points(&ctx)).0,
+        SourceKind::Sequence if lower => crate::sfc::compile_sequence(text, stem(name, "sequence"), name, ctx),
+        SourceKind::Sequence => (crate::sfc::check_sequence(text, ctx).diagnostics, None),
+        _ => crate::fst::compile(text, stem(name, "fst"), name, points(&ctx)),
     }
 }
 
-/// Compiles a sequence or an FST table into its object; `Err` holds the
-/// diagnostics (unlocated) when it has errors.
-pub(crate) fn compile_alone(
-    kind: SourceKind,
-    name: &str,
-    text: &str,
-    ctx: Context,
-) -> Result<ObjectFile, Vec<Diagnostic>> {
-    let (diagnostics, object) = match kind {
-        SourceKind::Sequence => crate::sfc::compile_sequence(text, stem(name, "sequence"), name, ctx),
-        _ => match points(&ctx) {
-            Some(db) => crate::fst::compile(text, stem(name, "fst"), name, Some(db)),
-            None => (vec![needs_points(name)], None),
-        },
-    };
-    object.ok_or(diagnostics)
-}
-
 /// E0025: an FST table compiles against the points it names.
-fn needs_points(name: &str) -> Diagnostic {
+pub(crate) fn needs_points(name: &str) -> Diagnostic {
     Diagnostic::command(Code::E0025, format!("compiling the FST table `{name}` needs its point database"))
         .help("pass the database that defines its points with --db")
 }

@@ -197,4 +197,8 @@ fn one_session_checks_and_compiles_every_kind_of_source() {
     assert_eq!(e.iter().map(|d| d.code.as_str()).collect::<Vec<_>>(), ["E0025"]);
     // An object is never a source, whatever its name.
     assert_eq!(SourceKind::of("x.stx", linc_format::object::MAGIC), SourceKind::Object);
+    // By name alone a `.sto` is an object (commands load it); given to a
+    // session without the magic number, it is text like any other.
+    assert_eq!(SourceKind::of_name("x.sto"), SourceKind::Object);
+    assert_eq!(SourceKind::of("x.sto", b"R1.Batches := 0;\n"), SourceKind::Actions);
 }

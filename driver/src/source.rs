@@ -11,7 +11,7 @@ use std::path::Path;
 
 /// The kind of source a path names, by its name (the compiler decides).
 pub fn kind(path: &Path) -> SourceKind {
-    SourceKind::of(&path.to_string_lossy(), &[])
+    SourceKind::of_name(&path.to_string_lossy())
 }
 
 /// Whether a path names a sequence source (`.sfc`).

@@ -429,7 +429,7 @@ impl Driver for crate::console::Console {
     }
 
     fn split<'l>(&self, line: &'l str) -> Vec<&'l str> {
-        crate::console::commands(line).into_iter().filter(|c| !c.trim().is_empty()).collect()
+        crate::console::commands(line)
     }
 
     fn advances(&self, command: &str) -> Option<Result<u64, (String, String)>> {

@@ -51,13 +51,12 @@ pub const TYPED_DEPTH: u32 = 64;
 #[derive(Clone, Debug)]
 pub struct Verified {
     obj: ObjectFile,
-    /// Per code block (as `limits`), the stack's shape at each instruction a
-    /// label points at and some path reaches, by instruction.
-    shapes: Vec<LabelShapes>,
     /// Per code block, the units' blocks one after another (one table, not
-    /// one per unit: an object of many small units holds no more).
-    limits: Vec<Limits>,
-    /// Where each unit's blocks start in `limits`.
+    /// one per unit: an object of many small units holds no more): the
+    /// stack sizes it needs, and the numeric stack's shape at each
+    /// instruction a label points at and some path reaches.
+    blocks: Vec<(Limits, LabelShapes)>,
+    /// Where each unit's blocks start in `blocks`.
     first: Vec<u32>,
 }
 
@@ -67,18 +66,18 @@ impl Verified {
     }
 
     pub fn limits(&self, unit: usize, block: usize) -> Limits {
-        self.index(unit, block).and_then(|i| self.limits.get(i)).copied().unwrap_or_default()
+        self.index(unit, block).and_then(|i| self.blocks.get(i)).map(|b| b.0).unwrap_or_default()
     }
 
     /// The numeric stack's shape at each reached label of a block, sorted
     /// by instruction.
     pub fn shapes(&self, unit: usize, block: usize) -> &[(u32, Shape)] {
-        self.index(unit, block).and_then(|i| self.shapes.get(i)).map_or(&[], |s| &s[..])
+        self.index(unit, block).and_then(|i| self.blocks.get(i)).map_or(&[], |b| &b.1[..])
     }
 
     fn index(&self, unit: usize, block: usize) -> Option<usize> {
         let at = self.first.get(unit).map(|&f| f as usize + block);
-        let inside = self.first.get(unit + 1).map_or(self.limits.len(), |&f| f as usize);
+        let inside = self.first.get(unit + 1).map_or(self.blocks.len(), |&f| f as usize);
         at.filter(|&i| i < inside)
     }
 
@@ -101,8 +100,7 @@ pub fn verifications() -> u64 {
 /// Verifies every unit of an object.
 pub fn verify(obj: ObjectFile) -> Result<Verified, LoadError> {
     RUNS.with(|n| n.set(n.get() + 1));
-    let mut limits = Vec::with_capacity(obj.units.iter().map(|u| u.blocks.len()).sum());
-    let mut shapes = Vec::with_capacity(limits.capacity());
+    let mut blocks = Vec::with_capacity(obj.units.iter().map(|u| u.blocks.len()).sum());
     let mut first = Vec::with_capacity(obj.units.len());
     for u in &obj.units {
         if u.blocks.is_empty() {
@@ -113,15 +111,13 @@ pub fn verify(obj: ObjectFile) -> Result<Verified, LoadError> {
                 what: "no code".into(),
             });
         }
-        first.push(limits.len() as u32);
+        first.push(blocks.len() as u32);
         for b in &u.blocks {
-            let (l, s) = verify_block(&obj, u, b)?;
-            limits.push(l);
-            shapes.push(s);
+            blocks.push(verify_block(&obj, u, b)?);
         }
         crate::verify_chart::check_charts(u)?;
     }
-    Ok(Verified { obj, shapes, limits, first })
+    Ok(Verified { obj, blocks, first })
 }
 
 /// Where a finding is: the unit, and the block when the unit has several.

@@ -23,19 +23,7 @@ pub const MAX_ADVANCE_US: u64 = 366 * 86_400 * 1_000_000;
 
 /// Runtime error codes `ERRRAISE` accepts (a raise enters the status as
 /// one of these would).
-pub const RAISABLE: &[Code] = &[
-    Code::R0001,
-    Code::R0002,
-    Code::R0003,
-    Code::R0004,
-    Code::R0005,
-    Code::R0006,
-    Code::R0007,
-    Code::R0008,
-    Code::R0010,
-    Code::R0011,
-    Code::R0099,
-];
+pub const RAISABLE: &[Code] = crate::strategy::RUNTIME_CODES;
 
 /// Why a command was refused; it changed nothing.
 #[derive(Clone, Debug, PartialEq)]
@@ -104,7 +92,7 @@ impl Console {
     /// fields a command changed are lines of program `(console)`.
     pub fn execute_traced(&mut self, line: &str, mut trace: Option<&mut Trace>) -> Vec<Result<String, ConsoleError>> {
         let mut replies = Vec::new();
-        for c in commands(line).into_iter().filter(|c| !c.trim().is_empty()) {
+        for c in commands(line) {
             let reply = self.one(c, trace.as_deref_mut());
             if let (Ok(_), Some(t)) = (&reply, trace.as_deref_mut()) {
                 self.note_changes(t);
@@ -407,7 +395,8 @@ impl Console {
     }
 }
 
-/// The commands of a line: split at `;` outside quotes (`M X.S='a;b'`).
+/// The commands of a line: split at `;` outside quotes (`M X.S='a;b'`),
+/// blank ones dropped.
 pub(crate) fn commands(line: &str) -> Vec<&str> {
     let mut out = Vec::new();
     let (mut start, mut quote) = (0, None);
@@ -423,6 +412,7 @@ pub(crate) fn commands(line: &str) -> Vec<&str> {
         }
     }
     out.push(&line[start..]);
+    out.retain(|c| !c.trim().is_empty());
     out
 }
 

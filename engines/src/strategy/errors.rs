@@ -16,6 +16,23 @@ use std::fmt;
 /// error program in its `ErrProg` field).
 pub const SYSTEM: &str = "SYSTEM";
 
+/// The runtime error codes an error status can hold: what a program's fault
+/// enters and what the console's `ERRRAISE` accepts (a saved status with any
+/// other code reads as R0099).
+pub const RUNTIME_CODES: &[Code] = &[
+    Code::R0001,
+    Code::R0002,
+    Code::R0003,
+    Code::R0004,
+    Code::R0005,
+    Code::R0006,
+    Code::R0007,
+    Code::R0008,
+    Code::R0010,
+    Code::R0011,
+    Code::R0099,
+];
+
 /// Why a strategy could not be built, located at a block of the database.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StrategyError {

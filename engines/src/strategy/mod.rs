@@ -19,7 +19,7 @@ mod state_parts;
 pub mod trace;
 
 pub use control::{ProgramInfo, ProgramState};
-pub use errors::{ErrorStatus, StrategyError};
+pub use errors::{ErrorStatus, StrategyError, RUNTIME_CODES};
 use linc_format::Code;
 pub use state::StateError;
 

@@ -162,22 +162,6 @@ pub(super) fn status_from(v: &Value) -> Result<Status, StateError> {
     all.into_iter().find(|s| v.as_str() == Some(s.name())).ok_or_else(|| misfit("a sequence's status"))
 }
 
-/// Runtime error codes a strategy can hold in its error status (the
-/// status keeps a [`Code`]; an unknown one reads as R0099).
-const RUNTIME_CODES: [Code; 11] = [
-    Code::R0001,
-    Code::R0002,
-    Code::R0003,
-    Code::R0004,
-    Code::R0005,
-    Code::R0006,
-    Code::R0007,
-    Code::R0008,
-    Code::R0010,
-    Code::R0011,
-    Code::R0099,
-];
-
 pub(super) fn error_json(e: &ErrorStatus) -> Value {
     let r = &e.error;
     json!({
@@ -193,7 +177,7 @@ pub(super) fn error_from(v: &Value) -> Result<Option<ErrorStatus>, StateError> {
     let text = |k: &str| v[k].as_str().map(str::to_string).ok_or_else(|| misfit("the error status"));
     let small = |k: &str| uint(&v[k], "the error status").map(|n| n.min(u64::from(u32::MAX)) as u32);
     let code = v["code"].as_str().unwrap_or("");
-    let code = RUNTIME_CODES.iter().find(|c| **c == code).copied().unwrap_or(Code::R0099);
+    let code = super::RUNTIME_CODES.iter().find(|c| **c == code).copied().unwrap_or(Code::R0099);
     let error = RuntimeError {
         code,
         message: text("message")?,

@@ -40,15 +40,16 @@ fn ends_block(op: &Op) -> bool {
 /// `ops.len()` is "ran off the end". Where paths meet (at labels) the types
 /// are the verifier's (`shapes`, sorted by instruction), and straight code
 /// follows from them, so the tier does no flow analysis of its own. `None`
-/// overall when the verifier found different types meeting at a label, or
-/// a stack deeper than it types.
+/// overall when the verifier found different types meeting at a label (or
+/// a stack deeper than it types there), or the stack grows past
+/// [`MAX_DEPTH`].
 fn stack_types(ops: &[Op], shapes: &[(u32, LabelShape)]) -> Option<Vec<Option<Vec<Ty>>>> {
     let mut states: Vec<Option<Vec<Ty>>> = Vec::with_capacity(ops.len() + 1);
     let mut at = shapes.iter().peekable();
     let mut cur = Some(Vec::new());
     for (pc, op) in ops.iter().enumerate() {
         if let Some(&(_, shape)) = at.next_if(|(p, _)| *p as usize == pc) {
-            if !shape.known || shape.depth as usize > MAX_DEPTH {
+            if !shape.known {
                 return None;
             }
             cur = Some((0..shape.depth).map(|i| if shape.reals >> i & 1 == 1 { Ty::F } else { Ty::I }).collect());
@@ -59,6 +60,9 @@ fn stack_types(ops: &[Op], shapes: &[(u32, LabelShape)]) -> Option<Vec<Option<Ve
         st.truncate(st.len().checked_sub(e.num_pop as usize)?);
         if e.num_push == 1 {
             st.push(if op.pushes_real() { Ty::F } else { Ty::I });
+        }
+        if st.len() > MAX_DEPTH {
+            return None;
         }
         // Only a jump or a return never falls through.
         if !matches!(op, Op::Jump { .. } | Op::Ret {} | Op::Return { .. }) {
