@@ -6,6 +6,7 @@ mod check_cmd;
 mod compile_cmd;
 mod console_cmd;
 mod disasm_cmd;
+mod draw_cmd;
 mod eval_cmd;
 mod explain_cmd;
 mod fst_src;
@@ -121,6 +122,9 @@ enum Command {
         #[command(subcommand)]
         command: FstCommand,
     },
+    /// Draw a sequence, ladder file or FST table as SVG (after a run with --db and --for/--cycles: its
+    /// state), or trends of a --trace file (docs/pictures.md).
+    Draw(Box<draw_cmd::DrawArgs>),
     /// Ladder files (.ld): print the ST a ladder compiles as.
     Ladder {
         #[command(subcommand)]
@@ -426,6 +430,10 @@ fn dispatch(command: Command, r: &mut Reporter) -> u8 {
         Command::Sfc { command } => sfc(command, r),
         Command::Fst { command: FstCommand::List { file, db } } => fst_src::list(&file, db.as_deref(), r),
         Command::Ladder { command } => ladder_cmd::run(command, r),
+        Command::Draw(args) => {
+            let (o, out) = args.options();
+            draw_cmd::run(&o, out.as_deref(), r)
+        }
         Command::Console { file, script, set, trace, now, seed, state, cold } => {
             let common = run_cmd::Common {
                 set,

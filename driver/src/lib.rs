@@ -6,6 +6,7 @@
 
 pub mod build;
 pub mod database;
+pub mod draw;
 pub mod eval;
 pub mod files;
 pub mod ladder;

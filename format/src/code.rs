@@ -246,6 +246,8 @@ codes! {
     E0902 => "output file is one of the inputs, or another output",
     E0903 => "invalid command-line value",
     E0904 => "--block names a block of another type",
+    E0910 => "trace line is not a trace record",
+    E0911 => "trend field the trace never writes",
 }
 
 impl Code {

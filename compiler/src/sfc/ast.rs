@@ -55,6 +55,9 @@ pub struct Transition {
     pub to: Vec<Ident>,
     /// `None` when the condition did not parse (already reported).
     pub cond: Option<Expr>,
+    /// Where the rung of a `: LADDER` condition is (§20.5.7): `cond` is
+    /// the ST it stands for, this the contacts as written, for pictures.
+    pub ladder: Option<Span>,
     pub span: Span,
 }
 

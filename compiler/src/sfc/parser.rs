@@ -269,6 +269,7 @@ impl Parser<'_> {
             from: Vec::new(),
             to: Vec::new(),
             cond: None,
+            ladder: None,
             span: Span::new(l, l),
         };
         if self.transition_body(&mut t).is_err() {
@@ -324,6 +325,7 @@ impl Parser<'_> {
         }
         self.pos += 1;
         self.ladder.push((a, b));
+        t.ladder = Some(Span::new(a, b));
         let (cond, diagnostics) = crate::ladder::desugar_condition(&self.src[a..b]);
         for mut d in diagnostics {
             shift::diagnostic(&mut d, a);
