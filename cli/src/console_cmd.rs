@@ -39,7 +39,7 @@ type ReadLine = Result<String, usize>;
 /// Lines of `input`, each at most [`MAX_LINE`] bytes; the rest of a longer
 /// line is read and dropped without being kept. Bytes that are not UTF-8
 /// are replaced (the command is then refused as written wrongly).
-fn bounded_lines(mut input: impl std::io::BufRead) -> impl Iterator<Item = ReadLine> {
+pub(crate) fn bounded_lines(mut input: impl std::io::BufRead) -> impl Iterator<Item = ReadLine> {
     std::iter::from_fn(move || {
         let mut kept: Vec<u8> = Vec::new();
         let mut length = 0usize;
@@ -80,7 +80,7 @@ fn finish(mut kept: Vec<u8>, length: usize) -> ReadLine {
 
 /// A refused command, as the reporter renders it, for the transcript on
 /// standard output between the replies it follows.
-fn error_text(e: &ConsoleError, r: &mut Reporter) -> String {
+pub(crate) fn error_text(e: &ConsoleError, r: &mut Reporter) -> String {
     r.text(linc_compiler::Diagnostic::command(e.code, e.message.clone())).trim_end().to_string()
 }
 

@@ -15,6 +15,7 @@ mod out;
 mod report;
 mod run_cmd;
 mod sequence_src;
+mod serve_cmd;
 mod sfc_cmd;
 mod strategy_cmd;
 mod test_cmd;
@@ -125,6 +126,8 @@ enum Command {
     /// Draw a sequence, ladder file or FST table as SVG (after a run with --db and --for/--cycles: its
     /// state), or trends of a --trace file (docs/pictures.md).
     Draw(Box<draw_cmd::DrawArgs>),
+    /// Run a strategy in real time behind a live monitor page and a JSON API (docs/serve.md).
+    Serve(Box<serve_cmd::ServeArgs>),
     /// Ladder files (.ld): print the ST a ladder compiles as.
     Ladder {
         #[command(subcommand)]
@@ -430,6 +433,7 @@ fn dispatch(command: Command, r: &mut Reporter) -> u8 {
         Command::Sfc { command } => sfc(command, r),
         Command::Fst { command: FstCommand::List { file, db } } => fst_src::list(&file, db.as_deref(), r),
         Command::Ladder { command } => ladder_cmd::run(command, r),
+        Command::Serve(args) => serve_cmd::run(*args, r),
         Command::Draw(args) => {
             let (o, out) = args.options();
             draw_cmd::run(&o, out.as_deref(), r)

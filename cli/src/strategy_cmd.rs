@@ -71,21 +71,22 @@ fn assemble(
 }
 
 /// The whole strategy of a database, as `linc run PLANT.json` builds it
-/// (with `--set` applied), for the console.
+/// (with `--set` applied), for the console and `linc serve`.
 pub fn load(o: &Options, r: &mut Reporter) -> Result<Strategy, u8> {
-    let now = start_time(o.common.now.as_deref()).map_err(|msg| usage(r, msg))?;
-    let mut files = SourceFiles::new();
-    let db = match load_db(Some(&o.db), &mut files, r) {
-        Ok(Some(db)) => db,
-        Ok(None) => return Err(2),
-        Err(status) => return Err(status),
-    };
-    let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
-    let mut store = Store::new(db);
-    set_and_show(&mut store, &o.common.set, &[], r)?;
-    let wants = strategy::wanted(&store);
+    let (s, wants) = linc_driver::strategy::plant(&o.db, &plant_options(&o.common), r)?;
     check_outputs(o, &wants, r)?;
-    assemble(o, &files, &db_text, store, &wants, now, r)
+    Ok(s)
+}
+
+/// What of the common options shapes a strategy before it runs.
+pub fn plant_options(c: &Common) -> linc_driver::strategy::PlantOptions {
+    linc_driver::strategy::PlantOptions {
+        set: c.set.clone(),
+        now: c.now.clone(),
+        seed: c.seed,
+        watchdog: c.watchdog,
+        tier: c.tier,
+    }
 }
 
 pub fn run(o: &Options, r: &mut Reporter) -> u8 {

@@ -6,7 +6,10 @@
 //! wire (a long sequence link joins its source to a connector naming its
 //! target). And a 1,000-step chart draws in well under 200 ms.
 
+mod long_chart;
 mod support;
+
+use long_chart::long_chart;
 
 use linc_compiler::{fst, ladder, sfc};
 use linc_test_support::rng::Rng;
@@ -185,21 +188,6 @@ fn random_tables_lay_out_cleanly() {
         assert!(geo.overlap().is_none(), "case {case}: {:?}\n{src}", geo.overlap());
         assert!(geo.broken_link().is_none(), "case {case}: {:?}\n{src}", geo.broken_link());
     }
-}
-
-/// A chain of `n` steps with a loop back to the start.
-pub fn long_chart(n: usize) -> String {
-    let mut src = String::from("INITIAL_STEP S0: END_STEP\n");
-    for i in 1..n {
-        let _ = writeln!(src, "STEP S{i}: A{i}(N); END_STEP");
-    }
-    for i in 0..n {
-        let _ = writeln!(src, "TRANSITION FROM S{i} TO S{} := S{i}.T > 1.0; END_TRANSITION", (i + 1) % n);
-    }
-    for i in 1..n {
-        let _ = writeln!(src, "ACTION A{i}\n    X.Y := {i};\nEND_ACTION");
-    }
-    src
 }
 
 #[test]

@@ -11,7 +11,7 @@ use linc_compiler::lower::{self, Lines};
 use linc_compiler::render::SourceFiles;
 use linc_compiler::session::{CheckOptions, Input, Session};
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
-use linc_runtime::{Database, Program, Store};
+use linc_runtime::{Database, Linked, Program, Store};
 use linc_stdlib::Value;
 use std::collections::HashMap;
 use std::path::Path;
@@ -64,17 +64,51 @@ pub fn after_run(
 /// An expression's value in `store`, as a truth value (`None` if it is not
 /// one or does not evaluate).
 fn truth(expr: &str, db: &Database, store: &Store) -> Option<bool> {
+    eval(&element(expr, db, store)?, &mut store.clone())
+}
+
+/// An element's expression compiled and linked to `store`.
+fn element(expr: &str, db: &Database, store: &Store) -> Option<Linked> {
     let mut session = Session::new(Context { db, resolve_blocks: true, steps: None });
     let id = session.add("<element>", expr.as_bytes().to_vec());
     let program = session.check(id, CheckOptions { input: Input::Expression, tree: false }).expr?;
     let obj = lower::lower_eval(&program, &Lines::new(expr)).ok()?;
-    let linked = linc_runtime::verify::verify(obj).ok()?.link(store, &[Program { unit: 0, own: None }]).ok()?;
-    let mut scratch = store.clone();
-    let mut act = Activation::new(&linked, 0, 0);
-    Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0)).run(&linked, &mut act, &mut scratch, None).ok()?;
+    linc_runtime::verify::verify(obj).ok()?.link(store, &[Program { unit: 0, own: None }]).ok()
+}
+
+/// Runs an element's expression (it only reads the store: an expression
+/// assigns nothing) and takes its truth.
+fn eval(linked: &Linked, store: &mut Store) -> Option<bool> {
+    let mut act = Activation::new(linked, 0, 0);
+    Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0)).run(linked, &mut act, store, None).ok()?;
     match act.result? {
         Value::Bool(b) => Some(b),
         Value::Int(i) => Some(i != 0),
         _ => None,
+    }
+}
+
+/// A ladder file's elements compiled once against a running plant's store,
+/// so a live picture (`linc serve`) evaluates them after each scan without
+/// compiling them again.
+pub struct LiveElements {
+    items: Vec<((usize, usize), Linked)>,
+}
+
+impl LiveElements {
+    pub fn new(text: &str, stem: &str, store: &Store) -> LiveElements {
+        let items = linc_compiler::ladder::element_spans(text, stem)
+            .into_iter()
+            .filter_map(|span| {
+                let linked = element(text.get(span.start..span.end)?, &store.db, store)?;
+                Some(((span.start, span.end), linked))
+            })
+            .collect();
+        LiveElements { items }
+    }
+
+    /// The truth of each element in `store` now, by span.
+    pub fn truths(&self, store: &mut Store) -> HashMap<(usize, usize), bool> {
+        self.items.iter().filter_map(|(span, linked)| Some((*span, eval(linked, store)?))).collect()
     }
 }

@@ -92,3 +92,60 @@ pub fn own_block(store: &Store, named: Option<&str>, block_type: &str) -> Result
     };
     Err(Box::new(Diagnostic::command(Code::E0904, why)))
 }
+
+/// How to build a whole plant: `linc run PLANT.json`'s options that shape
+/// the strategy before it runs.
+#[derive(Clone, Debug)]
+pub struct PlantOptions {
+    pub set: Vec<String>,
+    pub now: Option<String>,
+    pub seed: Option<u64>,
+    pub watchdog: u64,
+    pub tier: linc_runtime::vm::Tier,
+}
+
+impl Default for PlantOptions {
+    fn default() -> PlantOptions {
+        PlantOptions {
+            set: Vec::new(),
+            now: None,
+            seed: None,
+            watchdog: linc_runtime::vm::DEFAULT_WATCHDOG,
+            tier: linc_runtime::vm::Tier::default(),
+        }
+    }
+}
+
+/// The whole strategy of a database as `linc run PLANT.json` builds it
+/// (`--set` applied, every program compiled), with the programs its blocks
+/// name; the console and `linc serve` start from it. Errors are printed,
+/// `Err` is the exit status.
+pub fn plant(
+    db_path: &Path,
+    o: &PlantOptions,
+    r: &mut Reporter,
+) -> Result<(linc_engines::strategy::Strategy, Vec<Want>), u8> {
+    use linc_compiler::render::SourceFiles;
+    let now = crate::database::start_time(o.now.as_deref()).map_err(|m| crate::report::usage(r, m))?;
+    let mut files = SourceFiles::new();
+    let Some(db) = crate::database::load(Some(db_path), &mut files, r)? else { return Err(2) };
+    let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
+    let mut store = Store::new(db);
+    crate::database::set_and_show(&mut store, &o.set, &[], r)?;
+    let wants = linc_engines::strategy::wanted(&store);
+    let report = |e: &StrategyError, r: &mut Reporter| {
+        r.emit(&files, &strategy_diagnostic(FileId(0), &db_text, e));
+        2u8
+    };
+    if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
+        return Err(report(&e, r));
+    }
+    let dir = db_path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let (objects, pairs) = compile_wants(&dir, &store.db, &wants, r)?;
+    let clock = linc_runtime::vm::Clock::new(o.seed.unwrap_or(now as u64), 0);
+    let mut vm = linc_runtime::vm::Vm::new(o.watchdog, clock);
+    vm.set_tier(o.tier);
+    let s =
+        linc_engines::strategy::Strategy::build(store, objects, &pairs, vm, now as f64).map_err(|e| report(&e, r))?;
+    Ok((s, wants))
+}

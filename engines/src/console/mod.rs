@@ -395,6 +395,12 @@ impl Console {
     }
 }
 
+/// Whether every command of `line` only reads (or does not parse, and so
+/// will be refused with its C-code without changing anything).
+pub fn reads_only(line: &str) -> bool {
+    commands(line).into_iter().all(|c| parse::parse(c, &duration).map_or(true, |c| c.reads_only()))
+}
+
 /// The commands of a line: split at `;` outside quotes (`M X.S='a;b'`),
 /// blank ones dropped.
 pub(crate) fn commands(line: &str) -> Vec<&str> {
@@ -433,6 +439,18 @@ mod tests {
         assert_eq!(commands("M X.S='a;b'; D X.S"), ["M X.S='a;b'", " D X.S"]);
         assert_eq!(commands(r#"M X.S="x;'y"; NOW"#), [r#"M X.S="x;'y""#, " NOW"]);
         assert_eq!(commands("NOW"), ["NOW"]);
+    }
+
+    #[test]
+    fn reading_lines_are_told_from_writing_ones() {
+        assert!(reads_only("D X.Y; P?; F?; NOW; ERR?"));
+        assert!(reads_only("NOSUCH X"), "refused anyway, with C0001");
+        assert!(!reads_only("D X.Y; M X.Y=1"));
+        for w in ["F X.Y=1", "START B", "RESET B", "HOLDSTEP B S", "FORCETRANS B T HOLD", "ADVANCE 1s", "SCAN", "SAVE"]
+        {
+            assert!(!reads_only(w), "{w}");
+        }
+        assert!(!reads_only("ERRCLR") && !reads_only("ERRRAISE R0001"));
     }
 
     #[test]

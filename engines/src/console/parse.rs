@@ -71,6 +71,14 @@ pub enum Command {
     },
 }
 
+impl Command {
+    /// Whether the command only reads: a monitor that may not write (`linc
+    /// serve` without `--allow-writes`) runs these and refuses the rest.
+    pub fn reads_only(&self) -> bool {
+        matches!(self, Command::Display(_) | Command::Forces | Command::Programs | Command::Now | Command::ErrorShow)
+    }
+}
+
 /// Splits the verb from its arguments at the first space.
 fn verb(text: &str) -> (String, &str) {
     let t = text.trim();

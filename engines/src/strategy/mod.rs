@@ -313,6 +313,17 @@ impl Strategy {
         self.members.iter_mut().find(|m| m.block == block).and_then(|m| m.seq.as_deref_mut())
     }
 
+    /// The sequence an SFC_CON block runs, for a monitor's picture.
+    pub fn sequence(&self, block: usize) -> Option<&crate::sequence::Sequence> {
+        self.members.iter().find(|m| m.block == block).and_then(|m| m.seq.as_deref())
+    }
+
+    /// When the next scan of any task is due (µs of simulated time); `None`
+    /// without tasks.
+    pub fn next_due_us(&self) -> Option<u64> {
+        self.tasks.iter().map(|t| t.next_us).min()
+    }
+
     /// Whether a double error stopped every program.
     pub fn halted(&self) -> bool {
         self.halted
@@ -324,19 +335,33 @@ impl Strategy {
     /// Returns the runtime errors that stopped programs, in order.
     pub fn run_for(&mut self, duration_us: u64, mut trace: Option<&mut Trace>) -> Vec<crate::RuntimeError> {
         let end = self.now_us.saturating_add(duration_us);
-        while let Some(next) = self.tasks.iter().map(|t| t.next_us).min().filter(|&n| n < end) {
-            self.set_time(next);
-            self.device_tick(trace.as_deref_mut());
-            self.trace_ignored(usize::MAX, 0, trace.as_deref_mut());
-            for t in 0..self.tasks.len() {
-                if self.tasks[t].next_us == next {
-                    self.run_task(t, trace.as_deref_mut());
-                    self.tasks[t].next_us = next.saturating_add(self.tasks[t].period_us);
-                }
-            }
+        while let Some(next) = self.next_due_us().filter(|&n| n < end) {
+            self.run_instant(next, trace.as_deref_mut());
         }
         self.set_time(end);
         std::mem::take(&mut self.failures)
+    }
+
+    /// Runs the tasks due next, at their instant, and leaves the clock
+    /// there: one step of a real-time run (`linc serve`), which decides
+    /// itself when that instant has come. Returns the runtime errors.
+    pub fn run_due(&mut self, trace: Option<&mut Trace>) -> Vec<crate::RuntimeError> {
+        if let Some(next) = self.next_due_us() {
+            self.run_instant(next, trace);
+        }
+        std::mem::take(&mut self.failures)
+    }
+
+    fn run_instant(&mut self, next: u64, mut trace: Option<&mut Trace>) {
+        self.set_time(next);
+        self.device_tick(trace.as_deref_mut());
+        self.trace_ignored(usize::MAX, 0, trace.as_deref_mut());
+        for t in 0..self.tasks.len() {
+            if self.tasks[t].next_us == next {
+                self.run_task(t, trace.as_deref_mut());
+                self.tasks[t].next_us = next.saturating_add(self.tasks[t].period_us);
+            }
+        }
     }
 
     fn set_time(&mut self, us: u64) {

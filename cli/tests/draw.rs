@@ -1,0 +1,115 @@
+//! `linc draw`: pictures of example files, drawn plain or as a run leaves
+//! them, and trends of trace files, with their errors.
+mod common;
+
+use common::{linc, stderr, stdout};
+
+/// The opening tags of the groups whose id starts with `prefix`, as
+/// `(id, class)`.
+fn groups(svg: &str, prefix: &str) -> Vec<(String, String)> {
+    let pat = format!("<g id=\"{prefix}");
+    svg.match_indices(&pat)
+        .map(|(at, _)| {
+            let tag = &svg[at..at + svg[at..].find('>').expect("tag ends")];
+            let attr = |name: &str| {
+                let start = tag.find(&format!("{name}=\"")).map(|i| i + name.len() + 2).expect("attribute");
+                tag[start..start + tag[start..].find('"').expect("quote")].to_string()
+            };
+            (attr("id"), attr("class"))
+        })
+        .collect()
+}
+
+fn with_class<'a>(gs: &'a [(String, String)], class: &str) -> Vec<&'a str> {
+    gs.iter().filter(|(_, c)| c.split(' ').any(|w| w == class)).map(|(id, _)| id.as_str()).collect()
+}
+
+#[test]
+fn a_sequence_is_drawn_plain_and_as_a_run_leaves_it() {
+    let o = linc(&["draw", "examples/sequences/batch.sfc"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let plain = stdout(&o);
+    assert!(plain.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"linc sfc\""));
+    assert!(with_class(&groups(&plain, "step-"), "active").is_empty());
+    // After 45 s of the plant the batch is filling (it started at 2 s).
+    let args = ["draw", "examples/sequences/batch.sfc", "--db", "examples/sequences/plant.json", "--for", "45s"];
+    let o = linc(&args);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let run = stdout(&o);
+    let steps = groups(&run, "step-");
+    assert_eq!(steps.len(), groups(&plain, "step-").len());
+    assert_eq!(with_class(&steps, "active"), ["step-Fill"]);
+    assert!(run.contains("T#43s"), "the step time is shown");
+    // The same run twice draws the same picture.
+    assert_eq!(stdout(&linc(&args)), run);
+}
+
+#[test]
+fn rungs_show_power_flow_after_a_run() {
+    let o = linc(&["draw", "examples/ladder/interlock.ld", "--db", "examples/ladder/plant.json", "--cycles", "2"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = stdout(&o);
+    let rungs = groups(&svg, "rung-");
+    assert_eq!(rungs.len(), 8);
+    assert_eq!(with_class(&rungs, "powered"), ["rung-4", "rung-5", "rung-7", "rung-8"]);
+    assert!(svg.contains("class=\"value\" text-anchor=\"middle\">TRUE<"));
+    assert!(svg.contains("class=\"value\" text-anchor=\"middle\">FALSE<"));
+    let plain = stdout(&linc(&["draw", "examples/ladder/interlock.ld"]));
+    assert!(with_class(&groups(&plain, "rung-"), "powered").is_empty());
+}
+
+#[test]
+fn an_fst_table_shows_its_current_step() {
+    let db = "examples/fst/plant.json";
+    let o = linc(&["draw", "examples/fst/pump.csv", "--db", db, "--block", "FST 1", "--for", "10s"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = stdout(&o);
+    let steps = groups(&svg, "fst-step-");
+    assert_eq!(with_class(&steps, "current").len(), 1);
+    assert!(svg.contains("RR = ") && svg.contains("CF = "));
+    // Four FST blocks run in that database: which one must be said.
+    let o = linc(&["draw", "examples/fst/pump.csv", "--db", db, "--for", "10s"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
+
+#[test]
+fn a_trend_is_drawn_from_a_trace_and_bad_traces_are_located() {
+    let dir = common::temp_dir("draw-trend");
+    let trace = dir.join("t.jsonl");
+    let t = trace.to_str().unwrap();
+    let o = linc(&["run", "examples/sequences/plant.json", "--for", "60s", "--trace", t]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let o = linc(&["draw", t, "--field", "R1.Level", "--field", "R1.FillVlv", "--from", "10s", "--to", "50s"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = stdout(&o);
+    assert!(svg.contains("class=\"linc trend\""));
+    assert!(svg.contains(">R1.Level<") && svg.contains(">R1.FillVlv<"));
+    assert!(svg.contains(">BATCH<"), "a strip for the sequence");
+    let o = linc(&["draw", t, "--field", "No.Such"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("error[E0911]"), "{}", stderr(&o));
+    let bad = dir.join("bad.jsonl");
+    std::fs::write(&bad, "{\"time\":0,\"field\":\"A.B\",\"new\":\"1\"}\nnot json\n").unwrap();
+    let o = linc(&["draw", bad.to_str().unwrap(), "--field", "A.B"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("error[E0910]: line 2"), "{}", stderr(&o));
+}
+
+#[test]
+fn the_picture_is_written_atomically_and_never_over_an_input() {
+    let dir = common::temp_dir("draw-out");
+    let src = dir.join("b.sfc");
+    std::fs::copy("../examples/sequences/batch.sfc", &src).unwrap();
+    let out = dir.join("b.svg");
+    let o = linc(&["draw", src.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!((o.status.code(), stdout(&o).as_str()), (Some(0), ""), "{}", stderr(&o));
+    let drawn = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(drawn, stdout(&linc(&["draw", src.to_str().unwrap()])));
+    let before = std::fs::read_to_string(&src).unwrap();
+    let o = linc(&["draw", src.to_str().unwrap(), "-o", src.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&src).unwrap(), before);
+    // A flag that means nothing for the file is refused, not ignored.
+    let o = linc(&["draw", src.to_str().unwrap(), "--field", "A.B"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}

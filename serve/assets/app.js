@@ -1,0 +1,266 @@
+// The monitor page: reads the JSON API, listens to the event stream and
+// sends every control as a console command line (POST /api/command).
+'use strict';
+
+const token = new URLSearchParams(location.search).get('token');
+const query = token ? '?token=' + encodeURIComponent(token) : '';
+const $ = (sel) => document.querySelector(sel);
+let status = null;
+let block = null;
+const trends = new Map();
+const forces = new Map();
+
+async function get(path) {
+  const r = await fetch('api/' + path + query);
+  if (!r.ok) throw new Error(path + ': ' + r.status);
+  return r;
+}
+
+async function command(line) {
+  const r = await fetch('api/command' + query, {
+    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ command: line }),
+  });
+  const body = await r.json();
+  const out = $('#console-out');
+  const lines = ['> ' + line];
+  if (!r.ok) lines.push(body.error);
+  for (const rep of body.replies || []) lines.push(rep.ok ? rep.reply : 'error[' + rep.code + ']: ' + rep.message);
+  for (const f of body.failures || []) lines.push(f);
+  out.textContent = (out.textContent + lines.join('\n') + '\n').slice(-20000);
+  out.scrollTop = out.scrollHeight;
+  return body;
+}
+
+function text(el, value) { if (el.textContent !== value) el.textContent = value; }
+
+function renderStatus(s) {
+  status = s;
+  document.body.classList.toggle('readonly', !s.writes);
+  text($('#mode'), s.writes ? 'controls on' : 'read-only');
+  text($('#now'), s.now);
+  text($('#speed'), s.speed === 'max' ? 'max' : s.speed + '×');
+  text($('#scans'), String(s.scans));
+  text($('#late'), String(s.late_scans));
+  $('#late').classList.toggle('on', s.late_scans > 0);
+  const e = s.error;
+  text($('#error'), e ? e.number + ' [' + e.code + '] ' + e.block + ': ' + e.message : 'none');
+  $('#error').classList.toggle('on', !!e);
+  const body = $('#programs tbody');
+  const rows = s.programs.map((p) => {
+    const tr = document.createElement('tr');
+    for (const v of [p.block, p.kind, String(p.task), p.state, p.position]) {
+      const td = document.createElement('td');
+      td.textContent = v;
+      tr.appendChild(td);
+    }
+    tr.children[3].className = 'state-' + p.state;
+    const td = document.createElement('td');
+    td.className = 'write';
+    for (const [label, verb] of [['start', 'START'], ['suspend', 'SUSPEND'], ['stop', 'PSTOP']]) {
+      const b = document.createElement('button');
+      b.textContent = label;
+      b.onclick = () => command(verb + ' ' + p.block);
+      td.appendChild(b);
+    }
+    tr.appendChild(td);
+    return tr;
+  });
+  body.replaceChildren(...rows);
+  for (const p of s.programs) if (p.picture && !pictureOf(p.block)) addPicture(p);
+}
+
+function pictureOf(name) {
+  return [...document.querySelectorAll('#pictures .picture')].find((d) => d.dataset.block === name);
+}
+
+function addPicture(p) {
+  const div = document.createElement('div');
+  div.className = 'picture';
+  div.dataset.block = p.block;
+  const h = document.createElement('h3');
+  h.textContent = p.block + ' (' + p.kind + ')';
+  div.appendChild(h);
+  if (p.picture === 'sfc') {
+    const c = document.createElement('div');
+    c.className = 'controls write';
+    for (const verb of ['RESET', 'STOP', 'HOLD', 'RUN']) {
+      const b = document.createElement('button');
+      b.textContent = verb.toLowerCase();
+      b.onclick = () => command(verb + ' ' + p.block);
+      c.appendChild(b);
+    }
+    const hint = document.createElement('span');
+    hint.textContent = ' click a step to hold or release it, a transition to force it';
+    c.appendChild(hint);
+    div.appendChild(c);
+  }
+  const svg = document.createElement('div');
+  svg.className = 'svg';
+  svg.addEventListener('click', (ev) => clickPicture(p, ev));
+  div.appendChild(svg);
+  $('#pictures').appendChild(div);
+  loadPicture(p.block);
+}
+
+async function loadPicture(name) {
+  const r = await get('pictures/' + encodeURIComponent(name));
+  setPicture(name, await r.text());
+}
+
+function setPicture(name, svg) {
+  const div = pictureOf(name);
+  if (div) div.querySelector('.svg').innerHTML = svg;
+}
+
+function clickPicture(p, ev) {
+  if (!status || !status.writes || p.picture !== 'sfc') return;
+  const step = ev.target.closest('g.step');
+  if (step) {
+    const name = step.id.slice('step-'.length);
+    const verb = step.classList.contains('held') ? 'RELEASESTEP' : 'HOLDSTEP';
+    command(verb + ' ' + p.block + ' ' + name);
+    return;
+  }
+  const t = ev.target.closest('g.transition');
+  if (t) {
+    const name = t.id.slice('trans-'.length);
+    const key = p.block + '.' + name;
+    const next = { NORMAL: 'HOLD', HOLD: 'CONTINUE', CONTINUE: 'NORMAL' }[forces.get(key) || 'NORMAL'];
+    forces.set(key, next);
+    command('FORCETRANS ' + p.block + ' ' + name + ' ' + next);
+  }
+}
+
+async function loadBlocks() {
+  const list = await (await get('blocks')).json();
+  const sel = $('#block-list');
+  sel.replaceChildren(...list.map((b) => {
+    const o = document.createElement('option');
+    o.value = b.name;
+    o.textContent = b.name + ' (' + b.type + ')';
+    return o;
+  }));
+  sel.onchange = () => showBlock(sel.value);
+  if (list.length) showBlock(list[0].name);
+}
+
+async function showBlock(name) {
+  const b = await (await get('blocks/' + encodeURIComponent(name))).json();
+  block = b.name;
+  $('#trend-fields').replaceChildren(...b.fields.map((f) => {
+    const o = document.createElement('option');
+    o.value = b.name + '.' + f.name;
+    return o;
+  }));
+  $('#fields tbody').replaceChildren(...b.fields.map((f) => {
+    const tr = document.createElement('tr');
+    const path = b.name + '.' + f.name;
+    tr.dataset.path = path;
+    const n = document.createElement('td');
+    n.textContent = f.name + (f.readonly ? ' (read-only)' : '');
+    const v = document.createElement('td');
+    v.textContent = f.value;
+    v.className = 'value' + (f.forced ? ' forced' : '');
+    const c = document.createElement('td');
+    c.className = 'write';
+    if (!f.readonly) {
+      const input = document.createElement('input');
+      input.size = 10;
+      const mod = document.createElement('button');
+      mod.textContent = 'modify';
+      mod.onclick = () => command('M ' + path + '=' + input.value).then(() => showBlock(b.name));
+      const force = document.createElement('button');
+      force.textContent = f.forced ? 'release' : 'force';
+      force.onclick = () => command(f.forced ? 'F ' + path + '=N' : 'F ' + path + '=' + input.value).then(() => showBlock(b.name));
+      c.append(input, mod, force);
+    }
+    tr.append(n, v, c);
+    return tr;
+  }));
+}
+
+function values(changed) {
+  for (const [path, value] of Object.entries(changed)) {
+    if (block && path.startsWith(block + '.')) {
+      const tr = [...document.querySelectorAll('#fields tbody tr')].find((r) => r.dataset.path === path);
+      if (tr) text(tr.querySelector('.value'), value);
+    }
+    const series = trends.get(path);
+    if (series) series.push([status ? status.elapsed : 0, value]);
+  }
+  drawTrends();
+}
+
+async function addTrend(path) {
+  if (!path || trends.has(path)) return;
+  const dot = path.lastIndexOf('.');
+  const b = await (await get('blocks/' + encodeURIComponent(path.slice(0, dot)))).json();
+  const f = b.fields.find((x) => x.name.toLowerCase() === path.slice(dot + 1).toLowerCase());
+  if (!f) return;
+  trends.set(b.name + '.' + f.name, [[status ? status.elapsed : 0, f.value]]);
+  drawTrends();
+}
+
+const NS = 'http://www.w3.org/2000/svg';
+function el(name, attrs, content) {
+  const e = document.createElementNS(NS, name);
+  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
+  if (content !== undefined) e.textContent = content;
+  return e;
+}
+
+function drawTrends() {
+  const host = $('#trend');
+  if (!trends.size) { host.replaceChildren(); return; }
+  const W = 800, H = 70, L = 160;
+  const now = status ? status.elapsed : 0;
+  const span = Number($('#trend-window').value);
+  const svg = el('svg', { width: W, height: trends.size * (H + 10), class: 'trend' });
+  let row = 0;
+  for (const [path, series] of trends) {
+    while (series.length > 2 && series[1][0] < now - span) series.shift();
+    const num = (v) => (v === 'TRUE' ? 1 : v === 'FALSE' ? 0 : Number(v));
+    const ys = series.map((p) => num(p[1])).filter((v) => Number.isFinite(v));
+    const lo = Math.min(...ys, 0), hi = Math.max(...ys, lo + 1);
+    const top = row * (H + 10) + 5;
+    const x = (t) => L + ((t - (now - span)) / span) * (W - L - 5);
+    const y = (v) => top + H - ((v - lo) / (hi - lo)) * H;
+    let d = '';
+    let last = null;
+    for (const [t, v] of series) {
+      const n = num(v);
+      if (!Number.isFinite(n)) continue;
+      const tx = Math.max(L, x(t));
+      d += (last === null ? 'M' + tx + ',' + y(n) : 'H' + tx + 'V' + y(n));
+      last = n;
+    }
+    if (last !== null) d += 'H' + x(now);
+    svg.append(el('text', { x: 4, y: top + 14 }, path), el('text', { x: 4, y: top + H, class: 'dim' }, lo + ' … ' + hi));
+    svg.append(el('path', { d, fill: 'none', stroke: 'currentColor', 'stroke-width': 1.5 }));
+    row += 1;
+  }
+  host.replaceChildren(svg);
+}
+
+function listen() {
+  const es = new EventSource('api/events' + query);
+  es.addEventListener('status', (e) => renderStatus(JSON.parse(e.data)));
+  es.addEventListener('values', (e) => values(JSON.parse(e.data)));
+  es.addEventListener('picture', (e) => { const p = JSON.parse(e.data); setPicture(p.block, p.svg); });
+  es.addEventListener('resync', () => { start(); });
+}
+
+async function start() {
+  renderStatus(await (await get('programs')).json());
+  for (const div of document.querySelectorAll('#pictures .picture')) loadPicture(div.dataset.block);
+  if (block) showBlock(block);
+}
+
+$('#console-form').addEventListener('submit', (ev) => {
+  ev.preventDefault();
+  const line = $('#console-line').value.trim();
+  if (line) command(line);
+});
+$('#trend-form').addEventListener('submit', (ev) => { ev.preventDefault(); addTrend($('#trend-field').value.trim()); });
+
+start().then(loadBlocks).then(listen).catch((e) => { $('#console-out').textContent = String(e); });

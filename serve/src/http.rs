@@ -1,0 +1,225 @@
+//! The HTTP side: the monitor page and its assets (embedded: no CDN, works
+//! offline), the JSON API and the event stream. Handlers ask the plant
+//! thread and wait for its answer; they never touch the strategy.
+
+use crate::{Ask, Event, Reply};
+use axum::body::Bytes;
+use axum::extract::{Path, Request, State};
+use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
+use axum::middleware::Next;
+use axum::response::sse::{Event as SseEvent, KeepAlive, Sse};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use axum::{Json, Router};
+use serde_json::{json, Value};
+use std::convert::Infallible;
+use std::sync::mpsc::Sender;
+use std::sync::{Arc, Mutex};
+use tokio::sync::{broadcast, oneshot, watch};
+
+/// The longest console line the API takes (as the console's own).
+const MAX_LINE: usize = 4096;
+
+#[derive(Clone)]
+pub struct AppState {
+    asks: Arc<Mutex<Sender<Ask>>>,
+    events: broadcast::Sender<Arc<Event>>,
+    status: Arc<Mutex<Value>>,
+    token: Option<Arc<str>>,
+    /// Tells open event streams to end when the server stops.
+    closing: watch::Receiver<bool>,
+    close: Arc<watch::Sender<bool>>,
+}
+
+impl AppState {
+    pub fn new(
+        asks: Sender<Ask>,
+        events: broadcast::Sender<Arc<Event>>,
+        status: Arc<Mutex<Value>>,
+        token: Option<String>,
+    ) -> AppState {
+        let (close, closing) = watch::channel(false);
+        AppState {
+            asks: Arc::new(Mutex::new(asks)),
+            events,
+            status,
+            token: token.map(Arc::from),
+            closing,
+            close: Arc::new(close),
+        }
+    }
+
+    /// Asks the plant thread; `None` when it has stopped.
+    async fn ask<T>(&self, make: impl FnOnce(oneshot::Sender<T>) -> Ask) -> Option<T> {
+        let (reply, answer) = oneshot::channel();
+        self.asks.lock().ok()?.send(make(reply)).ok()?;
+        answer.await.ok()
+    }
+}
+
+/// Serves until `closed` fires, then ends the event streams and returns.
+pub fn serve(listener: std::net::TcpListener, state: AppState, closed: oneshot::Receiver<()>) {
+    let Ok(rt) = tokio::runtime::Builder::new_multi_thread().worker_threads(2).enable_all().build() else { return };
+    let close = state.close.clone();
+    let app = router(state);
+    rt.block_on(async move {
+        let Ok(listener) = tokio::net::TcpListener::from_std(listener) else { return };
+        let shutdown = async move {
+            let _ = closed.await;
+            let _ = close.send(true);
+        };
+        let _ = axum::serve(listener, app).with_graceful_shutdown(shutdown).await;
+    });
+    rt.shutdown_timeout(std::time::Duration::from_secs(1));
+}
+
+fn router(state: AppState) -> Router {
+    Router::new()
+        .route("/", get(|| async { asset("text/html; charset=utf-8", include_str!("../assets/index.html")) }))
+        .route("/app.js", get(|| async { asset("text/javascript; charset=utf-8", include_str!("../assets/app.js")) }))
+        .route("/style.css", get(|| async { asset("text/css; charset=utf-8", include_str!("../assets/style.css")) }))
+        .route("/api/programs", get(programs))
+        .route("/api/blocks", get(blocks))
+        .route("/api/blocks/{name}", get(block))
+        .route("/api/pictures/{name}", get(picture))
+        .route("/api/events", get(events))
+        .route("/api/command", post(command))
+        .layer(axum::middleware::from_fn_with_state(state.clone(), guard))
+        .with_state(state)
+}
+
+fn asset(kind: &'static str, body: &'static str) -> Response {
+    ([(header::CONTENT_TYPE, kind), (header::CACHE_CONTROL, "no-cache")], body).into_response()
+}
+
+fn refuse(status: StatusCode, why: &str) -> Response {
+    (status, Json(json!({ "error": why }))).into_response()
+}
+
+/// The token, when one is set: `Authorization: Bearer TOKEN` or (for the
+/// page and its event stream, which can't set headers) `?token=TOKEN`.
+/// And no request from another origin: a page elsewhere must not drive
+/// the plant through the engineer's browser.
+async fn guard(State(s): State<AppState>, req: Request, next: Next) -> Response {
+    if let Some(token) = &s.token {
+        let bearer = req
+            .headers()
+            .get(header::AUTHORIZATION)
+            .and_then(|v| v.to_str().ok())
+            .and_then(|v| v.strip_prefix("Bearer "));
+        let query = req.uri().query().unwrap_or("").split('&').find_map(|kv| kv.strip_prefix("token="));
+        let given = bearer.or(query);
+        if !given.is_some_and(|g| same(g.as_bytes(), token.as_bytes())) {
+            let why = if given.is_none() { "this server needs its token" } else { "wrong token" };
+            let mut r = refuse(StatusCode::UNAUTHORIZED, why);
+            r.headers_mut().insert(header::WWW_AUTHENTICATE, HeaderValue::from_static("Bearer"));
+            return r;
+        }
+    }
+    if foreign_origin(req.headers()) {
+        return refuse(StatusCode::FORBIDDEN, "requests from another origin are refused");
+    }
+    next.run(req).await
+}
+
+/// Compares in time independent of where the two differ.
+fn same(a: &[u8], b: &[u8]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).fold(0u8, |d, (x, y)| d | (x ^ y)) == 0
+}
+
+/// An `Origin` header naming another host than the one asked.
+fn foreign_origin(h: &HeaderMap) -> bool {
+    let Some(origin) = h.get(header::ORIGIN).and_then(|v| v.to_str().ok()) else { return false };
+    let host = h.get(header::HOST).and_then(|v| v.to_str().ok()).unwrap_or("");
+    let origin_host = origin.split_once("://").map_or(origin, |(_, rest)| rest);
+    origin_host != host
+}
+
+async fn programs(State(s): State<AppState>) -> Response {
+    let status = s.status.lock().map(|v| v.clone()).unwrap_or(Value::Null);
+    Json(status).into_response()
+}
+
+async fn blocks(State(s): State<AppState>) -> Response {
+    match s.ask(|reply| Ask::Blocks { reply }).await {
+        Some(v) => Json(v).into_response(),
+        None => refuse(StatusCode::SERVICE_UNAVAILABLE, "the plant has stopped"),
+    }
+}
+
+async fn block(State(s): State<AppState>, Path(name): Path<String>) -> Response {
+    match s.ask(|reply| Ask::Block { name: name.clone(), reply }).await {
+        Some(Some(v)) => Json(v).into_response(),
+        Some(None) => refuse(StatusCode::NOT_FOUND, &format!("the database has no block `{name}`")),
+        None => refuse(StatusCode::SERVICE_UNAVAILABLE, "the plant has stopped"),
+    }
+}
+
+async fn picture(State(s): State<AppState>, Path(name): Path<String>) -> Response {
+    match s.ask(|reply| Ask::Picture { name: name.clone(), reply }).await {
+        Some(Some(svg)) => ([(header::CONTENT_TYPE, "image/svg+xml")], svg).into_response(),
+        Some(None) => refuse(StatusCode::NOT_FOUND, &format!("block `{name}` runs no sequence, ladder or FST table")),
+        None => refuse(StatusCode::SERVICE_UNAVAILABLE, "the plant has stopped"),
+    }
+}
+
+/// `POST /api/command`: `{"command": "M TANK1.Level=50"}` (JSON only: a
+/// form on another site can't send it without asking first).
+async fn command(State(s): State<AppState>, headers: HeaderMap, body: Bytes) -> Response {
+    let json_body = headers
+        .get(header::CONTENT_TYPE)
+        .and_then(|v| v.to_str().ok())
+        .is_some_and(|t| t.trim_start().to_ascii_lowercase().starts_with("application/json"));
+    if !json_body {
+        return refuse(StatusCode::UNSUPPORTED_MEDIA_TYPE, "send {\"command\": \"…\"} as application/json");
+    }
+    let line = match serde_json::from_slice::<Value>(&body).ok().and_then(|v| v["command"].as_str().map(String::from)) {
+        Some(l) => l,
+        None => return refuse(StatusCode::BAD_REQUEST, "expected {\"command\": \"a console command line\"}"),
+    };
+    if line.len() > MAX_LINE || line.contains('\n') {
+        return refuse(StatusCode::BAD_REQUEST, "a command line is one line of at most 4096 bytes");
+    }
+    match s.ask(|reply| Ask::Command { line, reply }).await {
+        Some(Reply::Refused) => {
+            refuse(StatusCode::FORBIDDEN, "this monitor is read-only: start linc serve with --allow-writes")
+        }
+        Some(Reply::Done { replies, failures }) => {
+            let replies: Vec<Value> = replies
+                .into_iter()
+                .map(|r| match r {
+                    Ok(reply) => json!({"ok": true, "reply": reply}),
+                    Err(e) => json!({"ok": false, "code": e.code.as_str(), "message": e.message}),
+                })
+                .collect();
+            Json(json!({"replies": replies, "failures": failures})).into_response()
+        }
+        None => refuse(StatusCode::SERVICE_UNAVAILABLE, "the plant has stopped"),
+    }
+}
+
+/// `GET /api/events`: Server-Sent Events — `status`, `values` (changed
+/// fields only), `picture` — at most ten times a second; `resync` when a
+/// slow client missed some (it should fetch again).
+async fn events(State(s): State<AppState>) -> Response {
+    let rx = s.events.subscribe();
+    let closing = s.closing.clone();
+    let stream = futures_util::stream::unfold((rx, closing), |(mut rx, mut closing)| async move {
+        loop {
+            if *closing.borrow() {
+                return None;
+            }
+            let next = tokio::select! {
+                r = rx.recv() => r,
+                _ = closing.changed() => return None,
+            };
+            let event = match next {
+                Ok(e) => SseEvent::default().event(e.name).data(e.data.as_str()),
+                Err(broadcast::error::RecvError::Lagged(_)) => SseEvent::default().event("resync").data("{}"),
+                Err(broadcast::error::RecvError::Closed) => return None,
+            };
+            return Some((Ok::<_, Infallible>(event), (rx, closing)));
+        }
+    });
+    Sse::new(stream).keep_alive(KeepAlive::default()).into_response()
+}

@@ -1,0 +1,197 @@
+//! `linc serve`: a strategy run in real time behind a live monitor page
+//! and a JSON API (docs/serve.md, ADR 0015).
+//!
+//! Two threads share nothing but messages: the plant thread owns the
+//! console (and so the strategy) and runs it; the HTTP side (tokio and
+//! axum) asks it for what it needs and relays what it publishes. Every
+//! control is a console command line, so the page, the API and `--console`
+//! go through one implementation of the rules and C-codes.
+
+mod http;
+mod json;
+mod pictures;
+mod plant;
+
+use linc_engines::console::{Console, ConsoleError};
+use linc_engines::strategy::Want;
+use std::net::SocketAddr;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::Sender;
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
+use tokio::sync::{broadcast, oneshot};
+
+pub use plant::PUBLISH_EVERY;
+
+/// How fast simulated time goes: a multiple of the wall clock, or as fast
+/// as the machine runs it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Speed {
+    Times(f64),
+    Max,
+}
+
+/// How to serve.
+#[derive(Clone, Debug)]
+pub struct Config {
+    pub addr: SocketAddr,
+    pub speed: Speed,
+    /// Every request must carry it (required off loopback).
+    pub token: Option<String>,
+    pub allow_writes: bool,
+    /// Stop when simulated time reaches this (`--for`).
+    pub until_us: Option<u64>,
+    /// Where `SAVE` writes the retentive state (`--state`).
+    pub state: Option<PathBuf>,
+}
+
+/// One published change: an SSE event's name and JSON data.
+#[derive(Debug)]
+pub struct Event {
+    pub name: &'static str,
+    pub data: String,
+}
+
+/// The answer to a console line.
+#[derive(Debug)]
+pub enum Reply {
+    /// A line that writes, without `--allow-writes`: nothing was run.
+    Refused,
+    /// One reply per command, then the runtime errors of the scans the
+    /// line ran (ADVANCE, SCAN).
+    Done { replies: Vec<Result<String, ConsoleError>>, failures: Vec<String> },
+}
+
+/// What the HTTP side asks the plant thread.
+pub(crate) enum Ask {
+    Command { line: String, reply: oneshot::Sender<Reply> },
+    Block { name: String, reply: oneshot::Sender<Option<serde_json::Value>> },
+    Blocks { reply: oneshot::Sender<serde_json::Value> },
+    Picture { name: String, reply: oneshot::Sender<Option<String>> },
+}
+
+/// What a served run leaves: the console (for `--state`) and its counts.
+pub struct Finished {
+    pub console: Console,
+    pub scans: u64,
+    pub late: u64,
+}
+
+/// A running server.
+pub struct Server {
+    addr: SocketAddr,
+    asks: Sender<Ask>,
+    stop: Arc<AtomicBool>,
+    plant: JoinHandle<Finished>,
+    http: JoinHandle<()>,
+    closing: Option<oneshot::Sender<()>>,
+}
+
+/// Runs console lines on a served plant.
+#[derive(Clone)]
+pub struct Handle {
+    asks: Sender<Ask>,
+}
+
+impl Handle {
+    /// Runs a console line on the plant, as `POST /api/command` does
+    /// (refused alike without `--allow-writes`); `None` once the plant
+    /// has stopped.
+    pub fn command(&self, line: &str) -> Option<Reply> {
+        let (reply, answer) = oneshot::channel();
+        self.asks.send(Ask::Command { line: line.to_string(), reply }).ok()?;
+        answer.blocking_recv().ok()
+    }
+}
+
+/// Why the server could not start.
+#[derive(Debug)]
+pub enum StartError {
+    /// Off loopback without a token.
+    NeedsToken(SocketAddr),
+    Bind(SocketAddr, std::io::Error),
+}
+
+impl std::fmt::Display for StartError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            StartError::NeedsToken(a) => {
+                write!(
+                    f,
+                    "{a} is not a loopback address: serving it needs --token TOKEN, which every request must carry"
+                )
+            }
+            StartError::Bind(a, e) => write!(f, "can't listen on {a}: {e}"),
+        }
+    }
+}
+
+/// Starts the plant thread and the HTTP server over `console`'s strategy;
+/// `wants` are the programs its blocks name, with sources relative to `dir`.
+pub fn start(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) -> Result<Server, StartError> {
+    if !cfg.addr.ip().is_loopback() && cfg.token.is_none() {
+        return Err(StartError::NeedsToken(cfg.addr));
+    }
+    let listener = std::net::TcpListener::bind(cfg.addr).map_err(|e| StartError::Bind(cfg.addr, e))?;
+    let addr = listener.local_addr().map_err(|e| StartError::Bind(cfg.addr, e))?;
+    listener.set_nonblocking(true).map_err(|e| StartError::Bind(addr, e))?;
+    console.can_save = cfg.state.is_some();
+    let pictures = pictures::load(dir, wants, &console.strategy);
+    let (events, _) = broadcast::channel(256);
+    let status = Arc::new(Mutex::new(serde_json::Value::Null));
+    let (asks, asked) = std::sync::mpsc::channel();
+    let stop = Arc::new(AtomicBool::new(false));
+    let mut plant = plant::Plant::new(
+        console,
+        pictures,
+        plant::Setup { speed: cfg.speed, until: cfg.until_us, allow_writes: cfg.allow_writes, state: cfg.state },
+        events.clone(),
+        status.clone(),
+    );
+    let flag = stop.clone();
+    let plant = std::thread::Builder::new()
+        .name("linc-plant".into())
+        .spawn(move || {
+            plant.run(&asked, &flag);
+            plant.finish()
+        })
+        .map_err(|e| StartError::Bind(addr, e))?;
+    let (closing, closed) = oneshot::channel();
+    let state = http::AppState::new(asks.clone(), events, status, cfg.token);
+    let http = std::thread::Builder::new()
+        .name("linc-http".into())
+        .spawn(move || http::serve(listener, state, closed))
+        .map_err(|e| StartError::Bind(addr, e))?;
+    Ok(Server { addr, asks, stop, plant, http, closing: Some(closing) })
+}
+
+impl Server {
+    /// The address it listens on (the port chosen when asked for port 0).
+    pub fn addr(&self) -> SocketAddr {
+        self.addr
+    }
+
+    /// A handle that runs console lines on the plant from another thread
+    /// (`--console` reads standard input on one).
+    pub fn handle(&self) -> Handle {
+        Handle { asks: self.asks.clone() }
+    }
+
+    /// Whether the plant has stopped by itself (`--for` reached).
+    pub fn finished(&self) -> bool {
+        self.plant.is_finished()
+    }
+
+    /// Stops the plant and the server (open event streams end) and returns
+    /// what the run left.
+    pub fn stop(mut self) -> Finished {
+        self.stop.store(true, Ordering::Relaxed);
+        if let Some(c) = self.closing.take() {
+            let _ = c.send(());
+        }
+        let finished = self.plant.join().unwrap_or_else(|p| std::panic::resume_unwind(p));
+        let _ = self.http.join();
+        finished
+    }
+}

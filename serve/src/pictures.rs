@@ -1,0 +1,130 @@
+//! The live pictures of a served plant: each sequence, ladder action and
+//! FST table drawn by `linc-draw` with the state the plant is in now. A
+//! picture is drawn again only when what it shows has changed (its key:
+//! active steps and their whole seconds, powered elements, the current
+//! FST step with RR and CF), so a monitor of a quiet plant costs nothing.
+
+use linc_compiler::check::Context;
+use linc_compiler::{fst, ladder, sfc};
+use linc_draw::fst::FstState;
+use linc_draw::sfc::StepState;
+use linc_driver::ladder::LiveElements;
+use linc_engines::strategy::{Strategy, Want, WantKind};
+use std::path::Path;
+
+enum Live {
+    Sequence { text: String, tree: sfc::ast::Sequence },
+    Ladder { text: String, actions: Vec<ladder::ast::Action>, elements: LiveElements },
+    Fst { table: fst::Table, offsets: Vec<u32> },
+}
+
+/// One program's picture and the state it was last drawn with.
+pub struct Picture {
+    pub block: usize,
+    pub name: String,
+    /// `sfc`, `ld` or `fst`.
+    pub kind: &'static str,
+    live: Live,
+    key: Option<String>,
+    pub svg: String,
+}
+
+/// The pictures of the programs `wants` name whose sources can be drawn:
+/// sequences, ladder actions and FST tables (an ST action has none; its
+/// values are in the block browser).
+pub fn load(dir: &Path, wants: &[Want], s: &Strategy) -> Vec<Picture> {
+    wants.iter().filter_map(|w| picture(dir, w, s)).collect()
+}
+
+fn picture(dir: &Path, w: &Want, s: &Strategy) -> Option<Picture> {
+    let path = dir.join(&w.file);
+    let lower = w.file.to_ascii_lowercase();
+    let text = linc_driver::files::read_input_text(&path).ok()?;
+    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("program").to_string();
+    let db = &s.store.db;
+    let (kind, live) = match w.kind {
+        WantKind::Sequence => {
+            let tree = sfc::check_sequence(&text, Context { db, resolve_blocks: true, steps: None }).tree?;
+            ("sfc", Live::Sequence { text, tree })
+        }
+        WantKind::Action if lower.ends_with(".ld") => {
+            let (file, _) = ladder::parser::parse(&text, &stem);
+            let actions: Vec<_> =
+                file.actions.into_iter().filter(|a| a.name.text.eq_ignore_ascii_case(&w.action)).collect();
+            if actions.is_empty() {
+                return None;
+            }
+            let elements = LiveElements::new(&text, &stem, &s.store);
+            ("ld", Live::Ladder { text, actions, elements })
+        }
+        WantKind::Fst => {
+            let (table, _) = fst::reader::read(&text);
+            let object = fst::compile(&text, &stem, &path.display().to_string(), Some(db)).1;
+            let offsets = object.as_ref().and_then(fst::offsets).unwrap_or_default();
+            ("fst", Live::Fst { table, offsets })
+        }
+        WantKind::Action => return None,
+    };
+    let name = db.blocks[w.block].name.clone();
+    Some(Picture { block: w.block, name, kind, live, key: None, svg: String::new() })
+}
+
+impl Picture {
+    /// Draws the picture again if the plant's state it shows has changed;
+    /// `true` when it did.
+    pub fn refresh(&mut self, s: &mut Strategy) -> bool {
+        let block = self.block;
+        match &self.live {
+            Live::Sequence { text, tree } => {
+                let Some(seq) = s.sequence(block) else { return false };
+                let look = |name: &str| {
+                    let (active, t_us) = seq.step(name)?;
+                    let held = seq.monitor.held.iter().any(|h| h.eq_ignore_ascii_case(name));
+                    Some(StepState { active, t_us, held })
+                };
+                let mut key = seq.status.name().to_string();
+                for n in seq.active_steps() {
+                    let secs = seq.step(n).map_or(0, |(_, us)| us / 1_000_000);
+                    key.push_str(&format!(" {n}:{secs}"));
+                }
+                for h in &seq.monitor.held {
+                    key.push_str(&format!(" held:{h}"));
+                }
+                if self.key.as_deref() == Some(key.as_str()) {
+                    return false;
+                }
+                self.svg = linc_draw::sfc::sequence(text, tree, Some(&look)).0;
+                self.key = Some(key);
+            }
+            Live::Ladder { text, actions, elements } => {
+                let truths = elements.truths(&mut s.store);
+                let mut known: Vec<_> = truths.iter().collect();
+                known.sort();
+                let key = format!("{known:?}");
+                if self.key.as_deref() == Some(key.as_str()) {
+                    return false;
+                }
+                let look = |span: linc_compiler::span::Span| truths.get(&(span.start, span.end)).copied();
+                self.svg = linc_draw::ladder::file(text, actions, Some(&look)).0;
+                self.key = Some(key);
+            }
+            Live::Fst { table, offsets } => {
+                let field = |f: &str| s.store.cell_of(block, f).map(|c| s.store.show(c)).unwrap_or_default();
+                let ip: Option<u32> = field("IP").trim().parse().ok();
+                let state = FstState {
+                    current: ip.and_then(|ip| offsets.iter().position(|&o| o == ip)),
+                    rr: field("RR"),
+                    cf: field("CMPFLG"),
+                    runflg: field("RUNFLG"),
+                };
+                let key = format!("{:?} {} {} {}", state.current, state.rr, state.cf, state.runflg);
+                if self.key.as_deref() == Some(key.as_str()) {
+                    return false;
+                }
+                self.svg = linc_draw::fst::table(table, Some(&state)).0;
+                self.key = Some(key);
+            }
+        }
+        true
+    }
+}

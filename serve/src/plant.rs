@@ -1,0 +1,297 @@
+//! The plant thread: the strategy run in real time (the simulated clock
+//! follows the wall clock times the speed), every scan at its instant and
+//! none skipped, a late one counted; the console's commands executed
+//! between scans; and at most ten times a second what changed published to
+//! the event streams.
+
+use crate::pictures::Picture;
+use crate::{Ask, Event, Reply, Speed};
+use linc_engines::console::Console;
+use linc_engines::strategy::WantKind;
+use linc_runtime::store::Cell;
+use serde_json::{json, Map, Value};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, RecvTimeoutError};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+use tokio::sync::broadcast;
+
+/// How often changes are published at most.
+pub const PUBLISH_EVERY: Duration = Duration::from_millis(100);
+
+/// Where simulated time should be at a wall-clock instant: it follows the
+/// wall clock from a base pair, rebased whenever a command moved it.
+struct RealTime {
+    speed: Speed,
+    wall: Instant,
+    sim: u64,
+}
+
+impl RealTime {
+    /// The simulated µs the clock should have reached at `now`.
+    fn target(&self, now: Instant) -> u64 {
+        match self.speed {
+            Speed::Max => u64::MAX,
+            Speed::Times(k) => self.sim.saturating_add((now.duration_since(self.wall).as_secs_f64() * k * 1e6) as u64),
+        }
+    }
+
+    /// The wall-clock instant simulated time `sim` is due.
+    fn wall_of(&self, sim: u64) -> Instant {
+        match self.speed {
+            Speed::Max => self.wall,
+            Speed::Times(k) => self.wall + Duration::from_secs_f64(sim.saturating_sub(self.sim) as f64 / 1e6 / k),
+        }
+    }
+}
+
+/// How the plant runs.
+pub struct Setup {
+    pub speed: Speed,
+    pub until: Option<u64>,
+    pub allow_writes: bool,
+    /// Where `SAVE` writes the state.
+    pub state: Option<std::path::PathBuf>,
+}
+
+/// What the plant thread owns.
+pub struct Plant {
+    pub console: Console,
+    pub pictures: Vec<Picture>,
+    clock: RealTime,
+    /// A scan is late when it starts this much after its instant.
+    tolerance: Duration,
+    pub late: u64,
+    pub scans: u64,
+    until: Option<u64>,
+    last: Vec<Cell>,
+    last_status: String,
+    published: Instant,
+    events: broadcast::Sender<Arc<Event>>,
+    status: Arc<Mutex<Value>>,
+    allow_writes: bool,
+    state: Option<std::path::PathBuf>,
+}
+
+impl Plant {
+    pub fn new(
+        console: Console,
+        pictures: Vec<Picture>,
+        setup: Setup,
+        events: broadcast::Sender<Arc<Event>>,
+        status: Arc<Mutex<Value>>,
+    ) -> Plant {
+        let Setup { speed, until, allow_writes, state } = setup;
+        let sim = console.strategy.elapsed_us();
+        let period = console.strategy.fastest_period_us().unwrap_or(1_000_000);
+        let tolerance = match speed {
+            Speed::Times(k) => Duration::from_secs_f64(period as f64 / 2e6 / k).max(Duration::from_millis(1)),
+            Speed::Max => Duration::MAX,
+        };
+        let last = console.strategy.store.cells.clone();
+        let mut p = Plant {
+            console,
+            pictures,
+            clock: RealTime { speed, wall: Instant::now(), sim },
+            tolerance,
+            late: 0,
+            scans: 0,
+            until,
+            last,
+            last_status: String::new(),
+            published: Instant::now(),
+            events,
+            status,
+            allow_writes,
+            state,
+        };
+        p.publish();
+        p
+    }
+
+    /// Runs until `stop` is set, the `--for` time is reached or every
+    /// asker is gone.
+    pub fn run(&mut self, asks: &Receiver<Ask>, stop: &AtomicBool) {
+        let until = self.until.unwrap_or(u64::MAX);
+        while !stop.load(Ordering::Relaxed) {
+            let now = Instant::now();
+            let target = self.clock.target(now);
+            let s = &mut self.console.strategy;
+            match s.next_due_us().filter(|&n| n < until && n <= target) {
+                Some(n) => {
+                    if now > self.clock.wall_of(n) + self.tolerance {
+                        self.late += 1;
+                    }
+                    let failures = s.run_due(None);
+                    self.scans += 1;
+                    drop(failures); // they are in the error status the page shows
+                    if !self.answer_waiting(asks) {
+                        return;
+                    }
+                }
+                None => {
+                    let el = s.elapsed_us();
+                    let to = target.min(until);
+                    if to != u64::MAX && to > el {
+                        s.run_for(to - el, None);
+                    }
+                    if s.elapsed_us() >= until {
+                        break;
+                    }
+                    let wait = match s.next_due_us() {
+                        Some(n) => self.clock.wall_of(n).saturating_duration_since(now),
+                        None => PUBLISH_EVERY,
+                    };
+                    match asks.recv_timeout(wait.min(PUBLISH_EVERY)) {
+                        Ok(a) => self.answer(a),
+                        Err(RecvTimeoutError::Timeout) => {}
+                        Err(RecvTimeoutError::Disconnected) => return,
+                    }
+                }
+            }
+            if self.published.elapsed() >= PUBLISH_EVERY {
+                self.publish();
+            }
+        }
+        self.publish();
+    }
+
+    /// Answers what is waiting without blocking; `false` when every asker
+    /// is gone.
+    fn answer_waiting(&mut self, asks: &Receiver<Ask>) -> bool {
+        loop {
+            match asks.try_recv() {
+                Ok(a) => self.answer(a),
+                Err(std::sync::mpsc::TryRecvError::Empty) => return true,
+                Err(std::sync::mpsc::TryRecvError::Disconnected) => return false,
+            }
+        }
+    }
+
+    fn answer(&mut self, a: Ask) {
+        match a {
+            Ask::Command { line, reply } => {
+                let r = self.command(&line);
+                let _ = reply.send(r);
+                self.publish();
+            }
+            Ask::Block { name, reply } => {
+                let _ = reply.send(crate::json::block(&self.console.strategy.store, &name));
+            }
+            Ask::Blocks { reply } => {
+                let _ = reply.send(crate::json::blocks(&self.console.strategy.store));
+            }
+            Ask::Picture { name, reply } => {
+                let s = &mut self.console.strategy;
+                let pic = self.pictures.iter_mut().find(|p| p.name.eq_ignore_ascii_case(&name));
+                let _ = reply.send(pic.map(|p| {
+                    p.refresh(s);
+                    p.svg.clone()
+                }));
+            }
+        }
+    }
+
+    /// One console line, through the console engine like every control.
+    /// A command that moved the clock (ADVANCE, SCAN) rebases real time.
+    fn command(&mut self, line: &str) -> Reply {
+        if !self.allow_writes && !linc_engines::console::reads_only(line) {
+            return Reply::Refused;
+        }
+        let before = self.console.strategy.elapsed_us();
+        let replies = self.console.execute(line);
+        let failures: Vec<String> = self.console.take_failures().iter().map(|e| e.to_string()).collect();
+        let after = self.console.strategy.elapsed_us();
+        if after != before {
+            self.clock = RealTime { speed: self.clock.speed, wall: Instant::now(), sim: after };
+        }
+        let mut failures = failures;
+        // SAVE took the state; it is written here, atomically.
+        if let (Some(bytes), Some(path)) = (self.console.take_saved(), &self.state) {
+            if let Err(e) = linc_driver::files::write_atomic(path, &bytes) {
+                failures.push(e.diagnostic().message.clone());
+            }
+        }
+        Reply::Done { replies, failures }
+    }
+
+    /// What the run leaves, once it has stopped.
+    pub fn finish(self) -> crate::Finished {
+        crate::Finished { console: self.console, scans: self.scans, late: self.late }
+    }
+
+    /// Publishes the status, the values and the pictures that changed.
+    pub fn publish(&mut self) {
+        self.published = Instant::now();
+        let status = self.status_json();
+        let text = status.to_string();
+        if text != self.last_status {
+            self.send("status", text.clone());
+            self.last_status = text;
+            if let Ok(mut s) = self.status.lock() {
+                *s = status;
+            }
+        }
+        let values = self.changed_values();
+        if !values.is_empty() {
+            self.send("values", Value::Object(values).to_string());
+        }
+        let s = &mut self.console.strategy;
+        let mut drawn = Vec::new();
+        for p in &mut self.pictures {
+            if p.refresh(s) {
+                drawn.push(json!({"block": p.name, "svg": p.svg}).to_string());
+            }
+        }
+        for d in drawn {
+            self.send("picture", d);
+        }
+    }
+
+    fn send(&self, name: &'static str, data: String) {
+        // No stream listening is not an error: the next one starts afresh.
+        let _ = self.events.send(Arc::new(Event { name, data }));
+    }
+
+    /// Every field whose value changed since the last publication, by path.
+    fn changed_values(&mut self) -> Map<String, Value> {
+        let store = &self.console.strategy.store;
+        let mut out = Map::new();
+        for (i, (now, was)) in store.cells.iter().zip(self.last.iter_mut()).enumerate() {
+            if now != was {
+                out.insert(store.describe(i as u32), Value::String(store.show(i as u32)));
+                was.clone_from(now);
+            }
+        }
+        out
+    }
+
+    fn status_json(&self) -> Value {
+        let s = &self.console.strategy;
+        let kind = |k| match k {
+            WantKind::Action => "action",
+            WantKind::Sequence => "sequence",
+            WantKind::Fst => "fst",
+        };
+        let programs: Vec<Value> = s
+            .programs()
+            .into_iter()
+            .map(|p| {
+                let picture = self.pictures.iter().find(|q| q.name == p.block).map(|q| q.kind);
+                json!({"block": p.block, "kind": kind(p.kind), "task": p.task, "state": p.state.name(),
+                       "position": p.position, "picture": picture})
+            })
+            .collect();
+        let error = s.error().map(|e| {
+            json!({"number": e.number(), "code": e.error.code.as_str(), "block": e.block,
+                   "message": e.error.message, "line": e.error.line, "double": e.double})
+        });
+        let speed = match self.clock.speed {
+            Speed::Max => json!("max"),
+            Speed::Times(k) => json!(k),
+        };
+        json!({"now": s.now_text(), "elapsed": s.elapsed_us() as f64 / 1e6, "speed": speed,
+               "scans": self.scans, "late_scans": self.late, "halted": s.halted(),
+               "writes": self.allow_writes, "error": error, "programs": programs})
+    }
+}
