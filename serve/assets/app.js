@@ -107,9 +107,31 @@ async function loadPicture(name) {
   setPicture(name, await r.text());
 }
 
+// A new drawing replaces the old one node by node where they have the
+// same shape, so the elements under the engineer's pointer stay the same
+// (a click is not lost to a redraw) and only what changed is touched.
 function setPicture(name, svg) {
   const div = pictureOf(name);
-  if (div) div.querySelector('.svg').innerHTML = svg;
+  if (!div) return;
+  const host = div.querySelector('.svg');
+  const tpl = document.createElement('template');
+  tpl.innerHTML = svg.trim();
+  const fresh = tpl.content.firstElementChild;
+  const old = host.firstElementChild;
+  if (old && fresh) morph(old, fresh);
+  else host.replaceChildren(...tpl.content.childNodes);
+}
+
+function morph(a, b) {
+  if (a.nodeType !== b.nodeType || a.nodeName !== b.nodeName) { a.replaceWith(b); return; }
+  if (a.nodeType === Node.TEXT_NODE) { if (a.nodeValue !== b.nodeValue) a.nodeValue = b.nodeValue; return; }
+  if (a.nodeType !== Node.ELEMENT_NODE) return;
+  for (const at of [...a.attributes]) if (!b.hasAttribute(at.name)) a.removeAttribute(at.name);
+  for (const at of [...b.attributes]) if (a.getAttribute(at.name) !== at.value) a.setAttribute(at.name, at.value);
+  const ac = [...a.childNodes];
+  const bc = [...b.childNodes];
+  if (ac.length !== bc.length) { a.replaceChildren(...bc); return; }
+  for (let i = 0; i < ac.length; i++) morph(ac[i], bc[i]);
 }
 
 function clickPicture(p, ev) {

@@ -78,6 +78,7 @@ fn router(state: AppState) -> Router {
         .route("/", get(|| async { asset("text/html; charset=utf-8", include_str!("../assets/index.html")) }))
         .route("/app.js", get(|| async { asset("text/javascript; charset=utf-8", include_str!("../assets/app.js")) }))
         .route("/style.css", get(|| async { asset("text/css; charset=utf-8", include_str!("../assets/style.css")) }))
+        .route("/favicon.svg", get(|| async { asset("image/svg+xml", include_str!("../assets/favicon.svg")) }))
         .route("/api/programs", get(programs))
         .route("/api/blocks", get(blocks))
         .route("/api/blocks/{name}", get(block))

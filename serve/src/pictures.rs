@@ -87,7 +87,9 @@ impl Picture {
                     let secs = seq.step(n).map_or(0, |(_, us)| us / 1_000_000);
                     key.push_str(&format!(" {n}:{secs}"));
                 }
-                for h in &seq.monitor.held {
+                let mut held: Vec<&String> = seq.monitor.held.iter().collect();
+                held.sort();
+                for h in held {
                     key.push_str(&format!(" held:{h}"));
                 }
                 if self.key.as_deref() == Some(key.as_str()) {

@@ -119,7 +119,7 @@ impl Plant {
             let s = &mut self.console.strategy;
             match s.next_due_us().filter(|&n| n < until && n <= target) {
                 Some(n) => {
-                    if now > self.clock.wall_of(n) + self.tolerance {
+                    if self.clock.wall_of(n).checked_add(self.tolerance).is_some_and(|due| now > due) {
                         self.late += 1;
                     }
                     let failures = s.run_due(None);
@@ -278,8 +278,24 @@ impl Plant {
             .into_iter()
             .map(|p| {
                 let picture = self.pictures.iter().find(|q| q.name == p.block).map(|q| q.kind);
-                json!({"block": p.block, "kind": kind(p.kind), "task": p.task, "state": p.state.name(),
-                       "position": p.position, "picture": picture})
+                let mut v = json!({"block": p.block, "kind": kind(p.kind), "task": p.task, "state": p.state.name(),
+                       "position": p.position, "picture": picture});
+                if let Some(seq) = s.store.db.block(&p.block).and_then(|b| s.sequence(b)) {
+                    let active: Vec<Value> = seq
+                        .active_steps()
+                        .into_iter()
+                        .map(|n| json!({"step": n, "t": seq.step(n).map_or(0.0, |(_, us)| us as f64 / 1e6)}))
+                        .collect();
+                    let mut held: Vec<&String> = seq.monitor.held.iter().collect();
+                    held.sort();
+                    v["status"] = json!(seq.status.name());
+                    v["active"] = json!(active);
+                    v["held"] = json!(held);
+                    let forced: std::collections::BTreeMap<&String, &str> =
+                        seq.monitor.forced.iter().map(|(t, on)| (t, if *on { "continue" } else { "hold" })).collect();
+                    v["forced"] = json!(forced);
+                }
+                v
             })
             .collect();
         let error = s.error().map(|e| {

@@ -1,0 +1,248 @@
+//! The server's API over real HTTP on 127.0.0.1, in process, with an
+//! independent client (ureq): reads, refused writes without
+//! `--allow-writes`, tokens, foreign origins, controls through the console
+//! engine, 20 clients streaming events at once, and a served run that ends
+//! where `linc run` would.
+
+use linc_engines::console::Console;
+use linc_serve::{Config, Server, Speed};
+use serde_json::Value;
+use std::io::BufRead;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+
+fn plant(db: &str) -> (Console, Vec<linc_engines::strategy::Want>) {
+    let path = Path::new(ROOT).join(db);
+    let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
+    let o = linc_driver::strategy::PlantOptions { now: Some("2026-01-05T06:00:00".into()), ..Default::default() };
+    let (s, wants) = linc_driver::strategy::plant(&path, &o, &mut r).unwrap_or_else(|_| panic!("{}", r.take()));
+    (Console::new(s), wants)
+}
+
+fn config(speed: Speed, writes: bool, token: Option<&str>) -> Config {
+    Config {
+        addr: "127.0.0.1:0".parse().unwrap(),
+        speed,
+        token: token.map(String::from),
+        allow_writes: writes,
+        until_us: None,
+        state: None,
+    }
+}
+
+fn serve(db: &str, cfg: Config) -> Server {
+    let (console, wants) = plant(db);
+    let dir = Path::new(ROOT).join(db).parent().unwrap().to_path_buf();
+    linc_serve::start(console, &wants, &dir, cfg).expect("start")
+}
+
+fn agent() -> ureq::Agent {
+    ureq::Agent::config_builder()
+        .http_status_as_error(false)
+        .timeout_global(Some(Duration::from_secs(20)))
+        .build()
+        .into()
+}
+
+/// `(status, body)` of a GET.
+fn get(s: &Server, path: &str, headers: &[(&str, &str)]) -> (u16, String) {
+    let mut req = agent().get(format!("http://{}{path}", s.addr()));
+    for (k, v) in headers {
+        req = req.header(*k, *v);
+    }
+    let mut resp = req.call().expect("GET");
+    (resp.status().as_u16(), resp.body_mut().read_to_string().expect("body"))
+}
+
+fn command_as(s: &Server, line: &str, headers: &[(&str, &str)]) -> (u16, Value) {
+    let mut req = agent().post(format!("http://{}/api/command", s.addr())).header("Content-Type", "application/json");
+    for (k, v) in headers {
+        req = req.header(*k, *v);
+    }
+    let mut resp = req.send(serde_json::json!({ "command": line }).to_string()).expect("POST");
+    let status = resp.status().as_u16();
+    (status, serde_json::from_str(&resp.body_mut().read_to_string().expect("body")).expect("JSON"))
+}
+
+fn command(s: &Server, line: &str) -> (u16, Value) {
+    command_as(s, line, &[])
+}
+
+fn json(body: &str) -> Value {
+    serde_json::from_str(body).expect("JSON")
+}
+
+#[test]
+fn a_read_only_monitor_reads_and_refuses_writes() {
+    let s = serve("examples/sequences/plant.json", config(Speed::Times(1.0), false, None));
+    let (code, body) = get(&s, "/api/programs", &[]);
+    assert_eq!(code, 200);
+    let status = json(&body);
+    assert_eq!(status["writes"], false);
+    let batch = status["programs"].as_array().unwrap().iter().find(|p| p["block"] == "BATCH").expect("BATCH");
+    assert_eq!((batch["kind"].as_str(), batch["picture"].as_str()), (Some("sequence"), Some("sfc")));
+    let (code, body) = get(&s, "/api/blocks/R1", &[]);
+    assert_eq!(code, 200);
+    let r1 = json(&body);
+    assert!(r1["fields"].as_array().unwrap().iter().any(|f| f["name"] == "Level"), "{r1}");
+    assert_eq!(get(&s, "/api/blocks/NOPE", &[]).0, 404);
+    let (code, svg) = get(&s, "/api/pictures/BATCH", &[]);
+    assert_eq!(code, 200);
+    assert!(svg.contains("<g id=\"step-Fill\" class=\"step"), "{svg}");
+    assert_eq!(get(&s, "/api/pictures/SIM", &[]).0, 404, "an ST action has no picture");
+    let (code, page) = get(&s, "/", &[]);
+    assert!(code == 200 && page.contains("<script src=\"app.js\">"));
+    // Reading commands run; writing ones are refused with 403 and change nothing.
+    let (code, reply) = command(&s, "D R1.Level");
+    assert_eq!(code, 200);
+    assert_eq!(reply["replies"][0]["ok"], true, "{reply}");
+    let before = json(&get(&s, "/api/blocks/R1", &[]).1);
+    for line in ["M R1.Level=55", "D R1.Level; F R1.Level=1", "RESET BATCH", "HOLDSTEP BATCH Fill", "ADVANCE 1m"] {
+        let (code, reply) = command(&s, line);
+        assert_eq!(code, 403, "{line}: {reply}");
+    }
+    let after = json(&get(&s, "/api/blocks/R1", &[]).1);
+    assert_eq!(before["fields"].as_array().map(Vec::len), after["fields"].as_array().map(Vec::len));
+    assert!(after["fields"].as_array().unwrap().iter().all(|f| f["forced"] == false));
+    // Only JSON posts, and nothing from another origin.
+    let mut resp = agent()
+        .post(format!("http://{}/api/command", s.addr()))
+        .header("Content-Type", "text/plain")
+        .send("D R1.Level")
+        .unwrap();
+    assert_eq!(resp.status().as_u16(), 415, "{}", resp.body_mut().read_to_string().unwrap());
+    let (code, _) = command_as(&s, "D R1.Level", &[("Origin", "http://evil.example")]);
+    assert_eq!(code, 403);
+    let (code, reply) = command(&s, &format!("D {}", "X".repeat(5000)));
+    assert_eq!(code, 400, "{reply}");
+    s.stop();
+}
+
+#[test]
+fn with_writes_controls_go_through_the_console_engine() {
+    let s = serve("examples/sequences/plant.json", config(Speed::Times(1.0), true, None));
+    let (code, reply) = command(&s, "F Plant.N1=0; M Plant.N1=1; F Plant.N1=N; NOSUCH");
+    assert_eq!(code, 200);
+    let r = reply["replies"].as_array().unwrap();
+    assert_eq!(r.len(), 4, "{reply}");
+    assert_eq!((r[0]["ok"].as_bool(), r[1]["code"].as_str()), (Some(true), Some("C0009")), "forced: {reply}");
+    assert_eq!((r[2]["ok"].as_bool(), r[3]["code"].as_str()), (Some(true), Some("C0001")), "{reply}");
+    let (_, reply) = command(&s, "HOLDSTEP BATCH Idle");
+    assert_eq!(reply["replies"][0]["reply"], "BATCH.Idle held", "{reply}");
+    let svg = get(&s, "/api/pictures/BATCH", &[]).1;
+    assert!(
+        svg.contains("<g id=\"step-Idle\" class=\"step held\"")
+            || svg.contains("<g id=\"step-Idle\" class=\"step active held\""),
+        "{svg}"
+    );
+    // ADVANCE moves the clock; real time goes on from there.
+    let t0 = json(&get(&s, "/api/programs", &[]).1)["elapsed"].as_f64().unwrap();
+    let (_, reply) = command(&s, "ADVANCE 1h");
+    assert_eq!(reply["replies"][0]["ok"], true, "{reply}");
+    let t1 = json(&get(&s, "/api/programs", &[]).1)["elapsed"].as_f64().unwrap();
+    assert!(t1 >= t0 + 3600.0, "{t0} then {t1}");
+    s.stop();
+}
+
+#[test]
+fn a_token_is_required_when_set() {
+    let s = serve("examples/sequences/plant.json", config(Speed::Times(1.0), false, Some("s3cret")));
+    assert_eq!(get(&s, "/api/programs", &[]).0, 401);
+    assert_eq!(get(&s, "/api/programs", &[("Authorization", "Bearer wrong")]).0, 401);
+    assert_eq!(get(&s, "/api/programs?token=s3cre", &[]).0, 401);
+    assert_eq!(get(&s, "/", &[]).0, 401, "the page too");
+    assert_eq!(get(&s, "/api/programs", &[("Authorization", "Bearer s3cret")]).0, 200);
+    assert_eq!(get(&s, "/api/programs?token=s3cret", &[]).0, 200);
+    assert_eq!(command_as(&s, "NOW", &[]).0, 401);
+    assert_eq!(command_as(&s, "NOW", &[("Authorization", "Bearer s3cret")]).0, 200);
+    s.stop();
+    // Off loopback a token is not optional.
+    let (console, wants) = plant("examples/sequences/plant.json");
+    let mut cfg = config(Speed::Times(1.0), false, None);
+    cfg.addr = "0.0.0.0:0".parse().unwrap();
+    let e = linc_serve::start(console, &wants, Path::new(ROOT), cfg).err().expect("refused");
+    assert!(e.to_string().contains("--token"), "{e}");
+}
+
+/// Reads one event stream until it has seen `values` and `picture` events
+/// (and a status), then returns what it saw.
+fn stream(addr: std::net::SocketAddr) -> Vec<String> {
+    let resp = agent().get(format!("http://{addr}/api/events")).call().expect("stream");
+    assert_eq!(resp.headers().get("content-type").and_then(|v| v.to_str().ok()), Some("text/event-stream"));
+    let mut seen = Vec::new();
+    let reader = std::io::BufReader::new(resp.into_body().into_reader());
+    for line in reader.lines() {
+        let Ok(line) = line else { break };
+        if let Some(name) = line.strip_prefix("event: ") {
+            seen.push(name.to_string());
+        }
+        if ["status", "values", "picture"].iter().all(|n| seen.iter().any(|s| s == n)) {
+            break;
+        }
+    }
+    seen
+}
+
+#[test]
+fn twenty_clients_stream_events_at_once() {
+    let s = serve("examples/sequences/plant.json", config(Speed::Times(20.0), false, None));
+    let addr = s.addr();
+    let clients: Vec<_> = (0..20).map(|_| std::thread::spawn(move || stream(addr))).collect();
+    for c in clients {
+        let seen = c.join().expect("client");
+        assert!(seen.iter().any(|e| e == "values") && seen.iter().any(|e| e == "picture"), "{seen:?}");
+    }
+    // Streams still open end when the server stops.
+    let resp = agent().get(format!("http://{addr}/api/events")).call().expect("stream");
+    let reader = std::thread::spawn(move || std::io::BufReader::new(resp.into_body().into_reader()).lines().count());
+    std::thread::sleep(Duration::from_millis(300));
+    let t = Instant::now();
+    s.stop();
+    reader.join().expect("reader ends");
+    assert!(t.elapsed() < Duration::from_secs(5));
+}
+
+#[test]
+fn a_served_run_ends_where_linc_run_would() {
+    let mut cfg = config(Speed::Max, false, None);
+    cfg.until_us = Some(600_000_000);
+    let s = serve("examples/sequences/plant.json", cfg);
+    let t = Instant::now();
+    while !s.finished() {
+        assert!(t.elapsed() < Duration::from_secs(60), "ten minutes at max speed");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let served = s.stop();
+    let (mut alone, _) = plant("examples/sequences/plant.json");
+    let failures = alone.strategy.run_for(600_000_000, None);
+    assert!(failures.is_empty());
+    assert_eq!(served.console.strategy.elapsed_us(), 600_000_000);
+    assert_eq!(served.console.strategy.store.cells, alone.strategy.store.cells);
+    assert_eq!(served.late, 0);
+}
+
+#[test]
+fn at_speed_one_no_scan_is_late() {
+    let mut cfg = config(Speed::Times(1.0), false, None);
+    cfg.until_us = Some(3_000_000);
+    let s = serve("examples/strategy/plant.json", cfg);
+    let addr = s.addr();
+    // A client streams while the plant runs.
+    std::thread::spawn(move || {
+        if let Ok(resp) = agent().get(format!("http://{addr}/api/events")).call() {
+            let _ = std::io::BufReader::new(resp.into_body().into_reader()).lines().count();
+        }
+    });
+    let t = Instant::now();
+    while !s.finished() {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let wall = t.elapsed();
+    let done = s.stop();
+    assert!(wall >= Duration::from_millis(2900), "real time: {wall:?}");
+    // Task 1 runs every 100 ms: 30 instants in 3 s.
+    assert!(done.scans >= 30, "{}", done.scans);
+    assert_eq!(done.late, 0);
+}
