@@ -13,18 +13,18 @@ pub fn run(o: &Options, out: Option<&Path>, r: &mut Reporter) -> u8 {
             return crate::report::refused(r, e.diagnostic());
         }
     }
-    let svg = match linc_driver::draw::picture(o, r) {
-        Ok(svg) => svg,
+    let (svg, status) = match linc_driver::draw::picture(o, r) {
+        Ok(drawn) => drawn,
         Err(status) => return status,
     };
     match out {
         Some(path) => match linc_driver::files::write_atomic(path, svg.as_bytes()) {
-            Ok(()) => 0,
+            Ok(()) => status,
             Err(e) => crate::report::refused(r, e.diagnostic()),
         },
         None => {
             crate::out::print(&svg);
-            0
+            status
         }
     }
 }
@@ -50,7 +50,7 @@ pub struct DrawArgs {
     #[arg(long)]
     pub block: Option<String>,
     /// Seconds per scan of the sequence or table (default: its task's period).
-    #[arg(long, value_name = "SECS")]
+    #[arg(long, value_name = "SECS", allow_hyphen_values = true, value_parser = crate::period)]
     pub period: Option<f64>,
     /// Set a field before the run: BLOCK.FIELD=VALUE (repeatable).
     #[arg(long)]

@@ -113,3 +113,49 @@ fn the_picture_is_written_atomically_and_never_over_an_input() {
     let o = linc(&["draw", src.to_str().unwrap(), "--field", "A.B"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
+
+#[test]
+fn options_that_mean_nothing_for_the_file_are_refused() {
+    let seq = "examples/sequences/batch.sfc";
+    let db = "examples/sequences/plant.json";
+    for args in [
+        vec!["draw", seq, "--set", "R1.Level=5"],
+        vec!["draw", seq, "--seed", "3"],
+        vec!["draw", seq, "--db", db, "--for", "10s", "--period", "0"],
+        vec!["draw", seq, "--db", db, "--for", "10s", "--period", "-1"],
+        vec!["draw", "examples/ladder/interlock.ld", "--now", "2026-01-05T06:00:00"],
+        vec!["draw", "examples/fst/pump.csv", "--block", "FST 1"],
+    ] {
+        let o = linc(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains("error[E0903]"), "{args:?}: {}", stderr(&o));
+    }
+}
+
+#[test]
+fn a_trend_range_is_checked_and_a_run_that_faults_exits_1() {
+    let dir = common::temp_dir("draw-range");
+    let trace = dir.join("t.jsonl");
+    let t = trace.to_str().unwrap();
+    assert_eq!(linc(&["run", "examples/sequences/plant.json", "--for", "2m", "--trace", t]).status.code(), Some(0));
+    let o = linc(&["draw", t, "--field", "R1.Level", "--from", "0s", "--to", "1m"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    for bad in [["--from", "1m", "--to", "30s"], ["--from", "soon", "--to", "1m"]] {
+        let mut args = vec!["draw", t, "--field", "R1.Level"];
+        args.extend_from_slice(&bad);
+        assert_eq!(linc(&args).status.code(), Some(2), "{bad:?}");
+    }
+    let o = linc(&["draw", t, "--field", "R1.Level", "--db", "examples/sequences/plant.json"]);
+    assert_eq!(o.status.code(), Some(2), "a trace is drawn as recorded");
+    // A rung that divides by zero: the fault is reported, the rungs still drawn, the status 1.
+    let ld = dir.join("div.ld");
+    std::fs::write(&ld, "-> Recipe.N1 := 10 / Recipe.N0;\n").unwrap();
+    let o = linc(&["draw", ld.to_str().unwrap(), "--db", common::DB, "--cycles", "1"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("error[R0001]"), "{}", stderr(&o));
+    assert!(stdout(&o).contains("<g id=\"rung-1\""));
+    // With --db alone the rungs show the database's values as they stand.
+    let o = linc(&["draw", "examples/ladder/interlock.ld", "--db", "examples/ladder/plant.json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(!with_class(&groups(&stdout(&o), "rung-"), "powered").is_empty());
+}

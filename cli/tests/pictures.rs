@@ -6,6 +6,9 @@ mod common;
 
 use common::{linc, stderr, stdout};
 
+/// The clock of every run, so that a picture does not depend on the day.
+const NOW: &str = "2026-01-05T06:00:00";
+
 /// Each picture and the `linc draw` arguments that make it.
 const PICTURES: &[(&str, &[&str])] = &[
     ("batch.svg", &["draw", "examples/sequences/batch.sfc", "--db", "examples/sequences/plant.json", "--for", "45s"]),
@@ -39,7 +42,7 @@ fn the_readme_pictures_are_current() {
     let dir = common::temp_dir("pictures");
     let trace = dir.join("batch.jsonl");
     let t = trace.to_str().unwrap();
-    let o = linc(&["run", "examples/sequences/plant.json", "--for", "20m", "--trace", t]);
+    let o = linc(&["run", "examples/sequences/plant.json", "--for", "20m", "--now", NOW, "--trace", t]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let mut args = vec!["draw", t];
     args.extend_from_slice(TREND_FIELDS);

@@ -18,9 +18,9 @@ pub fn text_width(text: &str) -> f64 {
 /// The style of every picture. Colours follow the user's scheme; a
 /// `class="dark"` or `class="light"` on the root forces one.
 const STYLE: &str = "
-svg { --fg: #1b1f24; --bg: #ffffff; --box: #f6f8fa; --wire: #57606a; --on: #1a7f37; --onbg: #dafbe1; --cur: #bf8700; --curbg: #fff8c5; --dim: #6e7781; }
-svg.dark { --fg: #e6edf3; --bg: #0d1117; --box: #161b22; --wire: #8b949e; --on: #3fb950; --onbg: #12361c; --cur: #d29922; --curbg: #3b2e00; --dim: #8b949e; }
-@media (prefers-color-scheme: dark) { svg:not(.light) { --fg: #e6edf3; --bg: #0d1117; --box: #161b22; --wire: #8b949e; --on: #3fb950; --onbg: #12361c; --cur: #d29922; --curbg: #3b2e00; --dim: #8b949e; } }
+svg { --fg: #1b1f24; --bg: #ffffff; --box: #f6f8fa; --wire: #57606a; --on: #1a7f37; --onbg: #dafbe1; --cur: #bf8700; --curbg: #fff8c5; --dim: #6e7781; --p0: #ddf4ff; --p1: #fbefff; }
+svg.dark { --fg: #e6edf3; --bg: #0d1117; --box: #161b22; --wire: #8b949e; --on: #3fb950; --onbg: #12361c; --cur: #d29922; --curbg: #3b2e00; --dim: #8b949e; --p0: #0c2d6b; --p1: #3c1e70; }
+@media (prefers-color-scheme: dark) { svg:not(.light) { --fg: #e6edf3; --bg: #0d1117; --box: #161b22; --wire: #8b949e; --on: #3fb950; --onbg: #12361c; --cur: #d29922; --curbg: #3b2e00; --dim: #8b949e; --p0: #0c2d6b; --p1: #3c1e70; } }
 .bg { fill: var(--bg); }
 text { font-family: ui-monospace, 'DejaVu Sans Mono', Menlo, Consolas, monospace; font-size: 12px; fill: var(--fg); white-space: pre; }
 text.dim { fill: var(--dim); }
@@ -33,9 +33,8 @@ text.value { fill: var(--on); }
 .line { fill: none; stroke-width: 1.6; }
 .line.c0 { stroke: #0969da; } .line.c1 { stroke: #cf222e; } .line.c2 { stroke: #1a7f37; }
 .line.c3 { stroke: #8250df; } .line.c4 { stroke: #bf8700; } .line.c5 { stroke: #1b7c83; }
-.piece .box { stroke: none; } .piece.p0 .box { fill: #ddf4ff; } .piece.p1 .box { fill: #fbefff; }
+.piece .box { stroke: none; } .piece.p0 .box { fill: var(--p0); } .piece.p1 .box { fill: var(--p1); }
 .piece.on .box { fill: var(--onbg); } .piece.off .box { fill: none; }
-svg.dark .piece.p0 .box { fill: #0c2d6b; } svg.dark .piece.p1 .box { fill: #3c1e70; }
 .step.active .box { fill: var(--onbg); stroke: var(--on); stroke-width: 2.4; }
 .wire.on { stroke: var(--on); stroke-width: 2.4; }
 .coil { fill: none; stroke: var(--fg); stroke-width: 1.4; }

@@ -99,7 +99,10 @@ impl Trend {
             return Err(TrendError {
                 code: Code::E0911,
                 line: None,
-                message: format!("the trace never writes `{}`", s.name),
+                message: match self.to {
+                    Some(to) => format!("the trace never writes `{}` up to {to} s (the end of --to)", s.name),
+                    None => format!("the trace never writes `{}`", s.name),
+                },
             });
         }
         let to = self.to.unwrap_or(self.last_time).max(self.from + 1e-6);

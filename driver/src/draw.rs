@@ -45,8 +45,16 @@ pub struct Options {
 /// The most bytes one line of a trace may have (a trace line is short).
 const MAX_TRACE_LINE: usize = 1 << 20;
 
-/// Draws the file; `Err` is the exit status, the reason reported.
-pub fn picture(o: &Options, r: &mut Reporter) -> Result<String, u8> {
+/// Draws the file; `Err` is the exit status, the reason reported. A run
+/// that stopped a program with a runtime error is still drawn (as the
+/// fault left it), and the error makes the exit status 1, as `linc run`'s.
+pub fn picture(o: &Options, r: &mut Reporter) -> Result<(String, u8), u8> {
+    let before = r.errors();
+    let svg = draw(o, r)?;
+    Ok((svg, u8::from(r.errors() > before)))
+}
+
+fn draw(o: &Options, r: &mut Reporter) -> Result<String, u8> {
     let name = o.file.to_string_lossy().to_ascii_lowercase();
     if name.ends_with(".jsonl") {
         return trend(o, r);
@@ -54,7 +62,20 @@ pub fn picture(o: &Options, r: &mut Reporter) -> Result<String, u8> {
     if !o.fields.is_empty() || o.from.is_some() || o.to.is_some() {
         return Err(usage(r, "--field, --from and --to draw a trend of a trace (.jsonl)"));
     }
-    match SourceKind::of_name(&o.file.to_string_lossy()) {
+    let run_only = o.block.is_some()
+        || o.period.is_some()
+        || !o.set.is_empty()
+        || o.state.is_some()
+        || o.now.is_some()
+        || o.seed.is_some();
+    let kind = SourceKind::of_name(&o.file.to_string_lossy());
+    if run_only && o.duration.is_none() && matches!(kind, SourceKind::Sequence | SourceKind::FstTable) {
+        return Err(usage(
+            r,
+            "--block, --period, --set, --state, --now and --seed shape a run: give --db and --for too",
+        ));
+    }
+    match kind {
         SourceKind::Sequence => sequence(o, r),
         SourceKind::Ladder => ladder_file(o, r),
         SourceKind::FstTable => table(o, r),
@@ -115,20 +136,28 @@ fn sequence(o: &Options, r: &mut Reporter) -> Result<String, u8> {
 }
 
 fn ladder_file(o: &Options, r: &mut Reporter) -> Result<String, u8> {
-    if o.duration.is_some() || o.block.is_some() || o.period.is_some() || o.state.is_some() {
+    if o.duration.is_some()
+        || o.block.is_some()
+        || o.period.is_some()
+        || o.state.is_some()
+        || o.now.is_some()
+        || o.seed.is_some()
+    {
         return Err(usage(r, "a ladder file is drawn after --cycles N runs of its actions (--db, --set)"));
     }
     let (text, files, id) = source(o, r)?;
     let stem = o.file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");
     let (file, diagnostics) = ladder::parser::parse(&text, stem);
     errors(&files, id, diagnostics, r)?;
-    let Some(db) = o.db.as_deref().filter(|_| o.cycles.is_some() || !o.set.is_empty()) else {
+    // With a database the rungs are compiled against it (names checked)
+    // and drawn with its values: as it holds them, or after --cycles runs.
+    let Some(db) = o.db.as_deref() else {
         if o.cycles.is_some() || !o.set.is_empty() {
             return Err(usage(r, "--cycles and --set run the ladder: give --db DB.json"));
         }
         return Ok(linc_draw::ladder::file(&text, &file.actions, None).0);
     };
-    let known = crate::ladder::after_run(&o.file, db, &o.set, o.cycles.unwrap_or(1), r)?;
+    let known = crate::ladder::after_run(&o.file, db, &o.set, o.cycles.unwrap_or(0), r)?;
     let look = |span: linc_compiler::span::Span| known.get(&(span.start, span.end)).copied();
     Ok(linc_draw::ladder::file(&text, &file.actions, Some(&look)).0)
 }
@@ -205,12 +234,12 @@ fn run(o: &Options, kind: crate::single::Kind, r: &mut Reporter) -> Result<(Stra
     Ok((s, block))
 }
 
-/// Seconds of a `--from`/`--to` duration.
+/// Seconds of a `--from`/`--to` time into the trace (`0`, `90s`, `T#1h`).
 fn seconds(text: Option<&str>, flag: &str, r: &mut Reporter) -> Result<Option<f64>, u8> {
-    match text {
-        None => Ok(None),
-        Some(t) if t.trim() == "0" => Ok(Some(0.0)),
-        Some(t) => duration(t).map(|us| Some(us as f64 / 1e6)).map_err(|m| usage(r, format_args!("{flag} {t}: {m}"))),
+    let Some(t) = text else { return Ok(None) };
+    match t.trim().parse::<f64>().or_else(|_| linc_runtime::db::duration_seconds(t)) {
+        Ok(s) if s.is_finite() && s >= 0.0 => Ok(Some(s)),
+        _ => Err(usage(r, format_args!("{flag} `{t}` is not a time into the trace like 0, 90s or 1h30m"))),
     }
 }
 
@@ -218,10 +247,24 @@ fn trend(o: &Options, r: &mut Reporter) -> Result<String, u8> {
     if o.fields.is_empty() {
         return Err(usage(r, "a trend needs the fields to draw: --field BLOCK.FIELD (repeatable)"));
     }
-    if o.db.is_some() || o.duration.is_some() || o.cycles.is_some() {
-        return Err(usage(r, "a trace is drawn as it was recorded: --db, --for and --cycles are for sources"));
+    let source_only = o.db.is_some()
+        || o.duration.is_some()
+        || o.cycles.is_some()
+        || o.block.is_some()
+        || o.period.is_some()
+        || !o.set.is_empty()
+        || o.state.is_some()
+        || o.now.is_some()
+        || o.seed.is_some();
+    if source_only {
+        return Err(usage(r, "a trace is drawn as it was recorded: only --field, --from and --to apply"));
     }
     let (from, to) = (seconds(o.from.as_deref(), "--from", r)?, seconds(o.to.as_deref(), "--to", r)?);
+    if let (Some(f), Some(t)) = (from, to) {
+        if t <= f {
+            return Err(usage(r, format_args!("--to must be later than --from ({t} s is not after {f} s)")));
+        }
+    }
     let name = o.file.display().to_string();
     let file = std::fs::File::open(&o.file).map_err(|e| {
         r.unreadable(&o.file, &e);

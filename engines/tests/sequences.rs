@@ -183,6 +183,10 @@ fn a_chart_action_scans_while_it_runs_and_restarts_after() {
     assert_eq!(ran, ["", "Stirring,forward", "Stirring,forward", "Stirring,reverse", "", "Stirring,forward"]);
     assert_eq!(seq.step("Fwd"), Some((true, 0)), "a chart action's step, found by name");
     assert_eq!(seq.step("Rev"), Some((false, 0)), "reset with its chart when the action stopped");
+    // Leaving the chart action leaves its active step: Rev is deactivated
+    // in the scan Stir is left, as a trace must say.
+    let rev: Vec<&String> = host.events.iter().filter(|e| e.contains("\"Rev\"")).collect();
+    assert_eq!(rev, ["Activated(\"Rev\")", "Deactivated(\"Rev\")"], "{:?}", host.events);
 }
 
 fn three_steps() -> Sequence {

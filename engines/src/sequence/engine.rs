@@ -286,13 +286,32 @@ impl ChartState {
                 self.run_action(chart, a, scan, host)?;
             }
         }
-        // A chart action that did not run is reset, to start afresh.
-        for (a, child) in self.children.iter_mut().enumerate() {
-            if !ran[a] {
-                *child = None;
+        // A chart action that did not run is reset, to start afresh; the
+        // steps it had active are left (a trace says so).
+        for a in 0..self.children.len() {
+            if ran[a] {
+                continue;
+            }
+            if let (Some(child), Body::Chart(sub)) = (self.children[a].take(), &chart.actions[a].body) {
+                child.leave(sub, host);
             }
         }
         Ok(())
+    }
+
+    /// Tells the host that every active step of this chart, and of its
+    /// running chart actions, is left: the chart is being dropped.
+    fn leave(&self, chart: &Chart, host: &mut dyn Host) {
+        for (s, on) in self.active.iter().enumerate() {
+            if *on {
+                host.event(Event::Deactivated(&chart.steps[s].name));
+            }
+        }
+        for (a, child) in self.children.iter().enumerate() {
+            if let (Some(c), Body::Chart(sub)) = (child, &chart.actions[a].body) {
+                c.leave(sub, host);
+            }
+        }
     }
 
     fn run_action(&mut self, chart: &Chart, a: usize, scan: &Scan, host: &mut dyn Host) -> Result<(), RuntimeError> {
