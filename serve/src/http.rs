@@ -206,21 +206,19 @@ async fn events(State(s): State<AppState>) -> Response {
     let rx = s.events.subscribe();
     let closing = s.closing.clone();
     let stream = futures_util::stream::unfold((rx, closing), |(mut rx, mut closing)| async move {
-        loop {
-            if *closing.borrow() {
-                return None;
-            }
-            let next = tokio::select! {
-                r = rx.recv() => r,
-                _ = closing.changed() => return None,
-            };
-            let event = match next {
-                Ok(e) => SseEvent::default().event(e.name).data(e.data.as_str()),
-                Err(broadcast::error::RecvError::Lagged(_)) => SseEvent::default().event("resync").data("{}"),
-                Err(broadcast::error::RecvError::Closed) => return None,
-            };
-            return Some((Ok::<_, Infallible>(event), (rx, closing)));
+        if *closing.borrow() {
+            return None;
         }
+        let next = tokio::select! {
+            r = rx.recv() => r,
+            _ = closing.changed() => return None,
+        };
+        let event = match next {
+            Ok(e) => SseEvent::default().event(e.name).data(e.data.as_str()),
+            Err(broadcast::error::RecvError::Lagged(_)) => SseEvent::default().event("resync").data("{}"),
+            Err(broadcast::error::RecvError::Closed) => return None,
+        };
+        Some((Ok::<_, Infallible>(event), (rx, closing)))
     });
     Sse::new(stream).keep_alive(KeepAlive::default()).into_response()
 }

@@ -288,11 +288,11 @@ impl ChartState {
         }
         // A chart action that did not run is reset, to start afresh; the
         // steps it had active are left (a trace says so).
-        for a in 0..self.children.len() {
-            if ran[a] {
+        for ((child, done), action) in self.children.iter_mut().zip(ran.iter()).zip(&chart.actions) {
+            if *done {
                 continue;
             }
-            if let (Some(child), Body::Chart(sub)) = (self.children[a].take(), &chart.actions[a].body) {
+            if let (Some(child), Body::Chart(sub)) = (child.take(), &action.body) {
                 child.leave(sub, host);
             }
         }
