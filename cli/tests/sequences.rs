@@ -50,11 +50,12 @@ fn the_example_plant_runs_its_sequence_and_is_pinned() {
     // 45 s a batch: 80 batches an hour, each logging once at 10 s of heat and
     // stirring 10 times (Fwd 5 s, Rev 5 s, for Agitate's first 20 s).
     assert_eq!(stdout(&o), "R1.Batches = 80\nR1.Log = 80\nR1.Stirs = 800\nR1.Alarm = FALSE\n");
-    // The hour's trace (16,694 lines, 1.2 MB) is pinned by its size and CRC-32;
+    // The hour's trace (16,774 lines, 1.2 MB; each batch leaves Rev as Agitate ends)
+    // is pinned by its size and CRC-32;
     // the first two minutes are pinned line by line above.
     let bytes = std::fs::read(&hour).expect("trace");
-    assert_eq!((bytes.len(), bytes.iter().filter(|&&b| b == b'\n').count()), (1_201_151, 16_694));
-    assert_eq!(linc_runtime::object::crc32(&bytes), 0x7f5e_1062);
+    assert_eq!((bytes.len(), bytes.iter().filter(|&&b| b == b'\n').count()), (1_206_807, 16_774));
+    assert_eq!(linc_runtime::object::crc32(&bytes), 0x72e5_da29);
 }
 
 #[test]

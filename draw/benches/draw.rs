@@ -35,6 +35,13 @@ fn bench(c: &mut Criterion) {
     g.bench_function("linc draw (layout + SVG)", |b| b.iter(|| linc_draw::sfc::sequence(&src, &seq, None).0.len()));
     g.bench_function("native: the same elements written with no layout", |b| b.iter(|| baseline(1000).len()));
     g.finish();
+    // Four times the chart: the layout's growth (it should be about 4×).
+    let src = long_chart::long_chart(4000);
+    let (seq, _) = linc_compiler::sfc::parser::parse(&src);
+    let mut g = c.benchmark_group("draw 4,000-step chart");
+    g.sample_size(10);
+    g.bench_function("linc draw (layout + SVG)", |b| b.iter(|| linc_draw::sfc::sequence(&src, &seq, None).0.len()));
+    g.finish();
 }
 
 criterion_group!(benches, bench);

@@ -86,8 +86,8 @@ struct Numbering {
 }
 
 impl Numbering {
-    /// Unnamed transitions numbered in source order: the root chart's,
-    /// then each chart action's in the order the actions are written.
+    /// Unnamed transitions numbered in source order (by where each starts
+    /// in the file), the root chart's and the chart actions' together.
     fn of(seq: &Sequence) -> Numbering {
         let mut n = Numbering::default();
         let charts = std::iter::once(&seq.chart).chain(seq.actions.iter().filter_map(|a| match &a.body {
