@@ -53,6 +53,10 @@ pub struct ServeArgs {
     /// With --state: ignore the state file and start cold (it is still saved).
     #[arg(long, requires = "state")]
     pub cold: bool,
+    /// Which tier runs the code; `compiled` translates every block at the start rather than
+    /// while the plant runs (translation happens on the plant's thread, between scans).
+    #[arg(long, value_enum, default_value = "auto")]
+    pub tier: crate::TierArg,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -99,7 +103,7 @@ pub fn run(a: ServeArgs, r: &mut Reporter) -> u8 {
         now: a.now,
         seed: a.seed,
         watchdog: linc_runtime::vm::DEFAULT_WATCHDOG,
-        tier: linc_runtime::vm::Tier::Auto,
+        tier: a.tier.into(),
     };
     let retain = Retain { state: a.state.clone(), cold: a.cold };
     let so =
