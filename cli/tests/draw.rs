@@ -67,6 +67,7 @@ fn an_fst_table_shows_its_current_step() {
     let steps = groups(&svg, "fst-step-");
     assert_eq!(with_class(&steps, "current").len(), 1);
     assert!(svg.contains("RR = ") && svg.contains("CF = "));
+    assert!(svg.contains(">R1 = ") && svg.contains("   R10 = "), "the registers, five to a line");
     // Four FST blocks run in that database: which one must be said.
     let o = linc(&["draw", "examples/fst/pump.csv", "--db", db, "--for", "10s"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));

@@ -20,6 +20,18 @@ pub struct FstState {
     pub cf: String,
     /// RUNFLG, as the database shows it.
     pub runflg: String,
+    /// The registers R1–R10 (or as many as the block has), by name.
+    pub registers: Vec<(String, String)>,
+}
+
+/// The state's lines above the table: RR, CF and RUNFLG, then the
+/// registers five to a line.
+fn state_lines(st: &FstState) -> Vec<String> {
+    let mut lines = vec![format!("RR = {}   CF = {}   RUNFLG = {}", st.rr, st.cf, st.runflg)];
+    for five in st.registers.chunks(5) {
+        lines.push(five.iter().map(|(n, v)| format!("{n} = {v}")).collect::<Vec<_>>().join("   "));
+    }
+    lines
 }
 
 const BOX_H: f64 = 24.0;
@@ -89,7 +101,8 @@ pub fn table(table: &Table, state: Option<&FstState>) -> (String, Geometry) {
     let text_w = rows.iter().map(|r| text_width(&r.text)).fold(60.0, f64::max);
     let (num_w, lab_w) = (text_width(&rows.len().to_string()) + 12.0, if label_w > 0.0 { label_w + 12.0 } else { 0.0 });
     let box_w = num_w + lab_w + text_w + 16.0;
-    let top = if state.is_some() { 40.0 } else { 12.0 };
+    let head = state.map(state_lines).unwrap_or_default();
+    let top = if state.is_some() { 24.0 + 16.0 * head.len() as f64 } else { 12.0 };
     let y_of = |i: usize| top + i as f64 * (BOX_H + GAP);
     // Branch lanes on the right, by the steps they span.
     let branches: Vec<(usize, usize)> = rows.iter().filter_map(|r| Some((r.step, r.target?))).collect();
@@ -100,10 +113,10 @@ pub fn table(table: &Table, state: Option<&FstState>) -> (String, Geometry) {
     let comment_w = rows.iter().map(|r| text_width(&r.comment)).fold(0.0, f64::max);
     let mut svg = Svg::new();
     let mut geo = Geometry::default();
-    if let Some(st) = state {
-        let head = format!("RR = {}   CF = {}   RUNFLG = {}", st.rr, st.cf, st.runflg);
-        svg.text(LEFT, 22.0, &head, "value", "start");
-        geo.solids.push(Solid { what: "state".into(), r: Rect::new(LEFT, 10.0, text_width(&head), 16.0) });
+    for (i, line) in head.iter().enumerate() {
+        let y = 10.0 + 16.0 * i as f64;
+        svg.text(LEFT, y + 12.0, line, "value", "start");
+        geo.solids.push(Solid { what: format!("state {i}"), r: Rect::new(LEFT, y, text_width(line), 16.0) });
     }
     for r in &rows {
         let y = y_of(r.step);
@@ -166,7 +179,8 @@ pub fn table(table: &Table, state: Option<&FstState>) -> (String, Geometry) {
         svg.arrow(p(right, yt), -1.0, 0.0);
         geo.links.push(Link { from: format!("fst-step-{a}"), to: format!("fst-step-{t}"), path });
     }
-    let w = comment_x + comment_w + 12.0;
+    let head_w = head.iter().map(|l| LEFT + text_width(l)).fold(0.0, f64::max);
+    let w = (comment_x + comment_w).max(head_w) + 12.0;
     let h = y_of(rows.len()) - GAP + 12.0;
     (svg.finish("fst", w, h), geo)
 }

@@ -182,19 +182,32 @@ fn table(o: &Options, r: &mut Reporter) -> Result<String, u8> {
     }
     let offsets = object.as_ref().and_then(fst::offsets).unwrap_or_default();
     let (s, block) = run(o, crate::single::Kind::Fst, r)?;
-    let name = s.store.db.blocks[block].name.clone();
-    let field = |f: &str, r: &mut Reporter| -> Result<String, u8> {
-        let shown = set_and_show(&mut s.store.clone(), &[], &[format!("{name}.{f}")], r)?;
-        Ok(shown.first().map(|(_, a)| linc_engines::console::fields::show_value(&s.store, *a)).unwrap_or_default())
-    };
-    let ip: Option<u32> = field("IP", r)?.trim().parse().ok();
-    let state = FstState {
-        current: ip.and_then(|ip| offsets.iter().position(|&o| o == ip)),
-        rr: field("RR", r)?,
-        cf: field("CMPFLG", r)?,
-        runflg: field("RUNFLG", r)?,
-    };
+    let state = fst_state(&s.store, block, &offsets);
     Ok(linc_draw::fst::table(&read, Some(&state)).0)
+}
+
+/// What an FST block shows of its table's run, for a picture: the step
+/// the table goes on with (from `IP`, by the table's instruction offsets),
+/// RR, CF, RUNFLG and the registers, as the console displays them. Shared
+/// with `linc serve`'s live pictures.
+pub fn fst_state(store: &Store, block: usize, offsets: &[u32]) -> FstState {
+    let field = |f: &str| store.cell_of(block, f).map(|c| store.show(c)).unwrap_or_default();
+    let ip: Option<u32> = field("IP").trim().parse().ok();
+    let registers = (1..=10)
+        .map(|k| format!("R{k}"))
+        .filter(|n| store.cell_of(block, n).is_some())
+        .map(|n| {
+            let v = field(&n);
+            (n, v)
+        })
+        .collect();
+    FstState {
+        current: ip.and_then(|ip| offsets.iter().position(|&o| o == ip)),
+        rr: field("RR"),
+        cf: field("CMPFLG"),
+        runflg: field("RUNFLG"),
+        registers,
+    }
 }
 
 /// Runs the one sequence or table as `linc run FILE --db … --for …` does

@@ -6,7 +6,6 @@
 
 use linc_compiler::check::Context;
 use linc_compiler::{fst, ladder, sfc};
-use linc_draw::fst::FstState;
 use linc_draw::sfc::StepState;
 use linc_driver::ladder::LiveElements;
 use linc_engines::strategy::{Strategy, Want, WantKind};
@@ -111,15 +110,9 @@ impl Picture {
                 self.key = Some(key);
             }
             Live::Fst { table, offsets } => {
-                let field = |f: &str| s.store.cell_of(block, f).map(|c| s.store.show(c)).unwrap_or_default();
-                let ip: Option<u32> = field("IP").trim().parse().ok();
-                let state = FstState {
-                    current: ip.and_then(|ip| offsets.iter().position(|&o| o == ip)),
-                    rr: field("RR"),
-                    cf: field("CMPFLG"),
-                    runflg: field("RUNFLG"),
-                };
-                let key = format!("{:?} {} {} {}", state.current, state.rr, state.cf, state.runflg);
+                let state = linc_driver::draw::fst_state(&s.store, block, offsets);
+                let key =
+                    format!("{:?} {} {} {} {:?}", state.current, state.rr, state.cf, state.runflg, state.registers);
                 if self.key.as_deref() == Some(key.as_str()) {
                     return false;
                 }
