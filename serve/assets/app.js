@@ -213,13 +213,14 @@ function values(changed) {
   drawTrends();
 }
 
+// A trend starts with the field's recent past, kept by the server.
 async function addTrend(path) {
   if (!path || trends.has(path)) return;
-  const dot = path.lastIndexOf('.');
-  const b = await (await get('blocks/' + encodeURIComponent(path.slice(0, dot)))).json();
-  const f = b.fields.find((x) => x.name.toLowerCase() === path.slice(dot + 1).toLowerCase());
-  if (!f) return;
-  trends.set(b.name + '.' + f.name, [[status ? status.elapsed : 0, f.value]]);
+  const r = await fetch('api/trend/' + encodeURIComponent(path) + query);
+  if (!r.ok) { $('#console-out').textContent += 'no field ' + path + '\n'; return; }
+  const t = await r.json();
+  const series = t.points.length ? t.points : [[t.now, t.value]];
+  trends.set(t.field, series);
   drawTrends();
 }
 

@@ -83,6 +83,7 @@ fn router(state: AppState) -> Router {
         .route("/api/blocks", get(blocks))
         .route("/api/blocks/{name}", get(block))
         .route("/api/pictures/{name}", get(picture))
+        .route("/api/trend/{path}", get(trend))
         .route("/api/events", get(events))
         .route("/api/command", post(command))
         .layer(axum::middleware::from_fn_with_state(state.clone(), guard))
@@ -160,6 +161,16 @@ async fn picture(State(s): State<AppState>, Path(name): Path<String>) -> Respons
     match s.ask(|reply| Ask::Picture { name: name.clone(), reply }).await {
         Some(Some(svg)) => ([(header::CONTENT_TYPE, "image/svg+xml")], svg).into_response(),
         Some(None) => refuse(StatusCode::NOT_FOUND, &format!("block `{name}` runs no sequence, ladder or FST table")),
+        None => refuse(StatusCode::SERVICE_UNAVAILABLE, "the plant has stopped"),
+    }
+}
+
+/// `GET /api/trend/BLOCK.FIELD`: the field's recent changes (up to 15
+/// simulated minutes) and its value now.
+async fn trend(State(s): State<AppState>, Path(path): Path<String>) -> Response {
+    match s.ask(|reply| Ask::Trend { path: path.clone(), reply }).await {
+        Some(Some(v)) => Json(v).into_response(),
+        Some(None) => refuse(StatusCode::NOT_FOUND, &format!("`{path}` is not a field of the database")),
         None => refuse(StatusCode::SERVICE_UNAVAILABLE, "the plant has stopped"),
     }
 }

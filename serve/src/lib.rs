@@ -7,6 +7,7 @@
 //! control is a console command line, so the page, the API and `--console`
 //! go through one implementation of the rules and C-codes.
 
+mod history;
 mod http;
 mod json;
 mod pictures;
@@ -69,6 +70,7 @@ pub(crate) enum Ask {
     Block { name: String, reply: oneshot::Sender<Option<serde_json::Value>> },
     Blocks { reply: oneshot::Sender<serde_json::Value> },
     Picture { name: String, reply: oneshot::Sender<Option<String>> },
+    Trend { path: String, reply: oneshot::Sender<Option<serde_json::Value>> },
 }
 
 /// What a served run leaves: the console (for `--state`) and its counts.

@@ -65,6 +65,7 @@ pub struct Plant {
     pub scans: u64,
     until: Option<u64>,
     last: Vec<Cell>,
+    history: crate::history::History,
     last_status: String,
     published: Instant,
     events: broadcast::Sender<Arc<Event>>,
@@ -98,6 +99,7 @@ impl Plant {
             scans: 0,
             until,
             last,
+            history: Default::default(),
             last_status: String::new(),
             published: Instant::now(),
             events,
@@ -178,6 +180,9 @@ impl Plant {
             Ask::Block { name, reply } => {
                 let _ = reply.send(crate::json::block(&self.console.strategy.store, &name));
             }
+            Ask::Trend { path, reply } => {
+                let _ = reply.send(self.trend(&path));
+            }
             Ask::Blocks { reply } => {
                 let _ = reply.send(crate::json::blocks(&self.console.strategy.store));
             }
@@ -254,16 +259,31 @@ impl Plant {
     }
 
     /// Every field whose value changed since the last publication, by path.
+    /// (Each is also kept in the history for trends.)
     fn changed_values(&mut self) -> Map<String, Value> {
         let store = &self.console.strategy.store;
+        let now_us = self.console.strategy.elapsed_us();
         let mut out = Map::new();
         for (i, (now, was)) in store.cells.iter().zip(self.last.iter_mut()).enumerate() {
             if now != was {
-                out.insert(store.describe(i as u32), Value::String(store.show(i as u32)));
+                let text = store.show(i as u32);
+                self.history.record(now_us, i as u32, &text);
+                out.insert(store.describe(i as u32), Value::String(text));
                 was.clone_from(now);
             }
         }
+        self.history.trim(now_us);
         out
+    }
+
+    /// A field's recent changes and its value now, for a trend.
+    fn trend(&self, path: &str) -> Option<Value> {
+        let store = &self.console.strategy.store;
+        let cell = linc_engines::console::fields::address(store, path).ok()?.cell;
+        let secs = |us: u64| us as f64 / 1e6;
+        let points: Vec<Value> = self.history.of(cell).into_iter().map(|(t, v)| json!([secs(t), v])).collect();
+        Some(json!({"field": store.describe(cell), "now": secs(self.console.strategy.elapsed_us()),
+                    "value": store.show(cell), "points": points}))
     }
 
     fn status_json(&self) -> Value {

@@ -246,3 +246,19 @@ fn at_speed_one_no_scan_is_late() {
     assert!(done.scans >= 30, "{}", done.scans);
     assert_eq!(done.late, 0);
 }
+
+#[test]
+fn a_trend_starts_with_the_recent_past() {
+    let s = serve("examples/sequences/plant.json", config(Speed::Times(20.0), false, None));
+    std::thread::sleep(Duration::from_millis(1500));
+    let (code, body) = get(&s, "/api/trend/r1.level", &[]);
+    assert_eq!(code, 200, "{body}");
+    let t = json(&body);
+    assert_eq!(t["field"], "R1.Level", "named as the database names it");
+    let points = t["points"].as_array().expect("points");
+    assert!(points.len() >= 5, "30 simulated seconds of filling: {t}");
+    let times: Vec<f64> = points.iter().map(|p| p[0].as_f64().unwrap()).collect();
+    assert!(times.windows(2).all(|w| w[0] <= w[1]) && times.last() <= t["now"].as_f64().as_ref());
+    assert_eq!(get(&s, "/api/trend/R1.Nope", &[]).0, 404);
+    s.stop();
+}

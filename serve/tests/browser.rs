@@ -2,8 +2,8 @@
 //! over WebDriver by chromedriver (both installed by `.ci/run`). The page
 //! of the sequences example is opened; the test waits until `#step-Fill`
 //! has class `active`, clicks a step on the page to hold it and sees the
-//! hold in `/api/programs`, saves screenshots under `target/monitor/`, and
-//! requires that the browser logged no error.
+//! hold in `/api/programs`, adds a trend, saves screenshots under
+//! `target/monitor/`, and requires that the browser logged no error.
 //!
 //! Without chromium and chromedriver the test says so and passes, unless
 //! `LINC_REQUIRE_BROWSER` is set (as `.ci/run` sets it).
@@ -184,6 +184,10 @@ fn the_monitor_page_shows_the_running_sequence_and_holds_a_step() {
     }
     b.wait_for("return !!document.querySelector('#step-Heat.held')", "the page to show the hold");
     b.screenshot(&dir.join("sequence-held.png"));
+    // A trend chosen on the page starts with the recent past and is drawn.
+    b.script("document.querySelector('#trend-field').value = 'R1.Level'; document.querySelector('#trend-form').requestSubmit(); return true;");
+    b.wait_for("return !!document.querySelector('#trend svg path')", "the trend of R1.Level");
+    b.screenshot(&dir.join("trend.png"));
     let errors: Vec<Value> = b.log().into_iter().filter(|e| e["level"] == "SEVERE").collect();
     assert!(errors.is_empty(), "the page logged errors: {errors:?}");
     drop(b);
