@@ -48,12 +48,12 @@ function renderStatus(s) {
   const body = $('#programs tbody');
   const rows = s.programs.map((p) => {
     const tr = document.createElement('tr');
-    for (const v of [p.block, p.kind, String(p.task), p.state, p.position]) {
+    for (const v of [p.block, p.kind, String(p.task), p.failed ? 'error (' + p.state + ')' : p.state, p.position]) {
       const td = document.createElement('td');
       td.textContent = v;
       tr.appendChild(td);
     }
-    tr.children[3].className = 'state-' + p.state;
+    tr.children[3].className = p.failed ? 'state-error' : 'state-' + p.state;
     const td = document.createElement('td');
     td.className = 'write';
     for (const [label, verb] of [['start', 'START'], ['suspend', 'SUSPEND'], ['stop', 'PSTOP']]) {

@@ -298,8 +298,10 @@ impl Plant {
             .into_iter()
             .map(|p| {
                 let picture = self.pictures.iter().find(|q| q.name == p.block).map(|q| q.kind);
+                // The program the error status names is shown as failed.
+                let failed = s.error().is_some_and(|e| e.block == p.block);
                 let mut v = json!({"block": p.block, "kind": kind(p.kind), "task": p.task, "state": p.state.name(),
-                       "position": p.position, "picture": picture});
+                       "failed": failed, "position": p.position, "picture": picture});
                 if let Some(seq) = s.store.db.block(&p.block).and_then(|b| s.sequence(b)) {
                     let active: Vec<Value> = seq
                         .active_steps()

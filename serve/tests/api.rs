@@ -137,6 +137,12 @@ fn with_writes_controls_go_through_the_console_engine() {
             || svg.contains("<g id=\"step-Idle\" class=\"step active held\""),
         "{svg}"
     );
+    // A raised error names its program, shown as failed.
+    let (_, reply) = command(&s, "ERRRAISE R0001 SIM");
+    assert_eq!(reply["replies"][0]["ok"], true, "{reply}");
+    let status = json(&get(&s, "/api/programs", &[]).1);
+    let sim = status["programs"].as_array().unwrap().iter().find(|p| p["block"] == "SIM").cloned().unwrap();
+    assert_eq!((&sim["failed"], &status["error"]["code"]), (&Value::Bool(true), &Value::from("R0001")), "{status}");
     // ADVANCE moves the clock; real time goes on from there.
     let t0 = json(&get(&s, "/api/programs", &[]).1)["elapsed"].as_f64().unwrap();
     let (_, reply) = command(&s, "ADVANCE 1h");
