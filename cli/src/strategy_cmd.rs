@@ -4,17 +4,15 @@
 use crate::report::usage;
 use crate::run_cmd::Common;
 use linc_compiler::render::SourceFiles;
-use linc_compiler::span::FileId;
 use linc_driver::database::load as load_db;
 use linc_driver::database::{duration, set_and_show, start_time, write_db};
 use linc_driver::single::SequenceRun;
-use linc_driver::strategy::{compile_wants, strategy_diagnostic};
 use linc_driver::Reporter;
 use linc_engines::console::fields::show_value;
-use linc_engines::strategy::{self, trace::Trace, Strategy, StrategyError, Want};
+use linc_engines::strategy::{self, trace::Trace, Strategy, Want};
 use linc_format::Code;
-use linc_runtime::vm::{Clock, Vm};
-use linc_runtime::{Database, Store};
+
+use linc_runtime::Store;
 use std::path::{Path, PathBuf};
 
 pub struct Options {
@@ -33,41 +31,6 @@ pub struct Options {
 pub struct Retain {
     pub state: Option<PathBuf>,
     pub cold: bool,
-}
-
-/// A strategy error, located at the block's key in the database text.
-fn report(files: &SourceFiles, db_id: FileId, db_text: &str, e: &StrategyError, r: &mut Reporter) {
-    r.emit(files, &strategy_diagnostic(db_id, db_text, e));
-}
-
-fn objects(o: &Options, db: &Database, wants: &[Want], r: &mut Reporter) -> Result<linc_driver::strategy::Plan, u8> {
-    let dir = o.db.parent().map(Path::to_path_buf).unwrap_or_default();
-    compile_wants(&dir, db, wants, r)
-}
-
-/// Compiles the programs `wants` name and builds the strategy over
-/// `store`; errors are printed, `Err` is the exit status.
-fn assemble(
-    o: &Options,
-    files: &SourceFiles,
-    db_text: &str,
-    store: Store,
-    wants: &[Want],
-    now: i64,
-    r: &mut Reporter,
-) -> Result<Strategy, u8> {
-    if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
-        report(files, FileId(0), db_text, &e, r);
-        return Err(2);
-    }
-    let (objects, pairs) = objects(o, &store.db, wants, r)?;
-    let seed = o.common.seed.unwrap_or(now as u64);
-    let mut vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
-    vm.set_tier(o.common.tier);
-    Strategy::build(store, objects, &pairs, vm, now as f64).map_err(|e| {
-        report(files, FileId(0), db_text, &e, r);
-        2
-    })
 }
 
 /// The whole strategy of a database, as `linc run PLANT.json` builds it
@@ -128,7 +91,10 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     if let Err(status) = check_outputs(o, &wants, r) {
         return status;
     }
-    let mut s = match assemble(o, &files, &db_text, store, &wants, now, r) {
+    let dir = o.db.parent().map(Path::to_path_buf).unwrap_or_default();
+    let built =
+        linc_driver::strategy::assemble(&dir, (&files, &db_text), store, &wants, now, &plant_options(&o.common), r);
+    let mut s = match built {
         Ok(s) => s,
         Err(status) => return status,
     };

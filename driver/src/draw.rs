@@ -5,7 +5,6 @@
 
 use crate::database::{duration, load as load_db, set_and_show, start_time};
 use crate::report::{refused, usage};
-use crate::strategy::{compile_wants, strategy_diagnostic};
 use crate::Reporter;
 use linc_compiler::check::Context;
 use linc_compiler::render::SourceFiles;
@@ -15,7 +14,6 @@ use linc_draw::fst::FstState;
 use linc_draw::sfc::StepState;
 use linc_engines::strategy::Strategy;
 use linc_format::Code;
-use linc_runtime::vm::{Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{Database, Store};
 use std::io::BufRead;
 use std::path::{Path, PathBuf};
@@ -230,12 +228,8 @@ fn run(o: &Options, kind: crate::single::Kind, r: &mut Reporter) -> Result<(Stra
     set_and_show(&mut store, &o.set, &[], r)?;
     let wants = vec![crate::single::want_for(&o.file, kind, block)];
     let dir = db_path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let (objects, pairs) = compile_wants(&dir, &store.db, &wants, r)?;
-    let vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(o.seed.unwrap_or(now as u64), 0));
-    let mut s = Strategy::build(store, objects, &pairs, vm, now as f64).map_err(|e| {
-        r.emit(&files, &strategy_diagnostic(FileId(0), &db_text, &e));
-        2u8
-    })?;
+    let plant = crate::strategy::PlantOptions { seed: o.seed, ..Default::default() };
+    let mut s = crate::strategy::assemble(&dir, (&files, &db_text), store, &wants, now, &plant, r)?;
     if let Some(path) = &o.state {
         if crate::state::warm_start(path, false, &mut s, r)? == crate::state::Start::Warm {
             set_and_show(&mut s.store, &o.set, &[], r)?;

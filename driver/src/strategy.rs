@@ -133,19 +133,35 @@ pub fn plant(
     let mut store = Store::new(db);
     crate::database::set_and_show(&mut store, &o.set, &[], r)?;
     let wants = linc_engines::strategy::wanted(&store);
+    let dir = db_path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let s = assemble(&dir, (&files, &db_text), store, &wants, now, o, r)?;
+    Ok((s, wants))
+}
+
+/// Compiles the programs `wants` name (files relative to `dir`) and builds
+/// the strategy over `store`, starting at `now`; a strategy error is
+/// located in the database (`db`: its files and text). Errors are printed,
+/// `Err` is the exit status. What `linc run`, the console, `linc serve` and
+/// `linc draw` build their strategies with.
+pub fn assemble(
+    dir: &Path,
+    db: (&linc_compiler::render::SourceFiles, &str),
+    store: Store,
+    wants: &[Want],
+    now: i64,
+    o: &PlantOptions,
+    r: &mut Reporter,
+) -> Result<linc_engines::strategy::Strategy, u8> {
     let report = |e: &StrategyError, r: &mut Reporter| {
-        r.emit(&files, &strategy_diagnostic(FileId(0), &db_text, e));
+        r.emit(db.0, &strategy_diagnostic(FileId(0), db.1, e));
         2u8
     };
     if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
         return Err(report(&e, r));
     }
-    let dir = db_path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let (objects, pairs) = compile_wants(&dir, &store.db, &wants, r)?;
+    let (objects, pairs) = compile_wants(dir, &store.db, wants, r)?;
     let clock = linc_runtime::vm::Clock::new(o.seed.unwrap_or(now as u64), 0);
     let mut vm = linc_runtime::vm::Vm::new(o.watchdog, clock);
     vm.set_tier(o.tier);
-    let s =
-        linc_engines::strategy::Strategy::build(store, objects, &pairs, vm, now as f64).map_err(|e| report(&e, r))?;
-    Ok((s, wants))
+    linc_engines::strategy::Strategy::build(store, objects, &pairs, vm, now as f64).map_err(|e| report(&e, r))
 }
