@@ -84,18 +84,27 @@ pub(crate) fn error_text(e: &ConsoleError, r: &mut Reporter) -> String {
     r.text(linc_compiler::Diagnostic::command(e.code, e.message.clone())).trim_end().to_string()
 }
 
+/// Prints one command's reply, or its refusal as the reporter renders it
+/// (also for `linc serve --console`); `true` if the command succeeded.
+pub(crate) fn print_reply(reply: Result<String, ConsoleError>, r: &mut Reporter) -> bool {
+    match reply {
+        Ok(reply) if reply.is_empty() => true,
+        Ok(reply) => {
+            crate::out::line(&reply);
+            true
+        }
+        Err(e) => {
+            crate::out::line(&error_text(&e, r));
+            false
+        }
+    }
+}
+
 /// Runs one line and prints its replies; `true` if every command succeeded.
 fn line(console: &mut Console, text: &str, r: &mut Reporter, trace: Option<&mut Trace>, state: Option<&Path>) -> bool {
     let mut ok = true;
     for reply in console.execute_traced(text, trace) {
-        match reply {
-            Ok(reply) if reply.is_empty() => {}
-            Ok(reply) => crate::out::line(&reply),
-            Err(e) => {
-                ok = false;
-                crate::out::line(&error_text(&e, r));
-            }
-        }
+        ok &= print_reply(reply, r);
     }
     // Runtime errors of the scans a command ran follow its reply, rendered
     // like any runtime error; they are not command failures.

@@ -178,11 +178,7 @@ fn console_lines(handle: &linc_serve::Handle, r: &mut Reporter) {
             }
             Some(Reply::Done { replies, failures }) => {
                 for reply in replies {
-                    match reply {
-                        Ok(text) if text.is_empty() => {}
-                        Ok(text) => crate::out::line(&text),
-                        Err(e) => crate::out::line(&crate::console_cmd::error_text(&e, r)),
-                    }
+                    crate::console_cmd::print_reply(reply, r);
                 }
                 for f in failures {
                     crate::out::line(&f);

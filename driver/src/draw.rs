@@ -125,11 +125,7 @@ fn sequence(o: &Options, r: &mut Reporter) -> Result<String, u8> {
     let (mut s, block) = run(o, crate::single::Kind::Sequence, r)?;
     let Some(seq) = s.sequence_mut(block) else { return Err(2) };
     let seq = &*seq;
-    let look = |name: &str| {
-        let (active, t_us) = seq.step(name)?;
-        let held = seq.monitor.held.iter().any(|h| h.eq_ignore_ascii_case(name));
-        Some(StepState { active, t_us, held })
-    };
+    let look = |name: &str| step_state(seq, name);
     Ok(linc_draw::sfc::sequence(&text, &tree, Some(&look)).0)
 }
 
@@ -182,6 +178,14 @@ fn table(o: &Options, r: &mut Reporter) -> Result<String, u8> {
     let (s, block) = run(o, crate::single::Kind::Fst, r)?;
     let state = fst_state(&s.store, block, &offsets);
     Ok(linc_draw::fst::table(&read, Some(&state)).0)
+}
+
+/// A step as a sequence's picture shows it: active, its `.T`, held by the
+/// monitor. Shared with `linc serve`'s live pictures.
+pub fn step_state(seq: &linc_engines::sequence::Sequence, name: &str) -> Option<StepState> {
+    let (active, t_us) = seq.step(name)?;
+    let held = seq.monitor.held.iter().any(|h| h.eq_ignore_ascii_case(name));
+    Some(StepState { active, t_us, held })
 }
 
 /// What an FST block shows of its table's run, for a picture: the step

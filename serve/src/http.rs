@@ -22,7 +22,7 @@ const MAX_LINE: usize = 4096;
 
 #[derive(Clone)]
 pub struct AppState {
-    asks: Arc<Mutex<Sender<Ask>>>,
+    asks: Sender<Ask>,
     events: broadcast::Sender<Arc<Event>>,
     status: Arc<Mutex<Value>>,
     token: Option<Arc<str>>,
@@ -39,20 +39,13 @@ impl AppState {
         token: Option<String>,
     ) -> AppState {
         let (close, closing) = watch::channel(false);
-        AppState {
-            asks: Arc::new(Mutex::new(asks)),
-            events,
-            status,
-            token: token.map(Arc::from),
-            closing,
-            close: Arc::new(close),
-        }
+        AppState { asks, events, status, token: token.map(Arc::from), closing, close: Arc::new(close) }
     }
 
     /// Asks the plant thread; `None` when it has stopped.
     async fn ask<T>(&self, make: impl FnOnce(oneshot::Sender<T>) -> Ask) -> Option<T> {
         let (reply, answer) = oneshot::channel();
-        self.asks.lock().ok()?.send(make(reply)).ok()?;
+        self.asks.send(make(reply)).ok()?;
         answer.await.ok()
     }
 }

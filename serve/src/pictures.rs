@@ -6,7 +6,6 @@
 
 use linc_compiler::check::Context;
 use linc_compiler::{fst, ladder, sfc};
-use linc_draw::sfc::StepState;
 use linc_driver::ladder::LiveElements;
 use linc_engines::strategy::{Strategy, Want, WantKind};
 use std::path::Path;
@@ -76,11 +75,7 @@ impl Picture {
         match &self.live {
             Live::Sequence { text, tree } => {
                 let Some(seq) = s.sequence(block) else { return false };
-                let look = |name: &str| {
-                    let (active, t_us) = seq.step(name)?;
-                    let held = seq.monitor.held.iter().any(|h| h.eq_ignore_ascii_case(name));
-                    Some(StepState { active, t_us, held })
-                };
+                let look = |name: &str| linc_driver::draw::step_state(seq, name);
                 let mut key = seq.status.name().to_string();
                 for n in seq.active_steps() {
                     let secs = seq.step(n).map_or(0, |(_, us)| us / 1_000_000);

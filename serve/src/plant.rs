@@ -7,7 +7,6 @@
 use crate::pictures::Picture;
 use crate::{Ask, Event, Reply, Speed};
 use linc_engines::console::Console;
-use linc_engines::strategy::WantKind;
 use linc_runtime::store::Cell;
 use serde_json::{json, Map, Value};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -288,11 +287,6 @@ impl Plant {
 
     fn status_json(&self) -> Value {
         let s = &self.console.strategy;
-        let kind = |k| match k {
-            WantKind::Action => "action",
-            WantKind::Sequence => "sequence",
-            WantKind::Fst => "fst",
-        };
         let programs: Vec<Value> = s
             .programs()
             .into_iter()
@@ -300,7 +294,7 @@ impl Plant {
                 let picture = self.pictures.iter().find(|q| q.name == p.block).map(|q| q.kind);
                 // The program the error status names is shown as failed.
                 let failed = s.error().is_some_and(|e| e.block == p.block);
-                let mut v = json!({"block": p.block, "kind": kind(p.kind), "task": p.task, "state": p.state.name(),
+                let mut v = json!({"block": p.block, "kind": p.kind.name(), "task": p.task, "state": p.state.name(),
                        "failed": failed, "position": p.position, "picture": picture});
                 if let Some(seq) = s.store.db.block(&p.block).and_then(|b| s.sequence(b)) {
                     let active: Vec<Value> = seq

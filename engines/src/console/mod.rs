@@ -254,13 +254,8 @@ impl Console {
         if ps.is_empty() {
             return "no programs".to_string();
         }
-        let kind = |k| match k {
-            crate::strategy::WantKind::Action => "action",
-            crate::strategy::WantKind::Sequence => "sequence",
-            crate::strategy::WantKind::Fst => "fst",
-        };
         ps.iter()
-            .map(|p| format!("{} {} task {} {} {}", p.block, kind(p.kind), p.task, p.state.name(), p.position))
+            .map(|p| format!("{} {} task {} {} {}", p.block, p.kind.name(), p.task, p.state.name(), p.position))
             .collect::<Vec<_>>()
             .join("\n")
     }

@@ -52,6 +52,17 @@ pub enum WantKind {
     Fst,
 }
 
+impl WantKind {
+    /// How the console and the monitor name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            WantKind::Action => "action",
+            WantKind::Sequence => "sequence",
+            WantKind::Fst => "fst",
+        }
+    }
+}
+
 impl Want {
     /// A block must name both its file and (unless it runs a sequence) its
     /// action (E0830).
