@@ -5,23 +5,9 @@ use linc_driver::scenarios::Outcome;
 use linc_format::Code;
 use std::path::{Path, PathBuf};
 
-/// Text with `&`, `<`, `>`, `"` and `'` escaped, and control characters
-/// other than tab and newline (which XML 1.0 cannot hold) replaced.
+/// Text escaped for the report, tab and newline kept.
 fn xml(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
-            '\t' | '\n' => out.push(c),
-            c if (c as u32) < 0x20 || c == '\u{fffe}' || c == '\u{ffff}' => out.push('\u{fffd}'),
-            c => out.push(c),
-        }
-    }
-    out
+    linc_format::xml::escape(text, linc_format::xml::Whitespace::Keep)
 }
 
 /// The JUnit report: one suite, one test case per scenario; a failed

@@ -12,6 +12,7 @@ pub mod isa;
 pub mod object;
 pub mod text;
 pub mod wire;
+pub mod xml;
 
 pub use code::Code;
 pub use db::{Database, DbError, FieldDef, FieldType, Template};
