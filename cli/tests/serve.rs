@@ -4,19 +4,10 @@
 mod common;
 
 use std::io::{BufRead, BufReader, Write};
-use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 fn serve(args: &[&str]) -> std::process::Child {
-    Command::new(env!("CARGO_BIN_EXE_linc"))
-        .arg("serve")
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("run linc serve")
+    common::spawn(&[&["serve"], args].concat())
 }
 
 #[test]

@@ -31,15 +31,7 @@ pub use linc_test_support::temp_dir;
 /// Runs `linc` with `args` in the repository root, `input` on its standard input.
 pub fn linc_with_input(args: &[&str], input: &str) -> Output {
     use std::io::Write;
-    use std::process::Stdio;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_linc"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("run linc");
+    let mut child = spawn(args);
     // linc may refuse its arguments and exit before it reads a line; the
     // pipe is then closed and the write fails with BrokenPipe, which is not
     // the test's failure: the exit code and output say what happened.
@@ -49,4 +41,18 @@ pub fn linc_with_input(args: &[&str], input: &str) -> Output {
         Err(e) => panic!("write the input: {e}"),
     }
     child.wait_with_output().expect("linc's output")
+}
+
+/// Starts `linc` with `args` in the repository root, its standard input,
+/// output and error piped.
+pub fn spawn(args: &[&str]) -> std::process::Child {
+    use std::process::Stdio;
+    Command::new(env!("CARGO_BIN_EXE_linc"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run linc")
 }
