@@ -9,6 +9,7 @@ mod disasm_cmd;
 mod draw_cmd;
 mod eval_cmd;
 mod explain_cmd;
+mod fmt_cmd;
 mod fst_src;
 mod ladder_cmd;
 mod out;
@@ -192,6 +193,14 @@ enum Command {
     },
     /// Print a readable listing of an object file.
     Disasm { file: PathBuf },
+    /// Format action, sequence, ladder and FST table files in place (docs/style.md).
+    Fmt {
+        /// Files or directories; none: the files of the strategies in the current directory.
+        files: Vec<PathBuf>,
+        /// Change nothing: list the files that would change and exit 1 if any would.
+        #[arg(long)]
+        check: bool,
+    },
     /// Explain a diagnostic code, e.g. `linc explain E0104`.
     Explain {
         /// The code; omit it (or use --list) to list all codes.
@@ -475,6 +484,7 @@ fn dispatch(command: Command, r: &mut Reporter) -> u8 {
             )
         }
         Command::Explain { code, list } => explain_cmd::run(code.as_deref(), list, r),
+        Command::Fmt { files, check } => fmt_cmd::run(&files, check, r),
     }
 }
 

@@ -14,6 +14,7 @@ pub mod depth_guard;
 pub mod diagnostic;
 pub mod errors;
 pub mod files;
+pub mod fmt;
 pub mod fst;
 pub mod hir;
 pub mod ladder;

@@ -289,9 +289,15 @@ pub struct AtomicFile {
 
 impl AtomicFile {
     pub fn create(path: &Path) -> Result<AtomicFile, Refused> {
+        Self::open(path, false)
+    }
+
+    fn open(path: &Path, replacing_input: bool) -> Result<AtomicFile, Refused> {
         let existing = existing_output(path)?;
         if let Some(input) = existing.as_ref().and_then(|meta| read_as_input(path, meta)) {
-            return Err(is_input(path, &input));
+            if !replacing_input {
+                return Err(is_input(path, &input));
+            }
         }
         let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
         let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("out");
@@ -333,6 +339,19 @@ impl Write for AtomicFile {
 /// Writes `bytes` to `path` atomically (see [`AtomicFile`]).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Refused> {
     let mut file = AtomicFile::create(path)?;
+    file.write_all(bytes).map_err(|e| cant_write(path, e))?;
+    file.commit()
+}
+
+/// Replaces the input file `path`, read as `original`, by `bytes`, as
+/// [`write_atomic`] writes (a link or device is refused, E0901): the one
+/// command that rewrites its input is `linc fmt`. If the file changed since
+/// it was read (an editor saved it meanwhile), nothing is written (E0900).
+pub fn replace_input(path: &Path, original: &[u8], bytes: &[u8]) -> Result<(), Refused> {
+    let mut file = AtomicFile::open(path, true)?;
+    if read_limited(path, MAX_INPUT_BYTES, false).map_err(|e| cant_write(path, e))? != original {
+        return Err(cant_write(path, "it changed while it was formatted"));
+    }
     file.write_all(bytes).map_err(|e| cant_write(path, e))?;
     file.commit()
 }

@@ -9,6 +9,7 @@ pub mod database;
 pub mod draw;
 pub mod eval;
 pub mod files;
+pub mod fmt;
 pub mod ladder;
 pub mod report;
 pub mod scenarios;

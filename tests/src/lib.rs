@@ -63,10 +63,52 @@ pub fn assert_check_agrees_with_compile(src: &str) {
     assert_eq!(checked, compiled, "check and compile disagree on {src:?}");
 }
 
+/// Asserts that `linc fmt` leaves `src` (a file named `name`, whose
+/// extension gives its language) meaning the same: formatting twice gives
+/// the same text, and the object compiled against `db` (or, when it does not
+/// compile, the error codes) is the same before and after, except for source
+/// positions. A text with syntax errors is not formatted, which is checked
+/// too.
+pub fn assert_format_preserves(src: &str, name: &str, db: &Database) {
+    use linc_compiler::source_kind::SourceKind;
+    let kind = SourceKind::of_name(name);
+    let Ok(formatted) = linc_compiler::fmt::format(kind, src) else {
+        return;
+    };
+    let again = linc_compiler::fmt::format(kind, &formatted);
+    assert_eq!(again.as_deref().ok(), Some(formatted.as_str()), "formatting {name} twice differs; once:\n{formatted}");
+    let (before, after) = (compiled(src, name, db), compiled(&formatted, name, db));
+    assert_eq!(before, after, "formatting changed the meaning of {name}:\n{src}\n--- formatted:\n{formatted}");
+}
+
+/// The object `src` compiles to, without source positions, or its error codes.
+pub fn compiled(src: &str, name: &str, db: &Database) -> Result<Vec<u8>, Vec<&'static str>> {
+    use linc_compiler::session::{CheckOptions, Session};
+    let mut s = Session::compiling(Context { db, resolve_blocks: true, steps: None });
+    let id = s.add(name, src.as_bytes().to_vec());
+    let mut codes: Vec<&'static str> = s
+        .check(id, CheckOptions::default())
+        .diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .map(|d| d.code.as_str())
+        .collect();
+    match s.compile() {
+        Ok(o) if codes.is_empty() => Ok(o.without_positions().to_bytes()),
+        Ok(_) => Err(codes),
+        Err(e) => {
+            codes.extend(e.iter().filter(|d| d.is_error()).map(|d| d.code.as_str()));
+            Err(codes)
+        }
+    }
+}
+
 pub fn run(section: &str, src: &str, mode: Mode) -> Outcome {
     // Every case, whatever its mode, is also checked and compiled as an
-    // action file against the guide database: the two must agree.
+    // action file against the guide database: the two must agree, and
+    // `linc fmt` must not change what it compiles to.
     assert_check_agrees_with_compile(src);
+    assert_format_preserves(src, "case.st", guide_db());
     let builtin;
     let (db, resolve_blocks) = if mode == Mode::NoDb {
         builtin = Database::builtin();
@@ -126,6 +168,7 @@ macro_rules! invalid {
 
 /// Running compiled ST against a database, for the runtime semantics tests.
 pub mod fst;
+pub mod gen;
 
 pub mod exec {
     use linc_compiler::check::Context;
