@@ -193,6 +193,8 @@ enum Command {
     },
     /// Print a readable listing of an object file.
     Disasm { file: PathBuf },
+    /// A language server over standard input and output, for editors (docs/editors.md).
+    Lsp,
     /// Format action, sequence, ladder and FST table files in place (docs/style.md).
     Fmt {
         /// Files or directories; none: the files of the strategies in the current directory.
@@ -485,6 +487,10 @@ fn dispatch(command: Command, r: &mut Reporter) -> u8 {
         }
         Command::Explain { code, list } => explain_cmd::run(code.as_deref(), list, r),
         Command::Fmt { files, check } => fmt_cmd::run(&files, check, r),
+        Command::Lsp => match linc_lsp::run_stdio() {
+            Ok(()) => 0,
+            Err(e) => report::usage(r, format!("the language server stopped: {e}")),
+        },
     }
 }
 

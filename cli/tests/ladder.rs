@@ -29,7 +29,7 @@ fn the_example_compiles_and_disassembles_with_rung_lines() {
     let d = linc(&["disasm", &out]);
     let text = stdout(&d);
     assert!(text.contains("action interlock"), "{text}");
-    assert!(text.contains("; 2:9  [Dig_1a.In]                       -> (Dig_1b.Out);"), "{text}");
+    assert!(text.contains("; 2:9  [Dig_1a.In]                    -> (Dig_1b.Out);"), "{text}");
 }
 
 #[test]

@@ -23,6 +23,15 @@ pub struct Label {
     pub text: String,
 }
 
+/// A replacement that corrects a diagnostic's mistake (the closest field,
+/// enumeration value, block or function name): offered by the language
+/// server as a quick fix; `linc check` shows it as help text.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fix {
+    pub span: Span,
+    pub text: String,
+}
+
 /// A located, coded message with optional secondary labels and help notes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Diagnostic {
@@ -36,6 +45,7 @@ pub struct Diagnostic {
     pub label: String,
     pub secondary: Vec<Label>,
     pub help: Vec<String>,
+    pub fix: Option<Fix>,
 }
 
 impl Diagnostic {
@@ -49,6 +59,7 @@ impl Diagnostic {
             label: String::new(),
             secondary: Vec::new(),
             help: Vec::new(),
+            fix: None,
         }
     }
 
@@ -65,6 +76,12 @@ impl Diagnostic {
     /// Places the diagnostic in `file`.
     pub fn in_file(mut self, file: FileId) -> Diagnostic {
         self.file = file;
+        self
+    }
+
+    /// The replacement of `span` by `text` that corrects the mistake.
+    pub fn fix(mut self, span: Span, text: impl Into<String>) -> Diagnostic {
+        self.fix = Some(Fix { span, text: text.into() });
         self
     }
 

@@ -28,7 +28,8 @@ impl Param {
         }
     }
 
-    fn name(self) -> &'static str {
+    /// How the parameter is written in a signature (`ANY_NUM`, `BSEQ`).
+    pub fn name(self) -> &'static str {
         match self {
             Param::Num => "ANY_NUM",
             Param::Int => "INT",

@@ -127,7 +127,7 @@ impl CheckError {
                 let d = Diagnostic::error(Code::E0100, format!("can't find `{name}`"), *span)
                     .label("not a block, alias or field of this action's block");
                 match suggestion {
-                    Some(s) => d.help(format!("did you mean `{s}`?")),
+                    Some(s) => d.help(format!("did you mean `{s}`?")).fix(*span, s.clone()),
                     None => {
                         d.help("names ignore case; check the spelling, or pass the database that defines it with --db")
                     }
@@ -137,9 +137,12 @@ impl CheckError {
                 let d = Diagnostic::error(Code::E0101, format!("`{owner}` has no field `{field}`"), *span)
                     .label(format!("not a field of block type {template}"));
                 if known.is_empty() {
-                    d
-                } else {
-                    d.help(format!("fields of {template}: {}", known.join(", ")))
+                    return d;
+                }
+                let d = d.help(format!("fields of {template}: {}", known.join(", ")));
+                match closest(field, known) {
+                    Some(best) => d.fix(*span, best),
+                    None => d,
                 }
             }
             CheckError::UnknownSubField { span, sub, field, field_type } => {
@@ -163,9 +166,16 @@ impl CheckError {
                     })
             }
             CheckError::BadEnumValue { span, value, field, values } => {
-                Diagnostic::error(Code::E0104, format!("`{value}` is not a value of `{field}`"), *span)
+                let d = Diagnostic::error(Code::E0104, format!("`{value}` is not a value of `{field}`"), *span)
                     .label("unknown enumeration value")
-                    .help(format!("`{field}` takes one of: {} (case does not matter)", values.join(", ")))
+                    .help(format!("`{field}` takes one of: {} (case does not matter)", values.join(", ")));
+                match closest(value, values) {
+                    // The span is the whole constant, quotes included.
+                    Some(best) => {
+                        d.fix(Span::new(span.start + 1, span.end.saturating_sub(1).max(span.start + 1)), best)
+                    }
+                    None => d,
+                }
             }
             CheckError::ModNotInteger { span, found } => {
                 Diagnostic::error(Code::E0105, format!("MOD needs integer operands, found {found}"), *span)
@@ -192,7 +202,7 @@ impl CheckError {
                 let d = Diagnostic::error(Code::E0110, format!("`{name}` is not an ST function"), *span)
                     .label("unknown function");
                 match suggestion {
-                    Some(s) => d.help(format!("did you mean `{s}`?")),
+                    Some(s) => d.help(format!("did you mean `{s}`?")).fix(*span, s.clone()),
                     None => d.help("see `linc explain E0110` for the function table"),
                 }
             }
@@ -257,5 +267,20 @@ impl CheckError {
                     .label("unknown step")
             }
         }
+    }
+}
+
+/// The candidate closest to `word` (ignoring case), if it is at most half
+/// as long as the word away and nearer than any other.
+fn closest(word: &str, candidates: &[String]) -> Option<String> {
+    let word = word.to_ascii_uppercase();
+    let mut scored: Vec<(usize, &String)> =
+        candidates.iter().map(|c| (super::expr::distance(&word, &c.to_ascii_uppercase()), c)).collect();
+    scored.sort_by_key(|s| s.0);
+    match scored.as_slice() {
+        [(d, best), rest @ ..] if *d <= word.len().div_ceil(2).max(1) && rest.first().is_none_or(|r| r.0 > *d) => {
+            Some((*best).clone())
+        }
+        _ => None,
     }
 }

@@ -187,11 +187,19 @@ impl<'a> Printer<'a> {
             raw,
             Some(Raw::Elsif | Raw::Else | Raw::EndIf | Raw::EndFor | Raw::EndWhile | Raw::Until | Raw::EndAction)
         );
-        if closes {
-            self.level = self.level.saturating_sub(1);
-        }
         if closes || raw == Some(Raw::EndRepeat) {
+            // Comments on their own lines before a closing keyword belong to
+            // the block it closes, and keep its indentation.
+            let gap = self.toks[i].gap.clone();
             self.line();
+            self.gap(&gap, true);
+            if closes {
+                self.level = self.level.saturating_sub(1);
+            }
+            self.line();
+            self.emit_without_gap(i);
+            self.after_closer(raw);
+            return;
         }
         if raw == Some(Raw::Action) && self.prev != Some(Raw::Colon) {
             self.line();
@@ -207,6 +215,17 @@ impl<'a> Printer<'a> {
                 self.line();
             }
             Some(Raw::Semi) if self.depth == 0 => self.line(),
+            Some(Raw::EndAction) if self.raw(self.pos) != Some(Raw::Semi) => self.line(),
+            _ => {}
+        }
+    }
+
+    fn after_closer(&mut self, raw: Option<Raw>) {
+        match raw {
+            Some(Raw::Else) => {
+                self.level += 1;
+                self.line();
+            }
             Some(Raw::EndAction) if self.raw(self.pos) != Some(Raw::Semi) => self.line(),
             _ => {}
         }
@@ -291,6 +310,7 @@ impl Printer<'_> {
     /// Writes token `i` without the comments before it (they were part of
     /// a piece another formatter wrote).
     pub fn emit_without_gap(&mut self, i: usize) {
+        self.brk = false;
         self.set_indent();
         let text = self.spelled(i);
         self.out.put(&text, false);

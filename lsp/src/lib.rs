@@ -1,0 +1,110 @@
+//! `linc lsp`: a language server over stdio for LIN ST actions, sequences,
+//! ladder and FST tables, and the strategy database JSON (ADR 0016,
+//! docs/editors.md). The rules are the compiler's and the database's own:
+//! diagnostics are exactly `linc check`'s, hover and completion read the
+//! database and the function table, formatting is `linc fmt`.
+
+pub mod actions;
+pub mod analysis;
+pub mod complete;
+pub mod hover;
+pub mod nav;
+pub mod resolve;
+pub mod server;
+pub mod symbols;
+pub mod text;
+pub mod workspace;
+
+use lsp_server::Connection;
+use lsp_types::{
+    CodeActionProviderCapability, CompletionOptions, HoverProviderCapability, InitializeParams, OneOf, RenameOptions,
+    SemanticTokensFullOptions, SemanticTokensOptions, SemanticTokensServerCapabilities, ServerCapabilities, ServerInfo,
+    TextDocumentSyncCapability, TextDocumentSyncKind, WorkDoneProgressOptions,
+};
+use server::{Server, DEBOUNCE};
+use std::path::PathBuf;
+use std::time::Duration;
+
+/// The client's initialization options linc reads.
+#[derive(Default, serde::Deserialize)]
+#[serde(rename_all = "camelCase")]
+struct Options {
+    /// The database every file is checked against.
+    database: Option<String>,
+    /// Milliseconds between the last change and the diagnostics.
+    debounce_ms: Option<u64>,
+}
+
+pub fn capabilities() -> ServerCapabilities {
+    ServerCapabilities {
+        text_document_sync: Some(TextDocumentSyncCapability::Kind(TextDocumentSyncKind::INCREMENTAL)),
+        hover_provider: Some(HoverProviderCapability::Simple(true)),
+        completion_provider: Some(CompletionOptions {
+            trigger_characters: Some(vec![".".into(), "'".into(), "\"".into(), ",".into()]),
+            ..CompletionOptions::default()
+        }),
+        definition_provider: Some(OneOf::Left(true)),
+        references_provider: Some(OneOf::Left(true)),
+        document_symbol_provider: Some(OneOf::Left(true)),
+        workspace_symbol_provider: Some(OneOf::Left(true)),
+        document_formatting_provider: Some(OneOf::Left(true)),
+        rename_provider: Some(OneOf::Right(RenameOptions {
+            prepare_provider: Some(true),
+            work_done_progress_options: WorkDoneProgressOptions::default(),
+        })),
+        code_action_provider: Some(CodeActionProviderCapability::Simple(true)),
+        semantic_tokens_provider: Some(SemanticTokensServerCapabilities::SemanticTokensOptions(
+            SemanticTokensOptions {
+                legend: symbols::legend(),
+                full: Some(SemanticTokensFullOptions::Bool(true)),
+                range: None,
+                work_done_progress_options: WorkDoneProgressOptions::default(),
+            },
+        )),
+        ..ServerCapabilities::default()
+    }
+}
+
+/// Serves one client over standard input and output.
+pub fn run_stdio() -> Result<(), String> {
+    let (conn, io) = Connection::stdio();
+    serve(&conn)?;
+    drop(conn);
+    io.join().map_err(|e| e.to_string())
+}
+
+/// Initializes with the client, then serves it until `exit`.
+pub fn serve(conn: &Connection) -> Result<(), String> {
+    let (id, params) = conn.initialize_start().map_err(|e| e.to_string())?;
+    let params: InitializeParams = serde_json::from_value(params).map_err(|e| e.to_string())?;
+    let result = lsp_types::InitializeResult {
+        capabilities: capabilities(),
+        server_info: Some(ServerInfo { name: "linc".into(), version: Some(env!("CARGO_PKG_VERSION").into()) }),
+    };
+    let result = serde_json::to_value(result).map_err(|e| e.to_string())?;
+    conn.initialize_finish(id, result).map_err(|e| e.to_string())?;
+    let mut server = server_for(&params);
+    server.run(conn);
+    Ok(())
+}
+
+/// The server a client's initialization asks for.
+pub fn server_for(params: &InitializeParams) -> Server {
+    let options: Options =
+        params.initialization_options.clone().and_then(|v| serde_json::from_value(v).ok()).unwrap_or_default();
+    let mut roots: Vec<PathBuf> =
+        params.workspace_folders.iter().flatten().filter_map(|f| f.uri.to_file_path().ok()).collect();
+    #[allow(deprecated)]
+    if roots.is_empty() {
+        roots.extend(params.root_uri.as_ref().and_then(|u| u.to_file_path().ok()));
+    }
+    let chosen = options.database.map(|d| {
+        let p = PathBuf::from(d);
+        match roots.first() {
+            Some(root) if p.is_relative() => root.join(p),
+            _ => p,
+        }
+    });
+    let debounce = options.debounce_ms.map_or(DEBOUNCE, Duration::from_millis);
+    Server::new(workspace::Workspace::new(roots, chosen), debounce)
+}

@@ -1,0 +1,171 @@
+//! Which database a file is checked against. A strategy database (a JSON
+//! file with `blocks`) names the files its blocks run (`FileName`); the
+//! server finds every such database under the workspace folders and checks
+//! a file against the one that names it, as `linc run` would. A workspace
+//! may instead name one database in `linc.toml` (`database = "plant.json"`)
+//! or the client's initialization options (`{"database": "…"}`). A file no
+//! database names is checked without one, as `linc check` does.
+
+use linc_runtime::store::Store;
+use linc_runtime::{Database, DbError};
+use std::path::{Path, PathBuf};
+
+/// How deep the search for databases goes below a workspace folder.
+const MAX_DEPTH: usize = 6;
+/// At most this many JSON files are read while searching.
+const MAX_JSON_FILES: usize = 2_000;
+
+/// A database file: its text (the editor's, when it is open) and what it
+/// loads to.
+pub struct DbFile {
+    pub path: PathBuf,
+    pub text: String,
+    pub db: Result<Database, DbError>,
+    /// The files its blocks name, resolved against its directory, with the
+    /// block and the action (`ActName`, empty for a sequence or table).
+    pub named: Vec<Named>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Named {
+    pub file: PathBuf,
+    pub block: String,
+    pub action: String,
+}
+
+impl DbFile {
+    pub fn load(path: PathBuf, text: String) -> DbFile {
+        let db = Database::from_json(&text);
+        let named = db.as_ref().map(|db| named_files(&path, db)).unwrap_or_default();
+        DbFile { path, text, db, named }
+    }
+
+    pub fn database(&self) -> Option<&Database> {
+        self.db.as_ref().ok()
+    }
+
+    /// Whether the database's blocks name `file`.
+    pub fn names(&self, file: &Path) -> bool {
+        self.named.iter().any(|n| same_path(&n.file, file))
+    }
+}
+
+fn named_files(db_path: &Path, db: &Database) -> Vec<Named> {
+    let dir = db_path.parent().unwrap_or(Path::new("."));
+    let store = Store::new(db.clone());
+    linc_engines::strategy::wanted(&store)
+        .into_iter()
+        .filter(|w| !w.file.is_empty())
+        .map(|w| Named { file: dir.join(&w.file), block: db.blocks[w.block].name.clone(), action: w.action })
+        .collect()
+}
+
+/// Two paths name one file (compared after resolving links where they exist).
+pub fn same_path(a: &Path, b: &Path) -> bool {
+    a == b || matches!((std::fs::canonicalize(a), std::fs::canonicalize(b)), (Ok(x), Ok(y)) if x == y)
+}
+
+#[derive(Default)]
+pub struct Workspace {
+    pub roots: Vec<PathBuf>,
+    pub dbs: Vec<DbFile>,
+    /// The database named by `linc.toml` or the client, used for every file.
+    pub chosen: Option<PathBuf>,
+}
+
+impl Workspace {
+    /// Finds the databases under `roots`; `chosen` (from the client) wins
+    /// over a `linc.toml` in a root.
+    pub fn new(roots: Vec<PathBuf>, chosen: Option<PathBuf>) -> Workspace {
+        let chosen = chosen.or_else(|| roots.iter().find_map(|r| linc_toml(r)));
+        let mut ws = Workspace { roots, dbs: Vec::new(), chosen };
+        let mut found = Vec::new();
+        for r in &ws.roots {
+            search(r, 0, &mut found);
+        }
+        if let Some(c) = &ws.chosen {
+            if !found.iter().any(|f| same_path(f, c)) {
+                found.push(c.clone());
+            }
+        }
+        for path in found {
+            if let Ok(text) = std::fs::read_to_string(&path) {
+                if text.contains("\"blocks\"") || ws.chosen.as_ref().is_some_and(|c| same_path(c, &path)) {
+                    ws.dbs.push(DbFile::load(path, text));
+                }
+            }
+        }
+        ws
+    }
+
+    /// The database `file` is checked against.
+    pub fn db_for(&self, file: &Path) -> Option<&DbFile> {
+        if let Some(c) = &self.chosen {
+            return self.dbs.iter().find(|d| same_path(&d.path, c));
+        }
+        self.dbs.iter().find(|d| d.names(file))
+    }
+
+    pub fn db_at(&self, path: &Path) -> Option<&DbFile> {
+        self.dbs.iter().find(|d| same_path(&d.path, path))
+    }
+
+    /// A database file's text changed (in the editor); a JSON file that
+    /// gains `blocks` becomes a database.
+    pub fn update(&mut self, path: &Path, text: &str) -> bool {
+        let known = self.dbs.iter().position(|d| same_path(&d.path, path));
+        let is_db = text.contains("\"blocks\"") || self.chosen.as_ref().is_some_and(|c| same_path(c, path));
+        match known {
+            Some(i) if self.dbs[i].text == text => false,
+            Some(i) => {
+                self.dbs[i] = DbFile::load(path.to_path_buf(), text.to_string());
+                true
+            }
+            None if is_db => {
+                self.dbs.push(DbFile::load(path.to_path_buf(), text.to_string()));
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Every file some database names, once.
+    pub fn source_files(&self) -> Vec<PathBuf> {
+        let mut out: Vec<PathBuf> = Vec::new();
+        for n in self.dbs.iter().flat_map(|d| &d.named) {
+            if !out.iter().any(|f| same_path(f, &n.file)) {
+                out.push(n.file.clone());
+            }
+        }
+        out
+    }
+}
+
+/// `database = "…"` in `root/linc.toml`, relative to the root.
+fn linc_toml(root: &Path) -> Option<PathBuf> {
+    let text = std::fs::read_to_string(root.join("linc.toml")).ok()?;
+    text.lines().find_map(|l| {
+        let (key, value) = l.split_once('=')?;
+        (key.trim() == "database").then(|| root.join(value.trim().trim_matches('"')))
+    })
+}
+
+fn search(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    let mut entries: Vec<PathBuf> = entries.flatten().map(|e| e.path()).collect();
+    entries.sort();
+    for p in entries {
+        if found.len() >= MAX_JSON_FILES {
+            return;
+        }
+        let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
+        let Ok(meta) = std::fs::symlink_metadata(&p) else { continue };
+        if meta.is_dir() {
+            if depth < MAX_DEPTH && !name.starts_with('.') && name != "target" && name != "node_modules" {
+                search(&p, depth + 1, found);
+            }
+        } else if meta.is_file() && name.ends_with(".json") && meta.len() < 64 << 20 {
+            found.push(p);
+        }
+    }
+}
