@@ -34,7 +34,11 @@ fn source(ctx: &Ctx, offset: usize) -> Vec<CompletionItem> {
         return Vec::new();
     }
     let before = &ctx.doc.text[..offset];
-    let word_start = before.rfind(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '.')).map_or(0, |i| i + 1);
+    let word_start = before
+        .char_indices()
+        .rev()
+        .find(|&(_, c)| !(c.is_ascii_alphanumeric() || c == '_' || c == '.'))
+        .map_or(0, |(i, c)| i + c.len_utf8());
     let typed = &before[word_start..];
     match typed.rfind('.') {
         Some(dot) => members(ctx, word_start, &typed[..dot]),

@@ -1,0 +1,154 @@
+//! `linc lsp` as an editor runs it: the real binary over stdio, spoken to
+//! by a client written here (framing and JSON by hand, independent of the
+//! server's crates): initialize, open a file with an error and receive the
+//! diagnostic, fix it and receive an empty list, hover, complete, go to
+//! definition, shut down and exit.
+
+mod common;
+
+use serde_json::{json, Value};
+use std::io::{BufRead, BufReader, Read, Write};
+use std::process::ChildStdin;
+use std::sync::mpsc::{channel, Receiver};
+use std::time::Duration;
+
+struct Peer {
+    input: ChildStdin,
+    messages: Receiver<Value>,
+    next: i64,
+}
+
+/// Reads `Content-Length` framed messages from the server's output.
+fn reader(out: impl Read + Send + 'static) -> Receiver<Value> {
+    let (tx, rx) = channel();
+    std::thread::spawn(move || {
+        let mut r = BufReader::new(out);
+        loop {
+            let mut length = None;
+            loop {
+                let mut line = String::new();
+                if r.read_line(&mut line).unwrap_or(0) == 0 {
+                    return;
+                }
+                let line = line.trim_end();
+                if line.is_empty() {
+                    break;
+                }
+                if let Some(v) = line.strip_prefix("Content-Length: ") {
+                    length = v.parse::<usize>().ok();
+                }
+            }
+            let mut body = vec![0; length.expect("Content-Length")];
+            r.read_exact(&mut body).expect("body");
+            if tx.send(serde_json::from_slice(&body).expect("JSON")).is_err() {
+                return;
+            }
+        }
+    });
+    rx
+}
+
+impl Peer {
+    fn send(&mut self, v: Value) {
+        let body = v.to_string();
+        write!(self.input, "Content-Length: {}\r\n\r\n{body}", body.len()).expect("write");
+        self.input.flush().expect("flush");
+    }
+
+    fn next_message(&mut self) -> Value {
+        self.messages.recv_timeout(Duration::from_secs(30)).expect("a message from linc lsp")
+    }
+
+    fn request(&mut self, method: &str, params: Value) -> Value {
+        self.next += 1;
+        let id = self.next;
+        self.send(json!({ "jsonrpc": "2.0", "id": id, "method": method, "params": params }));
+        loop {
+            let m = self.next_message();
+            if m["id"] == id {
+                assert!(m.get("error").is_none(), "{method}: {m}");
+                return m["result"].clone();
+            }
+        }
+    }
+
+    fn notify(&mut self, method: &str, params: Value) {
+        self.send(json!({ "jsonrpc": "2.0", "method": method, "params": params }));
+    }
+
+    /// The next diagnostics published for `uri` at `version`.
+    fn diagnostics(&mut self, uri: &str, version: i64) -> Value {
+        loop {
+            let m = self.next_message();
+            if m["method"] == "textDocument/publishDiagnostics"
+                && m["params"]["uri"] == uri
+                && m["params"]["version"] == version
+            {
+                return m["params"]["diagnostics"].clone();
+            }
+        }
+    }
+}
+
+fn file_uri(path: &std::path::Path) -> String {
+    format!("file://{}", path.display())
+}
+
+#[test]
+fn an_editor_session_over_stdio() {
+    let root = common::temp_dir("lsp-e2e");
+    let examples = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/strategy/");
+    for f in ["plant.json", "actions.stx", "modbus.stx"] {
+        std::fs::copy(format!("{examples}{f}"), root.join(f)).expect("copy");
+    }
+    let good = std::fs::read_to_string(root.join("actions.stx")).expect("actions");
+    let bad = good.replace("TANK1.Pump := TRUE;", "TANK1.Pmp := TRUE;");
+    let mut child = common::spawn(&["lsp"]);
+    let messages = reader(child.stdout.take().expect("stdout"));
+    let mut peer = Peer { input: child.stdin.take().expect("stdin"), messages, next: 0 };
+
+    let init = peer.request(
+        "initialize",
+        json!({ "processId": null, "rootUri": file_uri(&root), "capabilities": {},
+                "initializationOptions": { "debounceMs": 20 } }),
+    );
+    assert_eq!(init["serverInfo"]["name"], "linc");
+    assert_eq!(init["capabilities"]["hoverProvider"], true);
+    peer.notify("initialized", json!({}));
+
+    let uri = file_uri(&root.join("actions.stx"));
+    peer.notify(
+        "textDocument/didOpen",
+        json!({ "textDocument": { "uri": uri, "languageId": "lin-st", "version": 1, "text": bad } }),
+    );
+    let d = peer.diagnostics(&uri, 1);
+    assert_eq!(d.as_array().map(Vec::len), Some(1), "{d}");
+    assert_eq!(d[0]["code"], "E0101");
+    assert_eq!(d[0]["message"].as_str().map(|m| m.starts_with("`TANK1` has no field `Pmp`")), Some(true), "{d}");
+
+    peer.notify(
+        "textDocument/didChange",
+        json!({ "textDocument": { "uri": uri, "version": 2 }, "contentChanges": [{ "text": good }] }),
+    );
+    assert_eq!(peer.diagnostics(&uri, 2), json!([]));
+
+    let line = good.lines().position(|l| l.contains("TANK1.Level := TANK1.Level + TANK1.Inflow")).expect("line");
+    let at = json!({ "textDocument": { "uri": uri }, "position": { "line": line, "character": 16 } });
+    let hover = peer.request("textDocument/hover", at.clone());
+    let text = hover["contents"]["value"].as_str().expect("hover text");
+    assert!(text.starts_with("**TANK1.Level** : `REAL`"), "{text}");
+
+    let completion = peer.request("textDocument/completion", at.clone());
+    let labels: Vec<&str> = completion.as_array().expect("items").iter().filter_map(|i| i["label"].as_str()).collect();
+    assert_eq!(labels, ["Level", "Inflow", "Outflow", "Valve", "Pump", "HighCnt"], "after `TANK1.`");
+
+    let def = peer.request("textDocument/definition", at);
+    assert_eq!(def["uri"], file_uri(&root.join("plant.json")));
+    assert_eq!(def["range"]["start"]["line"], 5, "the field in the template: {def}");
+
+    assert_eq!(peer.request("shutdown", Value::Null), Value::Null);
+    peer.notify("exit", Value::Null);
+    drop(peer);
+    let status = child.wait().expect("exit");
+    assert_eq!(status.code(), Some(0));
+}
