@@ -34,6 +34,9 @@ pub fn code_actions(server: &Server, p: &CodeActionParams) -> Option<Vec<CodeAct
         else {
             continue;
         };
+        if data["version"].as_i64() != Some(i64::from(doc.version)) {
+            continue; // the text changed since: the offsets no longer hold
+        }
         let (start, end) = (start as usize, end as usize);
         if end > doc.text.len() || start > end || !doc.text.is_char_boundary(start) || !doc.text.is_char_boundary(end) {
             continue;

@@ -143,9 +143,11 @@ fn enum_values(ctx: &Ctx, start: usize, end: usize, offset: usize) -> Vec<Comple
     let Some(db) = ctx.db() else { return Vec::new() };
     let i = ctx.pieces.partition_point(|p| p.end <= start);
     let before: Vec<_> = ctx.pieces[..i].iter().rev().filter(|p| p.kind != Kind::Comment).take(3).collect();
+    let t = |p: &crate::text::Piece| ctx.text((p.start, p.end));
+    // `f := '…'`, `f <> '…'` and `f = '…'` (the scan splits `:=` and `<>`).
     let target = match before.as_slice() {
-        [eq, colon, w, ..] if ctx.text((eq.start, eq.end)) == "=" && ctx.text((colon.start, colon.end)) == ":" => *w,
-        [eq, w, ..] if matches!(ctx.text((eq.start, eq.end)), "=" | ">") => *w,
+        [a, b, w, ..] if (t(b), t(a)) == (":", "=") || (t(b), t(a)) == ("<", ">") => *w,
+        [eq, w, ..] if t(eq) == "=" => *w,
         _ => return Vec::new(),
     };
     let Some((Sym::Field { template, field, .. }, _, _)) = ctx.symbol_at(target.end) else { return Vec::new() };
@@ -169,7 +171,7 @@ fn fst(ctx: &Ctx, offset: usize) -> Vec<CompletionItem> {
     let text = &ctx.doc.text;
     let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
     let line = &text[line_start..offset];
-    let cs = cells(line, b',');
+    let cs = cells(line, crate::text::fst_delimiter(text));
     match cs.len() - 1 {
         2 => Cmd::ALL
             .iter()

@@ -246,8 +246,7 @@ fn fst(ctx: &Ctx, offset: usize) -> Option<(String, usize, usize)> {
     let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
     let line_end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
     let line = &text[line_start..line_end];
-    let delim = if line.matches(';').count() > line.matches(',').count() && line_start == 0 { b';' } else { b',' };
-    let cs = cells(line, delim);
+    let cs = cells(line, crate::text::fst_delimiter(text));
     let col = cs.iter().position(|&(s, e)| line_start + s <= offset && offset <= line_start + e)?;
     let (s, e) = cs[col];
     let cell = line[s..e].trim().trim_matches('"').trim();

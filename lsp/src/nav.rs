@@ -126,12 +126,13 @@ fn fst_definition(ctx: &Ctx, offset: usize) -> Option<Location> {
     let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
     let line_end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
     let line = &text[line_start..line_end];
-    let cs = cells(line, b',');
+    let delim = crate::text::fst_delimiter(text);
+    let cs = cells(line, delim);
     let (s, e) = *cs.iter().find(|&&(s, e)| line_start + s <= offset && offset <= line_start + e)?;
     let label = line[s..e].trim().trim_matches('"').trim();
     let mut at = 0;
     for row in text.split_inclusive('\n') {
-        let rc = cells(row.trim_end_matches(['\r', '\n']), b',');
+        let rc = cells(row.trim_end_matches(['\r', '\n']), delim);
         if let Some(&(ls, le)) = rc.get(1) {
             if !label.is_empty() && row[ls..le].trim().eq_ignore_ascii_case(label) {
                 let range = ctx.doc.index.range(text, at + ls, at + le);
@@ -221,25 +222,33 @@ pub fn prepare_rename(server: &Server, p: &TextDocumentPositionParams) -> Option
     }
 }
 
-/// Renames a step or an action of a sequence everywhere in its file.
-pub fn rename(server: &Server, p: &RenameParams) -> Option<WorkspaceEdit> {
+/// Renames a step or an action of a sequence everywhere in its file; a
+/// new name that is not an ST identifier of at most 8 characters (§12.8) is
+/// refused with the reason.
+pub fn rename(server: &Server, p: &RenameParams) -> Result<Option<WorkspaceEdit>, String> {
     let pos = &p.text_document_position;
-    let doc = server.doc(&pos.text_document.uri)?;
+    let Some(doc) = server.doc(&pos.text_document.uri) else { return Ok(None) };
     let offset = doc.index.offset(&doc.text, pos.position);
     let ctx = Ctx::new(server, doc);
-    let name = match ctx.symbol_at(offset)? {
-        (Sym::Step(n) | Sym::Action(n), _, _) => n,
-        _ => return None,
+    let name = match ctx.symbol_at(offset) {
+        Some((Sym::Step(n) | Sym::Action(n), _, _)) => n,
+        _ => return Ok(None),
     };
     let new = &p.new_name;
     let valid = new.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
-        && new.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+        && new.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+        && new.len() <= 8;
     if !valid {
-        return None;
+        return Err(format!(
+            "`{new}` is not a step or action name: a letter or `_`, then letters, digits or `_`, at most 8 characters"
+        ));
+    }
+    if crate::symbols::KEYWORDS.iter().any(|k| k.eq_ignore_ascii_case(new)) {
+        return Err(format!("`{new}` is a keyword"));
     }
     let edits: Vec<TextEdit> = occurrences(&doc.text, &name)
         .into_iter()
         .map(|(s, e)| TextEdit::new(doc.index.range(&doc.text, s, e), new.clone()))
         .collect();
-    Some(WorkspaceEdit { changes: Some(HashMap::from([(doc.uri.clone(), edits)])), ..WorkspaceEdit::default() })
+    Ok(Some(WorkspaceEdit { changes: Some(HashMap::from([(doc.uri.clone(), edits)])), ..WorkspaceEdit::default() }))
 }

@@ -164,7 +164,7 @@ impl Server {
             req::Completion::METHOD => to(crate::complete::complete(self, &p(params)?)),
             req::GotoDefinition::METHOD => to(crate::nav::definition(self, &p(params)?)),
             req::References::METHOD => to(crate::nav::references(self, &p(params)?)),
-            req::Rename::METHOD => to(crate::nav::rename(self, &p(params)?)),
+            req::Rename::METHOD => to(crate::nav::rename(self, &p(params)?).map_err(Failure::Request)?),
             req::PrepareRenameRequest::METHOD => to(crate::nav::prepare_rename(self, &p(params)?)),
             req::DocumentSymbolRequest::METHOD => to(crate::symbols::document(self, &p(params)?)),
             req::WorkspaceSymbolRequest::METHOD => to(crate::symbols::workspace(self, &p(params)?)),
@@ -197,15 +197,29 @@ impl Server {
                     doc.apply(c);
                 }
                 let (path, text, lang) = (doc.path.clone(), doc.text.clone(), doc.lang);
+                let later = Instant::now() + self.debounce;
                 if lang == Lang::Json && self.ws.update(&path, &text) {
-                    self.recheck_all();
+                    self.recheck_all(later);
                 }
-                self.pending.insert(uri, Instant::now() + self.debounce);
+                self.pending.insert(uri, later);
             }
             note::DidCloseTextDocument::METHOD => {
                 let Ok(p) = serde_json::from_value::<lsp_types::DidCloseTextDocumentParams>(n.params) else { return };
-                self.docs.remove(&p.text_document.uri);
                 self.pending.remove(&p.text_document.uri);
+                // A database closed unsaved is the disk's again.
+                if let Some(doc) = self.docs.remove(&p.text_document.uri).filter(|d| d.lang == Lang::Json) {
+                    self.reload(&doc.path);
+                }
+            }
+            note::DidChangeWatchedFiles::METHOD => {
+                let Ok(p) = serde_json::from_value::<lsp_types::DidChangeWatchedFilesParams>(n.params) else { return };
+                for change in p.changes {
+                    let open = self.docs.contains_key(&change.uri);
+                    match change.uri.to_file_path() {
+                        Ok(path) if !open && Lang::of(&path, "") == Lang::Json => self.reload(&path),
+                        _ => {}
+                    }
+                }
             }
             _ => {}
         }
@@ -214,16 +228,24 @@ impl Server {
     fn opened(&mut self, doc: Doc) {
         let uri = doc.uri.clone();
         if doc.lang == Lang::Json && self.ws.update(&doc.path, &doc.text) {
-            self.recheck_all();
+            self.recheck_all(Instant::now());
         }
         self.docs.insert(uri.clone(), doc);
         self.pending.insert(uri, Instant::now());
     }
 
-    fn recheck_all(&mut self) {
-        let now = Instant::now();
+    /// A database changed: every open document is checked again at `at`.
+    fn recheck_all(&mut self, at: Instant) {
         for uri in self.docs.keys() {
-            self.pending.insert(uri.clone(), now);
+            self.pending.insert(uri.clone(), at);
+        }
+    }
+
+    /// Reads a database JSON from disk again (changed or deleted there).
+    fn reload(&mut self, path: &Path) {
+        let text = std::fs::read_to_string(path).unwrap_or_default();
+        if self.ws.update(path, &text) {
+            self.recheck_all(Instant::now());
         }
     }
 
@@ -241,14 +263,20 @@ impl Server {
                     Vec::new()
                 }
             };
+            let mut diagnostics = diagnostics;
+            for d in &mut diagnostics {
+                // A fix's offsets hold for this version only.
+                if let Some(data) = d.data.as_mut() {
+                    data["version"] = doc.version.into();
+                }
+            }
             let params = PublishDiagnosticsParams { uri, diagnostics, version: Some(doc.version) };
             out.push(Message::Notification(Notification::new(note::PublishDiagnostics::METHOD.into(), params)));
         }
         out
     }
 
-    /// The open document, or the file read from disk (for files of the
-    /// workspace not open in the editor).
+    /// The open document.
     pub fn doc(&self, uri: &Url) -> Option<&Doc> {
         self.docs.get(uri)
     }
@@ -257,12 +285,15 @@ impl Server {
 pub enum Failure {
     Params(String),
     Method(String),
+    /// The request cannot be done (a rename to a name that is not one).
+    Request(String),
 }
 
 fn error(id: RequestId, f: Failure) -> Response {
     match f {
         Failure::Params(m) => Response::new_err(id, ErrorCode::InvalidParams as i32, m),
         Failure::Method(m) => Response::new_err(id, ErrorCode::MethodNotFound as i32, format!("unknown method {m}")),
+        Failure::Request(m) => Response::new_err(id, ErrorCode::RequestFailed as i32, m),
     }
 }
 

@@ -45,7 +45,7 @@ pub fn legend() -> SemanticTokensLegend {
 }
 
 /// The words of the languages: ST's keywords, the chart's and the rungs'.
-pub const KEYWORDS: [&str; 36] = [
+pub const KEYWORDS: [&str; 35] = [
     "IF",
     "THEN",
     "ELSIF",
@@ -81,7 +81,6 @@ pub const KEYWORDS: [&str; 36] = [
     "CHART",
     "LADDER",
     "JUMP",
-    "DIV",
 ];
 
 fn is_keyword(w: &str, lang: Lang) -> bool {
@@ -89,7 +88,7 @@ fn is_keyword(w: &str, lang: Lang) -> bool {
     match i {
         Some(i) if i < 25 => true,
         Some(34) => lang == Lang::Ladder || lang == Lang::Sfc,
-        Some(35) | None => false,
+        None => false,
         Some(_) => lang == Lang::Sfc,
     }
 }
@@ -151,8 +150,9 @@ pub fn symbols_of(server: &Server, doc: &Doc) -> Vec<DocumentSymbol> {
         }
         Lang::Fst => {
             let mut at = 0;
+            let delim = crate::text::fst_delimiter(&doc.text);
             for row in doc.text.split_inclusive('\n') {
-                let cs = cells(row.trim_end_matches(['\r', '\n']), b',');
+                let cs = cells(row.trim_end_matches(['\r', '\n']), delim);
                 if let (Some(&(s, e)), true) = (cs.get(1), at > 0) {
                     let label = row[s..e].trim().trim_matches('"');
                     if !label.is_empty() {
@@ -251,9 +251,10 @@ pub fn semantic(server: &Server, p: &SemanticTokensParams) -> Option<SemanticTok
 
 fn fst_spans(doc: &Doc, spans: &mut Vec<(usize, usize, T)>) {
     let mut at = 0;
+    let delim = crate::text::fst_delimiter(&doc.text);
     for (row_no, row) in doc.text.split_inclusive('\n').enumerate() {
         let line = row.trim_end_matches(['\r', '\n']);
-        for (col, &(s, e)) in cells(line, b',').iter().enumerate() {
+        for (col, &(s, e)) in cells(line, delim).iter().enumerate() {
             let t = match (row_no, col) {
                 (0, _) => T::Keyword,
                 (_, 0) => T::Number,

@@ -158,3 +158,14 @@ pub fn cells(line: &str, delim: u8) -> Vec<(usize, usize)> {
     out.push((start, b.len()));
     out
 }
+
+/// The cell separator of an FST table: `;` when its header line has more
+/// `;` than `,` (as the reader decides).
+pub fn fst_delimiter(text: &str) -> u8 {
+    let first = text.split('\n').next().unwrap_or("");
+    if first.matches(';').count() > first.matches(',').count() {
+        b';'
+    } else {
+        b','
+    }
+}

@@ -90,7 +90,7 @@ impl Workspace {
         }
         for path in found {
             if let Ok(text) = std::fs::read_to_string(&path) {
-                if text.contains("\"blocks\"") || ws.chosen.as_ref().is_some_and(|c| same_path(c, &path)) {
+                if has_blocks(&text) || ws.chosen.as_ref().is_some_and(|c| same_path(c, &path)) {
                     ws.dbs.push(DbFile::load(path, text));
                 }
             }
@@ -114,7 +114,7 @@ impl Workspace {
     /// gains `blocks` becomes a database.
     pub fn update(&mut self, path: &Path, text: &str) -> bool {
         let known = self.dbs.iter().position(|d| same_path(&d.path, path));
-        let is_db = text.contains("\"blocks\"") || self.chosen.as_ref().is_some_and(|c| same_path(c, path));
+        let is_db = has_blocks(text) || self.chosen.as_ref().is_some_and(|c| same_path(c, path));
         match known {
             Some(i) if self.dbs[i].text == text => false,
             Some(i) => {
@@ -139,6 +139,15 @@ impl Workspace {
         }
         out
     }
+}
+
+/// A JSON object with a `blocks` member at the top: a strategy database.
+fn has_blocks(text: &str) -> bool {
+    text.contains("\"blocks\"")
+        && linc_format::db::tree::parse(text)
+            .ok()
+            .and_then(|n| n.as_object().map(|m| m.iter().any(|m| m.key == "blocks")))
+            .unwrap_or(false)
 }
 
 /// `database = "…"` in `root/linc.toml`, relative to the root.

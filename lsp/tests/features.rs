@@ -227,5 +227,41 @@ fn symbols_tokens_formatting_rename_and_fixes() {
                 "context": { "diagnostics": diags["diagnostics"] } }),
     );
     assert_snapshot!("code_actions", c.show(&actions));
+    // After another change the fixes' offsets no longer hold: none is offered.
+    c.change("t.st", 3, &format!("(* moved *)\n{bad}"));
+    let stale = c.request(
+        "textDocument/codeAction",
+        json!({ "textDocument": { "uri": uri },
+                "range": { "start": { "line": 0, "character": 0 }, "end": { "line": 2, "character": 0 } },
+                "context": { "diagnostics": diags["diagnostics"] } }),
+    );
+    assert_eq!(stale, json!([]));
+    c.shutdown();
+}
+
+#[test]
+fn enumerations_complete_after_a_comparison_and_renames_are_checked() {
+    let mut c = guide("lsp-compare");
+    let text = "IF PIC_004.Mode <> 'MAN' THEN END_IF;
+";
+    c.open("c.st", text);
+    let items = c.clone_at("completion", "c.st", 0, 21);
+    let labels: Vec<&Value> = items.as_array().expect("items").iter().map(|i| &i["label"]).collect();
+    assert_eq!(labels.len(), 8, "{items}");
+    assert!(labels.contains(&&json!("MANUAL")), "{items}");
+    c.shutdown();
+
+    let mut c = sequences("lsp-rename-bad");
+    let text = example("sequences/batch.sfc");
+    c.open("batch.sfc", &text);
+    let (l, ch) = pos(&text, "STEP Heat", 6);
+    let uri = c.uri("batch.sfc");
+    for bad in ["TooLongName", "9Lives", "END_IF"] {
+        let e = c.answer(
+            "textDocument/rename",
+            json!({ "textDocument": { "uri": uri }, "position": { "line": l, "character": ch }, "newName": bad }),
+        );
+        assert!(e.as_ref().is_err_and(|m| m.contains(bad)), "{bad}: {e:?}");
+    }
     c.shutdown();
 }

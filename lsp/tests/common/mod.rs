@@ -67,6 +67,14 @@ impl Client {
 
     /// The result of a request (an error response panics).
     pub fn request(&mut self, method: &str, params: Value) -> Value {
+        match self.answer(method, params) {
+            Ok(v) => v,
+            Err(e) => panic!("{method} failed: {e}"),
+        }
+    }
+
+    /// The result of a request, or its error message.
+    pub fn answer(&mut self, method: &str, params: Value) -> Result<Value, String> {
         self.next += 1;
         let id = RequestId::from(self.next);
         let r = Request::new(id.clone(), method.to_string(), params);
@@ -75,9 +83,9 @@ impl Client {
             match self.conn.receiver.recv_timeout(Duration::from_secs(20)).expect("answer") {
                 Message::Response(resp) if resp.id == id => {
                     if let Some(e) = resp.error {
-                        panic!("{method} failed: {}", e.message);
+                        return Err(e.message);
                     }
-                    return resp.result.unwrap_or(Value::Null);
+                    return Ok(resp.result.unwrap_or(Value::Null));
                 }
                 Message::Notification(n) => self.inbox.push(n),
                 _ => {}
