@@ -198,7 +198,15 @@ pub struct Seg {
 impl Var {
     /// The reference as written, without offsets: `PIC_004.PV`.
     pub fn path(&self) -> String {
-        let parts: Vec<&str> = self.segs.iter().map(|s| s.name.text.as_str()).collect();
-        parts.join(".")
+        // Built in one allocation: the checker asks for every reference's path.
+        let len = self.segs.iter().map(|s| s.name.text.len() + 1).sum();
+        let mut out = String::with_capacity(len);
+        for (i, s) in self.segs.iter().enumerate() {
+            if i > 0 {
+                out.push('.');
+            }
+            out.push_str(&s.name.text);
+        }
+        out
     }
 }

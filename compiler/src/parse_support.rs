@@ -232,6 +232,10 @@ fn check_ident(syntax: &mut Capped<SyntaxError>, text: &str, span: Span) {
 /// Removes spaces and comments around a name part: a reported illegal
 /// space such as `TIC_100 (*c*) .SL` leaves them inside the joined token.
 fn strip_spaces(mut part: &str) -> &str {
+    // Nearly every part is a plain identifier: nothing to strip.
+    if part.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') {
+        return part;
+    }
     loop {
         let before = part.len();
         part = part.trim();
@@ -253,7 +257,7 @@ fn strip_spaces(mut part: &str) -> &str {
 
 /// Splits `text` (starting at byte `at`) at dots into identifiers with spans.
 fn split(syntax: &mut Capped<SyntaxError>, text: &str, at: usize, bracketed: bool) -> Vec<Seg> {
-    let mut segs = Vec::new();
+    let mut segs = Vec::with_capacity(1 + text.bytes().filter(|&b| b == b'.').count());
     let mut start = at;
     for part in text.split('.') {
         let name = if bracketed { part } else { strip_spaces(part) };

@@ -7,6 +7,7 @@
 
 mod fields;
 mod json;
+mod names;
 mod period;
 mod roc;
 mod schema;

@@ -1,6 +1,6 @@
 //! In-memory shape of a database.
 
-use std::collections::HashMap;
+use super::names::NameMap;
 
 pub use super::roc::Device;
 
@@ -92,7 +92,7 @@ pub struct Template {
     /// template with them is a ROC point type, addressable by numeric TLP,
     /// whose parameter numbers are its field positions.
     pub roc: Vec<(Device, u16)>,
-    index: HashMap<String, usize>,
+    index: NameMap,
 }
 
 impl Template {
@@ -108,7 +108,7 @@ impl Template {
 
     /// Finds a field by case-insensitive name.
     pub fn field(&self, name: &str) -> Option<usize> {
-        self.index.get(&name.to_ascii_uppercase()).copied()
+        self.index.get(name)
     }
 }
 
@@ -166,9 +166,9 @@ pub struct Database {
     pub tasks: Vec<Task>,
     /// The ROC device family whose point type numbers numeric TLPs use.
     pub device: Device,
-    template_index: HashMap<String, usize>,
-    block_index: HashMap<String, usize>,
-    alias_index: HashMap<String, usize>,
+    template_index: NameMap,
+    block_index: NameMap,
+    alias_index: NameMap,
 }
 
 /// An empty database still has task 1, so every block has a task to run in.
@@ -180,9 +180,9 @@ impl Default for Database {
             aliases: Vec::new(),
             tasks: vec![Task::DEFAULT],
             device: Device::default(),
-            template_index: HashMap::new(),
-            block_index: HashMap::new(),
-            alias_index: HashMap::new(),
+            template_index: NameMap::default(),
+            block_index: NameMap::default(),
+            alias_index: NameMap::default(),
         }
     }
 }
@@ -190,45 +190,42 @@ impl Default for Database {
 impl Database {
     /// Adds a template, replacing one of the same name.
     pub fn put_template(&mut self, t: Template) -> usize {
-        let key = t.name.to_ascii_uppercase();
-        if let Some(&i) = self.template_index.get(&key) {
+        if let Some(i) = self.template_index.get(&t.name) {
             self.templates[i] = t;
             i
         } else {
+            self.template_index.insert(&t.name, self.templates.len());
             self.templates.push(t);
-            self.template_index.insert(key, self.templates.len() - 1);
             self.templates.len() - 1
         }
     }
 
     /// Adds a block; returns false if the name is taken.
     pub fn add_block(&mut self, b: Block) -> bool {
-        let key = b.name.to_ascii_uppercase();
-        if self.block_index.contains_key(&key) {
+        if self.block_index.contains(&b.name) {
             return false;
         }
+        self.block_index.insert(&b.name, self.blocks.len());
         self.blocks.push(b);
-        self.block_index.insert(key, self.blocks.len() - 1);
         true
     }
 
     /// Adds an alias; returns false if the name is taken.
     pub fn add_alias(&mut self, a: Alias) -> bool {
-        let key = a.name.to_ascii_uppercase();
-        if self.alias_index.contains_key(&key) {
+        if self.alias_index.contains(&a.name) {
             return false;
         }
+        self.alias_index.insert(&a.name, self.aliases.len());
         self.aliases.push(a);
-        self.alias_index.insert(key, self.aliases.len() - 1);
         true
     }
 
     pub fn template(&self, name: &str) -> Option<usize> {
-        self.template_index.get(&name.to_ascii_uppercase()).copied()
+        self.template_index.get(name)
     }
 
     pub fn block(&self, name: &str) -> Option<usize> {
-        self.block_index.get(&name.to_ascii_uppercase()).copied()
+        self.block_index.get(name)
     }
 
     pub fn alias(&self, name: &str) -> Option<&Alias> {
@@ -237,7 +234,7 @@ impl Database {
 
     /// Index of an alias in `aliases`.
     pub(crate) fn alias_position(&self, name: &str) -> Option<usize> {
-        self.alias_index.get(&name.to_ascii_uppercase()).copied()
+        self.alias_index.get(name)
     }
 
     /// A user task by number.

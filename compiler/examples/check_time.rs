@@ -1,0 +1,24 @@
+//! Times `linc check`'s front end on a file (for profiling; see README Figures).
+use linc_compiler::check::Context;
+use linc_compiler::session::{CheckOptions, Session};
+use linc_runtime::Database;
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let src = std::fs::read_to_string(&args[1]).expect("file");
+    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("db");
+    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let n: usize = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(5);
+    let mut best = f64::MAX;
+    for _ in 0..n {
+        let t = std::time::Instant::now();
+        let mut s = Session::new(ctx);
+        let id = s.add("bench.st", src.as_bytes().to_vec());
+        let d = s.check(id, CheckOptions::default()).diagnostics.len();
+        assert_eq!(d, 0);
+        best = best.min(t.elapsed().as_secs_f64());
+    }
+    println!("best {:.1} ms, {:.1} MiB/s", best * 1e3, src.len() as f64 / 1048576.0 / best);
+}
