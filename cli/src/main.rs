@@ -417,11 +417,6 @@ fn refused_arguments(e: clap::Error) -> ExitCode {
     ExitCode::from(report::refused(&mut r, d))
 }
 
-/// mimalloc: the front end makes many small allocations (a node per name
-/// and expression); measured in the README's figures.
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 fn main() -> ExitCode {
     quiet_broken_pipe();
     let cli = match Cli::try_parse() {

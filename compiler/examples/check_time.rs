@@ -2,9 +2,6 @@
 use linc_compiler::check::Context;
 use linc_compiler::session::{CheckOptions, Session};
 use linc_runtime::Database;
-#[global_allocator]
-static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let src = std::fs::read_to_string(&args[1]).expect("file");

@@ -132,3 +132,19 @@ fn ladder_needs_memory_for_one_action_at_a_time() {
     let (twenty, _) = ladder_peak((0..20).map(action).collect());
     assert!(twenty < two * 3 / 2, "20 actions peak at {twenty} bytes, 2 at {two}");
 }
+
+#[test]
+fn formatting_needs_less_than_ten_times_the_size_of_the_file() {
+    let _one = serial();
+    let src = workload::actions(2 << 20);
+    let size = src.len();
+    let mut formatted = 0;
+    let peak = peak_of(|| {
+        let kind = linc_compiler::source_kind::SourceKind::Actions;
+        formatted = linc_compiler::fmt::format(kind, &src).expect("the workload parses").len();
+    });
+    assert!(formatted > size / 2, "{formatted}");
+    // The input (not counted: made before), the tokens (about 32 bytes a
+    // token) and the output.
+    assert!(peak < size * 10, "peak heap {peak} bytes for a {size}-byte file");
+}

@@ -149,13 +149,13 @@ fn pad(line: &mut String, col: usize) {
 
 /// ST text (an assignment, a contact's expression) laid out on one line.
 fn st_inline(text: &str) -> String {
-    let (toks, tail) = tokens(text);
-    if toks.iter().any(|t| t.raw.is_none()) {
+    let lexed = tokens(text);
+    if lexed.toks.iter().any(|t| t.raw.is_none()) {
         return text.trim().to_string();
     }
-    let mut p = Printer::new(text, &toks);
-    p.inline(toks.len());
-    p.gap(&tail, false);
+    let mut p = Printer::new(text, &lexed);
+    p.inline(lexed.toks.len());
+    p.gap(lexed.tail, false);
     p.out.buf.trim().to_string()
 }
 

@@ -2,12 +2,13 @@
 //! expressions with the guide's layout, and the comments between tokens.
 
 use super::out::{Out, INDENT};
-use super::tokens::{column, Token};
+use super::tokens::{column, Comment, Gap, Lexed, Token};
 use crate::token::Raw;
 
 pub(crate) struct Printer<'a> {
     pub src: &'a str,
     pub toks: &'a [Token],
+    comments: &'a [Comment],
     pub pos: usize,
     pub out: Out,
     /// Columns every line of this part starts at (a nested chart's).
@@ -27,10 +28,11 @@ pub(crate) struct Printer<'a> {
 }
 
 impl<'a> Printer<'a> {
-    pub fn new(src: &'a str, toks: &'a [Token]) -> Printer<'a> {
+    pub fn new(src: &'a str, lexed: &'a Lexed) -> Printer<'a> {
         Printer {
             src,
-            toks,
+            toks: &lexed.toks,
+            comments: &lexed.comments,
             pos: 0,
             out: Out::default(),
             base: 0,
@@ -69,12 +71,13 @@ impl<'a> Printer<'a> {
 
     /// Writes the comments before token `i` (or the text's tail gap) and
     /// the line breaks the layout wants before it.
-    pub fn gap(&mut self, gap: &super::tokens::Gap, starts_line: bool) {
+    pub fn gap(&mut self, gap: Gap, starts_line: bool) {
         self.set_indent();
-        let n = gap.comments.len();
-        for (k, c) in gap.comments.iter().enumerate() {
+        let comments = &self.comments[gap.comments.0 as usize..gap.comments.1 as usize];
+        let n = comments.len();
+        for (k, c) in comments.iter().enumerate() {
             let text = &self.src[c.start..c.end];
-            let newline_after = gap.comments.get(k + 1).map(|d| d.own_line).unwrap_or(gap.newline);
+            let newline_after = comments.get(k + 1).map(|d| d.own_line).unwrap_or(gap.newline);
             if c.own_line {
                 if c.blank_before {
                     self.out.blank();
@@ -95,7 +98,7 @@ impl<'a> Printer<'a> {
         }
         // A comment that starts a line and has code after it on that line
         // (`(*SET POINT*) TIC.SL := 5;`) keeps the code beside it.
-        let glued = gap.comments.last().is_some_and(|c| c.own_line) && !gap.newline;
+        let glued = comments.last().is_some_and(|c| c.own_line) && !gap.newline;
         if (starts_line || self.brk) && !glued {
             if gap.blank {
                 self.out.blank();
@@ -130,7 +133,7 @@ impl<'a> Printer<'a> {
     /// caller (`Some`), where the chart structure differs from ST.
     pub fn emit_spaced(&mut self, i: usize, starts_line: bool, space: Option<bool>) {
         let t = &self.toks[i];
-        self.gap(&t.gap.clone(), starts_line);
+        self.gap(t.gap, starts_line);
         let raw = t.raw;
         let space = space.unwrap_or_else(|| self.space_before(raw, t.gap.adjacent));
         let text = self.spelled(i);
@@ -190,9 +193,9 @@ impl<'a> Printer<'a> {
         if closes || raw == Some(Raw::EndRepeat) {
             // Comments on their own lines before a closing keyword belong to
             // the block it closes, and keep its indentation.
-            let gap = self.toks[i].gap.clone();
+            let gap = self.toks[i].gap;
             self.line();
-            self.gap(&gap, true);
+            self.gap(gap, true);
             if closes {
                 self.level = self.level.saturating_sub(1);
             }
@@ -297,7 +300,7 @@ impl Printer<'_> {
     /// Writes token `i` in capitals (a contextual keyword: `STEP`, `FROM`).
     pub fn emit_upper(&mut self, i: usize, starts_line: bool) {
         let t = &self.toks[i];
-        self.gap(&t.gap.clone(), starts_line);
+        self.gap(t.gap, starts_line);
         let space = self.space_before(t.raw, t.gap.adjacent);
         let text = self.text(i).to_ascii_uppercase();
         self.out.put(&text, space);

@@ -16,11 +16,11 @@ struct StepLine {
 }
 
 pub(crate) fn format(src: &str) -> String {
-    let (toks, tail) = tokens(src);
-    let mut p = Printer::new(src, &toks);
+    let lexed = tokens(src);
+    let mut p = Printer::new(src, &lexed);
     p.brk = true;
     chart(&mut p, false);
-    p.gap(&tail, true);
+    p.gap(lexed.tail, true);
     p.out.finish()
 }
 

@@ -18,10 +18,12 @@ pub(crate) struct Comment {
     pub blank_before: bool,
 }
 
-/// What stands between two tokens besides blanks.
-#[derive(Clone, Debug, Default)]
+/// What stands between two tokens besides blanks. Its comments are a range
+/// of [`Lexed::comments`], so that a token stays small: a text is held as
+/// tokens while it is formatted.
+#[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Gap {
-    pub comments: Vec<Comment>,
+    pub comments: (u32, u32),
     /// A line break between the last comment (or the previous token) and
     /// the token.
     pub newline: bool,
@@ -41,31 +43,35 @@ pub(crate) struct Token {
     pub gap: Gap,
 }
 
+/// A text as tokens, the comments between them, and the gap after the last.
+pub(crate) struct Lexed {
+    pub toks: Vec<Token>,
+    pub comments: Vec<Comment>,
+    pub tail: Gap,
+}
+
 /// Every token of `src` and the gap after the last one.
-pub(crate) fn tokens(src: &str) -> (Vec<Token>, Gap) {
+pub(crate) fn tokens(src: &str) -> Lexed {
     let mut lexer = Raw::lexer(src);
     let first = if src.starts_with(crate::files::BOM) { crate::files::BOM.len_utf8() } else { 0 };
     lexer.bump(first);
-    let mut out = Vec::new();
+    let (mut toks, mut comments) = (Vec::new(), Vec::new());
     let mut prev = first;
     while let Some(r) = lexer.next() {
         let span = lexer.span();
-        out.push(Token {
-            raw: r.ok(),
-            start: span.start,
-            end: span.end,
-            gap: gap(src, prev, span.start, out.is_empty()),
-        });
+        let gap = gap(src, prev, span.start, toks.is_empty(), &mut comments);
+        toks.push(Token { raw: r.ok(), start: span.start, end: span.end, gap });
         prev = span.end;
     }
-    let tail = gap(src, prev, src.len(), out.is_empty());
-    (out, tail)
+    let tail = gap(src, prev, src.len(), toks.is_empty(), &mut comments);
+    Lexed { toks, comments, tail }
 }
 
-/// Reads the gap `src[from..to]`.
-pub(crate) fn gap(src: &str, from: usize, to: usize, at_start: bool) -> Gap {
+/// Reads the gap `src[from..to]`, adding its comments to `comments`.
+fn gap(src: &str, from: usize, to: usize, at_start: bool, comments: &mut Vec<Comment>) -> Gap {
     let b = src.as_bytes();
     let mut g = Gap { adjacent: from == to, ..Gap::default() };
+    let first = comments.len() as u32;
     let mut breaks = usize::from(at_start);
     let mut i = from;
     while i < to {
@@ -74,16 +80,17 @@ pub(crate) fn gap(src: &str, from: usize, to: usize, at_start: bool) -> Gap {
             i += 1;
         } else if b[i] == b'(' && b.get(i + 1) == Some(&b'*') {
             let end = src[i + 2..to].find("*)").map(|k| i + 2 + k + 2).unwrap_or(to);
-            g.comments.push(Comment { start: i, end, own_line: breaks > 0, blank_before: breaks > 1 });
+            comments.push(Comment { start: i, end, own_line: breaks > 0, blank_before: breaks > 1 });
             breaks = 0;
             i = end;
         } else {
             i += 1;
         }
     }
+    g.comments = (first, comments.len() as u32);
     // A token at the very start is on its own line, but no blank comes before it.
     g.newline = breaks > 0;
-    g.blank = breaks > 1 && !(at_start && g.comments.is_empty());
+    g.blank = breaks > 1 && !(at_start && first == comments.len() as u32);
     g
 }
 
