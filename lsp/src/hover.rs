@@ -52,42 +52,7 @@ fn source(ctx: &Ctx, offset: usize) -> Option<(String, usize, usize)> {
 }
 
 fn is_keyword(w: &str) -> bool {
-    const WORDS: [&str; 33] = [
-        "IF",
-        "THEN",
-        "ELSIF",
-        "ELSE",
-        "END_IF",
-        "FOR",
-        "TO",
-        "BY",
-        "DO",
-        "END_FOR",
-        "WHILE",
-        "END_WHILE",
-        "REPEAT",
-        "UNTIL",
-        "END_REPEAT",
-        "EXIT",
-        "ACTION",
-        "END_ACTION",
-        "AND",
-        "OR",
-        "XOR",
-        "NOT",
-        "MOD",
-        "TRUE",
-        "FALSE",
-        "STEP",
-        "INITIAL_STEP",
-        "END_STEP",
-        "TRANSITION",
-        "FROM",
-        "END_TRANSITION",
-        "PRIORITY",
-        "JUMP",
-    ];
-    WORDS.iter().any(|k| k.eq_ignore_ascii_case(w))
+    crate::symbols::KEYWORDS.iter().any(|k| k.eq_ignore_ascii_case(w))
 }
 
 /// The Markdown shown for a symbol.

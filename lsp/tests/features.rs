@@ -112,6 +112,13 @@ fn hover_on_an_fst_command_and_tlp() {
     let completion = c.clone_at("completion", "pump.csv", 3, 4);
     let labels: Vec<&Value> = completion.as_array().expect("items").iter().map(|i| &i["label"]).take(6).collect();
     assert_snapshot!("completion_fst_commands", c.show(&json!(labels)));
+    // In ARGUMENT1: the points of the database, then a point's parameters.
+    let (l, ch) = pos(&text, "VAL,\"AIN 2-1,EU\"", 5);
+    assert_snapshot!("completion_fst_points", c.at_shown("completion", "pump.csv", l, ch));
+    let (l, ch) = pos(&text, "VAL,\"AIN 2-1,EU\"", 13);
+    let params = c.clone_at("completion", "pump.csv", l, ch);
+    let labels: Vec<&Value> = params.as_array().expect("items").iter().map(|i| &i["label"]).take(4).collect();
+    assert_snapshot!("completion_fst_parameters", c.show(&json!(labels)));
     c.shutdown();
 }
 
@@ -174,6 +181,9 @@ fn completion_offers_fields_enumerations_functions_and_steps() {
     assert_snapshot!("completion_enum_values", c.at_shown("completion", "a.st", 0, 19));
     let fields = c.clone_at("completion", "a.st", 1, 8);
     assert_snapshot!("completion_fields", c.show(&fields));
+    let names = c.clone_at("completion", "a.st", 2, 0);
+    let blocks: Vec<&Value> = names.as_array().expect("items").iter().filter(|i| i["kind"] == 6).collect();
+    assert_snapshot!("completion_blocks_and_aliases", c.show(&json!(blocks)));
     let all = c.clone_at("completion", "a.st", 2, 0);
     let abs: Vec<&Value> = all.as_array().expect("items").iter().filter(|i| i["label"] == "ATAN2").collect();
     assert_snapshot!("completion_function_snippet", c.show(&json!(abs)));

@@ -155,3 +155,34 @@ fn generated_programs(seeds: std::ops::Range<u64>) {
     }
     assert!(compiled_ok > 50, "only {compiled_ok} generated programs compiled");
 }
+
+/// Rules of docs/style.md, each as a text and its layout.
+#[test]
+fn the_style_pages_rules() {
+    let cases: [(SourceKind, &str, &str); 4] = [
+        (
+            SourceKind::Actions,
+            "if a.b>1 then c.d:=-(2);(* more *)\nelse c.d:=abs(3);END_IF;",
+            "IF a.b > 1 THEN\n    c.d := -(2); (* more *)\nELSE\n    c.d := abs(3);\nEND_IF;\n",
+        ),
+        (
+            SourceKind::Actions,
+            "IF x.a THEN\n  y.b := 1;\n(* later *)\nEND_IF;\n",
+            "IF x.a THEN\n    y.b := 1;\n    (* later *)\nEND_IF;\n",
+        ),
+        (
+            SourceKind::Sequence,
+            "STEP X: A(n); END_STEP (* first *)\nSTEP Longer: B(N); END_STEP\n",
+            "STEP X:      A(N); END_STEP (* first *)\nSTEP Longer: B(N); END_STEP\n",
+        ),
+        (
+            SourceKind::Ladder,
+            "[a.x]->(b.y);\nLong_label: [a.x] [/c.z] -> (S d.w);\n",
+            "            [a.x]        -> (b.y);\nLong_label: [a.x] [/c.z] -> (S d.w);\n",
+        ),
+    ];
+    for (kind, src, want) in cases {
+        assert_eq!(format(kind, src).as_deref(), Ok(want), "{src}");
+        assert_eq!(format(kind, want).as_deref(), Ok(want), "idempotent: {want}");
+    }
+}

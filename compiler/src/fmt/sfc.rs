@@ -168,6 +168,16 @@ fn action(p: &mut Printer) {
     p.line();
 }
 
+/// Two step lines follow each other: only a line break, or a comment at
+/// the end of the first line, stands between them.
+fn neighbours(buf: &str, a: &StepLine, b: &StepLine) -> bool {
+    let between = buf.get(a.end..b.start).unwrap_or("\n\n");
+    between.ends_with('\n') && between.matches('\n').count() == 1 && {
+        let t = between.trim();
+        t.is_empty() || (t.starts_with("(*") && t.ends_with("*)"))
+    }
+}
+
 /// Pads the steps of each run of neighbouring one-line steps so that their
 /// associations and their `END_STEP`s start in one column.
 fn align(buf: &mut String, steps: &[StepLine]) {
@@ -175,7 +185,7 @@ fn align(buf: &mut String, steps: &[StepLine]) {
     let mut runs: Vec<Vec<&StepLine>> = Vec::new();
     for s in one_line {
         match runs.last_mut() {
-            Some(run) if run.last().is_some_and(|l| l.end + 1 == s.start) => run.push(s),
+            Some(run) if run.last().is_some_and(|l| neighbours(buf, l, s)) => run.push(s),
             _ => runs.push(vec![s]),
         }
     }
