@@ -275,3 +275,38 @@ fn enumerations_complete_after_a_comparison_and_renames_are_checked() {
     }
     c.shutdown();
 }
+
+#[test]
+fn changes_in_quick_succession_are_checked_once() {
+    let root = workspace("lsp-debounce", &[("a.st", "x.y := 1;\n")]);
+    let mut c = Client::start(&root, json!({ "debounceMs": 400 }));
+    c.open("a.st", "x.y := 1;\n");
+    assert_eq!(c.diagnostics("a.st")["version"], 1, "an opened file is checked at once");
+    for v in 2..=4 {
+        c.change("a.st", v, &format!("x.y := {v}\n"));
+    }
+    let d = c.diagnostics("a.st");
+    assert_eq!(d["version"], 4, "only the last of three quick changes is checked: {d}");
+    assert_eq!(d["diagnostics"][0]["code"], "W0001", "{d}");
+    c.shutdown();
+}
+
+#[test]
+fn hover_and_completion_work_where_the_parser_gave_up() {
+    let mut c = guide("lsp-broken");
+    let text = "IF TIC_100.PV > THEN\nPIC_004.Mode := \"\nTIC_100.\n";
+    c.open("b.st", text);
+    let d = c.diagnostics("b.st");
+    assert!(!d["diagnostics"].as_array().expect("list").is_empty(), "{d}");
+    let hover = c.clone_at("hover", "b.st", 0, 12);
+    assert_eq!(
+        hover["contents"]["value"].as_str().map(|v| v.starts_with("**TIC_100.PV** : `REAL`")),
+        Some(true),
+        "{hover}"
+    );
+    let values = c.clone_at("completion", "b.st", 1, 17);
+    assert!(values.to_string().contains("\"CASCADE\""), "{values}");
+    let fields = c.clone_at("completion", "b.st", 2, 8);
+    assert!(fields.to_string().contains("\"TrimSP\""), "{fields}");
+    c.shutdown();
+}
