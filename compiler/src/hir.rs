@@ -94,7 +94,9 @@ pub struct Place {
     pub target: Target,
     /// Allowed values of an ENUM field.
     pub enum_values: Option<Vec<String>>,
-    /// As written, for messages.
+    /// As written, for messages: set for step variables, unknown names and
+    /// enumerated fields, the references a message may name; empty for
+    /// the others, which saves an allocation per reference.
     pub path: String,
     pub span: Span,
 }

@@ -28,7 +28,14 @@ pub struct Resolved {
 
 impl Resolved {
     fn new(v: &Var, ty: Ty, target: Target) -> Resolved {
-        let place = Place { ty, class: None, target, enum_values: None, path: v.path(), span: v.span };
+        // Only messages about step variables and unknown names (from
+        // lowering) and about enumerated fields read the path: other
+        // references skip building it (one allocation each).
+        let path = match target {
+            Target::Step { .. } | Target::Unknown => v.path(),
+            _ => String::new(),
+        };
+        let place = Place { ty, class: None, target, enum_values: None, path, span: v.span };
         Resolved { place, writable: true, why_readonly: "", symbol: None }
     }
 
@@ -253,6 +260,9 @@ impl Checker<'_> {
                 let (t, enum_values) = value_type(ty);
                 let mut r =
                     Resolved::new(v, t, Target::Field { block: b, field: f, offset }).stored(class, (block_id, fi, 0));
+                if enum_values.is_some() {
+                    r.place.path = v.path();
+                }
                 r.place.enum_values = enum_values;
                 Some(readonly(r))
             }
