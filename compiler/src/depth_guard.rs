@@ -177,11 +177,35 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> Iterator for DepthGuard<'s, I> {
     type Item = Spanned<'s>;
 
     fn next(&mut self) -> Option<Spanned<'s>> {
-        if self.queue.is_empty() {
-            let t = self.inner.next()?;
-            self.admit(t);
-        }
-        let t = self.queue.pop_front()?;
+        let t = match self.queue.pop_front() {
+            Some(t) => t,
+            None => {
+                let t = self.inner.next()?;
+                // Nearly every token is handed on as it is: only a bracket,
+                // a statement keyword or a prefix can be over a limit.
+                let plain = !matches!(
+                    t.1,
+                    Tok::LParen | Tok::LBrace | Tok::RParen | Tok::RBrace | Tok::Semi | Tok::Not | Tok::Minus
+                ) && !matches!(
+                    t.1,
+                    Tok::If
+                        | Tok::For
+                        | Tok::While
+                        | Tok::Repeat
+                        | Tok::EndIf
+                        | Tok::EndFor
+                        | Tok::EndWhile
+                        | Tok::EndRepeat
+                );
+                if plain {
+                    self.run = 0;
+                    t
+                } else {
+                    self.admit(t);
+                    self.queue.pop_front()?
+                }
+            }
+        };
         self.after_operand = t.1.ends_operand() || t.1 == Tok::Skipped;
         Some(t)
     }

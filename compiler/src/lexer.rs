@@ -561,8 +561,9 @@ pub fn glued_word_operator(prev: Option<&Tok>, tok: &Tok) -> Option<&'static str
     if !prev.map(Tok::ends_operand).unwrap_or(false) {
         return None;
     }
-    let upper = text.to_ascii_uppercase();
-    ["AND", "XOR", "OR", "MOD", "NOT"].into_iter().find(|op| upper.starts_with(op) && upper.len() > op.len())
+    ["AND", "XOR", "OR", "MOD", "NOT"]
+        .into_iter()
+        .find(|op| text.len() > op.len() && text.get(..op.len()).is_some_and(|p| p.eq_ignore_ascii_case(op)))
 }
 
 #[cfg(test)]
