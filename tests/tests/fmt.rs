@@ -186,3 +186,47 @@ fn the_style_pages_rules() {
         assert_eq!(format(kind, want).as_deref(), Ok(want), "idempotent: {want}");
     }
 }
+
+/// The style page's examples: each "before" block formats to the block
+/// after it (a page that contradicts the formatter is a bug).
+#[test]
+fn the_style_pages_examples_are_what_linc_fmt_writes() {
+    let page = std::fs::read_to_string(root().join("docs/style.md")).expect("style page");
+    // Code blocks with the text before each.
+    let mut blocks: Vec<(String, String)> = Vec::new();
+    let (mut inside, mut code, mut between) = (false, String::new(), String::new());
+    for line in page.lines() {
+        if line.starts_with("```") {
+            if inside {
+                blocks.push((std::mem::take(&mut between), std::mem::take(&mut code)));
+            }
+            inside = !inside;
+        } else if inside {
+            code.push_str(line);
+            code.push('\n');
+        } else {
+            between.push_str(line);
+            between.push('\n');
+        }
+    }
+    let mut pairs = 0;
+    for w in blocks.windows(2) {
+        let ((_, before), (gap, after)) = (&w[0], &w[1]);
+        let gap = gap.trim();
+        if !(gap.is_empty() || gap.starts_with("After")) || before.starts_with("linc ") {
+            continue;
+        }
+        let kind = if before.contains("STEP,LABEL") || before.to_ascii_uppercase().starts_with("STEP") && before.contains(',') {
+            SourceKind::FstTable
+        } else if before.to_ascii_uppercase().contains("STEP ") {
+            SourceKind::Sequence
+        } else if before.contains("->") {
+            SourceKind::Ladder
+        } else {
+            SourceKind::Actions
+        };
+        assert_eq!(format(kind, before).as_deref(), Ok(after.as_str()), "docs/style.md:\n{before}");
+        pairs += 1;
+    }
+    assert!(pairs >= 5, "only {pairs} before/after pairs found on the style page");
+}
