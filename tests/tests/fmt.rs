@@ -216,7 +216,9 @@ fn the_style_pages_examples_are_what_linc_fmt_writes() {
         if !(gap.is_empty() || gap.starts_with("After")) || before.starts_with("linc ") {
             continue;
         }
-        let kind = if before.contains("STEP,LABEL") || before.to_ascii_uppercase().starts_with("STEP") && before.contains(',') {
+        let kind = if before.contains("STEP,LABEL")
+            || before.to_ascii_uppercase().starts_with("STEP") && before.contains(',')
+        {
             SourceKind::FstTable
         } else if before.to_ascii_uppercase().contains("STEP ") {
             SourceKind::Sequence
@@ -229,4 +231,28 @@ fn the_style_pages_examples_are_what_linc_fmt_writes() {
         pairs += 1;
     }
     assert!(pairs >= 5, "only {pairs} before/after pairs found on the style page");
+}
+
+/// Formatting time grows linearly: a long line full of comments, and a
+/// sequence of many aligned steps, each at two sizes (4× the input within
+/// 8× the time; quadratic work would take 16×).
+#[test]
+fn formatting_is_linear_in_the_input() {
+    let comments = |n: usize| format!("{}\n", "x.y := 1; (* c *) ".repeat(n));
+    let steps = |n: usize| (0..n).map(|i| format!("STEP S{i}: A(N); END_STEP\n")).collect::<String>();
+    for (kind, make) in [
+        (SourceKind::Actions, &comments as &dyn Fn(usize) -> String),
+        (SourceKind::Sequence, &steps as &dyn Fn(usize) -> String),
+    ] {
+        let time = |n: usize| {
+            let src = make(n);
+            let t = std::time::Instant::now();
+            let out = format(kind, &src).expect("formats");
+            assert!(out.len() >= src.len() / 2);
+            t.elapsed().as_secs_f64()
+        };
+        time(2_000);
+        let (small, large) = (time(5_000).max(1e-4), time(20_000));
+        assert!(large < small * 8.0, "{kind:?}: 5,000 in {small:.4} s, 20,000 in {large:.4} s");
+    }
 }

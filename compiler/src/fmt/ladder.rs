@@ -114,7 +114,7 @@ fn write_group(out: &mut Out, group: &mut Vec<Piece>, indent: usize) {
                     out.newline();
                 }
                 out.indent = indent;
-                out.comment(&text, was, false);
+                out.comment(&text, || was, false);
                 out.newline();
             }
             Piece::Rung(r) => {
@@ -202,7 +202,9 @@ impl Scan<'_> {
             for (a, b, own, blank) in comments {
                 let own = own || (first && pieces.is_empty());
                 if own || !matches!(pieces.last(), Some(Piece::Rung(_))) {
-                    pieces.push(Piece::Comment(self.s[a..b].to_string(), column(self.s, a), blank));
+                    let text = &self.s[a..b];
+                    let was = if text.contains('\n') { column(self.s, a) } else { 0 };
+                    pieces.push(Piece::Comment(text.to_string(), was, blank));
                 } else if let Some(Piece::Rung(r)) = pieces.last_mut() {
                     r.trailing.push(self.s[a..b].to_string());
                 }

@@ -54,9 +54,16 @@ impl Out {
     /// Writes a comment that stood at column `was`: its continuation lines
     /// move by as many columns as its first line does, so a comment's own
     /// layout survives re-indentation (and a second run moves nothing).
-    pub fn comment(&mut self, text: &str, was: usize, space: bool) {
+    /// `was` is asked only for a comment over several lines: finding a
+    /// column scans back to the line's start, which for every comment of
+    /// a very long line would be quadratic.
+    pub fn comment(&mut self, text: &str, was: impl FnOnce() -> usize, space: bool) {
         self.put("", space);
-        let now = self.column();
+        if !text.contains('\n') {
+            self.buf.push_str(text.trim_end_matches('\r'));
+            return;
+        }
+        let (now, was) = (self.column(), was());
         let mut lines = text.split('\n');
         self.buf.push_str(lines.next().unwrap_or("").trim_end_matches('\r'));
         for line in lines {

@@ -85,12 +85,14 @@ impl<'a> Printer<'a> {
                     self.out.newline();
                 }
                 self.set_indent();
-                self.out.comment(text, column(self.src, c.start), false);
+                let src = self.src;
+                self.out.comment(text, || column(src, c.start), false);
                 if newline_after {
                     self.out.newline();
                 }
             } else {
-                self.out.comment(text, column(self.src, c.start), true);
+                let src = self.src;
+                self.out.comment(text, || column(src, c.start), true);
                 if newline_after && k + 1 < n {
                     self.out.newline();
                 }

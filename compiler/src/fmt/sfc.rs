@@ -206,9 +206,21 @@ fn align(buf: &mut String, steps: &[StepLine]) {
             edits.push((s.start, s.end, line));
         }
     }
-    edits.sort_by_key(|e| std::cmp::Reverse(e.0));
+    // One pass over the text from the first step on: replacing each line
+    // in place would move the rest of the text once per step, and a
+    // nested chart's steps are near the end of what is written so far.
+    edits.sort_by_key(|e| e.0);
+    let Some(first) = edits.first().map(|e| e.0) else { return };
+    let tail = buf.split_off(first);
+    let mut at = 0;
     for (a, b, line) in edits {
-        let nl = if buf[a..b].ends_with('\n') { "\n" } else { "" };
-        buf.replace_range(a..b, &format!("{line}{nl}"));
+        let (a, b) = (a - first, b - first);
+        buf.push_str(&tail[at..a]);
+        buf.push_str(&line);
+        if tail[a..b].ends_with('\n') {
+            buf.push('\n');
+        }
+        at = b;
     }
+    buf.push_str(&tail[at..]);
 }
