@@ -275,13 +275,14 @@ fn fst_spans(doc: &Doc, spans: &mut Vec<(usize, usize, T)>) {
 /// each line end (clients draw tokens line by line).
 fn encode(doc: &Doc, spans: &[(usize, usize, T)]) -> Vec<SemanticToken> {
     let index: &LineIndex = &doc.index;
+    let mut cursor = crate::text::Cursor::new(&doc.text, index);
     let mut out = Vec::new();
     let (mut line, mut col) = (0u32, 0u32);
     for &(s, e, t) in spans {
         let mut start = s;
         while start < e {
             let stop = doc.text[start..e].find('\n').map_or(e, |i| start + i);
-            let (a, b) = (index.position(&doc.text, start), index.position(&doc.text, stop));
+            let (a, b) = (cursor.position(start), cursor.position(stop));
             if b.character > a.character {
                 let delta_start = if a.line == line { a.character - col } else { a.character };
                 out.push(SemanticToken {

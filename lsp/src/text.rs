@@ -51,6 +51,34 @@ impl LineIndex {
     }
 }
 
+/// Positions of offsets visited in increasing order, each found from the
+/// last: [`LineIndex::position`] counts from the line's start, which for
+/// every token of one very long line would be quadratic.
+pub struct Cursor<'t> {
+    text: &'t str,
+    index: &'t LineIndex,
+    offset: usize,
+    pos: Position,
+}
+
+impl<'t> Cursor<'t> {
+    pub fn new(text: &'t str, index: &'t LineIndex) -> Cursor<'t> {
+        Cursor { text, index, offset: 0, pos: Position::new(0, 0) }
+    }
+
+    pub fn position(&mut self, offset: usize) -> Position {
+        let same_line = offset >= self.offset && !self.text[self.offset..offset.min(self.text.len())].contains('\n');
+        if same_line && self.text.is_char_boundary(offset.min(self.text.len())) {
+            let more: usize = self.text[self.offset..offset.min(self.text.len())].chars().map(char::len_utf16).sum();
+            self.pos.character += more as u32;
+        } else {
+            self.pos = self.index.position(self.text, offset);
+        }
+        self.offset = offset.min(self.text.len());
+        self.pos
+    }
+}
+
 /// What a piece of text is, to the scan.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {

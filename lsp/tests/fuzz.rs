@@ -199,3 +199,33 @@ fn random_edit_sessions_never_fail_the_server() {
         assert_eq!(f.server.panics, 0, "a handler panicked in session {session}");
     }
 }
+
+/// Requests on one very long line take time linear in it (4× the line
+/// within 8× the time): semantic tokens, hover and completion at its end.
+#[test]
+fn a_long_line_costs_linear_time() {
+    let root = workspace("lsp-long-line", &[]);
+    let root_uri = lsp_types::Url::from_file_path(&root).expect("uri");
+    let params: lsp_types::InitializeParams =
+        serde_json::from_value(json!({ "processId": null, "rootUri": root_uri, "capabilities": {} })).expect("params");
+    let mut server = linc_lsp::server_for(&params);
+    let mut time = |n: usize| {
+        let text = "TIC.PV := ABS(1); (* c *) ".repeat(n);
+        let uri = lsp_types::Url::from_file_path(root.join(format!("l{n}.st"))).expect("uri").to_string();
+        let open = json!({ "textDocument": { "uri": uri, "languageId": "", "version": 1, "text": text } });
+        server.notification(Notification::new("textDocument/didOpen".into(), open));
+        let t = Instant::now();
+        let end = json!({ "line": 0, "character": text.len() - 20 });
+        for (i, method) in
+            ["textDocument/semanticTokens/full", "textDocument/hover", "textDocument/completion"].iter().enumerate()
+        {
+            let params = json!({ "textDocument": { "uri": uri }, "position": end });
+            let r = server.request(Request::new(RequestId::from(i as i32), method.to_string(), params));
+            assert!(r.error.is_none(), "{method}: {:?}", r.error);
+        }
+        t.elapsed().as_secs_f64()
+    };
+    time(1_000);
+    let (small, large) = (time(4_000).max(1e-4), time(16_000));
+    assert!(large < small * 8.0, "4,000 statements in {small:.4} s, 16,000 in {large:.4} s");
+}
