@@ -171,7 +171,7 @@ fn fst(ctx: &Ctx, offset: usize) -> Vec<CompletionItem> {
     let text = &ctx.doc.text;
     let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
     let line = &text[line_start..offset];
-    let cs = cells(line, crate::text::fst_delimiter(text));
+    let cs = cells(line, linc_compiler::fst::reader::delimiter(text));
     match cs.len() - 1 {
         2 => Cmd::ALL
             .iter()

@@ -3,7 +3,6 @@
 
 use crate::resolve::{Ctx, Sym};
 use crate::server::{Lang, Server};
-use crate::text::cells;
 use linc_compiler::fst::commands::Cmd;
 use linc_compiler::fst::tlp;
 use linc_format::db::InitValue;
@@ -207,15 +206,9 @@ fn step(ctx: &Ctx, name: &str) -> String {
 
 /// FST: the command of a CMD cell, or the point parameter of an argument.
 fn fst(ctx: &Ctx, offset: usize) -> Option<(String, usize, usize)> {
-    let text = &ctx.doc.text;
-    let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
-    let line_end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
-    let line = &text[line_start..line_end];
-    let cs = cells(line, crate::text::fst_delimiter(text));
-    let col = cs.iter().position(|&(s, e)| line_start + s <= offset && offset <= line_start + e)?;
-    let (s, e) = cs[col];
-    let cell = line[s..e].trim().trim_matches('"').trim();
-    let range = (line_start + s, line_start + e);
+    let (col, s, e) = crate::text::fst_cell(&ctx.doc.text, offset)?;
+    let cell = ctx.doc.text[s..e].trim().trim_matches('"').trim();
+    let range = (s, e);
     match col {
         2 => {
             let cmd = Cmd::parse(cell)?;

@@ -123,13 +123,9 @@ fn read(server: &Server, uri: &Url, path: &Path) -> Option<String> {
 /// FST: a branch's label goes to the row that has it.
 fn fst_definition(ctx: &Ctx, offset: usize) -> Option<Location> {
     let text = &ctx.doc.text;
-    let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
-    let line_end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
-    let line = &text[line_start..line_end];
-    let delim = crate::text::fst_delimiter(text);
-    let cs = cells(line, delim);
-    let (s, e) = *cs.iter().find(|&&(s, e)| line_start + s <= offset && offset <= line_start + e)?;
-    let label = line[s..e].trim().trim_matches('"').trim();
+    let delim = linc_compiler::fst::reader::delimiter(text);
+    let (_, s, e) = crate::text::fst_cell(text, offset)?;
+    let label = text[s..e].trim().trim_matches('"').trim();
     let mut at = 0;
     for row in text.split_inclusive('\n') {
         let rc = cells(row.trim_end_matches(['\r', '\n']), delim);

@@ -150,7 +150,7 @@ pub fn symbols_of(server: &Server, doc: &Doc) -> Vec<DocumentSymbol> {
         }
         Lang::Fst => {
             let mut at = 0;
-            let delim = crate::text::fst_delimiter(&doc.text);
+            let delim = linc_compiler::fst::reader::delimiter(&doc.text);
             for row in doc.text.split_inclusive('\n') {
                 let cs = cells(row.trim_end_matches(['\r', '\n']), delim);
                 if let (Some(&(s, e)), true) = (cs.get(1), at > 0) {
@@ -251,7 +251,7 @@ pub fn semantic(server: &Server, p: &SemanticTokensParams) -> Option<SemanticTok
 
 fn fst_spans(doc: &Doc, spans: &mut Vec<(usize, usize, T)>) {
     let mut at = 0;
-    let delim = crate::text::fst_delimiter(&doc.text);
+    let delim = linc_compiler::fst::reader::delimiter(&doc.text);
     for (row_no, row) in doc.text.split_inclusive('\n').enumerate() {
         let line = row.trim_end_matches(['\r', '\n']);
         for (col, &(s, e)) in cells(line, delim).iter().enumerate() {

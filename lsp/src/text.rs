@@ -187,13 +187,12 @@ pub fn cells(line: &str, delim: u8) -> Vec<(usize, usize)> {
     out
 }
 
-/// The cell separator of an FST table: `;` when its header line has more
-/// `;` than `,` (as the reader decides).
-pub fn fst_delimiter(text: &str) -> u8 {
-    let first = text.split('\n').next().unwrap_or("");
-    if first.matches(';').count() > first.matches(',').count() {
-        b';'
-    } else {
-        b','
-    }
+/// The cell of an FST table that holds `offset`: its column (0 STEP …
+/// 5 COMMENT) and its byte range in the text, quotes included.
+pub fn fst_cell(text: &str, offset: usize) -> Option<(usize, usize, usize)> {
+    let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    let line_end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
+    let cs = cells(&text[line_start..line_end], linc_compiler::fst::reader::delimiter(text));
+    let col = cs.iter().position(|&(s, e)| line_start + s <= offset && offset <= line_start + e)?;
+    Some((col, line_start + cs[col].0, line_start + cs[col].1))
 }

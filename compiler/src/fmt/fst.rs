@@ -6,8 +6,7 @@ const HEADER: [&str; 6] = ["STEP", "LABEL", "CMD", "ARGUMENT1", "ARGUMENT2", "CO
 
 pub(crate) fn format(src: &str) -> String {
     let body = src.strip_prefix(crate::files::BOM).unwrap_or(src);
-    let first_line = body.split(['\n', '\r']).next().unwrap_or("");
-    let delim = if first_line.matches(';').count() > first_line.matches(',').count() { b';' } else { b',' };
+    let delim = crate::fst::reader::delimiter(body);
     let mut reader =
         csv::ReaderBuilder::new().has_headers(false).flexible(true).delimiter(delim).from_reader(body.as_bytes());
     let mut writer =

@@ -12,12 +12,23 @@ use crate::span::Span;
 /// The header's columns, as compared: upper case, spaces removed.
 const COLUMNS: [&str; 6] = ["STEP", "LABEL", "CMD", "ARGUMENT1", "ARGUMENT2", "COMMENT"];
 
+/// The cell separator of a table: `;` when its first line has more `;`
+/// than `,` (a table saved where `,` is the decimal comma), else `,`. The
+/// formatter and the language server split cells by the same rule.
+pub fn delimiter(text: &str) -> u8 {
+    let first_line = text.split(['\n', '\r']).next().unwrap_or("");
+    if first_line.matches(';').count() > first_line.matches(',').count() {
+        b';'
+    } else {
+        b','
+    }
+}
+
 /// Reads a table. Rows after the first blank command are not part of it.
 pub fn read(text: &str) -> (Table, Vec<Diagnostic>) {
     let base = if text.starts_with('\u{feff}') { '\u{feff}'.len_utf8() } else { 0 };
     let body = text.get(base..).unwrap_or("");
-    let first_line = body.split(['\n', '\r']).next().unwrap_or("");
-    let delim = if first_line.matches(';').count() > first_line.matches(',').count() { b';' } else { b',' };
+    let delim = delimiter(body);
     let mut reader =
         Reader { text, base, body, delim, columns: 0, next_step: 0, table: Table::default(), diags: Vec::new() };
     reader.run();
