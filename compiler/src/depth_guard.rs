@@ -56,8 +56,10 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> DepthGuard<'s, I> {
         }
     }
 
-    /// Decides what `t` becomes, queueing the tokens handed out for it.
-    fn admit(&mut self, t: Spanned<'s>) {
+    /// Decides what `t` becomes: nearly always `t` itself, handed back to
+    /// go on at once; over a limit, the tokens that replace it are queued
+    /// and `None` comes back.
+    fn admit(&mut self, t: Spanned<'s>) -> Option<Spanned<'s>> {
         let prefix = matches!(t.1, Tok::Not) || (t.1 == Tok::Minus && !self.after_operand);
         self.run = if prefix { self.run.saturating_add(1) } else { 0 };
         match t.1 {
@@ -68,7 +70,7 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> DepthGuard<'s, I> {
                     let at = t.2;
                     self.queue.push_back(t);
                     self.skip_brackets(at);
-                    return;
+                    return None;
                 }
             }
             Tok::RParen | Tok::RBrace => self.brackets = self.brackets.saturating_sub(1),
@@ -78,7 +80,7 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> DepthGuard<'s, I> {
                     let keyword = crate::lexer::keyword_text(&t.1);
                     self.errors.push(SyntaxError::NestedTooDeep { span: Span::new(t.0, t.2), keyword });
                     self.skip_statement(t.0);
-                    return;
+                    return None;
                 }
                 self.statements.push(end_of(&t.1));
             }
@@ -88,11 +90,11 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> DepthGuard<'s, I> {
             _ if prefix && self.run > MAX_EXPR_DEPTH => {
                 self.errors.push(SyntaxError::ExprTooDeep { span: Span::new(t.0, t.2) });
                 self.skip_prefixes(t);
-                return;
+                return None;
             }
             _ => {}
         }
-        self.queue.push_back(t);
+        Some(t)
     }
 
     /// Skips what is inside an over-deep bracket: up to its closing bracket
@@ -158,7 +160,9 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> DepthGuard<'s, I> {
         self.run = 0;
         if let Some(n) = next {
             self.after_operand = false;
-            self.admit(n);
+            if let Some(n) = self.admit(n) {
+                self.queue.push_back(n);
+            }
         }
     }
 }
@@ -181,28 +185,9 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> Iterator for DepthGuard<'s, I> {
             Some(t) => t,
             None => {
                 let t = self.inner.next()?;
-                // Nearly every token is handed on as it is: only a bracket,
-                // a statement keyword or a prefix can be over a limit.
-                let plain = !matches!(
-                    t.1,
-                    Tok::LParen | Tok::LBrace | Tok::RParen | Tok::RBrace | Tok::Semi | Tok::Not | Tok::Minus
-                ) && !matches!(
-                    t.1,
-                    Tok::If
-                        | Tok::For
-                        | Tok::While
-                        | Tok::Repeat
-                        | Tok::EndIf
-                        | Tok::EndFor
-                        | Tok::EndWhile
-                        | Tok::EndRepeat
-                );
-                if plain {
-                    self.run = 0;
-                    t
-                } else {
-                    self.admit(t);
-                    self.queue.pop_front()?
+                match self.admit(t) {
+                    Some(t) => t,
+                    None => self.queue.pop_front()?,
                 }
             }
         };
