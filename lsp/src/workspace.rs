@@ -19,6 +19,8 @@ const MAX_JSON_FILES: usize = 2_000;
 /// loads to.
 pub struct DbFile {
     pub path: PathBuf,
+    /// `path` with links resolved, to compare with other spellings.
+    key: PathBuf,
     pub text: String,
     pub db: Result<Database, DbError>,
     /// The files its blocks name, resolved against its directory, with the
@@ -29,6 +31,7 @@ pub struct DbFile {
 #[derive(Clone, Debug)]
 pub struct Named {
     pub file: PathBuf,
+    key: PathBuf,
     pub block: String,
     pub action: String,
 }
@@ -37,16 +40,16 @@ impl DbFile {
     pub fn load(path: PathBuf, text: String) -> DbFile {
         let db = Database::from_json(&text);
         let named = db.as_ref().map(|db| named_files(&path, db)).unwrap_or_default();
-        DbFile { path, text, db, named }
+        DbFile { key: key(&path), path, text, db, named }
     }
 
     pub fn database(&self) -> Option<&Database> {
         self.db.as_ref().ok()
     }
 
-    /// Whether the database's blocks name `file`.
-    pub fn names(&self, file: &Path) -> bool {
-        self.named.iter().any(|n| same_path(&n.file, file))
+    /// Whether the database's blocks name the file whose [`key`] is `file`.
+    fn names(&self, file: &Path) -> bool {
+        self.named.iter().any(|n| n.key == file)
     }
 }
 
@@ -56,13 +59,18 @@ fn named_files(db_path: &Path, db: &Database) -> Vec<Named> {
     linc_engines::strategy::wanted(&store)
         .into_iter()
         .filter(|w| !w.file.is_empty())
-        .map(|w| Named { file: dir.join(&w.file), block: db.blocks[w.block].name.clone(), action: w.action })
+        .map(|w| {
+            let file = dir.join(&w.file);
+            Named { key: key(&file), file, block: db.blocks[w.block].name.clone(), action: w.action }
+        })
         .collect()
 }
 
-/// Two paths name one file (compared after resolving links where they exist).
-pub fn same_path(a: &Path, b: &Path) -> bool {
-    a == b || matches!((std::fs::canonicalize(a), std::fs::canonicalize(b)), (Ok(x), Ok(y)) if x == y)
+/// A path with its links resolved (as it is when it does not exist), so
+/// that two spellings of one file compare equal. Databases and the files
+/// they name get theirs when loaded; a request resolves only its own file.
+fn key(path: &Path) -> PathBuf {
+    std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())
 }
 
 #[derive(Default)]
@@ -84,13 +92,13 @@ impl Workspace {
             search(r, 0, &mut found);
         }
         if let Some(c) = &ws.chosen {
-            if !found.iter().any(|f| same_path(f, c)) {
+            if !found.iter().any(|f| key(f) == key(c)) {
                 found.push(c.clone());
             }
         }
         for path in found {
             if let Ok(text) = std::fs::read_to_string(&path) {
-                if has_blocks(&text) || ws.chosen.as_ref().is_some_and(|c| same_path(c, &path)) {
+                if has_blocks(&text) || ws.chosen.as_ref().is_some_and(|c| key(c) == key(&path)) {
                     ws.dbs.push(DbFile::load(path, text));
                 }
             }
@@ -101,20 +109,23 @@ impl Workspace {
     /// The database `file` is checked against.
     pub fn db_for(&self, file: &Path) -> Option<&DbFile> {
         if let Some(c) = &self.chosen {
-            return self.dbs.iter().find(|d| same_path(&d.path, c));
+            return self.db_at(c);
         }
-        self.dbs.iter().find(|d| d.names(file))
+        let file = key(file);
+        self.dbs.iter().find(|d| d.names(&file))
     }
 
     pub fn db_at(&self, path: &Path) -> Option<&DbFile> {
-        self.dbs.iter().find(|d| same_path(&d.path, path))
+        let path = key(path);
+        self.dbs.iter().find(|d| d.key == path)
     }
 
     /// A database file's text changed (in the editor); a JSON file that
     /// gains `blocks` becomes a database.
     pub fn update(&mut self, path: &Path, text: &str) -> bool {
-        let known = self.dbs.iter().position(|d| same_path(&d.path, path));
-        let is_db = has_blocks(text) || self.chosen.as_ref().is_some_and(|c| same_path(c, path));
+        let k = key(path);
+        let known = self.dbs.iter().position(|d| d.key == k);
+        let is_db = has_blocks(text) || self.chosen.as_ref().is_some_and(|c| key(c) == k);
         match known {
             Some(i) if self.dbs[i].text == text => false,
             Some(i) => {
@@ -132,8 +143,9 @@ impl Workspace {
     /// Every file some database names, once.
     pub fn source_files(&self) -> Vec<PathBuf> {
         let mut out: Vec<PathBuf> = Vec::new();
+        let mut seen = std::collections::HashSet::new();
         for n in self.dbs.iter().flat_map(|d| &d.named) {
-            if !out.iter().any(|f| same_path(f, &n.file)) {
+            if seen.insert(&n.key) {
                 out.push(n.file.clone());
             }
         }
