@@ -85,3 +85,13 @@ fn without_files_it_formats_what_the_strategies_here_run() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("error[E0903]"), "{}", stderr(&o));
 }
+
+#[test]
+fn a_directory_gives_its_fst_tables_but_not_other_csv_files() {
+    let dir = temp_dir("fmt-csv");
+    std::fs::write(dir.join("table.csv"), "step , label,CMD,Argument 1,ARGUMENT2\n0,,END,,\n").expect("table");
+    std::fs::write(dir.join("data.csv"), "time,value\n1,2\n").expect("data");
+    let o = linc(&["fmt", "--check", dir.to_str().expect("dir")]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(stdout(&o), format!("{}\n", dir.join("table.csv").display()));
+}

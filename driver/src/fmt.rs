@@ -51,14 +51,7 @@ fn is_source(p: &Path) -> bool {
     if !EXTENSIONS.contains(&ext.as_str()) {
         return false;
     }
-    ext != "csv" || std::fs::read(p).is_ok_and(|b| is_fst_header(&b))
-}
-
-/// The first line names the STEP, LABEL and CMD columns.
-fn is_fst_header(bytes: &[u8]) -> bool {
-    let line = bytes.split(|&b| b == b'\n').next().unwrap_or(&[]);
-    let line = String::from_utf8_lossy(line).to_ascii_uppercase().replace(' ', "");
-    line.trim_start_matches('\u{feff}').starts_with("STEP") && line.contains("LABEL") && line.contains("CMD")
+    ext != "csv" || std::fs::read_to_string(p).is_ok_and(|t| linc_compiler::fst::reader::starts_with_header(&t))
 }
 
 /// The files named by `FileName` in the JSON databases with blocks in `dir`,

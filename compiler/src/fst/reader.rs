@@ -24,6 +24,23 @@ pub fn delimiter(text: &str) -> u8 {
     }
 }
 
+/// Whether header cells (blanks removed, upper case) name the columns.
+fn is_header(names: &[String]) -> bool {
+    (names.len() == 5 || names.len() == 6) && names.iter().zip(COLUMNS).all(|(a, b)| a == b)
+}
+
+/// Whether a text starts with a table's header as [`read`] accepts it: how
+/// `linc fmt` tells FST tables from other CSV files in a directory.
+pub fn starts_with_header(text: &str) -> bool {
+    let body = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let line = body.split(['\n', '\r']).next().unwrap_or("");
+    let names: Vec<String> = line
+        .split(char::from(delimiter(body)))
+        .map(|c| c.chars().filter(|c| !c.is_whitespace() && *c != '"').collect::<String>().to_ascii_uppercase())
+        .collect();
+    is_header(&names)
+}
+
 /// Reads a table. Rows after the first blank command are not part of it.
 pub fn read(text: &str) -> (Table, Vec<Diagnostic>) {
     let base = if text.starts_with('\u{feff}') { '\u{feff}'.len_utf8() } else { 0 };
@@ -182,9 +199,8 @@ impl Reader<'_> {
             .iter()
             .map(|(t, _)| t.chars().filter(|c| !c.is_whitespace()).collect::<String>().to_ascii_uppercase())
             .collect();
-        let n = names.len();
-        if (n == 5 || n == 6) && names.iter().zip(COLUMNS).all(|(a, b)| a == b) {
-            self.columns = n;
+        if is_header(&names) {
+            self.columns = names.len();
             return Header::Ok;
         }
         let line = self.body.split(['\n', '\r']).next().unwrap_or("");
