@@ -32,13 +32,15 @@ pub struct Ctx<'a> {
     pub doc: &'a Doc,
     pub file: Option<&'a DbFile>,
     pub pieces: Vec<Piece>,
+    /// The file's own names, read once per request however often asked.
+    names: std::cell::OnceCell<LocalNames>,
 }
 
 impl<'a> Ctx<'a> {
     pub fn new(server: &'a Server, doc: &'a Doc) -> Ctx<'a> {
         let file = server.ws.db_for(&doc.path);
         let pieces = if doc.lang == Lang::Fst || doc.lang == Lang::Json { Vec::new() } else { pieces(&doc.text) };
-        Ctx { doc, file, pieces }
+        Ctx { doc, file, pieces, names: std::cell::OnceCell::new() }
     }
 
     pub fn db(&self) -> Option<&'a Database> {
@@ -82,7 +84,11 @@ impl<'a> Ctx<'a> {
     }
 
     /// The steps and actions of a sequence, and the labels of a ladder file.
-    pub fn local_names(&self) -> LocalNames {
+    pub fn local_names(&self) -> &LocalNames {
+        self.names.get_or_init(|| self.read_local_names())
+    }
+
+    fn read_local_names(&self) -> LocalNames {
         let mut names = LocalNames::default();
         match self.doc.lang {
             Lang::Sfc => {

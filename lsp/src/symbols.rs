@@ -144,8 +144,8 @@ pub fn symbols_of(server: &Server, doc: &Doc) -> Vec<DocumentSymbol> {
                     }
                 }
             }
-            for (n, s, e) in ctx.local_names().labels {
-                out.push(symbol(doc, &n, "rung label", SymbolKind::KEY, s, e));
+            for (n, s, e) in &ctx.local_names().labels {
+                out.push(symbol(doc, n, "rung label", SymbolKind::KEY, *s, *e));
             }
         }
         Lang::Fst => {
