@@ -7,28 +7,19 @@ use common::{example, pos, workspace, Client};
 use insta::assert_snapshot;
 use serde_json::{json, Value};
 
+/// A client on a workspace holding copies of example files of `dir`.
+fn examples(tag: &str, dir: &str, names: &[&str]) -> Client {
+    let texts: Vec<(&str, String)> = names.iter().map(|n| (*n, example(&format!("{dir}/{n}")))).collect();
+    let files: Vec<(&str, &str)> = texts.iter().map(|(n, t)| (*n, t.as_str())).collect();
+    Client::start(&workspace(tag, &files), json!({ "debounceMs": 0 }))
+}
+
 fn strategy(tag: &str) -> Client {
-    let root = workspace(
-        tag,
-        &[
-            ("plant.json", &example("strategy/plant.json")),
-            ("actions.stx", &example("strategy/actions.stx")),
-            ("modbus.stx", &example("strategy/modbus.stx")),
-        ],
-    );
-    Client::start(&root, json!({ "debounceMs": 0 }))
+    examples(tag, "strategy", &["plant.json", "actions.stx", "modbus.stx"])
 }
 
 fn sequences(tag: &str) -> Client {
-    let root = workspace(
-        tag,
-        &[
-            ("plant.json", &example("sequences/plant.json")),
-            ("batch.sfc", &example("sequences/batch.sfc")),
-            ("process.stx", &example("sequences/process.stx")),
-        ],
-    );
-    Client::start(&root, json!({ "debounceMs": 0 }))
+    examples(tag, "sequences", &["plant.json", "batch.sfc", "process.stx"])
 }
 
 fn guide(tag: &str) -> Client {
