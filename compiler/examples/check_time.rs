@@ -9,6 +9,13 @@ fn main() {
     let ctx = Context { db: &db, resolve_blocks: true, steps: None };
     let n: usize = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(5);
     let mut best = f64::MAX;
+    if std::env::var("PARSE_ONLY").is_ok() {
+        for _ in 0..n {
+            best = best.min(parse_only(&src));
+        }
+        println!("parse best {:.1} ms", best * 1e3);
+        return;
+    }
     for _ in 0..n {
         let t = std::time::Instant::now();
         let mut s = Session::new(ctx);
@@ -18,4 +25,12 @@ fn main() {
         best = best.min(t.elapsed().as_secs_f64());
     }
     println!("best {:.1} ms, {:.1} MiB/s", best * 1e3, src.len() as f64 / 1048576.0 / best);
+}
+#[allow(dead_code)]
+fn parse_only(src: &str) -> f64 {
+    let t = std::time::Instant::now();
+    let mut n = 0usize;
+    let (ok, _) = linc_compiler::parser::parse_actions(src, &mut |_| n += 1);
+    assert!(ok);
+    t.elapsed().as_secs_f64()
 }

@@ -6,6 +6,10 @@
 
 use crate::span::Span;
 
+/// A name as the tree and the checked program hold it: inline up to 24
+/// bytes, so no allocation for any LIN name (eight characters at most).
+pub type Name = compact_str::CompactString;
+
 /// A source file: one or more named actions (§10.2.1).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SourceFile {
@@ -26,7 +30,7 @@ pub struct Action {
 /// A name as written, with its place.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Ident {
-    pub text: String,
+    pub text: Name,
     pub span: Span,
 }
 

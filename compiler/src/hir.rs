@@ -2,7 +2,7 @@
 //! expression typed. The checker builds it; the lowering to instructions
 //! reads only this, never the syntax tree.
 
-use crate::ast::BinOp;
+use crate::ast::{BinOp, Name};
 use crate::span::Span;
 use linc_format::object::Class;
 use linc_stdlib::Ty;
@@ -106,29 +106,29 @@ pub struct Place {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Target {
     Field {
-        block: String,
-        field: String,
+        block: Name,
+        field: Name,
         offset: Option<Box<Expr>>,
     },
     Bit {
-        block: String,
-        field: String,
+        block: Name,
+        field: Name,
         offset: Option<Box<Expr>>,
         bit: u8,
         bit_offset: Option<Box<Expr>>,
     },
     Alarm {
-        block: String,
-        field: String,
-        alarm: String,
+        block: Name,
+        field: Name,
+        alarm: Name,
     },
     Suppress {
-        block: String,
-        field: String,
-        alarm: Option<String>,
+        block: Name,
+        field: Name,
+        alarm: Option<Name>,
     },
     Step {
-        step: String,
+        step: Name,
         x: bool,
     },
     /// Not resolved (no database was given).

@@ -155,6 +155,56 @@ pub fn binary(syntax: &mut Capped<SyntaxError>, op: BinOp, a: Node, b: Node) -> 
     Node { e: Box::new(Expr { kind: ExprKind::Binary(op, a.e, b.e), span }), depth: deepest + 1 }
 }
 
+/// A chain of operands and binary operators being bound by precedence
+/// (operator-precedence parsing inside the LR grammar). `pending` holds the
+/// operators still waiting for their right operand, each with its left
+/// one, binding more loosely towards the bottom; `last` is the latest
+/// operand. A pending operator binds as soon as an operator of its own or a
+/// looser level follows, so `pending` never holds more than one operator
+/// per level (eight) and memory stays constant along any chain.
+#[derive(Debug)]
+pub struct Climb {
+    pending: Vec<(BinOp, Node)>,
+    last: Node,
+}
+
+impl Climb {
+    pub fn new(first: Node) -> Climb {
+        Climb { pending: Vec::new(), last: first }
+    }
+
+    pub fn push(self, syntax: &mut Capped<SyntaxError>, op: BinOp, operand: Node) -> Climb {
+        let Climb { mut pending, last } = self.bind_while(syntax, |top| level(top) <= level(op));
+        pending.push((op, last));
+        Climb { pending, last: operand }
+    }
+
+    pub fn finish(self, syntax: &mut Capped<SyntaxError>) -> Node {
+        self.bind_while(syntax, |_| true).last
+    }
+
+    fn bind_while(self, syntax: &mut Capped<SyntaxError>, binds: impl Fn(BinOp) -> bool) -> Climb {
+        let Climb { mut pending, mut last } = self;
+        while let Some((op, left)) = pending.pop_if(|(top, _)| binds(*top)) {
+            last = binary(syntax, op, left, last);
+        }
+        Climb { pending, last }
+    }
+}
+
+/// How loosely an operator binds: `**` tightest, OR loosest (§12.6).
+fn level(op: BinOp) -> u8 {
+    match op {
+        BinOp::Pow => 2,
+        BinOp::Mul | BinOp::Div | BinOp::Mod => 3,
+        BinOp::Add | BinOp::Sub => 4,
+        BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Gt | BinOp::Le | BinOp::Ge => 5,
+        BinOp::And => 6,
+        BinOp::Xor => 7,
+        BinOp::Or => 8,
+    }
+}
+
 pub fn unary(syntax: &mut Capped<SyntaxError>, op: UnOp, e: Node, span: Span) -> Node {
     if let Some(c) = too_deep(syntax, e.depth, span) {
         return c;
@@ -184,7 +234,7 @@ pub fn call(syntax: &mut Capped<SyntaxError>, name: &str, l: usize, nr: usize, a
     if let Some(c) = too_deep(syntax, deepest, span) {
         return c;
     }
-    let name = Ident { text: name.to_string(), span: Span::new(l, nr) };
+    let name = Ident { text: name.into(), span: Span::new(l, nr) };
     let args = args.into_iter().map(|a| *a.e).collect();
     Node { e: Box::new(Expr { kind: ExprKind::Call { name, args }, span }), depth: deepest + 1 }
 }
@@ -267,7 +317,7 @@ fn split(syntax: &mut Capped<SyntaxError>, text: &str, at: usize, bracketed: boo
         if !bracketed {
             check_ident(syntax, name, span);
         }
-        segs.push(Seg { name: Ident { text: name.to_string(), span }, offset: None });
+        segs.push(Seg { name: Ident { text: name.into(), span }, offset: None });
         start += part.len() + 1;
     }
     segs
@@ -302,7 +352,7 @@ pub fn var(
                 end = span.end;
                 let nspan = Span::new(span.start + 1, span.end);
                 check_ident(syntax, &name, nspan);
-                segs.push(Seg { name: Ident { text: name, span: nspan }, offset: None });
+                segs.push(Seg { name: Ident { text: name.into(), span: nspan }, offset: None });
             }
         }
     }
@@ -335,6 +385,6 @@ pub fn action(
     if name.contains('.') || name.len() > 8 || name.starts_with(|c: char| c.is_ascii_digit()) {
         syntax.push(SyntaxError::BadActionName { span: name_span, name: name.to_string() });
     }
-    let block_type = block_type.map(|(l, t, r)| Ident { text: t.to_string(), span: Span::new(l, r) });
-    Action { name: Ident { text: name.to_string(), span: name_span }, block_type, body, header: Some(header), span }
+    let block_type = block_type.map(|(l, t, r)| Ident { text: t.into(), span: Span::new(l, r) });
+    Action { name: Ident { text: name.into(), span: name_span }, block_type, body, header: Some(header), span }
 }

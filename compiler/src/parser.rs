@@ -48,10 +48,53 @@ pub fn parse_actions(src: &str, sink: &mut dyn FnMut(Item)) -> (bool, ParseError
     (matches!(parsed, Some(Parsed::File)), errors)
 }
 
+/// Files at least this long are parsed on a second thread while the
+/// caller's sink (the checker) works on what was read before. Parsing and
+/// checking then overlap on two cores; below this size starting a thread
+/// costs more than it saves.
+pub const PIPELINE_MIN: usize = 128 * 1024;
+
+/// Items handed from the parsing thread to the sink at a time: a channel
+/// operation per statement of a file without headers would cost more than
+/// the statement.
+const BATCH: usize = 32;
+
+/// [`parse_actions`], with the parser on its own thread for long texts.
+/// The sink sees the same items in the same order and the result is the
+/// same; only the time differs. At most four batches wait at once, so
+/// memory stays bounded however far the parser runs ahead.
+pub fn parse_actions_pipelined(src: &str, sink: &mut dyn FnMut(Item)) -> (bool, ParseErrors) {
+    if src.len() < PIPELINE_MIN {
+        return parse_actions(src, sink);
+    }
+    let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<Item>>(4);
+    std::thread::scope(|scope| {
+        let parser = scope.spawn(move || {
+            let mut batch = Vec::with_capacity(BATCH);
+            let result = parse_actions(src, &mut |item| {
+                batch.push(item);
+                if batch.len() == BATCH {
+                    // A closed channel means the sink panicked; the panic
+                    // is the caller's to see, not this thread's.
+                    let _ = tx.send(std::mem::replace(&mut batch, Vec::with_capacity(BATCH)));
+                }
+            });
+            if !batch.is_empty() {
+                let _ = tx.send(batch);
+            }
+            result
+        });
+        for item in rx.into_iter().flatten() {
+            sink(item);
+        }
+        parser.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+    })
+}
+
 /// The one action of a file without `ACTION` headers: named `stem`,
 /// spanning the whole text.
 pub fn headerless(src: &str, stem: &str, body: Vec<Stmt>) -> Action {
-    let name = Ident { text: stem.to_string(), span: Span::new(0, 0) };
+    let name = Ident { text: stem.into(), span: Span::new(0, 0) };
     Action { name, block_type: None, body, header: None, span: Span::new(0, src.len()) }
 }
 

@@ -109,7 +109,7 @@ pub fn expr(e: &Expr) -> String {
         }
         ExprKind::Binary(op, a, b) => format!("({} {} {})", op.symbol(), expr(a), expr(b)),
         ExprKind::Call { name, args } => {
-            let mut s = format!("({}", name.text.to_ascii_uppercase());
+            let mut s = format!("({}", name.text.as_str().to_ascii_uppercase());
             for a in args {
                 s.push(' ');
                 s.push_str(&expr(a));

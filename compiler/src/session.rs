@@ -408,10 +408,10 @@ impl Names<'_> {
     /// Records an action's name, reporting it if it is taken (one hashed
     /// look-up, whatever the number of actions).
     fn define(&mut self, name: &ast::Ident, by_file: bool) {
-        match self.map.entry(name.text.to_ascii_uppercase()) {
+        match self.map.entry(name.text.as_str().to_ascii_uppercase()) {
             Entry::Occupied(e) => self.errors.push(SessionError::DuplicateAction {
                 span: name.span,
-                name: name.text.clone(),
+                name: name.text.to_string(),
                 first: *e.get(),
                 by_file,
             }),
@@ -447,7 +447,7 @@ fn check_actions(
     if let Some(stream) = sink.stream.as_deref_mut() {
         stream.begin_statements();
     }
-    let (ok, errors) = parser::parse_actions(source.text(), &mut |item| match item {
+    let (ok, errors) = parser::parse_actions_pipelined(source.text(), &mut |item| match item {
         Item::Stmt(s) => {
             let h = checker.statement(&s);
             if let Some(stream) = sink.stream.as_deref_mut() {
@@ -485,7 +485,7 @@ fn check_actions(
             stream.end_statements(&action.name.text);
         }
         if keep {
-            actions.push(hir::Action { name: action.name.text.clone(), block_type: None, body, span: action.span });
+            actions.push(hir::Action { name: action.name.text.to_string(), block_type: None, body, span: action.span });
         }
         if tree {
             trees.push(action);

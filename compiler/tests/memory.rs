@@ -83,6 +83,9 @@ fn deep_nesting_needs_little_memory() {
         format!("Recipe.A0 := {}1;\n", "- ".repeat(n / 2)),
         format!("Recipe.A0 := {}1;\n", "-".repeat(n)),
         format!("Recipe.A0 := {}0;\n", "ABS(".repeat(n / 4)),
+        // A flat chain is bound as it is read: the parser holds one pending
+        // operator per precedence level, never the chain.
+        format!("Recipe.A0 := {}1;\n", "1 + 2 * ".repeat(n / 8)),
         format!("Recipe.A0 := {}0;\n", "Block_5.Val1{".repeat(n / 13)),
         "IF 1 THEN\n".repeat(n / 10),
         "WHILE 1 DO\n".repeat(n / 11) + &"END_WHILE;\n".repeat(n / 11),

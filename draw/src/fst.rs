@@ -54,7 +54,7 @@ fn rows(table: &Table) -> Vec<Row> {
         .rows
         .iter()
         .enumerate()
-        .filter_map(|(i, r)| Some((r.label.as_ref()?.text.to_ascii_uppercase(), i)))
+        .filter_map(|(i, r)| Some((r.label.as_ref()?.text.as_str().to_ascii_uppercase(), i)))
         .collect();
     let mut out: Vec<Row> = table
         .rows
@@ -73,10 +73,11 @@ fn rows(table: &Table) -> Vec<Row> {
                 } else {
                     &None
                 };
-                cell.as_ref().and_then(|c| labels.get(&c.text.to_ascii_uppercase()).copied())
+                cell.as_ref().and_then(|c| labels.get(&c.text.as_str().to_ascii_uppercase()).copied())
             });
-            let text = if args.is_empty() { r.cmd.text.clone() } else { format!("{} {}", r.cmd.text, args.join(", ")) };
-            let label = r.label.as_ref().map(|l| l.text.clone()).unwrap_or_default();
+            let text =
+                if args.is_empty() { r.cmd.text.to_string() } else { format!("{} {}", r.cmd.text, args.join(", ")) };
+            let label = r.label.as_ref().map(|l| l.text.to_string()).unwrap_or_default();
             Row { step: i, label, text, comment: r.comment.clone(), cmd, target }
         })
         .collect();

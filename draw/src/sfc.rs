@@ -140,7 +140,7 @@ fn trans_lines(ctx: &Ctx, t: &Transition) -> Vec<String> {
     let mut lines = Vec::new();
     let head = match (&t.name, &t.priority) {
         (Some(n), Some((p, _))) => Some(format!("{} ({p})", n.text)),
-        (Some(n), None) => Some(n.text.clone()),
+        (Some(n), None) => Some(n.text.to_string()),
         (None, Some((p, _))) => Some(format!("({p})")),
         (None, None) => None,
     };
@@ -198,17 +198,17 @@ fn blocks(ctx: &Ctx, step: &Step, numbering: &mut Numbering, depth: usize) -> Bl
     let mut rows = Vec::new();
     for a in &step.assocs {
         let q = match a.time {
-            Some((t, _)) => format!("{} T#{}s", a.qualifier.text.to_ascii_uppercase(), num(t)),
-            None => a.qualifier.text.to_ascii_uppercase(),
+            Some((t, _)) => format!("{} T#{}s", a.qualifier.text.as_str().to_ascii_uppercase(), num(t)),
+            None => a.qualifier.text.as_str().to_ascii_uppercase(),
         };
         let action = ctx.seq.actions.iter().find(|x| x.name.text.eq_ignore_ascii_case(&a.action.text));
-        let sub = match action.map(|x| (&x.body, x.name.text.to_ascii_uppercase())) {
+        let sub = match action.map(|x| (&x.body, x.name.text.as_str().to_ascii_uppercase())) {
             Some((ActionBody::Chart(c), key)) if depth < MAX_DEPTH && numbering.drawn.insert(key.clone()) => {
                 Some(chart(ctx, c, numbering, depth + 1))
             }
             _ => None,
         };
-        rows.push((q, a.action.text.clone(), sub));
+        rows.push((q, a.action.text.to_string(), sub));
     }
     let qw = rows.iter().map(|r| text_width(&r.0) + 12.0).fold(28.0, f64::max);
     let nw = rows.iter().map(|r| text_width(&r.1) + 14.0).fold(40.0, f64::max);
@@ -255,16 +255,16 @@ fn graph(ctx: &Ctx, c: &Chart, numbering: &mut Numbering, depth: usize) -> Graph
     }
     let ns = c.steps.len();
     let by_name: HashMap<String, usize> =
-        c.steps.iter().enumerate().map(|(i, s)| (s.name.text.to_ascii_uppercase(), i)).collect();
+        c.steps.iter().enumerate().map(|(i, s)| (s.name.text.as_str().to_ascii_uppercase(), i)).collect();
     let mut edges = Vec::new();
     for (j, t) in c.transitions.iter().enumerate() {
         for f in &t.from {
-            if let Some(&s) = by_name.get(&f.text.to_ascii_uppercase()) {
+            if let Some(&s) = by_name.get(&f.text.as_str().to_ascii_uppercase()) {
                 edges.push(Edge { from: s, to: ns + j, lane: None });
             }
         }
         for f in &t.to {
-            if let Some(&s) = by_name.get(&f.text.to_ascii_uppercase()) {
+            if let Some(&s) = by_name.get(&f.text.as_str().to_ascii_uppercase()) {
                 edges.push(Edge { from: ns + j, to: s, lane: None });
             }
         }
@@ -356,7 +356,7 @@ fn long_links(g: &mut Graph, c: &Chart, numbering: &mut Numbering) {
         }
         numbering.jumps += 1;
         let name = match g.nodes[to].kind {
-            Kind::Step(i) => c.steps[i].name.text.clone(),
+            Kind::Step(i) => c.steps[i].name.text.to_string(),
             Kind::Trans(j) => c.transitions[j].display_name(),
             Kind::Jump => String::new(),
         };

@@ -62,7 +62,7 @@ pub fn convert(doc: &Doc, d: &Diagnostic) -> lsp_types::Diagnostic {
         .filter(|l| l.file.is_none())
         .map(|l| DiagnosticRelatedInformation {
             location: Location::new(doc.uri.clone(), doc.index.range(&doc.text, l.span.start, l.span.end)),
-            message: l.text.clone(),
+            message: l.text.to_string(),
         })
         .collect();
     lsp_types::Diagnostic {

@@ -115,7 +115,7 @@ fn find_action(text: &str, action: &str) -> Option<(usize, usize)> {
 /// The text of a file: the editor's when it is open, else the disk's.
 fn read(server: &Server, uri: &Url, path: &Path) -> Option<String> {
     match server.doc(uri) {
-        Some(d) => Some(d.text.clone()),
+        Some(d) => Some(d.text.to_string()),
         None => std::fs::read_to_string(path).ok(),
     }
 }

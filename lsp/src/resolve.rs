@@ -95,7 +95,7 @@ impl<'a> Ctx<'a> {
                 let (seq, _) = linc_compiler::sfc::parser::parse(&self.doc.text);
                 collect_chart(&seq.chart, &mut names);
                 for a in &seq.actions {
-                    names.actions.push((a.name.text.clone(), a.name.span.start, a.name.span.end));
+                    names.actions.push((a.name.text.to_string(), a.name.span.start, a.name.span.end));
                     if let linc_compiler::sfc::ast::ActionBody::Chart(c) = &a.body {
                         collect_chart(c, &mut names);
                     }
@@ -105,7 +105,7 @@ impl<'a> Ctx<'a> {
                 let (file, _) = linc_compiler::ladder::parser::parse(&self.doc.text, "file");
                 for r in file.actions.iter().flat_map(|a| &a.rungs) {
                     if let Some(l) = &r.label {
-                        names.labels.push((l.text.clone(), l.span.start, l.span.end));
+                        names.labels.push((l.text.to_string(), l.span.start, l.span.end));
                     }
                 }
             }
@@ -192,7 +192,7 @@ pub struct LocalNames {
 
 fn collect_chart(c: &linc_compiler::sfc::ast::Chart, names: &mut LocalNames) {
     for s in &c.steps {
-        names.steps.push((s.name.text.clone(), s.name.span.start, s.name.span.end));
+        names.steps.push((s.name.text.to_string(), s.name.span.start, s.name.span.end));
     }
     for t in &c.transitions {
         let span = t.name.as_ref().map_or(t.span, |n| n.span);

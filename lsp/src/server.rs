@@ -196,7 +196,7 @@ impl Server {
                 for c in p.content_changes {
                     doc.apply(c);
                 }
-                let (path, text, lang) = (doc.path.clone(), doc.text.clone(), doc.lang);
+                let (path, text, lang) = (doc.path.clone(), doc.text.to_string(), doc.lang);
                 let later = Instant::now() + self.debounce;
                 if lang == Lang::Json && self.ws.update(&path, &text) {
                     self.recheck_all(later);

@@ -551,10 +551,10 @@ fn go_msg_end_alm_evt() {
     assert_eq!(num(&s, "FST 1.RR"), 3.0, "GO skipped VAL 99, and steps after END never ran");
     assert_eq!(text(&s, "FST 1.MSG1"), "'Pumping since dawn'");
     assert_eq!(num(&s, "FST 1.MSGDAT"), 3.0);
-    let alarms: Vec<_> = s.store.roc.alarms.iter().map(|e| (e.text.clone(), e.value, e.source.clone())).collect();
+    let alarms: Vec<_> = s.store.roc.alarms.iter().map(|e| (e.text.to_string(), e.value, e.source.clone())).collect();
     assert_eq!(alarms.len(), 3);
     assert_eq!(alarms[0], ("HIGH LEVEL".to_string(), 42.0, "FST 1".to_string()), "the first 10 characters");
-    let events: Vec<_> = s.store.roc.events.iter().map(|e| (e.text.clone(), e.value)).collect();
+    let events: Vec<_> = s.store.roc.events.iter().map(|e| (e.text.to_string(), e.value)).collect();
     assert_eq!(events, vec![("START".to_string(), 7.0); 3]);
 }
 

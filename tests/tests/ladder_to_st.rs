@@ -163,7 +163,7 @@ fn var(v: &Var) -> String {
         .iter()
         .map(|s| match &s.offset {
             Some(o) => format!("{}{{{}}}", s.name.text, norm(o)),
-            None => s.name.text.clone(),
+            None => s.name.text.to_string(),
         })
         .collect();
     segs.join(".")

@@ -127,7 +127,7 @@ impl<'a> Checker<'a> {
     pub fn action(&mut self, a: &Action) -> hir::Action {
         let block_type = self.begin_action(a.block_type.as_ref());
         let body = self.stmts(&a.body);
-        hir::Action { name: a.name.text.clone(), block_type, body, span: a.span }
+        hir::Action { name: a.name.text.to_string(), block_type, body, span: a.span }
     }
 
     /// Starts an action of block type `block_type` (`ACTION a : PID`), whose
@@ -143,8 +143,8 @@ impl<'a> Checker<'a> {
                 Some(self.ctx.db.templates[i].name.clone())
             }
             None => {
-                self.errors.push(CheckError::UnknownBlockType { span: t.span, name: t.text.clone() });
-                Some(t.text.clone())
+                self.errors.push(CheckError::UnknownBlockType { span: t.span, name: t.text.to_string() });
+                Some(t.text.to_string())
             }
         }
     }

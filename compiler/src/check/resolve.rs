@@ -7,13 +7,14 @@
 use super::errors::CheckError;
 use super::limits::SymbolKey;
 use super::Checker;
-use crate::ast::{Expr, Var};
+use crate::ast::{Expr, Name, Var};
 use crate::hir::{self, Place, Target};
 use crate::span::Span;
 use linc_format::object::class_of;
 use linc_format::object::Class;
 use linc_format::{FieldType, Template};
 use linc_stdlib::Ty;
+use smallvec::SmallVec;
 
 /// What a reference denotes: the place, and whether it may be written.
 #[derive(Clone, Debug, PartialEq)]
@@ -88,7 +89,12 @@ impl Checker<'_> {
     }
 
     /// Checks the offsets of every part (this is where the walk recurses).
+    /// Most references have no offset: then the list is empty (no
+    /// allocation) and every part reads as having none.
     pub(super) fn offsets(&mut self, v: &Var) -> Vec<Option<hir::Expr>> {
+        if v.segs.iter().all(|s| s.offset.is_none()) {
+            return Vec::new();
+        }
         let mut checked: Vec<Option<hir::Expr>> = Vec::with_capacity(v.segs.len());
         for seg in &v.segs {
             match &seg.offset {
@@ -115,7 +121,8 @@ impl Checker<'_> {
         let mut checked = checked.into_iter();
         let first = &v.segs[0];
         let first_checked = checked.next().flatten();
-        let mut parts: Vec<Part> = Vec::with_capacity(v.segs.len() + 2);
+        // On the stack: a reference has rarely more than four parts.
+        let mut parts: SmallVec<[Part; 4]> = SmallVec::new();
         if let Some(alias) = db.alias(&first.name.text) {
             let n = alias.target.len();
             let mut first_checked = Some(first_checked);
@@ -147,8 +154,8 @@ impl Checker<'_> {
                 self.errors.push(CheckError::NotAValue { span: v.span, what: v.path() });
                 return None;
             }
-            let block = db.blocks[b].name.clone();
-            return self.field_path(db.block_template(b), (&block, b as u32 + 1), &mut parts[1..], v);
+            let block = &db.blocks[b].name;
+            return self.field_path(db.block_template(b), (block, b as u32 + 1), &mut parts[1..], v);
         }
         if let Some(t) = self.self_template {
             let tpl = &db.templates[t];
@@ -207,7 +214,7 @@ impl Checker<'_> {
         }
         let x = parts[1].name.eq_ignore_ascii_case("X");
         let ty = if x { Ty::Bool } else { Ty::Real };
-        let target = Target::Step { step: parts[0].name.to_string(), x };
+        let target = Target::Step { step: parts[0].name.into(), x };
         Some(Resolved::new(v, ty, target).read_only("step variables are maintained by the sequence"))
     }
 
@@ -232,7 +239,7 @@ impl Checker<'_> {
         if let Some(o) = fpart.offset {
             self.check_field_offset(tpl, fi, o, fpart)?;
         }
-        let base_name = tpl.fields[fi].name.clone();
+        let base_name = Name::from(tpl.fields[fi].name.as_str());
         // A constant offset names its field exactly: `PV{1}` is as writable as
         // the field it lands on. Variable offsets are checked at run time.
         let landed = match fpart.offset.and_then(|o| o.int_value()) {
@@ -249,7 +256,7 @@ impl Checker<'_> {
             }
         };
         let class = class_of(&field.ty);
-        let (b, f) = (block.to_string(), base_name);
+        let (b, f) = (Name::from(block), base_name);
         let rest = &mut parts[1..];
         match (&field.ty, rest) {
             (FieldType::Alarms(_), []) => {
@@ -291,7 +298,7 @@ impl Checker<'_> {
                 Some(readonly(r))
             }
             (FieldType::Alarms(names), [sub, more @ ..]) => {
-                let suppress = |alarm: Option<String>, sub: u32| {
+                let suppress = |alarm: Option<Name>, sub: u32| {
                     Resolved::new(v, Ty::Int, Target::Suppress { block: b.clone(), field: f.clone(), alarm })
                         .stored(class, (block_id, fi, sub))
                 };
@@ -301,7 +308,7 @@ impl Checker<'_> {
                 let Some(ai) = names.iter().position(|n| n.eq_ignore_ascii_case(sub.name)) else {
                     return self.no_sub(sub, &field.name, &field.ty);
                 };
-                let alarm = names[ai].clone();
+                let alarm = Name::from(names[ai].as_str());
                 match more {
                     [] => {
                         let r = Resolved::new(v, Ty::Bool, Target::Alarm { block: b.clone(), field: f.clone(), alarm })

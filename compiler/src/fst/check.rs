@@ -164,7 +164,7 @@ impl Checker<'_> {
     }
 
     fn label_arg(&mut self, cmd: Cmd, cell: &Cell) -> Arg {
-        if let Some(&(step, _)) = self.labels.get(&cell.text.to_ascii_uppercase()) {
+        if let Some(&(step, _)) = self.labels.get(&cell.text.as_str().to_ascii_uppercase()) {
             return Arg::Label(step);
         }
         if is_label(&cell.text) && tlp::parse(&cell.text).is_ok_and(|s| matches!(s, Syntax::Text { .. })) {

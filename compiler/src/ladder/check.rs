@@ -36,7 +36,7 @@ pub fn jumps(rungs: &[Rung]) -> (Vec<Option<usize>>, Vec<Diagnostic>) {
                 .help(format!("labels have up to {MAX_LABEL} characters 0-9, A-Z, a-z and _ (§20.8.1)")),
             );
         }
-        let key = l.text.to_ascii_uppercase();
+        let key = l.text.as_str().to_ascii_uppercase();
         if key == END_LABEL.to_ascii_uppercase() {
             diags.push(
                 Diagnostic::error(Code::E0303, "label `_End` is defined twice", l.span)
@@ -45,7 +45,7 @@ pub fn jumps(rungs: &[Rung]) -> (Vec<Option<usize>>, Vec<Diagnostic>) {
             );
             continue;
         }
-        match labels.get(&key) {
+        match labels.get(key.as_str()) {
             Some(&(_, first)) => diags.push(
                 Diagnostic::error(Code::E0303, format!("label `{}` is defined twice", l.text), l.span)
                     .label("second definition")
@@ -53,7 +53,7 @@ pub fn jumps(rungs: &[Rung]) -> (Vec<Option<usize>>, Vec<Diagnostic>) {
                     .help("labels ignore case and are unique within an action"),
             ),
             None => {
-                labels.insert(key, (i, l.span));
+                labels.insert(key.to_string(), (i, l.span));
             }
         }
     }
@@ -62,11 +62,11 @@ pub fn jumps(rungs: &[Rung]) -> (Vec<Option<usize>>, Vec<Diagnostic>) {
         .enumerate()
         .map(|(i, r)| {
             let Output::Jump { label, .. } = &r.output else { return None };
-            let key = label.text.to_ascii_uppercase();
+            let key = label.text.as_str().to_ascii_uppercase();
             if key == END_LABEL.to_ascii_uppercase() {
                 return Some(rungs.len());
             }
-            match labels.get(&key) {
+            match labels.get(key.as_str()) {
                 None => {
                     diags.push(
                         Diagnostic::error(

@@ -113,7 +113,7 @@ pub fn element_spans(src: &str, stem: &str) -> Vec<crate::span::Span> {
 pub fn desugar_body(body: &str, name: &str) -> (crate::ast::Action, Vec<Diagnostic>) {
     let (ladder, mut diagnostics) = parser::parse(body, name);
     let Some(a) = ladder.actions.into_iter().next() else {
-        let name = crate::ast::Ident { text: name.to_string(), span: crate::span::Span::default() };
+        let name = crate::ast::Ident { text: name.into(), span: crate::span::Span::default() };
         let span = crate::span::Span::new(0, body.len());
         return (crate::ast::Action { name, block_type: None, body: Vec::new(), header: None, span }, diagnostics);
     };

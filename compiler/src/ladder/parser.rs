@@ -63,7 +63,7 @@ pub fn parse_each(src: &str, stem: &str, each: &mut dyn FnMut(Action)) -> Vec<Di
         }
     }
     if !headers {
-        let name = Ident { text: stem.to_string(), span: Span::new(0, 0) };
+        let name = Ident { text: stem.into(), span: Span::new(0, 0) };
         each(Action { name, block_type: None, rungs: loose, header: None, span: Span::new(0, src.len()) });
     } else if let Some(span) = first_loose {
         let d = Diagnostic::error(Code::E0309, "rung outside an action", span)
@@ -172,8 +172,7 @@ impl Parser<'_> {
         while self.peek().is_some_and(is_ident) {
             self.pos += 1;
         }
-        (self.pos > start)
-            .then(|| Ident { text: self.src[start..self.pos].to_string(), span: Span::new(start, self.pos) })
+        (self.pos > start).then(|| Ident { text: self.src[start..self.pos].into(), span: Span::new(start, self.pos) })
     }
 
     /// Moves past the end of a broken rung: its `;`, or the `END_ACTION` or
@@ -288,11 +287,11 @@ impl Parser<'_> {
             Some(n) => n,
             None => {
                 self.error("an action name");
-                Ident { text: String::new(), span: self.here() }
+                Ident { text: crate::ast::Name::default(), span: self.here() }
             }
         };
         if name.text.chars().count() > 8 || name.text.starts_with(|c: char| c.is_ascii_digit()) || keyword(&name.text) {
-            self.push(SyntaxError::BadActionName { span: name.span, name: name.text.clone() }.to_diagnostic());
+            self.push(SyntaxError::BadActionName { span: name.span, name: name.text.to_string() }.to_diagnostic());
         }
         self.ws();
         let mut block_type = None;
@@ -561,7 +560,7 @@ impl Parser<'_> {
         match (stmts.len(), stmts.pop()) {
             (1, Some(s @ Stmt::Assign { .. })) => {
                 let mut a = crate::ast::Action {
-                    name: Ident { text: String::new(), span: Span::default() },
+                    name: Ident { text: crate::ast::Name::default(), span: Span::default() },
                     block_type: None,
                     body: vec![s],
                     header: None,

@@ -561,11 +561,12 @@ impl Lowerer {
                 Some((sym, true))
             }
             Target::Alarm { block, field, alarm } => {
-                Some((self.symbol(block, field, Sub::Alarm(alarm.clone()), class, place.span), false))
+                Some((self.symbol(block, field, Sub::Alarm(alarm.to_string()), class, place.span), false))
             }
-            Target::Suppress { block, field, alarm } => {
-                Some((self.symbol(block, field, Sub::Suppress(alarm.clone()), class, place.span), false))
-            }
+            Target::Suppress { block, field, alarm } => Some((
+                self.symbol(block, field, Sub::Suppress(alarm.as_ref().map(|a| a.to_string())), class, place.span),
+                false,
+            )),
             Target::Step { .. } | Target::Unknown => None,
         }
     }
@@ -593,7 +594,7 @@ impl Lowerer {
     fn access(&mut self, place: &Place, store: bool) {
         if let (Target::Step { step, x }, false) = (&place.target, store) {
             // In a sequence, `.X` and `.T` are the step's retained slots.
-            if let Some(&slot) = self.steps.get(&step.to_ascii_uppercase()) {
+            if let Some(&slot) = self.steps.get(step.as_str().to_ascii_uppercase().as_str()) {
                 self.emit(Op::LoadRet { n: 2 * slot + u16::from(!*x) });
                 return;
             }

@@ -66,11 +66,11 @@ impl Transition {
     /// unnamed one with a single source and target (§20.5, "STEP1 to STEP2").
     pub fn display_name(&self) -> String {
         if let Some(n) = &self.name {
-            return n.text.clone();
+            return n.text.to_string();
         }
         let list = |v: &[Ident]| match v {
             [one] => one.text.clone(),
-            many => format!("({})", many.iter().map(|i| i.text.as_str()).collect::<Vec<_>>().join(", ")),
+            many => format!("({})", many.iter().map(|i| i.text.as_str()).collect::<Vec<_>>().join(", ")).into(),
         };
         format!("{} to {}", list(&self.from), list(&self.to))
     }

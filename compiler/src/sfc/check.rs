@@ -41,7 +41,7 @@ pub fn check(seq: &Sequence, ctx: Context) -> Vec<Diagnostic> {
     if out[before..].iter().all(|d| d.code != Code::E0212) {
         super::size::check(seq, &mut out);
     }
-    let names: Vec<String> = steps.into_iter().map(|s| s.text.clone()).collect();
+    let names: Vec<String> = steps.into_iter().map(|s| s.text.to_string()).collect();
     let ctx = Context { steps: Some(&names), ..ctx };
     let mut checker = Checker::new(ctx, Limits::default()).reporting_only();
     for a in &seq.actions {
@@ -74,7 +74,7 @@ fn first_span(c: &Chart) -> Span {
 }
 
 fn key(i: &Ident) -> String {
-    i.text.to_ascii_uppercase()
+    i.text.as_str().to_ascii_uppercase().to_string()
 }
 
 /// Every step of the sequence, each name once; reports duplicates.
@@ -85,7 +85,7 @@ fn step_names<'a>(charts: &[Named<'a>], out: &mut Vec<Diagnostic>) -> Vec<&'a Id
         match seen.get(&key(&s.name)) {
             Some(&first) => out.push(Diagnostic::from(SfcError::DuplicateStep {
                 span: s.name.span,
-                name: s.name.text.clone(),
+                name: s.name.text.to_string(),
                 first,
             })),
             None => {
@@ -123,7 +123,7 @@ fn chart(c: &Named, home: &HashMap<String, String>, out: &mut Vec<Diagnostic>) {
                 continue;
             }
             let other_chart = home.get(&key(s)).cloned();
-            out.push(Diagnostic::from(SfcError::UnknownStep { span: s.span, name: s.text.clone(), other_chart }));
+            out.push(Diagnostic::from(SfcError::UnknownStep { span: s.span, name: s.text.to_string(), other_chart }));
         }
     }
     // Without an initial step nothing is reachable: that is one error, not
@@ -132,7 +132,7 @@ fn chart(c: &Named, home: &HashMap<String, String>, out: &mut Vec<Diagnostic>) {
         return;
     }
     for s in unreachable(c.chart, &index).into_iter().filter(|_| has_initial) {
-        out.push(Diagnostic::from(SfcError::UnreachableStep { span: s.name.span, name: s.name.text.clone() }));
+        out.push(Diagnostic::from(SfcError::UnreachableStep { span: s.name.span, name: s.name.text.to_string() }));
     }
     unsafe_transitions(c.chart, &index, out);
 }
@@ -147,7 +147,7 @@ fn unsafe_transitions(c: &Chart, index: &HashMap<String, usize>, out: &mut Vec<D
         out.push(Diagnostic::from(SfcError::Unsafe {
             span: Span::new(t.span.start, t.to.last().map(|s| s.span.end).unwrap_or(t.span.end)),
             transition: t.display_name(),
-            step: c.steps[si].name.text.clone(),
+            step: c.steps[si].name.text.to_string(),
         }));
     }
 }
@@ -201,7 +201,7 @@ fn transition_names(charts: &[Named], out: &mut Vec<Diagnostic>) {
     let mut seen: HashMap<String, Span> = HashMap::new();
     for n in charts.iter().flat_map(|c| &c.chart.transitions).filter_map(|t| t.name.as_ref()) {
         if let Some(&first) = seen.get(&key(n)) {
-            out.push(Diagnostic::from(SfcError::DuplicateTransition { span: n.span, name: n.text.clone(), first }));
+            out.push(Diagnostic::from(SfcError::DuplicateTransition { span: n.span, name: n.text.to_string(), first }));
         } else {
             seen.insert(key(n), n.span);
         }
@@ -216,7 +216,7 @@ fn actions(seq: &Sequence, charts: &[Named], out: &mut Vec<Diagnostic>) {
         match defined.get(&key(&a.name)) {
             Some(first) => out.push(Diagnostic::from(SfcError::DuplicateAction {
                 span: a.name.span,
-                name: a.name.text.clone(),
+                name: a.name.text.to_string(),
                 first: first.name.span,
             })),
             None => {
@@ -232,12 +232,15 @@ fn actions(seq: &Sequence, charts: &[Named], out: &mut Vec<Diagnostic>) {
         if defined.contains_key(&key(&a.action)) {
             used.insert(key(&a.action));
         } else {
-            out.push(Diagnostic::from(SfcError::UnknownAction { span: a.action.span, name: a.action.text.clone() }));
+            out.push(Diagnostic::from(SfcError::UnknownAction {
+                span: a.action.span,
+                name: a.action.text.to_string(),
+            }));
         }
     }
     for a in &seq.actions {
         if !used.contains(&key(&a.name)) && defined.get(&key(&a.name)).map(|d| d.span) == Some(a.span) {
-            out.push(Diagnostic::from(SfcError::UnusedAction { span: a.name.span, name: a.name.text.clone() }));
+            out.push(Diagnostic::from(SfcError::UnusedAction { span: a.name.span, name: a.name.text.to_string() }));
         }
     }
 }
@@ -246,15 +249,19 @@ fn actions(seq: &Sequence, charts: &[Named], out: &mut Vec<Diagnostic>) {
 fn qualifier(a: &Assoc) -> Option<SfcError> {
     let q = &a.qualifier;
     let text = q.text.clone();
-    let iec = |lin| Some(SfcError::IecQualifier { span: q.span, text: text.clone(), lin });
-    match q.text.to_ascii_uppercase().as_str() {
-        "P" | "N" | "F" | "S" | "R" => a.time.map(|(_, span)| SfcError::ExtraTime { span, qualifier: text.clone() }),
-        "L" | "D" | "E" if a.time.is_none() => Some(SfcError::MissingTime { span: q.span, qualifier: text.clone() }),
+    let iec = |lin| Some(SfcError::IecQualifier { span: q.span, text: text.to_string(), lin });
+    match q.text.as_str().to_ascii_uppercase().as_str() {
+        "P" | "N" | "F" | "S" | "R" => {
+            a.time.map(|(_, span)| SfcError::ExtraTime { span, qualifier: text.to_string() })
+        }
+        "L" | "D" | "E" if a.time.is_none() => {
+            Some(SfcError::MissingTime { span: q.span, qualifier: text.to_string() })
+        }
         "L" | "D" | "E" => None,
         "P1" => iec(Some("P")),
         "P0" => iec(Some("F")),
         "SD" | "DS" | "SL" => iec(None),
-        _ => Some(SfcError::UnknownQualifier { span: q.span, text: text.clone() }),
+        _ => Some(SfcError::UnknownQualifier { span: q.span, text: text.to_string() }),
     }
 }
 
@@ -300,8 +307,8 @@ fn chart_cycles(seq: &Sequence, out: &mut Vec<Diagnostic>) {
                 }
                 1 => out.push(Diagnostic::from(SfcError::ChartRunsItself {
                     span: assoc.span,
-                    chart: charts[node].0.name.text.clone(),
-                    action: assoc.action.text.clone(),
+                    chart: charts[node].0.name.text.to_string(),
+                    action: assoc.action.text.to_string(),
                 })),
                 _ => {}
             }

@@ -354,9 +354,10 @@ pub fn generic_names(seq: &Sequence, db: &Database) -> Vec<String> {
     let mut out = Vec::new();
     for v in references(seq) {
         let name = &v.segs[0].name.text;
-        let known = db.block(name).is_some() || db.alias(name).is_some() || steps.contains(&name.to_ascii_uppercase());
+        let known =
+            db.block(name).is_some() || db.alias(name).is_some() || steps.contains(name.to_ascii_uppercase().as_str());
         if !known && seen.insert(name.to_ascii_uppercase()) {
-            out.push(name.clone());
+            out.push(name.to_string());
         }
     }
     out

@@ -18,7 +18,7 @@ fn step_names(seq: &Sequence) -> Vec<String> {
         ActionBody::Chart(c) => Some(c),
         ActionBody::St(_) => None,
     }));
-    charts.flat_map(|c| c.steps.iter().map(|s| s.name.text.clone())).collect()
+    charts.flat_map(|c| c.steps.iter().map(|s| s.name.text.to_string())).collect()
 }
 
 /// Most steps a sequence may have: each has two retained slots (`.X` and
@@ -50,7 +50,7 @@ pub fn lower(seq: &Sequence, name: &str, file: &str, src: &str, ctx: Context) ->
     let slots = steps.iter().enumerate().map(|(i, s)| (s.to_ascii_uppercase(), i as u16)).collect();
     let mut actions = HashMap::with_capacity(seq.actions.len());
     for (i, a) in seq.actions.iter().enumerate() {
-        actions.entry(a.name.text.to_ascii_uppercase()).or_insert(i);
+        actions.entry(a.name.text.as_str().to_ascii_uppercase().to_string()).or_insert(i);
     }
     let mut l = Lowering {
         seq,
@@ -80,7 +80,7 @@ impl Lowering<'_, '_> {
         // (a search through the chart's steps made lowering quadratic).
         let mut by_name = HashMap::with_capacity(c.steps.len());
         for (i, s) in c.steps.iter().enumerate() {
-            by_name.entry(s.name.text.to_ascii_uppercase()).or_insert(i);
+            by_name.entry(s.name.text.as_str().to_ascii_uppercase()).or_insert(i);
         }
         let index = |name: &str| by_name.get(&name.to_ascii_uppercase()).copied();
         let (mut actions, mut local): (Vec<ActionRec>, HashMap<usize, u16>) = (Vec::new(), HashMap::new());
@@ -90,7 +90,7 @@ impl Lowering<'_, '_> {
             for a in &s.assocs {
                 let g = self.action_index(&a.action.text).ok_or_else(|| LowerError::ChartAction {
                     span: a.span,
-                    name: a.action.text.clone(),
+                    name: a.action.text.to_string(),
                     why: "is not an action of the sequence",
                 })?;
                 let at = match local.get(&g) {
@@ -105,8 +105,8 @@ impl Lowering<'_, '_> {
                 let time_us = a.time.map_or(0, |(t, _)| (t.max(0.0) * 1e6).round() as u64);
                 assocs.push(AssocRec { action: at, qualifier, time_us });
             }
-            let slot = self.slots.get(&s.name.text.to_ascii_uppercase()).copied().unwrap_or(0);
-            steps.push(StepRec { name: s.name.text.clone(), initial: u8::from(s.initial), slot, assocs });
+            let slot = self.slots.get(s.name.text.as_str().to_ascii_uppercase().as_str()).copied().unwrap_or(0);
+            steps.push(StepRec { name: s.name.text.to_string(), initial: u8::from(s.initial), slot, assocs });
         }
         let mut transitions = Vec::with_capacity(c.transitions.len());
         for t in &c.transitions {
@@ -136,16 +136,16 @@ impl Lowering<'_, '_> {
                         i
                     }
                 };
-                Ok(ActionRec { name, kind: 0, index })
+                Ok(ActionRec { name: name.to_string(), kind: 0, index })
             }
             ActionBody::Chart(c) => {
                 if self.open.contains(&g) {
-                    return Err(LowerError::ChartAction { span: used_at, name, why: "uses itself" });
+                    return Err(LowerError::ChartAction { span: used_at, name: name.to_string(), why: "uses itself" });
                 }
                 self.open.push(g);
                 let index = self.chart(c);
                 self.open.pop();
-                Ok(ActionRec { name, kind: 1, index: index? })
+                Ok(ActionRec { name: name.to_string(), kind: 1, index: index? })
             }
         }
     }

@@ -83,7 +83,7 @@ pub(crate) fn steps_of(seq: &ast::Sequence) -> std::collections::HashSet<String>
         ast::ActionBody::Chart(c) => Some(c),
         ast::ActionBody::St(_) => None,
     }));
-    charts.flat_map(|c| &c.steps).map(|s| s.name.text.to_ascii_uppercase()).collect()
+    charts.flat_map(|c| &c.steps).map(|s| s.name.text.as_str().to_ascii_uppercase()).collect()
 }
 
 /// [`check_sequence`] for a generic sequence: the map's entries are aliases

@@ -114,7 +114,7 @@ impl<'s> Parser<'s> {
         match self.toks.get(self.pos) {
             Some(&(l, Tok::Name(n), r)) => {
                 self.pos += 1;
-                Ok(Ident { text: n.trim().to_string(), span: Span::new(l, r) })
+                Ok(Ident { text: n.trim().into(), span: Span::new(l, r) })
             }
             _ => Err(self.error(expected)),
         }
@@ -247,11 +247,11 @@ impl<'s> Parser<'s> {
     fn check_name(&mut self, name: &Ident, dotted: &'static str) {
         let (span, text) = (name.span, name.text.clone());
         let e = if text.contains('.') {
-            SyntaxError::InvalidName { span, name: text, why: dotted }
+            SyntaxError::InvalidName { span, name: text.to_string(), why: dotted }
         } else if text.starts_with(|c: char| c.is_ascii_digit()) {
-            SyntaxError::InvalidName { span, name: text, why: "starts with a digit" }
+            SyntaxError::InvalidName { span, name: text.to_string(), why: "starts with a digit" }
         } else if text.chars().count() > 8 {
-            SyntaxError::NameTooLong { span, name: text }
+            SyntaxError::NameTooLong { span, name: text.to_string() }
         } else {
             return;
         };
@@ -422,8 +422,8 @@ impl Parser<'_> {
     /// typed by the ST checker here (its codes, not the ladder's).
     fn ladder_action(&mut self, l: usize) -> Action {
         let name = match self.toks.get(self.pos + 1) {
-            Some(&(nl, Tok::Name(n), nr)) => Ident { text: n.trim().to_string(), span: Span::new(nl, nr) },
-            _ => Ident { text: String::new(), span: self.here() },
+            Some(&(nl, Tok::Name(n), nr)) => Ident { text: n.trim().into(), span: Span::new(nl, nr) },
+            _ => Ident { text: crate::ast::Name::default(), span: self.here() },
         };
         let body_start = self.toks.get(self.pos + 3).map_or(l, |t| t.2);
         self.pos += 4;
@@ -450,17 +450,17 @@ impl Parser<'_> {
     fn chart_action(&mut self, l: usize) -> Action {
         self.pos += 1;
         let name = match self.toks.get(self.pos) {
-            Some(&(nl, Tok::Name(n), nr)) => Ident { text: n.trim().to_string(), span: Span::new(nl, nr) },
+            Some(&(nl, Tok::Name(n), nr)) => Ident { text: n.trim().into(), span: Span::new(nl, nr) },
             _ => {
                 self.error("an action name");
-                Ident { text: String::new(), span: self.here() }
+                Ident { text: crate::ast::Name::default(), span: self.here() }
             }
         };
         if name.text.contains('.')
             || name.text.chars().count() > 8
             || name.text.starts_with(|c: char| c.is_ascii_digit())
         {
-            self.push(SyntaxError::BadActionName { span: name.span, name: name.text.clone() }.to_diagnostic());
+            self.push(SyntaxError::BadActionName { span: name.span, name: name.text.to_string() }.to_diagnostic());
         }
         self.pos += 3;
         let mut chart = Chart::default();
@@ -493,7 +493,7 @@ impl Parser<'_> {
         let mut st = match file.and_then(|f| f.actions.into_iter().next()) {
             Some(a) => a,
             None => StAction {
-                name: Ident { text: stem, span: Span::new(0, 0) },
+                name: Ident { text: stem.into(), span: Span::new(0, 0) },
                 block_type: None,
                 body: Vec::new(),
                 header: None,

@@ -50,7 +50,7 @@ pub fn check(seq: &Sequence, out: &mut Vec<Diagnostic>) {
     steps(seq, out);
     let mut by_name = HashMap::new();
     for (i, a) in seq.actions.iter().enumerate().rev() {
-        by_name.insert(a.name.text.to_ascii_uppercase(), i);
+        by_name.insert(a.name.text.as_str().to_ascii_uppercase().to_string(), i);
     }
     let mut s = Sizer { seq, by_name, shares: HashMap::new(), levels: HashMap::new() };
     match s.below(&seq.chart, 0) {
@@ -76,7 +76,7 @@ impl<'s> Sizer<'s> {
     fn children(&self, c: &Chart) -> Vec<(usize, Span)> {
         let mut seen = Vec::new();
         for a in c.steps.iter().flat_map(|s| &s.assocs) {
-            if let Some(&g) = self.by_name.get(&a.action.text.to_ascii_uppercase()) {
+            if let Some(&g) = self.by_name.get(a.action.text.as_str().to_ascii_uppercase().as_str()) {
                 if !seen.iter().any(|&(h, _)| h == g) {
                     seen.push((g, a.span));
                 }
@@ -105,7 +105,7 @@ impl<'s> Sizer<'s> {
                 let action = self.seq.actions[g].name.text.clone();
                 Box::new(Diagnostic::from(SfcError::ChartsTooDeep {
                     span,
-                    action,
+                    action: action.to_string(),
                     depth: depth + levels,
                     limit: MAX_DEPTH,
                 }))
