@@ -417,6 +417,10 @@ fn refused_arguments(e: clap::Error) -> ExitCode {
     ExitCode::from(report::refused(&mut r, d))
 }
 
+/// See cli/Cargo.toml: frees from another thread without a lock.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() -> ExitCode {
     quiet_broken_pipe();
     let cli = match Cli::try_parse() {

@@ -13,8 +13,9 @@ use crate::token::Raw;
 use logos::Logos;
 use std::collections::VecDeque;
 
-/// A token as the grammar sees it.
-#[derive(Clone, Debug, PartialEq)]
+/// A token as the grammar sees it. `Copy`: it is handed through three
+/// layers (cooking, the depth guard, the parser) for every token.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Tok<'s> {
     If,
     Then,
@@ -235,7 +236,7 @@ impl<'s> Iterator for Lexer<'s> {
         if let Some(op) = glued_word_operator(self.last.as_ref(), &t.1) {
             self.glued.push((t.0, op));
         }
-        self.last = Some(t.1.clone());
+        self.last = Some(t.1);
         Some(t)
     }
 }
@@ -372,7 +373,7 @@ impl<'s> Cook<'s, '_> {
     /// `.Name` after `}` or `]` continues a name; after a name it is an
     /// illegal space inside it.
     fn dot_name(&mut self, text: &'s str, s: usize, e: usize) {
-        match self.out.back().map(|p| (p.0, p.1.clone(), p.2)) {
+        match self.out.back().map(|p| (p.0, p.1, p.2)) {
             Some((_, Tok::RBrace | Tok::Bracketed(_), pe)) => {
                 if pe != s {
                     self.errors.push(LexError::IllegalSpace {
@@ -597,7 +598,7 @@ mod tests {
     fn illegal_spaces_are_reported_and_repaired() {
         let (t, e) = lex("HEAT_PID. SL:=REC1. A3;");
         assert_eq!(e.len(), 2);
-        assert_eq!(t.iter().map(|t| t.1.clone()).collect::<Vec<_>>()[1], Tok::Assign);
+        assert_eq!(t.iter().map(|t| t.1).collect::<Vec<_>>()[1], Tok::Assign);
         let (t, e) = lex("a : = 3. 5");
         assert_eq!(e.len(), 2);
         assert_eq!(t[1].1, Tok::Assign);

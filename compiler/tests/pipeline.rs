@@ -57,7 +57,19 @@ fn a_file_past_the_error_limit_stops_at_the_same_place() {
 }
 
 #[test]
+fn lexical_errors_past_where_parsing_stopped_are_not_reported() {
+    // The lexing thread runs ahead of the parser; what it finds past the
+    // last token the parser took must not show, nor count as omitted.
+    let src = "xx := @ ;\nyy := 1 $ 2;\n".repeat(PIPELINE_MIN / 20);
+    let (_, _, errors) = parse_with(false, &src);
+    assert!(errors.contains("Stopped"), "the parse must stop at the error limit");
+    assert!(errors.contains("UnexpectedChar"), "there must be lexical errors");
+    assert_same("lexical errors past the stop", &src);
+}
+
+#[test]
 fn a_file_without_headers_hands_over_the_same_statements() {
-    let src = "Recipe.A0 := Recipe.A1 * 2 + 1;\nIF Dig_A.Out.Bit0 THEN Recipe.N0 := 1; END_IF;\n".repeat(PIPELINE_MIN / 60);
+    let src =
+        "Recipe.A0 := Recipe.A1 * 2 + 1;\nIF Dig_A.Out.Bit0 THEN Recipe.N0 := 1; END_IF;\n".repeat(PIPELINE_MIN / 60);
     assert_same("statements", &src);
 }
