@@ -242,8 +242,17 @@ pub fn rename(server: &Server, p: &RenameParams) -> Result<Option<WorkspaceEdit>
     if crate::symbols::KEYWORDS.iter().any(|k| k.eq_ignore_ascii_case(new)) {
         return Err(format!("`{new}` is a keyword"));
     }
+    // Only where the name means this step or action: `Fill.PV` is a block's
+    // field even in a sequence with a step Fill.
+    // (Asked inside the word: at its first character a cursor also touches
+    // the `(` before it.)
+    let same = |(s, e): (usize, usize)| match ctx.symbol_at((s + e) / 2) {
+        Some((Sym::Step(n) | Sym::Action(n), ..)) => n.eq_ignore_ascii_case(&name),
+        _ => false,
+    };
     let edits: Vec<TextEdit> = occurrences(&doc.text, &name)
         .into_iter()
+        .filter(|&occurrence| same(occurrence))
         .map(|(s, e)| TextEdit::new(doc.index.range(&doc.text, s, e), new.clone()))
         .collect();
     Ok(Some(WorkspaceEdit { changes: Some(HashMap::from([(doc.uri.clone(), edits)])), ..WorkspaceEdit::default() }))

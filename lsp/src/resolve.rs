@@ -127,7 +127,13 @@ impl<'a> Ctx<'a> {
             if is(&local.actions) && (call || parts.len() == 1) {
                 return Some((Sym::Action(name.to_string()), s, e));
             }
-            if is(&local.steps) {
+            // A step is named alone (declarations, transitions) or with `.X`
+            // or `.T`; a block of the same name wins, as in the checker.
+            let step_use = parts.len() == 1
+                || (parts.len() == 2
+                    && ["X", "T"].iter().any(|v| text(1).eq_ignore_ascii_case(v))
+                    && self.db().is_none_or(|db| db.block(name).is_none()));
+            if step_use && is(&local.steps) {
                 return Some((Sym::Step(name.to_string()), s, e));
             }
             if is(&local.labels) {

@@ -265,6 +265,28 @@ fn enumerations_complete_after_a_comparison_and_renames_are_checked() {
         assert!(e.as_ref().is_err_and(|m| m.contains(bad)), "{bad}: {e:?}");
     }
     c.shutdown();
+
+    // A step named like a block: `Plant.N0` is the block's field, and a
+    // rename of the step leaves it alone.
+    let mut c = sequences("lsp-rename-shadow");
+    let text = example("sequences/batch.sfc").replace("Aborted", "Plant");
+    c.open("batch.sfc", &text);
+    let (l, ch) = pos(&text, "STEP Plant", 6);
+    let edit = c.request(
+        "textDocument/rename",
+        json!({ "textDocument": { "uri": c.uri("batch.sfc") }, "position": { "line": l, "character": ch }, "newName": "Halted" }),
+    );
+    let edits = edit["changes"][c.uri("batch.sfc").as_str()].as_array().expect("edits").clone();
+    let lines: Vec<u64> = edits.iter().map(|e| e["range"]["start"]["line"].as_u64().expect("line")).collect();
+    let want: Vec<u64> = text
+        .lines()
+        .enumerate()
+        .filter(|(_, t)| t.contains("STEP Plant") || t.contains("TO Plant") || t.contains("FROM Plant"))
+        .map(|(i, _)| i as u64)
+        .collect();
+    assert_eq!(lines, want, "{edit}");
+    assert!(text.contains("Plant.N0"), "the block is still used");
+    c.shutdown();
 }
 
 #[test]
