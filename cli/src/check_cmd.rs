@@ -5,7 +5,6 @@ use linc_compiler::render::{Format, SourceFiles};
 use linc_compiler::session::{CheckOptions, Input, Session};
 use linc_compiler::sfc::resources::Instrument;
 use linc_driver::Reporter;
-use linc_runtime::Database;
 use std::path::PathBuf;
 
 pub struct Options {
@@ -27,14 +26,14 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
         Ok(db) => db,
         Err(status) => return status,
     };
-    let resolve_blocks = db.is_some();
-    let db = db.unwrap_or_else(Database::builtin);
+    let plain = Context::of(db.as_ref());
+    let (db, resolve_blocks) = (plain.db, plain.resolve_blocks);
     let any_step: &[String] = &[];
     let steps = (o.sequence || o.transition).then_some(any_step);
-    let mut session = Session::new(Context { db: &db, resolve_blocks, steps });
+    let mut session = Session::new(Context { steps, ..plain });
     let (mut errors, mut warnings, mut status) = (0usize, 0usize, 0u8);
     let bound = match &o.map {
-        Some(m) => match crate::sfc_cmd::load_map(m, &db, resolve_blocks, r) {
+        Some(m) => match crate::sfc_cmd::load_map(m, db, resolve_blocks, r) {
             Ok(b) => {
                 errors += b.errors;
                 Some(b)
@@ -52,7 +51,7 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     let sequence_options = bound.is_some() || o.allow_unmapped || o.resources.is_some() || o.tree;
     for path in &o.files {
         if sequence_options && linc_driver::source::is_sequence(path) {
-            let seq_db = bound.as_ref().map_or(&db, |b| &b.db);
+            let seq_db = bound.as_ref().map_or(db, |b| &b.db);
             let ctx = Context { db: seq_db, resolve_blocks, steps: None };
             match crate::sequence_src::check_with(path, ctx, &extra, (false, o.tree), r) {
                 Ok(c) => {

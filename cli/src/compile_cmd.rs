@@ -49,9 +49,9 @@ fn compile_mapped(
         crate::report::usage(r, format_args!("--map is for sequences: `{}` is not a .sfc file", file.display()));
         return Err(Failed(2));
     }
-    let builtin = Database::builtin();
-    let resolve_blocks = db.is_some();
-    let bound = crate::sfc_cmd::load_map(map, db.unwrap_or(&builtin), resolve_blocks, r).map_err(Failed)?;
+    let plain = Context::of(db);
+    let resolve_blocks = plain.resolve_blocks;
+    let bound = crate::sfc_cmd::load_map(map, plain.db, resolve_blocks, r).map_err(Failed)?;
     if bound.errors > 0 {
         return Err(Failed(1));
     }

@@ -9,7 +9,6 @@ use linc_compiler::ladder;
 use linc_compiler::render::SourceFiles;
 use linc_driver::database::load as load_db;
 use linc_driver::Reporter;
-use linc_runtime::Database;
 use std::path::{Path, PathBuf};
 
 #[derive(Subcommand)]
@@ -63,8 +62,7 @@ fn to_st(file: &Path, db: Option<&Path>, r: &mut Reporter) -> u8 {
         Ok(d) => d,
         Err(status) => return status,
     };
-    let resolve_blocks = loaded.is_some();
-    let db = loaded.unwrap_or_else(Database::builtin);
+    let ctx = Context::of(loaded.as_ref());
     let bytes = match linc_driver::files::read_input(file) {
         Ok(b) => b,
         Err(e) => {
@@ -80,7 +78,6 @@ fn to_st(file: &Path, db: Option<&Path>, r: &mut Reporter) -> u8 {
         return 1;
     }
     let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");
-    let ctx = Context { db: &db, resolve_blocks, steps: None };
     match ladder::to_st(&text, stem, ctx) {
         Ok(st) => {
             crate::out::print(&st);

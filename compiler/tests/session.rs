@@ -202,3 +202,26 @@ fn one_session_checks_and_compiles_every_kind_of_source() {
     assert_eq!(SourceKind::of_name("x.sto"), SourceKind::Object);
     assert_eq!(SourceKind::of("x.sto", b"R1.Batches := 0;\n"), SourceKind::Actions);
 }
+
+/// `Context::of`: with a database names are resolved; without, any block
+/// may exist at run time, but the built-in block types are still known.
+#[test]
+fn a_context_without_a_database_accepts_unknown_blocks() {
+    let codes = |ctx: Context| {
+        let mut s = Session::new(ctx);
+        let id = s.add(
+            "a.st",
+            b"ACTION a\n    XYZ_1.PV := 1.0;\nEND_ACTION\nACTION b : PID\n    PV := 1.0;\n    Nope := 1;\nEND_ACTION\n"
+                .to_vec(),
+        );
+        let diags = s.check(id, CheckOptions::default()).diagnostics;
+        diags.iter().map(|d| format!("{} {}", d.code.as_str(), d.message)).collect::<Vec<_>>()
+    };
+    let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
+    let with = codes(Context::of(Some(&db)));
+    assert!(with.len() == 2 && with[0].contains("XYZ_1") && with[1].contains("Nope"), "{with:?}");
+    // The unknown block passes; a lone name not a field of the own block does not.
+    let without = codes(Context::of(None));
+    assert!(without.len() == 1 && without[0].starts_with("E0100") && without[0].contains("Nope"), "{without:?}");
+    assert!(!Context::of(None).resolve_blocks && Context::of(Some(&db)).resolve_blocks);
+}

@@ -22,15 +22,7 @@ pub fn compile(
     r: &mut Reporter,
     errors_status: u8,
 ) -> Result<ObjectFile, Failed> {
-    let builtin;
-    let (db, resolve_blocks) = match db {
-        Some(d) => (d, true),
-        None => {
-            builtin = Database::builtin();
-            (&builtin, false)
-        }
-    };
-    let mut session = Session::compiling(Context { db, resolve_blocks, steps: None });
+    let mut session = Session::compiling(Context::of(db));
     for path in paths {
         let bytes = crate::files::read_input(path).map_err(|e| {
             r.unreadable(path, &e);

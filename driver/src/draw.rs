@@ -114,9 +114,7 @@ fn sequence(o: &Options, r: &mut Reporter) -> Result<String, u8> {
     }
     let (text, files, id) = source(o, r)?;
     let db = database(o, r)?;
-    let resolve_blocks = db.is_some();
-    let db = db.unwrap_or_else(Database::builtin);
-    let report = sfc::check_sequence(&text, Context { db: &db, resolve_blocks, steps: None });
+    let report = sfc::check_sequence(&text, Context::of(db.as_ref()));
     errors(&files, id, report.diagnostics, r)?;
     let Some(tree) = report.tree else { return Err(1) };
     if o.duration.is_none() {

@@ -26,9 +26,7 @@ pub fn evaluate(
 ) -> Result<linc_stdlib::Value, u8> {
     let mut dbfiles = SourceFiles::new();
     let db = load_db(db, &mut dbfiles, r)?;
-    let resolve_blocks = db.is_some();
-    let db = db.unwrap_or_else(Database::builtin);
-    let mut session = Session::new(Context { db: &db, resolve_blocks, steps: None });
+    let mut session = Session::new(Context::of(db.as_ref()));
     let id = session.add("<expr>", expr.as_bytes().to_vec());
     let checked = session.check(id, CheckOptions { input: Input::Expression, tree: false });
     r.emit_all(session.files(), &checked.diagnostics);
@@ -49,7 +47,8 @@ pub fn evaluate(
         Ok(s) => s,
         Err(msg) => return Err(crate::report::usage(r, msg)),
     };
-    let mut store = Store::new(db);
+    drop(session);
+    let mut store = Store::new(db.unwrap_or_else(Database::builtin));
     store.now = now as f64;
     let program = linc_runtime::Program { unit: 0, own: None };
     let result = linc_runtime::verify::verify(obj).and_then(|v| v.link(&store, &[program])).map(|linked| {

@@ -7,7 +7,6 @@ use crate::workspace::Workspace;
 use linc_compiler::check::Context;
 use linc_compiler::session::{CheckOptions, Session};
 use linc_compiler::{Diagnostic, Severity};
-use linc_runtime::Database;
 use lsp_types::{DiagnosticRelatedInformation, DiagnosticSeverity, Location, NumberOrString};
 
 pub fn diagnostics(ws: &Workspace, doc: &Doc) -> Vec<lsp_types::Diagnostic> {
@@ -21,15 +20,7 @@ pub fn diagnostics(ws: &Workspace, doc: &Doc) -> Vec<lsp_types::Diagnostic> {
 /// The file checked as `linc check --db` checks it.
 pub fn check(ws: &Workspace, doc: &Doc) -> Vec<Diagnostic> {
     let db = ws.db_for(&doc.path).and_then(|d| d.database());
-    let builtin;
-    let (db, resolve_blocks) = match db {
-        Some(db) => (db, true),
-        None => {
-            builtin = Database::builtin();
-            (&builtin, false)
-        }
-    };
-    let mut session = Session::new(Context { db, resolve_blocks, steps: None });
+    let mut session = Session::new(Context::of(db));
     let id = session.add(doc.lang.file_name(&doc.path), doc.text.as_bytes().to_vec());
     session.check(id, CheckOptions::default()).diagnostics
 }

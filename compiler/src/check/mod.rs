@@ -33,6 +33,18 @@ pub struct Context<'a> {
     pub steps: Option<&'a [String]>,
 }
 
+impl<'a> Context<'a> {
+    /// Checks against `db`; without one, against the built-in library's
+    /// block types with block names left unresolved (any block may exist at
+    /// run time), as `linc check` without `--db` does.
+    pub fn of(db: Option<&'a Database>) -> Context<'a> {
+        match db {
+            Some(db) => Context { db, resolve_blocks: true, steps: None },
+            None => Context { db: Database::builtin_shared(), resolve_blocks: false, steps: None },
+        }
+    }
+}
+
 /// Checks actions one at a time, keeping what spans actions: the limits of
 /// one object file and the errors found so far.
 pub struct Checker<'a> {

@@ -87,6 +87,13 @@ impl Database {
         db
     }
 
+    /// The built-in library, built once: what a check without a database
+    /// resolves block types against.
+    pub fn builtin_shared() -> &'static Database {
+        static BUILTIN_DB: std::sync::OnceLock<Database> = std::sync::OnceLock::new();
+        BUILTIN_DB.get_or_init(Database::builtin)
+    }
+
     /// Loads a database file over the built-in library.
     pub fn from_json(text: &str) -> Result<Database, DbError> {
         let mut db = Database::builtin();
