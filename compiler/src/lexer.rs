@@ -334,17 +334,18 @@ impl<'s> Cook<'s, '_> {
     /// split by a space (`: =`) is joined to the first, and reported.
     fn keyword(&mut self, tok: Raw, t: Tok<'static>, s: usize, e: usize) {
         if let Some(prev) = self.out.back_mut() {
-            if prev.2 < s && self.src[prev.2..s].trim().is_empty() {
-                if let Some(joined) = split_operator(&prev.1, tok) {
-                    self.errors.push(LexError::IllegalSpace {
-                        span: Span::new(prev.2, s),
-                        what: "an operator",
-                        fixed: keyword_text(&joined),
-                    });
-                    prev.1 = joined;
-                    prev.2 = e;
-                    return;
-                }
+            // The pair is tested first: it is cheap and nearly always fails,
+            // while the blank test reads the gap before every keyword.
+            let joined = split_operator(&prev.1, tok);
+            if let Some(joined) = joined.filter(|_| prev.2 < s && self.src[prev.2..s].trim().is_empty()) {
+                self.errors.push(LexError::IllegalSpace {
+                    span: Span::new(prev.2, s),
+                    what: "an operator",
+                    fixed: keyword_text(&joined),
+                });
+                prev.1 = joined;
+                prev.2 = e;
+                return;
             }
         }
         self.out.push_back((s, t, e));
