@@ -26,7 +26,6 @@ fn main() {
     }
     println!("best {:.1} ms, {:.1} MiB/s", best * 1e3, src.len() as f64 / 1048576.0 / best);
 }
-#[allow(dead_code)]
 fn parse_only(src: &str) -> f64 {
     let t = std::time::Instant::now();
     let mut n = 0usize;

@@ -3,7 +3,7 @@
 //! Keeping them here keeps the grammar readable and lets the name rules
 //! (§12.8: at most 8 characters, no leading digit) live in plain Rust.
 
-use crate::ast::{Action, BinOp, Expr, ExprKind, Ident, Seg, Stmt, UnOp, Var};
+use crate::ast::{Action, BinOp, Expr, ExprKind, Ident, Name, Seg, Stmt, UnOp, Var};
 use crate::diagnostic::Capped;
 use crate::errors::SyntaxError;
 use crate::lexer::Tok;
@@ -104,7 +104,7 @@ pub struct VarNode {
 #[derive(Debug)]
 pub enum Suffix {
     Offset(Node, Span),
-    Field(String, Span),
+    Field(Name, Span),
 }
 
 /// Saturates an integer constant's magnitude at 2^31, so that a following
@@ -356,7 +356,7 @@ pub fn var(
                 end = span.end;
                 let nspan = Span::new(span.start + 1, span.end);
                 check_ident(syntax, &name, nspan);
-                segs.push(Seg { name: Ident { text: name.into(), span: nspan }, offset: None });
+                segs.push(Seg { name: Ident { text: name, span: nspan }, offset: None });
             }
         }
     }

@@ -57,9 +57,9 @@ fn a_file_past_the_error_limit_stops_at_the_same_place() {
 }
 
 #[test]
-fn lexical_errors_past_where_parsing_stopped_are_not_reported() {
-    // The lexing thread runs ahead of the parser; what it finds past the
-    // last token the parser took must not show, nor count as omitted.
+fn lexical_errors_and_the_error_limit_are_the_same_on_two_threads() {
+    // The parser thread reads ahead of the sink; where the parse stops, and
+    // which lexical errors it reports and counts as omitted, must not change.
     let src = "xx := @ ;\nyy := 1 $ 2;\n".repeat(PIPELINE_MIN / 20);
     let (_, _, errors) = parse_with(false, &src);
     assert!(errors.contains("Stopped"), "the parse must stop at the error limit");

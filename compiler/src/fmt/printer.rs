@@ -74,7 +74,7 @@ impl<'a> Printer<'a> {
     pub fn gap(&mut self, gap: Gap, starts_line: bool) {
         self.set_indent();
         let comments = &self.comments[gap.comments.0 as usize..gap.comments.1 as usize];
-        let n = comments.len();
+        let (n, src) = (comments.len(), self.src);
         for (k, c) in comments.iter().enumerate() {
             let text = &self.src[c.start..c.end];
             let newline_after = comments.get(k + 1).map(|d| d.own_line).unwrap_or(gap.newline);
@@ -85,13 +85,11 @@ impl<'a> Printer<'a> {
                     self.out.newline();
                 }
                 self.set_indent();
-                let src = self.src;
                 self.out.comment(text, || column(src, c.start), false);
                 if newline_after {
                     self.out.newline();
                 }
             } else {
-                let src = self.src;
                 self.out.comment(text, || column(src, c.start), true);
                 if newline_after && k + 1 < n {
                     self.out.newline();

@@ -45,7 +45,7 @@ pub fn jumps(rungs: &[Rung]) -> (Vec<Option<usize>>, Vec<Diagnostic>) {
             );
             continue;
         }
-        match labels.get(key.as_str()) {
+        match labels.get(&key) {
             Some(&(_, first)) => diags.push(
                 Diagnostic::error(Code::E0303, format!("label `{}` is defined twice", l.text), l.span)
                     .label("second definition")
@@ -53,7 +53,7 @@ pub fn jumps(rungs: &[Rung]) -> (Vec<Option<usize>>, Vec<Diagnostic>) {
                     .help("labels ignore case and are unique within an action"),
             ),
             None => {
-                labels.insert(key.to_string(), (i, l.span));
+                labels.insert(key, (i, l.span));
             }
         }
     }

@@ -69,8 +69,8 @@ impl Transition {
             return n.text.to_string();
         }
         let list = |v: &[Ident]| match v {
-            [one] => one.text.clone(),
-            many => format!("({})", many.iter().map(|i| i.text.as_str()).collect::<Vec<_>>().join(", ")).into(),
+            [one] => one.text.to_string(),
+            many => format!("({})", many.iter().map(|i| i.text.as_str()).collect::<Vec<_>>().join(", ")),
         };
         format!("{} to {}", list(&self.from), list(&self.to))
     }

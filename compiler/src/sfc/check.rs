@@ -74,7 +74,7 @@ fn first_span(c: &Chart) -> Span {
 }
 
 fn key(i: &Ident) -> String {
-    i.text.as_str().to_ascii_uppercase().to_string()
+    i.text.as_str().to_ascii_uppercase()
 }
 
 /// Every step of the sequence, each name once; reports duplicates.

@@ -50,7 +50,7 @@ pub fn lower(seq: &Sequence, name: &str, file: &str, src: &str, ctx: Context) ->
     let slots = steps.iter().enumerate().map(|(i, s)| (s.to_ascii_uppercase(), i as u16)).collect();
     let mut actions = HashMap::with_capacity(seq.actions.len());
     for (i, a) in seq.actions.iter().enumerate() {
-        actions.entry(a.name.text.as_str().to_ascii_uppercase().to_string()).or_insert(i);
+        actions.entry(a.name.text.as_str().to_ascii_uppercase()).or_insert(i);
     }
     let mut l = Lowering {
         seq,

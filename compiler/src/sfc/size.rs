@@ -50,7 +50,7 @@ pub fn check(seq: &Sequence, out: &mut Vec<Diagnostic>) {
     steps(seq, out);
     let mut by_name = HashMap::new();
     for (i, a) in seq.actions.iter().enumerate().rev() {
-        by_name.insert(a.name.text.as_str().to_ascii_uppercase().to_string(), i);
+        by_name.insert(a.name.text.as_str().to_ascii_uppercase(), i);
     }
     let mut s = Sizer { seq, by_name, shares: HashMap::new(), levels: HashMap::new() };
     match s.below(&seq.chart, 0) {
