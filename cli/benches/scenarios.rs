@@ -39,8 +39,7 @@ fn run(dir: &Path, jobs: usize) -> (f64, Vec<u8>, Vec<u8>) {
 }
 
 fn main() {
-    let dir = std::env::temp_dir().join(format!("linc-bench-scenarios-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
+    let dir = linc_test_support::temp_dir("bench-scenarios");
     write_scenarios(&dir);
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let (serial, out1, junit1) = run(&dir, 1);

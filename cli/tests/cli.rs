@@ -22,8 +22,7 @@ const DB: &str = "examples/guide/plant.db.json";
 
 /// Writes `text` to a fresh temporary file named `name` and returns its path.
 fn temp_file(name: &str, text: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("linc-cli-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
+    let dir = linc_test_support::temp_dir(&format!("cli-{name}"));
     let path = dir.join(name);
     std::fs::write(&path, text).expect("write temp file");
     path.to_string_lossy().into_owned()

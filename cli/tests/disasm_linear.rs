@@ -15,8 +15,7 @@ fn linc(args: &[&str]) -> (bool, Duration) {
 
 /// Compiles `n` statements into an object and times its listing.
 fn disasm_time(n: usize) -> Duration {
-    let dir = std::env::temp_dir().join(format!("linc-disasm-{}-{n}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("dir");
+    let dir = linc_test_support::temp_dir(&format!("disasm-{n}"));
     let src = dir.join("big.st");
     let sto = dir.join("big.sto");
     std::fs::write(&src, "Recipe.N0 := Recipe.N0 + 1;\nRecipe.A0 := Recipe.A0 * 0.5;\n".repeat(n / 2)).expect("write");
@@ -47,8 +46,7 @@ fn disasm_time_grows_linearly() {
 /// pushed 4,000 times made 4.3 GB of listing.
 #[test]
 fn a_long_constant_is_listed_once() {
-    let dir = std::env::temp_dir().join(format!("linc-disasm-const-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("dir");
+    let dir = linc_test_support::temp_dir("disasm-const");
     let (src, sto) = (dir.join("const.st"), dir.join("const.sto"));
     let long = "x".repeat(100_000);
     std::fs::write(&src, format!("Recipe.N0 := LEN('{long}');\n").repeat(30)).expect("write");

@@ -8,8 +8,7 @@ use common::{linc, stderr, DB};
 /// Writes `bytes` to `dir/name` in a fresh temporary directory of this test
 /// run and returns its path.
 fn temp(dir: &str, name: &str, bytes: &[u8]) -> String {
-    let dir = std::env::temp_dir().join(format!("linc-session-{}", std::process::id())).join(dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
+    let dir = linc_test_support::temp_dir(&format!("session-{dir}"));
     let path = dir.join(name);
     std::fs::write(&path, bytes).expect("write temp file");
     path.to_string_lossy().into_owned()

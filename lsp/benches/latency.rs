@@ -39,8 +39,7 @@ fn server(dir: &std::path::Path) -> Server {
 }
 
 fn bench(c: &mut Criterion) {
-    let dir = std::env::temp_dir().join(format!("linc-lsp-bench-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("dir");
+    let dir = linc_test_support::temp_dir("lsp-bench");
     let mut s = server(&dir);
     let text = five_thousand_lines();
     let lines = text.lines().count();

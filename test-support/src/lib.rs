@@ -7,20 +7,7 @@
 
 pub mod alloc;
 pub mod rng;
+pub mod scratch;
 
 pub use rng::Rng;
-
-/// The directory `tag` of this process's tests, made if missing; a test
-/// may ask for it again and find its files.
-pub fn temp_dir(tag: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("linc-test-{}-{tag}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("scratch directory");
-    dir
-}
-
-/// [`temp_dir`], emptied first: a fresh directory for one test.
-pub fn fresh_dir(tag: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("linc-test-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    temp_dir(tag)
-}
+pub use scratch::{fresh_dir, temp_dir};
