@@ -3,6 +3,7 @@
 use super::json::{check_name, code, object, DbError};
 use super::schema::{FieldDef, FieldType, InitValue, Template};
 use super::tree::{get, Json, Member, Node};
+use super::RocType;
 use crate::code::Code;
 use std::collections::HashSet;
 
@@ -11,8 +12,8 @@ pub const MAX_ENUM_VALUES: usize = 1 << 16;
 
 /// A template's field from `"Name": <type spec>`.
 pub(super) fn field_spec(template: &str, m: &Member) -> Result<FieldDef, DbError> {
-    let (ty, readonly) = type_spec(template, &m.key, &m.value)?;
-    Ok(FieldDef { name: m.key.clone(), ty, readonly })
+    let (ty, readonly, wire) = type_spec(template, &m.key, &m.value)?;
+    Ok(FieldDef { name: m.key.clone(), ty, readonly, wire })
 }
 
 fn unknown_type(template: &str, field: &str, node: &Node) -> DbError {
@@ -23,7 +24,9 @@ fn unknown_type(template: &str, field: &str, node: &Node) -> DbError {
     )
 }
 
-fn type_spec(template: &str, field: &str, node: &Node) -> Result<(FieldType, bool), DbError> {
+/// A field's type, whether it is read-only, and the ROC type it travels as
+/// if the template names one.
+fn type_spec(template: &str, field: &str, node: &Node) -> Result<(FieldType, bool, Option<RocType>), DbError> {
     let bad = || unknown_type(template, field, node);
     match &node.v {
         Json::Str(s) => {
@@ -40,14 +43,17 @@ fn type_spec(template: &str, field: &str, node: &Node) -> Result<(FieldType, boo
                 "WSTR" => FieldType::Wstr,
                 _ => return Err(bad()),
             };
-            Ok((ty, false))
+            Ok((ty, false, None))
         }
         Json::Obj(m) if get(m, "type").is_some() => {
             let mut ty = None;
             let mut readonly = false;
+            let mut wire = None;
             for member in m {
                 match (member.key.as_str(), &member.value.v) {
                     ("type", _) => ty = Some(type_spec(template, field, &member.value)?.0),
+                    ("wire", Json::Str(w)) => wire = Some((RocType::parse(w), member.value.span)),
+                    ("wire", _) => wire = Some((None, member.value.span)),
                     ("readonly", Json::Bool(b)) => readonly = *b,
                     ("readonly", _) => {
                         let message = format!(
@@ -58,13 +64,24 @@ fn type_spec(template: &str, field: &str, node: &Node) -> Result<(FieldType, boo
                     }
                     (key, _) => {
                         let message = format!(
-                            "unknown key `{key}` in the type of field `{template}.{field}` (expected type, readonly)"
+                            "unknown key `{key}` in the type of field `{template}.{field}` (expected type, readonly, wire)"
                         );
                         return Err(DbError::at(code::FIELD_TYPE, message, member.key_span));
                     }
                 }
             }
-            Ok((ty.ok_or_else(bad)?, readonly))
+            let ty = ty.ok_or_else(bad)?;
+            let wire = match wire {
+                None => None,
+                Some((Some(w), _)) if w.fits(&ty) => Some(w),
+                Some((_, span)) => {
+                    let message = format!(
+                        "`wire` of field `{template}.{field}` must name a ROC type that carries its type: AC1…AC255 for STRING, FL for REAL, BIN, INT8, INT16, INT32, UINT8, UINT16 or UINT32 for whole numbers"
+                    );
+                    return Err(DbError::at(code::FIELD_TYPE, message, span));
+                }
+            };
+            Ok((ty, readonly, wire))
         }
         Json::Obj(m) if m.len() == 1 => {
             let kind = m[0].key.to_ascii_uppercase();
@@ -88,7 +105,7 @@ fn type_spec(template: &str, field: &str, node: &Node) -> Result<(FieldType, boo
                 "BITS16" if names.len() <= 16 => FieldType::Bits { width: 16, names },
                 _ => return Err(bad()),
             };
-            Ok((ty, false))
+            Ok((ty, false, None))
         }
         _ => Err(bad()),
     }

@@ -7,7 +7,7 @@
 //! template whose type number on the database's device family is `T`, and
 //! that block's field `P`.
 
-use super::schema::Database;
+use super::schema::{Database, FieldType};
 use std::fmt;
 
 /// A ROC device family: it decides which point type numbers a TLP uses.
@@ -46,6 +46,112 @@ pub struct Tlp {
 impl fmt::Display for Tlp {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{},{},{}", self.t, self.l, self.p)
+    }
+}
+
+/// How a parameter's value travels in ROC Plus opcodes 180 and 181
+/// (docs/roc-protocol.md): integers at their width little-endian, `FL` an
+/// IEEE-754 float32 little-endian, `AC(n)` n bytes of ASCII padded with
+/// spaces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RocType {
+    Bin,
+    Int8,
+    Int16,
+    Int32,
+    Uint8,
+    Uint16,
+    Uint32,
+    Fl,
+    Ac(u8),
+}
+
+impl RocType {
+    /// Bytes on the wire.
+    pub fn size(self) -> usize {
+        match self {
+            RocType::Bin | RocType::Int8 | RocType::Uint8 => 1,
+            RocType::Int16 | RocType::Uint16 => 2,
+            RocType::Int32 | RocType::Uint32 | RocType::Fl => 4,
+            RocType::Ac(n) => usize::from(n),
+        }
+    }
+
+    /// The range of whole numbers an integer type carries; `None` for FL
+    /// and text.
+    pub fn range(self) -> Option<(i64, i64)> {
+        Some(match self {
+            RocType::Bin => (0, 1),
+            RocType::Int8 => (i8::MIN.into(), i8::MAX.into()),
+            RocType::Int16 => (i16::MIN.into(), i16::MAX.into()),
+            RocType::Int32 => (i32::MIN.into(), i32::MAX.into()),
+            RocType::Uint8 => (0, u8::MAX.into()),
+            RocType::Uint16 => (0, u16::MAX.into()),
+            RocType::Uint32 => (0, u32::MAX.into()),
+            RocType::Fl | RocType::Ac(_) => return None,
+        })
+    }
+
+    /// The name as the protocol's documents write it (`UINT8`, `FL`, `AC10`).
+    pub fn name(self) -> String {
+        match self {
+            RocType::Bin => "BIN".into(),
+            RocType::Int8 => "INT8".into(),
+            RocType::Int16 => "INT16".into(),
+            RocType::Int32 => "INT32".into(),
+            RocType::Uint8 => "UINT8".into(),
+            RocType::Uint16 => "UINT16".into(),
+            RocType::Uint32 => "UINT32".into(),
+            RocType::Fl => "FL".into(),
+            RocType::Ac(n) => format!("AC{n}"),
+        }
+    }
+
+    /// A type by name, ignoring case; `AC1`…`AC255`.
+    pub fn parse(name: &str) -> Option<RocType> {
+        let up = name.to_ascii_uppercase();
+        if let Some(n) = up.strip_prefix("AC") {
+            return n.parse::<u8>().ok().filter(|&n| n > 0).map(RocType::Ac);
+        }
+        [
+            RocType::Bin,
+            RocType::Int8,
+            RocType::Int16,
+            RocType::Int32,
+            RocType::Uint8,
+            RocType::Uint16,
+            RocType::Uint32,
+            RocType::Fl,
+        ]
+        .into_iter()
+        .find(|t| t.name() == up)
+    }
+
+    /// The type a field of `ty` travels as unless its template says
+    /// otherwise: REAL as FL, INT as INT32 (linc's INT is 32 bits), BOOL as
+    /// BIN, BITS8 and ENUM (its index) as UINT8, BITS16 as UINT16, text as
+    /// AC10 (a ROC tag). Other types have no ROC form.
+    pub fn default_for(ty: &FieldType) -> Option<RocType> {
+        Some(match ty {
+            FieldType::Real => RocType::Fl,
+            FieldType::Int => RocType::Int32,
+            FieldType::Bool => RocType::Bin,
+            FieldType::Bits { width: 8, .. } | FieldType::Enum(_) => RocType::Uint8,
+            FieldType::Bits { .. } => RocType::Uint16,
+            FieldType::String => RocType::Ac(10),
+            _ => return None,
+        })
+    }
+
+    /// Whether a field of `ty` may travel as this type: text as `AC`, REAL
+    /// as FL, whole-number fields as any integer type.
+    pub fn fits(self, ty: &FieldType) -> bool {
+        match (self, ty) {
+            (RocType::Ac(_), FieldType::String) | (RocType::Fl, FieldType::Real) => true,
+            (RocType::Ac(_) | RocType::Fl, _) => false,
+            (_, FieldType::Int | FieldType::Bool | FieldType::Bits { .. } | FieldType::Enum(_)) => true,
+            _ => false,
+        }
     }
 }
 
@@ -88,6 +194,14 @@ impl Database {
             .map(|(i, _)| i)?;
         let field = usize::from(tlp.p);
         (field < self.templates[template].fields.len()).then_some((block, field))
+    }
+
+    /// How ROC Plus carries a field of a ROC point: its template's `wire`,
+    /// else [`RocType::default_for`] its type; `None` for a field of a type
+    /// with no ROC form.
+    pub fn roc_type(&self, block: usize, field: usize) -> Option<RocType> {
+        let f = self.block_template(block).fields.get(field)?;
+        f.wire.or_else(|| RocType::default_for(&f.ty))
     }
 
     /// The numeric TLP of a block's field, if the block is a ROC point.
@@ -135,6 +249,51 @@ mod tests {
         assert_eq!(roc.tlp_target(Tlp { t: 7, l: 0, p: 0 }), None);
         let act = Database::from_json(r#"{"blocks": {"A": {"type": "ACTION"}}}"#).unwrap();
         assert_eq!(act.tlp_of(0, 0), None, "an ACTION block is not a ROC point");
+    }
+
+    #[test]
+    fn roc_types_by_name_size_and_what_they_carry() {
+        for t in ["BIN", "INT8", "INT16", "INT32", "UINT8", "UINT16", "UINT32", "FL", "AC1", "AC30", "AC255"] {
+            assert_eq!(RocType::parse(t).map(RocType::name).as_deref(), Some(t));
+        }
+        assert_eq!(RocType::parse("ac10"), Some(RocType::Ac(10)));
+        for bad in ["AC0", "AC256", "AC", "FLOAT", "", "INT64"] {
+            assert_eq!(RocType::parse(bad), None, "{bad}");
+        }
+        assert_eq!(RocType::Ac(30).size(), 30);
+        assert_eq!(RocType::Uint32.range(), Some((0, 4_294_967_295)));
+        assert!(RocType::Uint8.fits(&FieldType::Int) && !RocType::Fl.fits(&FieldType::Int));
+        assert!(!RocType::Ac(4).fits(&FieldType::Real) && RocType::Ac(4).fits(&FieldType::String));
+    }
+
+    #[test]
+    fn a_field_travels_as_its_template_says_or_as_its_type() {
+        let roc = db("ROC800");
+        let f = roc.block("FST 1").unwrap();
+        let field = |n: &str| roc.block_template(f).field(n).unwrap();
+        assert_eq!(roc.roc_type(f, field("RR")), Some(RocType::Fl));
+        assert_eq!(roc.roc_type(f, field("TAG")), Some(RocType::Ac(10)));
+        assert_eq!(roc.roc_type(f, field("MSG1")), Some(RocType::Ac(30)));
+        assert_eq!(roc.roc_type(f, field("RUNFLG")), Some(RocType::Uint8));
+        assert_eq!(roc.roc_type(f, field("CMPFLG")), Some(RocType::Uint8));
+        assert_eq!(roc.roc_type(f, 999), None);
+    }
+
+    #[test]
+    fn a_wire_type_that_cannot_carry_the_field_is_refused_where_it_is_written() {
+        for (spec, ok) in [(r#""wire": "UINT8""#, true), (r#""wire": "AC8""#, false), (r#""wire": 8"#, false)] {
+            let text = format!(
+                r#"{{"templates": {{"T": {{"fields": {{"N": {{"type": "INT", {spec}}}}}}}}}, "blocks": {{}}}}"#
+            );
+            match Database::from_json(&text) {
+                Ok(_) => assert!(ok, "{spec} accepted"),
+                Err(e) => {
+                    assert!(!ok, "{spec}: {e:?}");
+                    let d = format!("{e:?}");
+                    assert!(d.contains("E0802") && d.contains("wire"), "{d}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -79,6 +79,9 @@ pub struct FieldDef {
     pub ty: FieldType,
     /// Computed by the block itself; actions may read but not write it.
     pub readonly: bool,
+    /// How ROC Plus carries it, when not [`RocType::default_for`] its type
+    /// (`"wire": "AC30"` in the template).
+    pub wire: Option<super::RocType>,
 }
 
 /// A block type: an ordered list of fields. Field order is the order that

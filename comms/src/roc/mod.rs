@@ -1,0 +1,8 @@
+//! ROC Plus: frames with CRC-16/ARC, TLP-addressed parameters and the
+//! opcodes a host uses (docs/roc-protocol.md).
+
+pub mod crc;
+pub mod frame;
+pub mod value;
+
+pub use frame::{Address, Deframer, Frame};
