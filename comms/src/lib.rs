@@ -6,4 +6,5 @@
 //! uses a plain blocking socket because a poll table runs one command at a
 //! time.
 
+pub mod error;
 pub mod roc;

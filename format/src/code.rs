@@ -248,6 +248,10 @@ codes! {
     E0904 => "--block names a block of another type",
     E0910 => "trace line is not a trace record",
     E0911 => "trend field the trace never writes",
+    E0920 => "ROC host word file is invalid",
+    E0921 => "ROC command list has the wrong shape",
+    E0922 => "ROC command has a value out of range",
+    E0923 => "ROC command asks for what the host does not support",
 }
 
 impl Code {

@@ -145,6 +145,25 @@ mod tests {
         assert!(frame(1, &[0; 256]).encode().is_none());
     }
 
+    /// Frames published with their CRCs: an opcode 180 request quoted
+    /// from a capture (rsdn.org forum, thread 1509298, which also quotes the
+    /// specification's CRC paragraph) and the ROC protocol's opcode 17 test
+    /// frame of the Go driver abferm/roc (message_test.go), which frames
+    /// and checks the same way.
+    #[test]
+    fn published_frames_decode_with_their_crcs() {
+        let capture = [0x01, 0x02, 0x03, 0x01, 0xB4, 0x04, 0x01, 0x2E, 0x00, 0x33, 0xD3, 0xE4];
+        let (f, n) = Frame::decode(&capture).unwrap();
+        assert_eq!(n, capture.len());
+        assert_eq!((f.dst, f.src, f.opcode), (Address { unit: 1, group: 2 }, Address { unit: 3, group: 1 }, 180));
+        assert_eq!(f.data, [1, 46, 0, 51], "one parameter: TLP 46,0,51");
+        assert_eq!(f.encode().unwrap(), capture);
+        let login = [0x01, 0x02, 0x01, 0x00, 0x11, 0x03, b'M', b'O', b'C', 0x85, 0x18];
+        let (f, _) = Frame::decode(&login).unwrap();
+        assert_eq!((f.opcode, f.data.as_slice()), (17, &b"MOC"[..]));
+        assert_eq!(crc16(&capture), 0, "a frame with its CRC checks to zero");
+    }
+
     #[test]
     fn frames_split_over_reads_and_several_in_one_read() {
         let a = frame(180, &[1, 3, 0, 2]);

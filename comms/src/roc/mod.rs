@@ -3,6 +3,8 @@
 
 pub mod crc;
 pub mod frame;
+pub mod host;
+pub mod ops;
 pub mod value;
 
 pub use frame::{Address, Deframer, Frame};

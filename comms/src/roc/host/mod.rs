@@ -1,0 +1,10 @@
+//! The host side of ROC Plus, as the communication module's master runs it
+//! (`003_…` §4.4 and §6): a command list polled against a device, with a
+//! module database of 16-bit words holding the TLPs, the values read and
+//! the values to write (docs/roc-host.md).
+
+pub mod commands;
+pub mod words;
+
+pub use commands::Command;
+pub use words::Words;
