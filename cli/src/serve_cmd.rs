@@ -53,6 +53,18 @@ pub struct ServeArgs {
     /// With --state: ignore the state file and start cold (it is still saved).
     #[arg(long, requires = "state")]
     pub cold: bool,
+    /// Also be a ROC Plus device on this TCP port (loopback) or ADDR:PORT (any other address must be named).
+    #[arg(long, value_name = "[ADDR:]PORT", value_parser = wire_addr)]
+    pub roc: Option<SocketAddr>,
+    /// The ROC unit and group the device answers to.
+    #[arg(long, value_name = "UNIT,GROUP", default_value = "1,2", value_parser = roc_address, requires = "roc")]
+    pub roc_address: linc_comms::roc::Address,
+    /// Most clients connected to each wire server at once; more are refused and logged.
+    #[arg(long, value_name = "N", default_value_t = 64, value_parser = clap::value_parser!(u16).range(1..=4096))]
+    pub max_clients: u16,
+    /// Drop a wire client that sends nothing for this long.
+    #[arg(long, value_name = "DURATION", default_value = "60s")]
+    pub client_timeout: String,
     /// Which tier runs the code; `compiled` translates every block at the start rather than
     /// while the plant runs (translation happens on the plant's thread, between scans).
     #[arg(long, value_enum, default_value = "auto")]
@@ -70,6 +82,24 @@ fn speed(s: &str) -> Result<SpeedArg, String> {
         Ok(k) if k.is_finite() && (0.001..=1_000_000.0).contains(&k) => Ok(SpeedArg(Speed::Times(k))),
         _ => Err("a speed is a number from 0.001 to 1000000 (times the wall clock), or max".into()),
     }
+}
+
+/// `PORT` (on loopback) or `ADDR:PORT`: a wire server listens on loopback
+/// unless another address is named.
+fn wire_addr(s: &str) -> Result<SocketAddr, String> {
+    if let Ok(port) = s.parse::<u16>() {
+        return Ok(SocketAddr::from(([127, 0, 0, 1], port)));
+    }
+    s.parse().map_err(|_| format!("`{s}` is not a port or ADDR:PORT (127.0.0.1:4000)"))
+}
+
+/// `UNIT,GROUP`, each 0 to 255.
+fn roc_address(s: &str) -> Result<linc_comms::roc::Address, String> {
+    let bad = || format!("`{s}` is not UNIT,GROUP (two numbers from 0 to 255, like 1,2)");
+    let (u, g) = s.split_once(',').ok_or_else(bad)?;
+    let unit = u.trim().parse().map_err(|_| bad())?;
+    let group = g.trim().parse().map_err(|_| bad())?;
+    Ok(linc_comms::roc::Address { unit, group })
 }
 
 /// Set by SIGINT (Ctrl-C): the main loop stops the server cleanly.
@@ -94,6 +124,10 @@ pub fn run(a: ServeArgs, r: &mut Reporter) -> u8 {
     let until_us = match a.duration.as_deref().map(linc_driver::database::duration).transpose() {
         Ok(d) => d,
         Err(msg) => return crate::report::usage(r, msg),
+    };
+    let idle = match linc_driver::database::duration(&a.client_timeout) {
+        Ok(us) => Duration::from_micros(us),
+        Err(msg) => return crate::report::usage(r, format!("--client-timeout: {msg}")),
     };
     let common = Common {
         set: a.set,
@@ -120,13 +154,16 @@ pub fn run(a: ServeArgs, r: &mut Reporter) -> u8 {
     let wants = linc_engines::strategy::wanted(&strategy.store);
     let dir = a.file.parent().map(PathBuf::from).unwrap_or_default();
     let until_us = until_us.map(|d| strategy.elapsed_us().saturating_add(d));
+    let limits = linc_serve::Limits { max_clients: usize::from(a.max_clients), idle, ..Default::default() };
     let cfg = Config {
-        addr: a.http,
         speed: a.speed.0,
         token: a.token,
         allow_writes: a.allow_writes,
         until_us,
         state: a.state.clone(),
+        roc: a.roc.map(|addr| (addr, a.roc_address)),
+        limits,
+        ..Config::new(a.http)
     };
     let server = match linc_serve::start(Console::new(strategy), &wants, &dir, cfg) {
         Ok(s) => s,
@@ -134,6 +171,9 @@ pub fn run(a: ServeArgs, r: &mut Reporter) -> u8 {
     };
     let mode = if a.allow_writes { "controls on" } else { "read-only" };
     crate::out::line(&format!("serving http://{}/ ({mode}); Ctrl-C stops", server.addr()));
+    if let Some(roc) = server.roc_addr() {
+        crate::out::line(&format!("ROC Plus device {} on {roc}", a.roc_address));
+    }
     on_interrupt();
     if a.console {
         let handle = server.handle();

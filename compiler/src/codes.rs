@@ -32,7 +32,7 @@ mod tests {
         }
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
         let mut out = Vec::new();
-        for krate in ["stdlib", "format", "runtime", "engines", "compiler", "driver", "draw", "cli"] {
+        for krate in ["stdlib", "format", "runtime", "engines", "compiler", "driver", "draw", "comms", "serve", "cli"] {
             walk(&root.join(krate).join("src"), &mut out);
         }
         out

@@ -50,13 +50,31 @@ impl AppState {
     }
 }
 
+/// The wire servers that run beside the HTTP one, on the same runtime.
+pub struct Wires {
+    pub roc: Option<(std::net::TcpListener, linc_comms::roc::Address)>,
+    pub asks: Sender<Ask>,
+    pub limits: crate::wire::Limits,
+    pub log: crate::wire::Log,
+}
+
 /// Serves until `closed` fires, then ends the event streams and returns.
-pub fn serve(listener: std::net::TcpListener, state: AppState, closed: oneshot::Receiver<()>) {
+pub fn serve(listener: std::net::TcpListener, state: AppState, wires: Wires, closed: oneshot::Receiver<()>) {
     let Ok(rt) = tokio::runtime::Builder::new_multi_thread().worker_threads(2).enable_all().build() else { return };
     let close = state.close.clone();
+    let closing = state.closing.clone();
     let app = router(state);
     rt.block_on(async move {
         let Ok(listener) = tokio::net::TcpListener::from_std(listener) else { return };
+        if let Some((l, me)) = wires.roc {
+            if let Ok(l) = tokio::net::TcpListener::from_std(l) {
+                let (asks, limits, log) = (wires.asks.clone(), wires.limits, wires.log.clone());
+                let serve_one = move |stream, peer| {
+                    crate::wire::roc_server::client(stream, peer, me, asks.clone(), limits, log.clone())
+                };
+                tokio::spawn(crate::wire::net::accept("roc", l, limits, wires.log.clone(), closing.clone(), serve_one));
+            }
+        }
         let shutdown = async move {
             let _ = closed.await;
             let _ = close.send(true);

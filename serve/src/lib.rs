@@ -12,6 +12,9 @@ mod http;
 mod json;
 mod pictures;
 mod plant;
+mod wire;
+
+pub use wire::{Limits, Log};
 
 use linc_engines::console::{Console, ConsoleError};
 use linc_engines::strategy::Want;
@@ -34,7 +37,7 @@ pub enum Speed {
 }
 
 /// How to serve.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Config {
     pub addr: SocketAddr,
     pub speed: Speed,
@@ -45,6 +48,32 @@ pub struct Config {
     pub until_us: Option<u64>,
     /// Where `SAVE` writes the retentive state (`--state`).
     pub state: Option<PathBuf>,
+    /// A ROC Plus device on this address, answering as this unit and group
+    /// (`--roc`, `--roc-address`).
+    pub roc: Option<(SocketAddr, linc_comms::roc::Address)>,
+    /// What the wire servers put up with.
+    pub limits: wire::Limits,
+    /// Where the wire servers' log lines go.
+    pub log: wire::Log,
+}
+
+impl Config {
+    /// Serving on `addr` at speed 1, read-only, with no token, no end, no
+    /// state file and no wire servers; the wire servers' log lines go to
+    /// standard error.
+    pub fn new(addr: SocketAddr) -> Config {
+        Config {
+            addr,
+            speed: Speed::Times(1.0),
+            token: None,
+            allow_writes: false,
+            until_us: None,
+            state: None,
+            roc: None,
+            limits: wire::Limits::default(),
+            log: Arc::new(|line| eprintln!("{line}")),
+        }
+    }
 }
 
 /// One published change: an SSE event's name and JSON data.
@@ -66,11 +95,31 @@ pub enum Reply {
 
 /// What the HTTP side asks the plant thread.
 pub(crate) enum Ask {
-    Command { line: String, reply: oneshot::Sender<Reply> },
-    Block { name: String, reply: oneshot::Sender<Option<serde_json::Value>> },
-    Blocks { reply: oneshot::Sender<serde_json::Value> },
-    Picture { name: String, reply: oneshot::Sender<Option<String>> },
-    Trend { path: String, reply: oneshot::Sender<Option<serde_json::Value>> },
+    Command {
+        line: String,
+        reply: oneshot::Sender<Reply>,
+    },
+    Block {
+        name: String,
+        reply: oneshot::Sender<Option<serde_json::Value>>,
+    },
+    Blocks {
+        reply: oneshot::Sender<serde_json::Value>,
+    },
+    Picture {
+        name: String,
+        reply: oneshot::Sender<Option<String>>,
+    },
+    Trend {
+        path: String,
+        reply: oneshot::Sender<Option<serde_json::Value>>,
+    },
+    /// A ROC Plus request frame for this device, from `peer`.
+    Roc {
+        frame: linc_comms::roc::Frame,
+        peer: String,
+        reply: oneshot::Sender<wire::roc::Answer>,
+    },
 }
 
 /// What a served run leaves: the console (for `--state`) and its counts.
@@ -83,6 +132,7 @@ pub struct Finished {
 /// A running server.
 pub struct Server {
     addr: SocketAddr,
+    roc: Option<SocketAddr>,
     asks: Sender<Ask>,
     stop: Arc<AtomicBool>,
     plant: JoinHandle<Finished>,
@@ -115,6 +165,15 @@ pub enum StartError {
     Bind(SocketAddr, std::io::Error),
 }
 
+/// A listener bound now (so a busy port fails at the start), handed to
+/// the network thread.
+fn bind(addr: SocketAddr) -> Result<(std::net::TcpListener, SocketAddr), StartError> {
+    let listener = std::net::TcpListener::bind(addr).map_err(|e| StartError::Bind(addr, e))?;
+    let bound = listener.local_addr().map_err(|e| StartError::Bind(addr, e))?;
+    listener.set_nonblocking(true).map_err(|e| StartError::Bind(bound, e))?;
+    Ok((listener, bound))
+}
+
 impl std::fmt::Display for StartError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
@@ -135,9 +194,9 @@ pub fn start(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) -> R
     if !cfg.addr.ip().is_loopback() && cfg.token.is_none() {
         return Err(StartError::NeedsToken(cfg.addr));
     }
-    let listener = std::net::TcpListener::bind(cfg.addr).map_err(|e| StartError::Bind(cfg.addr, e))?;
-    let addr = listener.local_addr().map_err(|e| StartError::Bind(cfg.addr, e))?;
-    listener.set_nonblocking(true).map_err(|e| StartError::Bind(addr, e))?;
+    let (listener, addr) = bind(cfg.addr)?;
+    let roc = cfg.roc.map(|(a, me)| bind(a).map(|(l, bound)| (l, bound, me))).transpose()?;
+    let roc_addr = roc.as_ref().map(|r| r.1);
     console.can_save = cfg.state.is_some();
     let pictures = pictures::load(dir, wants, &console.strategy);
     let (events, _) = broadcast::channel(256);
@@ -147,7 +206,13 @@ pub fn start(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) -> R
     let mut plant = plant::Plant::new(
         console,
         pictures,
-        plant::Setup { speed: cfg.speed, until: cfg.until_us, allow_writes: cfg.allow_writes, state: cfg.state },
+        plant::Setup {
+            speed: cfg.speed,
+            until: cfg.until_us,
+            allow_writes: cfg.allow_writes,
+            state: cfg.state,
+            roc: roc.as_ref().map(|r| wire::roc::RocDevice { address: r.2, allow_writes: cfg.allow_writes }),
+        },
         events.clone(),
         status.clone(),
     );
@@ -161,17 +226,24 @@ pub fn start(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) -> R
         .map_err(|e| StartError::Bind(addr, e))?;
     let (closing, closed) = oneshot::channel();
     let state = http::AppState::new(asks.clone(), events, status, cfg.token);
+    let wires =
+        http::Wires { roc: roc.map(|(l, _, me)| (l, me)), asks: asks.clone(), limits: cfg.limits, log: cfg.log };
     let http = std::thread::Builder::new()
-        .name("linc-http".into())
-        .spawn(move || http::serve(listener, state, closed))
+        .name("linc-net".into())
+        .spawn(move || http::serve(listener, state, wires, closed))
         .map_err(|e| StartError::Bind(addr, e))?;
-    Ok(Server { addr, asks, stop, plant, http, closing: Some(closing) })
+    Ok(Server { addr, roc: roc_addr, asks, stop, plant, http, closing: Some(closing) })
 }
 
 impl Server {
     /// The address it listens on (the port chosen when asked for port 0).
     pub fn addr(&self) -> SocketAddr {
         self.addr
+    }
+
+    /// Where the ROC Plus device listens, if it does.
+    pub fn roc_addr(&self) -> Option<SocketAddr> {
+        self.roc
     }
 
     /// A handle that runs console lines on the plant from another thread

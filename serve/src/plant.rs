@@ -51,6 +51,8 @@ pub struct Setup {
     pub allow_writes: bool,
     /// Where `SAVE` writes the state.
     pub state: Option<std::path::PathBuf>,
+    /// The ROC Plus device, when serving one.
+    pub roc: Option<crate::wire::roc::RocDevice>,
 }
 
 /// What the plant thread owns.
@@ -71,6 +73,7 @@ pub struct Plant {
     status: Arc<Mutex<Value>>,
     allow_writes: bool,
     state: Option<std::path::PathBuf>,
+    roc: Option<crate::wire::roc::RocDevice>,
 }
 
 impl Plant {
@@ -81,7 +84,7 @@ impl Plant {
         events: broadcast::Sender<Arc<Event>>,
         status: Arc<Mutex<Value>>,
     ) -> Plant {
-        let Setup { speed, until, allow_writes, state } = setup;
+        let Setup { speed, until, allow_writes, state, roc } = setup;
         let sim = console.strategy.elapsed_us();
         let period = console.strategy.fastest_period_us().unwrap_or(1_000_000);
         let tolerance = match speed {
@@ -105,6 +108,7 @@ impl Plant {
             status,
             allow_writes,
             state,
+            roc,
         };
         p.publish();
         p
@@ -184,6 +188,11 @@ impl Plant {
             }
             Ask::Blocks { reply } => {
                 let _ = reply.send(crate::json::blocks(&self.console.strategy.store));
+            }
+            Ask::Roc { frame, peer, reply } => {
+                if let Some(device) = self.roc {
+                    let _ = reply.send(device.answer(&mut self.console, &frame, &peer));
+                }
             }
             Ask::Picture { name, reply } => {
                 let s = &mut self.console.strategy;

@@ -23,12 +23,10 @@ fn plant(db: &str) -> (Console, Vec<linc_engines::strategy::Want>) {
 
 fn config(speed: Speed, writes: bool, token: Option<&str>) -> Config {
     Config {
-        addr: "127.0.0.1:0".parse().unwrap(),
         speed,
         token: token.map(String::from),
         allow_writes: writes,
-        until_us: None,
-        state: None,
+        ..Config::new("127.0.0.1:0".parse().unwrap())
     }
 }
 

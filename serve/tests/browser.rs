@@ -153,12 +153,9 @@ fn the_monitor_page_shows_the_running_sequence_and_holds_a_step() {
     let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
     let (s, wants) = linc_driver::strategy::plant(&db, &Default::default(), &mut r).expect("plant");
     let cfg = linc_serve::Config {
-        addr: "127.0.0.1:0".parse().unwrap(),
         speed: linc_serve::Speed::Times(2.0),
-        token: None,
         allow_writes: true,
-        until_us: None,
-        state: None,
+        ..linc_serve::Config::new("127.0.0.1:0".parse().unwrap())
     };
     let server = linc_serve::start(Console::new(s), &wants, db.parent().unwrap(), cfg).expect("serve");
     let profile = linc_test_support::temp_dir("chromium-profile");

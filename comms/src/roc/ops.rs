@@ -67,22 +67,15 @@ pub fn error_data(errors: &[RocError]) -> Vec<u8> {
     errors.iter().flat_map(|e| [e.code, e.offset]).collect()
 }
 
-/// Which part of a TLP names nothing.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum TlpFault {
-    PointType,
-    Logical,
-    Parameter,
-}
+pub use linc_format::db::TlpFault;
 
-impl TlpFault {
-    /// The opcode 255 error for this fault in the TLP at data byte `at`.
-    pub fn error(self, at: usize) -> RocError {
-        match self {
-            TlpFault::PointType => RocError::at_data(code::INVALID_POINT_TYPE, at),
-            TlpFault::Logical => RocError::at_data(code::INVALID_LOGICAL, at + 1),
-            TlpFault::Parameter => RocError::at_data(code::INVALID_PARAMETER, at + 2),
-        }
+/// The opcode 255 error for the TLP at data byte `at`, by the part of it
+/// that names nothing (the error's offset is that part's byte).
+pub fn tlp_error(fault: TlpFault, at: usize) -> RocError {
+    match fault {
+        TlpFault::PointType => RocError::at_data(code::INVALID_POINT_TYPE, at),
+        TlpFault::Logical => RocError::at_data(code::INVALID_LOGICAL, at + 1),
+        TlpFault::Parameter => RocError::at_data(code::INVALID_PARAMETER, at + 2),
     }
 }
 
@@ -121,13 +114,19 @@ pub fn read_reply<'a>(values: impl IntoIterator<Item = (Tlp, &'a [u8])>) -> Resu
     Ok(out)
 }
 
+/// One parameter of an opcode 181 request.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Write<'a> {
+    /// Where its TLP starts in the request's data (errors point into it).
+    pub at: usize,
+    pub tlp: Tlp,
+    pub value: &'a [u8],
+}
+
 /// Opcode 181's request: a count, then each TLP with its value, whose size
 /// `size_of` gives (the device knows its parameters). The first TLP that
 /// names nothing, or data of the wrong length, is the error.
-pub fn parse_write(
-    data: &[u8],
-    size_of: impl Fn(Tlp) -> Result<usize, TlpFault>,
-) -> Result<Vec<(Tlp, &[u8])>, RocError> {
+pub fn parse_write(data: &[u8], size_of: impl Fn(Tlp) -> Result<usize, TlpFault>) -> Result<Vec<Write<'_>>, RocError> {
     let Some(&n) = data.first() else { return Err(RocError::length(code::TOO_FEW_BYTES)) };
     if n == 0 {
         return Err(RocError::at_data(code::TOO_FEW_BYTES, 0));
@@ -137,11 +136,11 @@ pub fn parse_write(
     for _ in 0..n {
         let Some(head) = data.get(at..at + 3) else { return Err(RocError::length(code::TOO_FEW_BYTES)) };
         let t = tlp(head);
-        let size = size_of(t).map_err(|f| f.error(at))?;
+        let size = size_of(t).map_err(|f| tlp_error(f, at))?;
         let Some(value) = data.get(at + 3..at + 3 + size) else {
             return Err(RocError::length(code::TOO_FEW_BYTES));
         };
-        out.push((t, value));
+        out.push(Write { at, tlp: t, value });
         at += 3 + size;
     }
     if at != data.len() {
@@ -260,7 +259,10 @@ mod tests {
         let w = parse_write(&data, size).unwrap();
         assert_eq!(
             w,
-            vec![(Tlp { t: 3, l: 0, p: 2 }, &[0xF4, 0x01][..]), (Tlp { t: 3, l: 1, p: 2 }, &[0xE8, 0x03][..])]
+            vec![
+                Write { at: 1, tlp: Tlp { t: 3, l: 0, p: 2 }, value: &[0xF4, 0x01] },
+                Write { at: 6, tlp: Tlp { t: 3, l: 1, p: 2 }, value: &[0xE8, 0x03] }
+            ]
         );
         // The second TLP's parameter names nothing: error 2 at its byte (6 + 8).
         assert_eq!(parse_write(&[2, 3, 0, 2, 0, 0, 3, 1, 9, 0, 0], size), Err(RocError { code: 2, offset: 14 }));

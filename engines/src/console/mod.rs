@@ -193,10 +193,9 @@ impl Console {
         Ok(lines.join("\n"))
     }
 
-    /// A value the console may write to a field: parsed by its type; a
-    /// field the block computes (read-only) is refused.
-    fn new_value(&self, path: &str, value: &str) -> Result<(Addr, crate::store::Cell), ConsoleError> {
-        let a = self.addr(path)?;
+    /// Whether anything may set the field at `a`: a field the block
+    /// computes (read-only) and alarm states are refused.
+    fn settable(&self, a: Addr) -> Result<(), ConsoleError> {
         if self.store().is_readonly(a.cell) {
             let why = format!("{} is read-only: the block computes it", self.store().describe(a.cell));
             return Err(ConsoleError::new(Code::C0005, why));
@@ -204,20 +203,51 @@ impl Console {
         if matches!(self.store().cells.get(a.cell as usize), Some(crate::store::Cell::Alarms(_))) {
             return Err(ConsoleError::new(Code::C0004, "alarm states can't be modified or forced"));
         }
+        Ok(())
+    }
+
+    /// Whether `M` may write the field at `a` now: settable and not forced
+    /// (a forced field keeps its forced value until released).
+    pub fn modifiable(&self, a: Addr) -> Result<(), ConsoleError> {
+        self.settable(a)?;
+        if self.store().is_forced(a.cell) {
+            let path = self.store().describe(a.cell);
+            let why = format!("{path} is forced: release it first (F {path}=N)");
+            return Err(ConsoleError::new(Code::C0009, why));
+        }
+        Ok(())
+    }
+
+    /// A value the console may write to a field: parsed by its type; a
+    /// field the block computes (read-only) is refused.
+    fn new_value(&self, path: &str, value: &str) -> Result<(Addr, crate::store::Cell), ConsoleError> {
+        let a = self.addr(path)?;
+        self.settable(a)?;
         let cell = parse_value(self.store(), a, value).map_err(|why| ConsoleError::new(Code::C0004, why))?;
         Ok((a, cell))
     }
 
     fn modify(&mut self, path: &str, value: &str) -> Result<String, ConsoleError> {
         let (a, cell) = self.new_value(path, value)?;
-        if self.store().is_forced(a.cell) {
-            let why = format!("{path} is forced: release it first (F {path}=N)");
-            return Err(ConsoleError::new(Code::C0009, why));
-        }
-        if let Some(slot) = self.strategy.store.cells.get_mut(a.cell as usize) {
-            *slot = cell;
-        }
+        self.modify_all(&[(a, cell)]).map_err(|(_, e)| e)?;
         Ok(format!("{path} = {}", show_value(self.store(), a)))
+    }
+
+    /// `M` of several fields at once, all or none, for a client on the wire
+    /// (a ROC host's opcode 181, a Modbus write of several registers): each
+    /// must be [`Console::modifiable`]; the first that is not is returned
+    /// with its index and nothing is written. The cells are already of
+    /// their fields' types.
+    pub fn modify_all(&mut self, writes: &[(Addr, crate::store::Cell)]) -> Result<(), (usize, ConsoleError)> {
+        for (i, (a, _)) in writes.iter().enumerate() {
+            self.modifiable(*a).map_err(|e| (i, e))?;
+        }
+        for (a, cell) in writes {
+            if let Some(slot) = self.strategy.store.cells.get_mut(a.cell as usize) {
+                *slot = cell.clone();
+            }
+        }
+        Ok(())
     }
 
     fn force(&mut self, path: &str, value: Option<&str>) -> Result<String, ConsoleError> {

@@ -206,6 +206,21 @@ impl Strategy {
         self.tasks.iter().map(|t| t.period_us).min()
     }
 
+    /// The device clock in whole seconds, local time as the FST commands
+    /// and a ROC host's opcode 7 read it (POSIX seconds read with no zone).
+    pub fn device_seconds(&self) -> i64 {
+        (self.start + self.now_us as f64 / 1e6).floor() as i64 + self.vm.clock.utc_offset
+    }
+
+    /// Sets the device clock, as a ROC host's opcode 8 does: the clock
+    /// jumps to `local`, and elapsed time, the task schedule and every
+    /// timer are untouched (they count simulated time, not the calendar).
+    pub fn set_device_seconds(&mut self, local: i64) {
+        let shift = (local - self.device_seconds()) as f64;
+        self.start += shift;
+        self.store.now = self.start + self.now_us as f64 / 1e6;
+    }
+
     /// The simulated clock in ISO 8601 with milliseconds, as the device
     /// shows it (`2026-01-05T06:00:00.300`).
     pub fn now_text(&self) -> String {

@@ -76,7 +76,7 @@ fn type_spec(template: &str, field: &str, node: &Node) -> Result<(FieldType, boo
                 Some((Some(w), _)) if w.fits(&ty) => Some(w),
                 Some((_, span)) => {
                     let message = format!(
-                        "`wire` of field `{template}.{field}` must name a ROC type that carries its type: AC1…AC255 for STRING, FL for REAL, BIN, INT8, INT16, INT32, UINT8, UINT16 or UINT32 for whole numbers"
+                        "`wire` of field `{template}.{field}` must name a ROC type that carries its type: AC1…AC255 for STRING; FL or an integer type for REAL; BIN, INT8, INT16, INT32, UINT8, UINT16 or UINT32 for whole numbers"
                     );
                     return Err(DbError::at(code::FIELD_TYPE, message, span));
                 }

@@ -15,5 +15,5 @@ pub mod tree;
 
 pub use json::{DbError, MAX_CELLS};
 pub use period::{duration_seconds, time_constant, MAX_PERIOD, MIN_PERIOD};
-pub use roc::{same_point, Device, RocType, Tlp};
+pub use roc::{same_point, Device, RocType, Tlp, TlpFault};
 pub use schema::{Alias, Block, Database, FieldDef, FieldType, InitValue, Task, Template};

@@ -49,6 +49,14 @@ impl fmt::Display for Tlp {
     }
 }
 
+/// Which part of a numeric TLP names nothing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TlpFault {
+    PointType,
+    Logical,
+    Parameter,
+}
+
 /// How a parameter's value travels in ROC Plus opcodes 180 and 181
 /// (docs/roc-protocol.md): integers at their width little-endian, `FL` an
 /// IEEE-754 float32 little-endian, `AC(n)` n bytes of ASCII padded with
@@ -144,12 +152,15 @@ impl RocType {
     }
 
     /// Whether a field of `ty` may travel as this type: text as `AC`, REAL
-    /// as FL, whole-number fields as any integer type.
+    /// as FL or as a whole number (read rounded, as a device keeps a scan
+    /// period in whole units), whole-number fields as any integer type.
     pub fn fits(self, ty: &FieldType) -> bool {
         match (self, ty) {
             (RocType::Ac(_), FieldType::String) | (RocType::Fl, FieldType::Real) => true,
             (RocType::Ac(_) | RocType::Fl, _) => false,
-            (_, FieldType::Int | FieldType::Bool | FieldType::Bits { .. } | FieldType::Enum(_)) => true,
+            (_, FieldType::Int | FieldType::Real | FieldType::Bool | FieldType::Bits { .. } | FieldType::Enum(_)) => {
+                true
+            }
             _ => false,
         }
     }
@@ -184,16 +195,23 @@ impl Database {
 
     /// The block and field a numeric TLP names, if the database has them.
     pub fn tlp_target(&self, tlp: Tlp) -> Option<(usize, usize)> {
-        let template = self.point_template(tlp.t)?;
+        self.tlp_parts(tlp).ok()
+    }
+
+    /// The block and field a numeric TLP names, or which part of it names
+    /// nothing (a ROC device answers each with its own error code).
+    pub fn tlp_parts(&self, tlp: Tlp) -> Result<(usize, usize), TlpFault> {
+        let template = self.point_template(tlp.t).ok_or(TlpFault::PointType)?;
         let block = self
             .blocks
             .iter()
             .enumerate()
             .filter(|(_, b)| b.template == template)
             .nth(usize::from(tlp.l))
-            .map(|(i, _)| i)?;
+            .map(|(i, _)| i)
+            .ok_or(TlpFault::Logical)?;
         let field = usize::from(tlp.p);
-        (field < self.templates[template].fields.len()).then_some((block, field))
+        (field < self.templates[template].fields.len()).then_some((block, field)).ok_or(TlpFault::Parameter)
     }
 
     /// How ROC Plus carries a field of a ROC point: its template's `wire`,
@@ -264,6 +282,7 @@ mod tests {
         assert_eq!(RocType::Uint32.range(), Some((0, 4_294_967_295)));
         assert!(RocType::Uint8.fits(&FieldType::Int) && !RocType::Fl.fits(&FieldType::Int));
         assert!(!RocType::Ac(4).fits(&FieldType::Real) && RocType::Ac(4).fits(&FieldType::String));
+        assert!(RocType::Uint16.fits(&FieldType::Real), "a REAL may travel as a whole number");
     }
 
     #[test]

@@ -1,0 +1,218 @@
+//! The ROC Plus device: frames answered from the running plant, on the
+//! plant's thread between scans (docs/roc-protocol.md). Reads and writes go
+//! through the console's rules, so a host can do what `M` can and no more.
+
+use linc_comms::roc::ops::{self, code, Clock, RocError, Write};
+use linc_comms::roc::value::{self, Value};
+use linc_comms::roc::{Address, Frame};
+use linc_engines::console::fields::Addr;
+use linc_engines::console::Console;
+use linc_format::db::{FieldType, RocType, Tlp, TlpFault};
+use linc_format::Code;
+use linc_runtime::store::{Cell, Store};
+
+/// What the device is.
+#[derive(Clone, Copy, Debug)]
+pub struct RocDevice {
+    /// The unit and group it answers to.
+    pub address: Address,
+    /// Whether hosts may write (`--allow-writes`).
+    pub allow_writes: bool,
+}
+
+/// A reply and what to log about the request.
+pub struct Answer {
+    pub reply: Frame,
+    pub log: Vec<String>,
+}
+
+/// A parameter a TLP names: its cell, how it travels and its field's type.
+struct Param<'a> {
+    cell: u32,
+    wire: RocType,
+    ty: &'a FieldType,
+}
+
+/// The parameter a TLP names; a field of a type with no ROC form is an
+/// invalid parameter.
+fn resolve(store: &Store, tlp: Tlp) -> Result<Param<'_>, TlpFault> {
+    let (block, field) = store.db.tlp_parts(tlp)?;
+    let wire = store.db.roc_type(block, field).ok_or(TlpFault::Parameter)?;
+    let ty = &store.db.block_template(block).fields[field].ty;
+    Ok(Param { cell: store.first[block] + field as u32, wire, ty })
+}
+
+/// A cell's value as the wire carries it.
+fn wire_value(cell: &Cell) -> Value {
+    match cell {
+        Cell::Real(x) => Value::Real(*x),
+        Cell::Int(i) => Value::Int(i64::from(*i)),
+        Cell::Bool(b) => Value::Int(i64::from(*b)),
+        Cell::Bits { v, .. } => Value::Int(i64::from(*v)),
+        Cell::Enum { idx } => Value::Int(i64::from(*idx)),
+        Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t) => Value::Text(t.clone()),
+        Cell::Alarms(_) => Value::Int(0),
+    }
+}
+
+/// The cell a value off the wire makes for a field of `ty`; `None` when the
+/// field can't hold it (out of its range, not finite, not an enumeration
+/// value).
+fn field_value(ty: &FieldType, v: Value) -> Option<Cell> {
+    let whole = |v: &Value| match v {
+        Value::Int(i) => Some(*i),
+        _ => None,
+    };
+    Some(match ty {
+        FieldType::Real => match v {
+            Value::Real(x) if x.is_finite() => Cell::Real(x),
+            Value::Int(i) => Cell::Real(i as f32),
+            _ => return None,
+        },
+        FieldType::Int => Cell::Int(i32::try_from(whole(&v)?).ok()?),
+        FieldType::Bool => Cell::Bool(match whole(&v)? {
+            0 => false,
+            1 => true,
+            _ => return None,
+        }),
+        FieldType::Bits { width, .. } => {
+            let v = whole(&v)?;
+            (0..1 << width).contains(&v).then_some(Cell::Bits { v: v as u16, width: *width })?
+        }
+        FieldType::Enum(names) => {
+            let i = usize::try_from(whole(&v)?).ok().filter(|&i| i < names.len())?;
+            Cell::Enum { idx: i as u16 }
+        }
+        FieldType::String => match v {
+            Value::Text(t) => Cell::Text(t),
+            _ => return None,
+        },
+        _ => return None,
+    })
+}
+
+impl RocDevice {
+    /// The reply to a request frame addressed to this device; `peer` names
+    /// the client in the log.
+    pub fn answer(&self, console: &mut Console, req: &Frame, peer: &str) -> Answer {
+        let mut log = Vec::new();
+        let result = match req.opcode {
+            ops::READ => read(&console.strategy.store, &req.data),
+            ops::WRITE => self.write(console, &req.data, peer, &mut log),
+            ops::CLOCK_READ => clock_read(console, &req.data),
+            ops::CLOCK_SET => self.clock_set(console, &req.data, peer, &mut log),
+            ops::CONFIG => config(&console.strategy.store, &req.data),
+            _ => Err(vec![RocError { code: code::INVALID_OPCODE, offset: 4 }]),
+        };
+        let (opcode, data) = match result {
+            Ok(data) => (req.opcode, data),
+            Err(errors) => (ops::ERROR, ops::error_data(&errors)),
+        };
+        Answer { reply: Frame { dst: req.src, src: self.address, opcode, data }, log }
+    }
+
+    /// Opcode 181: every value is checked (the TLP, its size, the field's
+    /// range, read-only, forced) before any is written: all or nothing.
+    fn write(
+        &self,
+        console: &mut Console,
+        data: &[u8],
+        peer: &str,
+        log: &mut Vec<String>,
+    ) -> Result<Vec<u8>, Vec<RocError>> {
+        let store = &console.strategy.store;
+        let writes = ops::parse_write(data, |t| resolve(store, t).map(|p| p.wire.size())).map_err(|e| vec![e])?;
+        if !self.allow_writes {
+            return Err(vec![RocError { code: code::SECURITY, offset: 4 }]);
+        }
+        let mut cells = Vec::with_capacity(writes.len());
+        for Write { at, tlp, value } in &writes {
+            let range = || vec![RocError::at_data(code::PARAMETER_RANGE, at + 2)];
+            let p = resolve(store, *tlp).map_err(|f| vec![ops::tlp_error(f, *at)])?;
+            let new = value::decode(p.wire, value).and_then(|v| field_value(p.ty, v)).ok_or_else(range)?;
+            cells.push((Addr { cell: p.cell, bit: None }, new));
+        }
+        if let Err((i, e)) = console.modify_all(&cells) {
+            let at = writes[i].at;
+            let err = match e.code {
+                Code::C0009 => RocError::at_data(code::INVALID_STATE_FOR_WRITE, at),
+                _ => RocError::at_data(code::READ_ONLY, at + 2),
+            };
+            log.push(format!("roc {peer}: write refused: {}", e.message));
+            return Err(vec![err]);
+        }
+        let store = &console.strategy.store;
+        for (a, _) in &cells {
+            log.push(format!("roc {peer}: wrote {} = {}", store.describe(a.cell), store.show(a.cell)));
+        }
+        Ok(Vec::new())
+    }
+
+    /// Opcode 8: the device clock set to the host's time.
+    fn clock_set(
+        &self,
+        console: &mut Console,
+        data: &[u8],
+        peer: &str,
+        log: &mut Vec<String>,
+    ) -> Result<Vec<u8>, Vec<RocError>> {
+        let c = Clock::parse_set(data).map_err(|e| vec![e])?;
+        if !self.allow_writes {
+            return Err(vec![RocError { code: code::SECURITY, offset: 4 }]);
+        }
+        let days =
+            linc_stdlib::functions::datetime::days_from_civil(i64::from(c.year), u32::from(c.month), u32::from(c.day));
+        let local = days * 86_400 + i64::from(c.hour) * 3600 + i64::from(c.minute) * 60 + i64::from(c.second);
+        console.strategy.set_device_seconds(local);
+        log.push(format!("roc {peer}: set the clock to {}", console.strategy.now_text()));
+        Ok(Vec::new())
+    }
+}
+
+/// Opcode 180: each TLP's value; the first TLP that names nothing is the
+/// error.
+fn read(store: &Store, data: &[u8]) -> Result<Vec<u8>, Vec<RocError>> {
+    let tlps = ops::parse_read(data).map_err(|e| vec![e])?;
+    let mut values = Vec::with_capacity(tlps.len());
+    for (i, t) in tlps.iter().enumerate() {
+        let p = resolve(store, *t).map_err(|f| vec![ops::tlp_error(f, 1 + 3 * i)])?;
+        let mut bytes = Vec::with_capacity(p.wire.size());
+        value::encode(p.wire, &wire_value(&store.cells[p.cell as usize]), &mut bytes);
+        values.push((*t, bytes));
+    }
+    ops::read_reply(values.iter().map(|(t, b)| (*t, b.as_slice()))).map_err(|e| vec![e])
+}
+
+/// Opcode 7: the device clock.
+fn clock_read(console: &Console, data: &[u8]) -> Result<Vec<u8>, Vec<RocError>> {
+    if !data.is_empty() {
+        return Err(vec![RocError::length(code::TOO_MANY_BYTES)]);
+    }
+    let now = console.strategy.device_seconds();
+    let c = linc_runtime::roc::civil(now);
+    let weekday = linc_runtime::roc::day_of_week(now) as u8;
+    let clock = Clock {
+        second: c.second as u8,
+        minute: c.minute as u8,
+        hour: c.hour as u8,
+        day: c.day as u8,
+        month: c.month as u8,
+        year: u16::try_from(c.year).unwrap_or(0),
+        weekday,
+    };
+    Ok(clock.reply())
+}
+
+/// Opcode 6: the system configuration, with the number of points of each
+/// point type the database's device family numbers from 60.
+fn config(store: &Store, data: &[u8]) -> Result<Vec<u8>, Vec<RocError>> {
+    if !data.is_empty() {
+        return Err(vec![RocError::length(code::TOO_MANY_BYTES)]);
+    }
+    let db = &store.db;
+    let count = |t: u8| match db.point_template(u16::from(t)) {
+        Some(tp) => db.blocks.iter().filter(|b| b.template == tp).count().min(255) as u8,
+        None => 0,
+    };
+    Ok(ops::config_reply(0, count))
+}

@@ -1,0 +1,65 @@
+//! The ROC Plus server: frames off TCP, answered by the plant thread.
+
+use super::net::{self, Limits, Log};
+use super::roc::Answer;
+use crate::Ask;
+use linc_comms::roc::{Address, Deframer};
+use std::net::SocketAddr;
+use std::sync::mpsc::Sender;
+use std::time::Instant;
+use tokio::io::AsyncWriteExt;
+use tokio::net::TcpStream;
+use tokio::sync::oneshot;
+
+/// Serves one client: each whole frame for `me` goes to the plant and its
+/// reply back; frames for other addresses and bytes that make no frame
+/// (a bad CRC) get no reply.
+pub(crate) async fn client(
+    mut stream: TcpStream,
+    peer: SocketAddr,
+    me: Address,
+    asks: Sender<Ask>,
+    limits: Limits,
+    log: Log,
+) {
+    let mut frames = Deframer::default();
+    let mut buf = [0u8; 4096];
+    let mut begun: Option<Instant> = None;
+    let stop = loop {
+        let n = match net::read_some(&mut stream, &mut buf, &limits, begun).await {
+            Ok(n) => n,
+            Err(stop) => break stop,
+        };
+        frames.push(&buf[..n]);
+        let mut failed = false;
+        while let Some(frame) = frames.next_frame() {
+            if frame.dst != me {
+                continue;
+            }
+            let (reply, answer) = oneshot::channel();
+            let peer_text = peer.to_string();
+            if asks.send(Ask::Roc { frame, peer: peer_text, reply }).is_err() {
+                return;
+            }
+            let Ok(Answer { reply, log: lines }) = answer.await else { return };
+            for line in lines {
+                log(line);
+            }
+            let Some(bytes) = reply.encode() else { continue };
+            if tokio::time::timeout(limits.idle, stream.write_all(&bytes)).await.map_or(true, |r| r.is_err()) {
+                failed = true;
+                break;
+            }
+        }
+        if failed {
+            break net::Stop::Closed;
+        }
+        begun = if frames.pending() == 0 { None } else { begun.or(Some(Instant::now())) };
+    };
+    if frames.dropped > 0 {
+        log(format!("roc {peer}: {} bytes made no frame (bad CRC or noise) and were dropped", frames.dropped));
+    }
+    if let Some(why) = stop.why(&limits) {
+        log(format!("roc {peer}: dropped: {why}"));
+    }
+}

@@ -1,0 +1,223 @@
+//! The ROC Plus device over real TCP on 127.0.0.1, driven by a client
+//! written here from the public frame layout (its own framing, and its CRC
+//! from the `crc` crate's CRC-16/ARC, not the server's table): reads agree
+//! with the monitor's API, writes are all or nothing under the console's
+//! rules, and bad frames, other addresses, split and packed frames behave
+//! as the protocol expects.
+
+use linc_engines::console::Console;
+use linc_serve::{Config, Server, Speed};
+use serde_json::Value;
+use std::io::{Read, Write};
+use std::net::TcpStream;
+use std::path::Path;
+use std::time::Duration;
+
+const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+const ARC: crc::Crc<u16> = crc::Crc::<u16>::new(&crc::CRC_16_ARC);
+
+fn serve(db: &str, writes: bool) -> Server {
+    let path = Path::new(ROOT).join(db);
+    let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
+    let o = linc_driver::strategy::PlantOptions { now: Some("2026-01-05T06:00:00".into()), ..Default::default() };
+    let (s, wants) = linc_driver::strategy::plant(&path, &o, &mut r).unwrap_or_else(|_| panic!("{}", r.take()));
+    let unit = linc_comms::roc::Address { unit: 1, group: 2 };
+    let cfg = Config {
+        // A scan every 100 s of wall time: the values hold still while
+        // the test compares the wire with the API.
+        speed: Speed::Times(0.001),
+        allow_writes: writes,
+        roc: Some(("127.0.0.1:0".parse().unwrap(), unit)),
+        log: std::sync::Arc::new(|_| {}),
+        ..Config::new("127.0.0.1:0".parse().unwrap())
+    };
+    linc_serve::start(Console::new(s), &wants, path.parent().unwrap(), cfg).expect("start")
+}
+
+/// A frame from host 3,1 to `dst`, as the layout says: addresses, opcode,
+/// length, data, CRC low byte first.
+fn frame(dst: [u8; 2], opcode: u8, data: &[u8]) -> Vec<u8> {
+    let mut f = vec![dst[0], dst[1], 3, 1, opcode, data.len() as u8];
+    f.extend_from_slice(data);
+    let crc = ARC.checksum(&f);
+    f.extend_from_slice(&crc.to_le_bytes());
+    f
+}
+
+struct Host(TcpStream);
+
+impl Host {
+    fn connect(s: &Server) -> Host {
+        let t = TcpStream::connect(s.roc_addr().expect("a ROC device")).expect("connect");
+        t.set_read_timeout(Some(Duration::from_secs(5))).unwrap();
+        Host(t)
+    }
+
+    /// Reads one reply: checks it is for this host, from the device, with
+    /// a good CRC; returns its opcode and data.
+    fn reply(&mut self) -> (u8, Vec<u8>) {
+        let mut head = [0u8; 6];
+        self.0.read_exact(&mut head).expect("a reply");
+        let mut rest = vec![0u8; usize::from(head[5]) + 2];
+        self.0.read_exact(&mut rest).expect("the reply's data");
+        let (data, crc) = rest.split_at(rest.len() - 2);
+        let mut whole = head.to_vec();
+        whole.extend_from_slice(data);
+        assert_eq!(ARC.checksum(&whole).to_le_bytes(), [crc[0], crc[1]], "the reply's CRC");
+        assert_eq!(&head[..4], &[3, 1, 1, 2], "to the host, from the device");
+        (head[4], data.to_vec())
+    }
+
+    fn ask(&mut self, opcode: u8, data: &[u8]) -> (u8, Vec<u8>) {
+        self.0.write_all(&frame([1, 2], opcode, data)).unwrap();
+        self.reply()
+    }
+
+    /// Nothing arrives within `ms`.
+    fn silent(&mut self, ms: u64) {
+        self.0.set_read_timeout(Some(Duration::from_millis(ms))).unwrap();
+        let mut b = [0u8; 1];
+        let got = self.0.read(&mut b);
+        assert!(got.is_err(), "expected no reply, got {got:?}");
+        self.0.set_read_timeout(Some(Duration::from_secs(5))).unwrap();
+    }
+}
+
+/// A field's value as the monitor's API shows it.
+fn api(s: &Server, block: &str, field: &str) -> String {
+    let url = format!("http://{}/api/blocks/{}", s.addr(), block.replace(' ', "%20"));
+    let body = ureq::get(&url).call().expect("GET").body_mut().read_to_string().expect("body");
+    let v: Value = serde_json::from_str(&body).expect("JSON");
+    let f = v["fields"].as_array().unwrap().iter().find(|f| f["name"] == field).expect("field");
+    f["value"].as_str().unwrap().to_string()
+}
+
+fn f32_at(b: &[u8], at: usize) -> f32 {
+    f32::from_le_bytes(b[at..at + 4].try_into().unwrap())
+}
+
+#[test]
+fn reads_agree_with_the_monitor() {
+    let s = serve("examples/roc/plant.json", true);
+    let mut h = Host::connect(&s);
+    // AIN 3-1 EU (FL), AIN 3-2 EU, SFP 1 DATA1, AIN 3-1 TAG (AC10),
+    // FST 1 RUNFLG (UINT8), AIN 3-1 SCANPR (UINT16).
+    let (op, d) = h.ask(180, &[6, 3, 0, 12, 3, 1, 12, 17, 0, 2, 3, 0, 0, 16, 0, 24, 3, 0, 2]);
+    assert_eq!(op, 180, "{d:?}");
+    assert_eq!(d[0], 6);
+    assert_eq!(&d[1..4], &[3, 0, 12]);
+    assert_eq!(f32_at(&d, 4).to_string(), api(&s, "AIN 3-1", "EU").trim_end_matches(".0"));
+    assert_eq!(&d[8..11], &[3, 1, 12]);
+    assert_eq!(f32_at(&d, 11), api(&s, "AIN 3-2", "EU").parse::<f32>().unwrap());
+    assert_eq!(f32_at(&d, 18), api(&s, "SFP 1", "DATA1").parse::<f32>().unwrap());
+    assert_eq!(&d[22..25], &[3, 0, 0]);
+    assert_eq!(&d[25..35], b"TANK LEVEL");
+    assert_eq!(format!("'{}'", std::str::from_utf8(&d[25..35]).unwrap()), api(&s, "AIN 3-1", "TAG"));
+    assert_eq!(&d[35..38], &[16, 0, 24]);
+    assert_eq!(i64::from(d[38]).to_string(), api(&s, "FST 1", "RUNFLG"));
+    assert_eq!(&d[39..42], &[3, 0, 2]);
+    assert_eq!(u16::from_le_bytes([d[42], d[43]]), 1, "SCANPR 1.0 s as a whole number");
+    assert_eq!(d.len(), 44);
+    s.stop();
+}
+
+#[test]
+fn writes_are_all_or_nothing_under_the_consoles_rules() {
+    let s = serve("examples/roc/plant.json", true);
+    let mut h = Host::connect(&s);
+    // SFP 1 DATA1 := 65.5 and AIN 3-1 SCANPR := 500 in one request.
+    let mut w = vec![2, 17, 0, 2];
+    w.extend_from_slice(&65.5f32.to_le_bytes());
+    w.extend_from_slice(&[3, 0, 2]);
+    w.extend_from_slice(&500u16.to_le_bytes());
+    assert_eq!(h.ask(181, &w), (181, vec![]));
+    assert_eq!(api(&s, "SFP 1", "DATA1"), "65.5");
+    assert_eq!(api(&s, "AIN 3-1", "SCANPR"), "500.0");
+    // With a read-only parameter (AIN ALARM, P 14) second: error 19 at its
+    // parameter byte, and the first value is not written either.
+    let mut w = vec![2, 17, 0, 2];
+    w.extend_from_slice(&1.0f32.to_le_bytes());
+    w.extend_from_slice(&[3, 0, 14, 0]);
+    assert_eq!(h.ask(181, &w), (255, vec![19, 6 + 1 + 7 + 2]));
+    assert_eq!(api(&s, "SFP 1", "DATA1"), "65.5");
+    // A forced field keeps its forced value: error 51 at the point type.
+    let url = format!("http://{}/api/command", s.addr());
+    let body = serde_json::json!({"command": "F SFP 1.DATA2=0.3"}).to_string();
+    ureq::post(&url).header("Content-Type", "application/json").send(body).expect("force");
+    let mut w = vec![1, 17, 0, 3];
+    w.extend_from_slice(&9.0f32.to_le_bytes());
+    assert_eq!(h.ask(181, &w), (255, vec![51, 7]));
+    assert_eq!(api(&s, "SFP 1", "DATA2"), "0.3");
+    // A value the field can't hold (a REAL must be finite): error 25 at
+    // the parameter byte; a value of the wrong size is a length error.
+    let mut w = vec![1, 17, 0, 2];
+    w.extend_from_slice(&f32::NAN.to_le_bytes());
+    assert_eq!(h.ask(181, &w), (255, vec![25, 9]));
+    assert_eq!(h.ask(181, &[1, 16, 0, 19, 7, 0]), (255, vec![5, 5]), "MISC1 is one byte");
+    assert_eq!(h.ask(181, &[1, 17, 0, 2, 0, 0]), (255, vec![6, 5]), "DATA1 is four bytes");
+    // An unknown point type, logical number and parameter.
+    assert_eq!(h.ask(181, &[1, 99, 0, 2, 0, 0, 0, 0]), (255, vec![4, 7]));
+    assert_eq!(h.ask(180, &[1, 3, 5, 12]), (255, vec![3, 8]));
+    assert_eq!(h.ask(180, &[2, 3, 0, 12, 3, 0, 99]), (255, vec![2, 12]));
+    // An opcode the device does not know.
+    assert_eq!(h.ask(99, &[]), (255, vec![1, 4]));
+    s.stop();
+}
+
+#[test]
+fn a_read_only_server_refuses_writes_with_a_security_error() {
+    let s = serve("examples/roc/plant.json", false);
+    let mut h = Host::connect(&s);
+    let mut w = vec![1, 17, 0, 2];
+    w.extend_from_slice(&1.0f32.to_le_bytes());
+    assert_eq!(h.ask(181, &w), (255, vec![20, 4]));
+    assert_eq!(api(&s, "SFP 1", "DATA1"), "80.0");
+    assert_eq!(h.ask(8, &[0, 0, 12, 1, 6, 0xE9, 0x07]), (255, vec![20, 4]));
+    s.stop();
+}
+
+#[test]
+fn bad_crcs_and_other_addresses_get_no_reply_and_frames_may_split_or_pack() {
+    let s = serve("examples/roc/plant.json", true);
+    let mut h = Host::connect(&s);
+    let read = frame([1, 2], 180, &[1, 17, 0, 2]);
+    let mut bad = read.clone();
+    *bad.last_mut().unwrap() ^= 0xFF;
+    h.0.write_all(&bad).unwrap();
+    h.silent(300);
+    h.0.write_all(&frame([9, 9], 180, &[1, 17, 0, 2])).unwrap();
+    h.silent(300);
+    // Byte by byte.
+    for b in &read {
+        h.0.write_all(std::slice::from_ref(b)).unwrap();
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    assert_eq!(h.reply().0, 180);
+    // Two in one write, the second after noise.
+    let mut two = read.clone();
+    two.extend_from_slice(&[0x55, 0xAA, 0x00]);
+    two.extend_from_slice(&frame([1, 2], 7, &[]));
+    h.0.write_all(&two).unwrap();
+    assert_eq!(h.reply().0, 180);
+    assert_eq!(h.reply().0, 7);
+    s.stop();
+}
+
+#[test]
+fn the_clock_is_set_and_read_and_the_configuration_counts_points() {
+    let s = serve("examples/fst/plant.json", true);
+    let mut h = Host::connect(&s);
+    let (op, d) = h.ask(7, &[]);
+    assert_eq!((op, &d[..7]), (7, &[0, 0, 6, 5, 1, 0xEA, 0x07][..]), "2026-01-05 06:00:00");
+    assert_eq!(d[7], 2, "a Monday");
+    assert_eq!(h.ask(8, &[30, 15, 12, 29, 2, 0xE8, 0x07]), (8, vec![]), "2024-02-29 12:15:30");
+    let (_, d) = h.ask(7, &[]);
+    assert_eq!(&d[..7], &[30, 15, 12, 29, 2, 0xE8, 0x07]);
+    assert_eq!(d[7], 5, "a Thursday");
+    assert_eq!(h.ask(8, &[0, 0, 0, 30, 2, 0xE8, 0x07]), (255, vec![33, 9]), "no 30 February");
+    let (op, d) = h.ask(6, &[]);
+    assert_eq!((op, d.len(), d[18]), (6, 215, 6));
+    let count = |t: usize| d[19 + t - 60];
+    assert_eq!((count(96), count(98), count(102), count(103), count(104)), (4, 2, 3, 2, 0));
+    s.stop();
+}
