@@ -14,6 +14,7 @@ mod fst_src;
 mod ladder_cmd;
 mod out;
 mod report;
+mod roc_cmd;
 mod run_cmd;
 mod sequence_src;
 mod serve_cmd;
@@ -129,6 +130,11 @@ enum Command {
     Draw(Box<draw_cmd::DrawArgs>),
     /// Run a strategy in real time behind a live monitor page and a JSON API (docs/serve.md).
     Serve(Box<serve_cmd::ServeArgs>),
+    /// The ROC host: poll a ROC Plus device with a command list, as the communication module does.
+    Roc {
+        #[command(subcommand)]
+        command: roc_cmd::RocCommand,
+    },
     /// Ladder files (.ld): print the ST a ladder compiles as.
     Ladder {
         #[command(subcommand)]
@@ -449,6 +455,7 @@ fn dispatch(command: Command, r: &mut Reporter) -> u8 {
         Command::Fst { command: FstCommand::List { file, db } } => fst_src::list(&file, db.as_deref(), r),
         Command::Ladder { command } => ladder_cmd::run(command, r),
         Command::Serve(args) => serve_cmd::run(*args, r),
+        Command::Roc { command } => roc_cmd::run(command, r),
         Command::Draw(args) => {
             let (o, out) = args.options();
             draw_cmd::run(&o, out.as_deref(), r)

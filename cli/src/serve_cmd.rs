@@ -94,7 +94,7 @@ fn wire_addr(s: &str) -> Result<SocketAddr, String> {
 }
 
 /// `UNIT,GROUP`, each 0 to 255.
-fn roc_address(s: &str) -> Result<linc_comms::roc::Address, String> {
+pub fn roc_address(s: &str) -> Result<linc_comms::roc::Address, String> {
     let bad = || format!("`{s}` is not UNIT,GROUP (two numbers from 0 to 255, like 1,2)");
     let (u, g) = s.split_once(',').ok_or_else(bad)?;
     let unit = u.trim().parse().map_err(|_| bad())?;

@@ -12,6 +12,7 @@ pub mod files;
 pub mod fmt;
 pub mod ladder;
 pub mod report;
+pub mod roc;
 pub mod scenarios;
 pub mod single;
 pub mod source;

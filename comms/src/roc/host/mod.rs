@@ -4,7 +4,11 @@
 //! the values to write (docs/roc-host.md).
 
 pub mod commands;
+pub mod poll;
+pub mod tcp;
 pub mod words;
 
 pub use commands::Command;
+pub use poll::{status_text, Host, Link};
+pub use tcp::TcpLink;
 pub use words::Words;

@@ -1,0 +1,128 @@
+//! `linc roc poll` against `linc serve --roc`, both as processes over TCP
+//! on 127.0.0.1: the communication module manual's §6.1.1 example word for
+//! word, its status codes for an unknown TLP and a timeout, and located
+//! errors in its files.
+mod common;
+
+use std::io::{BufRead, BufReader};
+
+/// The manual's §6.1.1 command list: read TLPs 3,0,2 and 3,1,2 into words
+/// 50…, then write words 100… (integers) to the same TLPs.
+const EXAMPLE: &str = "PORT,SLV UNIT,SLV GROUP,OP CODE,CNT,SRC ADDR,DEST ADDR,TYPE,POLL TIME,STORE FWD
+1,25,2,180,2,0,50,0,0,0
+1,25,2,181,2,0,100,2,0,0
+";
+
+/// A served example plant as unit 25, group 2; its ROC address.
+struct Device(std::process::Child, String);
+
+impl Device {
+    fn start() -> Device {
+        let mut child = common::spawn(&[
+            "serve",
+            "examples/roc/plant.json",
+            "--http",
+            "127.0.0.1:0",
+            "--roc",
+            "127.0.0.1:0",
+            "--roc-address",
+            "25,2",
+            "--allow-writes",
+            "--speed",
+            "0.001",
+        ]);
+        let mut lines = BufReader::new(child.stdout.take().expect("stdout")).lines();
+        let _serving = lines.next().expect("a line").expect("text");
+        let roc = lines.next().expect("the ROC line").expect("text");
+        let addr = roc.rsplit(' ').next().expect("an address").to_string();
+        assert!(roc.starts_with("ROC Plus device 25,2 on 127.0.0.1:"), "{roc}");
+        Device(child, addr)
+    }
+}
+
+impl Drop for Device {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn poll(dev: &Device, dir: &std::path::Path, cmds: &str, words: &str, out: &str) -> std::process::Output {
+    std::fs::write(dir.join("cmds.csv"), cmds).unwrap();
+    std::fs::write(dir.join("words.json"), words).unwrap();
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let args = ["roc", "poll", "--host", &dev.1, "--commands", &p("cmds.csv"), "--words", &p("words.json")];
+    let mut all: Vec<String> = args.iter().map(|s| s.to_string()).collect();
+    all.extend(["--out".to_string(), p(out), "--timeout".into(), "300ms".into()]);
+    common::linc(&all.iter().map(String::as_str).collect::<Vec<_>>())
+}
+
+#[test]
+fn the_manuals_example_word_for_word() {
+    let dev = Device::start();
+    let dir = linc_test_support::fresh_dir("roc-example");
+    let o = poll(&dev, &dir, EXAMPLE, r#"{"0": [3, 0, 2, 3, 1, 2], "100": [500, 1000]}"#, "after1.json");
+    assert_eq!(o.status.code(), Some(0), "{}{}", common::stdout(&o), common::stderr(&o));
+    assert_eq!(common::stdout(&o), "command 1 (line 2): 180 to 25,2: done\ncommand 2 (line 3): 181 to 25,2: done\n");
+    // The read ran first: words 50 and 51 hold the scan periods the plant
+    // started with (1 s and 5 s); the write then set them to 500 and 1000.
+    let after = std::fs::read_to_string(dir.join("after1.json")).unwrap();
+    assert_eq!(
+        after,
+        "{\n  \"0\": [3, 0, 2, 3, 1, 2],\n  \"50\": [1, 5],\n  \"100\": [500, 1000],\n  \"status\": [0, 0]\n}\n"
+    );
+    // Polled again from the table it wrote: the read now sees 500 and 1000.
+    let o = poll(&dev, &dir, EXAMPLE, &after, "after2.json");
+    assert_eq!(o.status.code(), Some(0));
+    let after = std::fs::read_to_string(dir.join("after2.json")).unwrap();
+    assert_eq!(
+        after,
+        "{\n  \"0\": [3, 0, 2, 3, 1, 2],\n  \"50\": [500, 1000],\n  \"100\": [500, 1000],\n  \"status\": [0, 0]\n}\n"
+    );
+}
+
+#[test]
+fn an_unknown_tlp_and_a_timeout_have_the_modules_codes() {
+    let dev = Device::start();
+    let dir = linc_test_support::fresh_dir("roc-errors");
+    // Logical 7 of point type 3 does not exist; unit 26 does not answer.
+    let cmds = "PORT,SLV UNIT,SLV GROUP,OP CODE,CNT,SRC ADDR,DEST ADDR,TYPE,POLL TIME,STORE FWD
+1,25,2,180,1,0,50,0,0,0
+1,26,2,180,1,3,60,0,0,0
+";
+    let o = poll(&dev, &dir, cmds, r#"{"0": [3, 7, 2, 3, 0, 2]}"#, "out.json");
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        common::stdout(&o),
+        "command 1 (line 2): 180 to 25,2: error 23: ROC error 3: invalid logical number\n\
+         command 2 (line 3): 180 to 26,2: error 8: timeout: no reply after 3 attempts\n"
+    );
+    let out = std::fs::read_to_string(dir.join("out.json")).unwrap();
+    assert!(out.ends_with("\"status\": [23, 8]\n}\n"), "{out}");
+    assert!(!out.contains("\"50\"") && !out.contains("\"60\""), "nothing stored on an error: {out}");
+}
+
+#[test]
+fn file_errors_are_located_and_outputs_never_overwrite_inputs() {
+    let dir = linc_test_support::fresh_dir("roc-files");
+    std::fs::write(
+        dir.join("cmds.csv"),
+        "PORT,SLV UNIT,SLV GROUP,OP CODE,CNT,SRC ADDR,DEST ADDR,TYPE,POLL TIME,STORE FWD\n1,25,2,181,2,0,100,3,0,0\n",
+    )
+    .unwrap();
+    let cmds = dir.join("cmds.csv").to_string_lossy().into_owned();
+    let o = common::linc(&["roc", "poll", "--host", "127.0.0.1:9", "--commands", &cmds, "--message-format", "short"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(common::stderr(&o).contains("cmds.csv:2:20: error[E0922]: TYPE of a 181"), "{}", common::stderr(&o));
+    std::fs::write(dir.join("w.json"), "{\"0\": [1, 70000]}").unwrap();
+    std::fs::write(dir.join("cmds.csv"), EXAMPLE).unwrap();
+    let w = dir.join("w.json").to_string_lossy().into_owned();
+    let o = common::linc(&["roc", "poll", "--host", "127.0.0.1:9", "--commands", &cmds, "--words", &w]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(common::stderr(&o).contains("E0920"), "{}", common::stderr(&o));
+    std::fs::write(dir.join("w.json"), "{}").unwrap();
+    let o = common::linc(&["roc", "poll", "--host", "127.0.0.1:9", "--commands", &cmds, "--words", &w, "--out", &w]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(common::stderr(&o).contains("E0902"), "{}", common::stderr(&o));
+    assert_eq!(std::fs::read_to_string(dir.join("w.json")).unwrap(), "{}", "the input is untouched");
+}
