@@ -160,7 +160,7 @@ impl Host {
         let Ok(tlps) = self.tlps(c) else { return status::BAD_VALUE };
         let n = usize::from(c.count);
         let body = data.len().saturating_sub(1 + 3 * n);
-        if data.first() != Some(&(c.count as u8)) || body == 0 || body % n != 0 {
+        if data.first() != Some(&(c.count as u8)) || body == 0 || !body.is_multiple_of(n) {
             return status::INCOMPLETE;
         }
         let size = body / n;
