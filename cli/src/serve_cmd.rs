@@ -53,6 +53,10 @@ pub struct ServeArgs {
     /// With --state: ignore the state file and start cold (it is still saved).
     #[arg(long, requires = "state")]
     pub cold: bool,
+    /// Write the strategy trace here (JSON lines): every change a scan, a console line or a
+    /// client on the wire made, written when the server stops.
+    #[arg(long, value_name = "FILE")]
+    pub trace: Option<PathBuf>,
     /// Also be a ROC Plus device on this TCP port (loopback) or ADDR:PORT (any other address must be named).
     #[arg(long, value_name = "[ADDR:]PORT", value_parser = wire_addr)]
     pub roc: Option<SocketAddr>,
@@ -154,6 +158,19 @@ pub fn run(a: ServeArgs, r: &mut Reporter) -> u8 {
     let wants = linc_engines::strategy::wanted(&strategy.store);
     let dir = a.file.parent().map(PathBuf::from).unwrap_or_default();
     let until_us = until_us.map(|d| strategy.elapsed_us().saturating_add(d));
+    let trace = match &a.trace {
+        None => None,
+        Some(path) => {
+            let inputs: Vec<&std::path::Path> =
+                [Some(a.file.as_path()), a.state.as_deref()].into_iter().flatten().collect();
+            match linc_driver::files::check_output(path, &inputs)
+                .and_then(|_| linc_driver::files::AtomicFile::create(path))
+            {
+                Ok(f) => Some(f),
+                Err(e) => return crate::report::refused(r, e.diagnostic()),
+            }
+        }
+    };
     let limits = linc_serve::Limits { max_clients: usize::from(a.max_clients), idle, ..Default::default() };
     let cfg = Config {
         speed: a.speed.0,
@@ -163,6 +180,7 @@ pub fn run(a: ServeArgs, r: &mut Reporter) -> u8 {
         state: a.state.clone(),
         roc: a.roc.map(|addr| (addr, a.roc_address)),
         limits,
+        trace,
         ..Config::new(a.http)
     };
     let server = match linc_serve::start(Console::new(strategy), &wants, &dir, cfg) {
@@ -190,10 +208,16 @@ pub fn run(a: ServeArgs, r: &mut Reporter) -> u8 {
         done.scans,
         done.late
     ));
+    if let Some(why) = &done.trace_error {
+        r.command(linc_format::Code::E0900, why.clone());
+    }
     if let Some(path) = &a.state {
         if let Err(status) = linc_driver::state::save(path, &done.console.strategy, r) {
             return status;
         }
+    }
+    if done.trace_error.is_some() {
+        return 2;
     }
     0
 }

@@ -17,6 +17,7 @@ mod wire;
 pub use wire::{Limits, Log};
 
 use linc_engines::console::{Console, ConsoleError};
+use linc_engines::strategy::trace::Trace;
 use linc_engines::strategy::Want;
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
@@ -37,7 +38,6 @@ pub enum Speed {
 }
 
 /// How to serve.
-#[derive(Clone)]
 pub struct Config {
     pub addr: SocketAddr,
     pub speed: Speed,
@@ -55,6 +55,9 @@ pub struct Config {
     pub limits: wire::Limits,
     /// Where the wire servers' log lines go.
     pub log: wire::Log,
+    /// Where the trace goes (`--trace`): every change a scan, a console
+    /// line or a client on the wire made, committed when the server stops.
+    pub trace: Option<linc_driver::files::AtomicFile>,
 }
 
 impl Config {
@@ -72,6 +75,7 @@ impl Config {
             roc: None,
             limits: wire::Limits::default(),
             log: Arc::new(|line| eprintln!("{line}")),
+            trace: None,
         }
     }
 }
@@ -127,6 +131,8 @@ pub struct Finished {
     pub console: Console,
     pub scans: u64,
     pub late: u64,
+    /// Why the trace could not be written, if it could not.
+    pub trace_error: Option<String>,
 }
 
 /// A running server.
@@ -217,11 +223,25 @@ pub fn start(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) -> R
         status.clone(),
     );
     let flag = stop.clone();
+    let mut trace_file = cfg.trace;
     let plant = std::thread::Builder::new()
         .name("linc-plant".into())
         .spawn(move || {
-            plant.run(&asked, &flag);
-            plant.finish()
+            let trace_error = match trace_file.as_mut() {
+                None => {
+                    plant.run(&asked, &flag, None);
+                    None
+                }
+                Some(file) => {
+                    let mut t = Trace::new(file, &plant.console.strategy.store);
+                    plant.run(&asked, &flag, Some(&mut t));
+                    t.finish().err().map(|e| format!("can't write the trace: {e}"))
+                }
+            };
+            let committed = trace_file.map(|f| f.commit().map_err(|e| e.diagnostic().message.clone()));
+            let mut finished = plant.finish();
+            finished.trace_error = trace_error.or(committed.and_then(Result::err));
+            finished
         })
         .map_err(|e| StartError::Bind(addr, e))?;
     let (closing, closed) = oneshot::channel();

@@ -7,6 +7,7 @@
 use crate::pictures::Picture;
 use crate::{Ask, Event, Reply, Speed};
 use linc_engines::console::Console;
+use linc_engines::strategy::trace::Trace;
 use linc_runtime::store::Cell;
 use serde_json::{json, Map, Value};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -116,7 +117,7 @@ impl Plant {
 
     /// Runs until `stop` is set, the `--for` time is reached or every
     /// asker is gone.
-    pub fn run(&mut self, asks: &Receiver<Ask>, stop: &AtomicBool) {
+    pub fn run(&mut self, asks: &Receiver<Ask>, stop: &AtomicBool, mut trace: Option<&mut Trace>) {
         let until = self.until.unwrap_or(u64::MAX);
         while !stop.load(Ordering::Relaxed) {
             let now = Instant::now();
@@ -127,10 +128,10 @@ impl Plant {
                     if self.clock.wall_of(n).checked_add(self.tolerance).is_some_and(|due| now > due) {
                         self.late += 1;
                     }
-                    let failures = s.run_due(None);
+                    let failures = s.run_due(trace.as_deref_mut());
                     self.scans += 1;
                     drop(failures); // they are in the error status the page shows
-                    if !self.answer_waiting(asks) {
+                    if !self.answer_waiting(asks, trace.as_deref_mut()) {
                         return;
                     }
                 }
@@ -138,7 +139,7 @@ impl Plant {
                     let el = s.elapsed_us();
                     let to = target.min(until);
                     if to != u64::MAX && to > el {
-                        s.run_for(to - el, None);
+                        s.run_for(to - el, trace.as_deref_mut());
                     }
                     if s.elapsed_us() >= until {
                         break;
@@ -148,7 +149,7 @@ impl Plant {
                         None => PUBLISH_EVERY,
                     };
                     match asks.recv_timeout(wait.min(PUBLISH_EVERY)) {
-                        Ok(a) => self.answer(a),
+                        Ok(a) => self.answer(a, trace.as_deref_mut()),
                         Err(RecvTimeoutError::Timeout) => {}
                         Err(RecvTimeoutError::Disconnected) => return,
                     }
@@ -163,20 +164,20 @@ impl Plant {
 
     /// Answers what is waiting without blocking; `false` when every asker
     /// is gone.
-    fn answer_waiting(&mut self, asks: &Receiver<Ask>) -> bool {
+    fn answer_waiting(&mut self, asks: &Receiver<Ask>, mut trace: Option<&mut Trace>) -> bool {
         loop {
             match asks.try_recv() {
-                Ok(a) => self.answer(a),
+                Ok(a) => self.answer(a, trace.as_deref_mut()),
                 Err(std::sync::mpsc::TryRecvError::Empty) => return true,
                 Err(std::sync::mpsc::TryRecvError::Disconnected) => return false,
             }
         }
     }
 
-    fn answer(&mut self, a: Ask) {
+    fn answer(&mut self, a: Ask, trace: Option<&mut Trace>) {
         match a {
             Ask::Command { line, reply } => {
-                let r = self.command(&line);
+                let r = self.command(&line, trace);
                 let _ = reply.send(r);
                 self.publish();
             }
@@ -191,7 +192,7 @@ impl Plant {
             }
             Ask::Roc { frame, peer, reply } => {
                 if let Some(device) = self.roc {
-                    let _ = reply.send(device.answer(&mut self.console, &frame, &peer));
+                    let _ = reply.send(device.answer(&mut self.console, &frame, &peer, trace));
                 }
             }
             Ask::Picture { name, reply } => {
@@ -207,12 +208,12 @@ impl Plant {
 
     /// One console line, through the console engine like every control.
     /// A command that moved the clock (ADVANCE, SCAN) rebases real time.
-    fn command(&mut self, line: &str) -> Reply {
+    fn command(&mut self, line: &str, trace: Option<&mut Trace>) -> Reply {
         if !self.allow_writes && !linc_engines::console::reads_only(line) {
             return Reply::Refused;
         }
         let before = self.console.strategy.elapsed_us();
-        let replies = self.console.execute(line);
+        let replies = self.console.execute_traced(line, trace);
         let failures: Vec<String> = self.console.take_failures().iter().map(|e| e.to_string()).collect();
         let after = self.console.strategy.elapsed_us();
         if after != before {
@@ -230,7 +231,7 @@ impl Plant {
 
     /// What the run leaves, once it has stopped.
     pub fn finish(self) -> crate::Finished {
-        crate::Finished { console: self.console, scans: self.scans, late: self.late }
+        crate::Finished { console: self.console, scans: self.scans, late: self.late, trace_error: None }
     }
 
     /// Publishes the status, the values and the pictures that changed.

@@ -17,6 +17,10 @@ const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
 const ARC: crc::Crc<u16> = crc::Crc::<u16>::new(&crc::CRC_16_ARC);
 
 fn serve(db: &str, writes: bool) -> Server {
+    serve_traced(db, writes, None)
+}
+
+fn serve_traced(db: &str, writes: bool, trace: Option<&Path>) -> Server {
     let path = Path::new(ROOT).join(db);
     let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
     let o = linc_driver::strategy::PlantOptions { now: Some("2026-01-05T06:00:00".into()), ..Default::default() };
@@ -29,6 +33,7 @@ fn serve(db: &str, writes: bool) -> Server {
         allow_writes: writes,
         roc: Some(("127.0.0.1:0".parse().unwrap(), unit)),
         log: std::sync::Arc::new(|_| {}),
+        trace: trace.map(|p| linc_driver::files::AtomicFile::create(p).expect("trace file")),
         ..Config::new("127.0.0.1:0".parse().unwrap())
     };
     linc_serve::start(Console::new(s), &wants, path.parent().unwrap(), cfg).expect("start")
@@ -220,4 +225,32 @@ fn the_clock_is_set_and_read_and_the_configuration_counts_points() {
     let count = |t: usize| d[19 + t - 60];
     assert_eq!((count(96), count(98), count(102), count(103), count(104)), (4, 2, 3, 2, 0));
     s.stop();
+}
+
+#[test]
+fn the_trace_records_each_write_and_refusal_with_the_clients_address() {
+    let dir = linc_test_support::fresh_dir("roc-trace");
+    let path = dir.join("trace.jsonl");
+    let s = serve_traced("examples/roc/plant.json", true, Some(&path));
+    let mut h = Host::connect(&s);
+    let me = h.0.local_addr().unwrap().to_string();
+    let mut w = vec![1, 17, 0, 2];
+    w.extend_from_slice(&65.5f32.to_le_bytes());
+    assert_eq!(h.ask(181, &w), (181, vec![]));
+    let url = format!("http://{}/api/command", s.addr());
+    let body = serde_json::json!({"command": "F SFP 1.DATA2=0.3"}).to_string();
+    ureq::post(&url).header("Content-Type", "application/json").send(body).expect("force");
+    let mut w = vec![1, 17, 0, 3];
+    w.extend_from_slice(&9.0f32.to_le_bytes());
+    assert_eq!(h.ask(181, &w).0, 255);
+    let done = s.stop();
+    assert_eq!(done.trace_error, None);
+    let text = std::fs::read_to_string(&path).expect("the trace was written at the stop");
+    let lines: Vec<Value> = text.lines().map(|l| serde_json::from_str(l).expect("JSON line")).collect();
+    let client = format!("roc {me}");
+    let wrote =
+        lines.iter().find(|l| l["client"] == client.as_str() && l["field"] == "SFP 1.DATA1").expect("the write");
+    assert_eq!((wrote["old"].as_str(), wrote["new"].as_str()), (Some("80.0"), Some("65.5")));
+    let refused = lines.iter().find(|l| l["refused"] == "forced").expect("the refused write");
+    assert_eq!((refused["client"].as_str(), refused["field"].as_str()), (Some(client.as_str()), Some("SFP 1.DATA2")));
 }

@@ -39,6 +39,31 @@ impl<'w> Trace<'w> {
         self.line(&line);
     }
 
+    /// Records a write by a client on the wire (`roc 127.0.0.1:51000`) if
+    /// it changed the value: the client's address where a program's
+    /// write has its task and program.
+    pub fn client_write(&mut self, store: &Store, now_us: u64, client: &str, cell: u32) {
+        let new = store.show(cell);
+        let Some(slot) = self.shown.get_mut(cell as usize) else { return };
+        if slot.as_deref() == Some(new.as_str()) {
+            return;
+        }
+        let old = slot.replace(new.clone()).unwrap_or_default();
+        let line = serde_json::json!({
+            "time": seconds(now_us), "client": client, "field": store.describe(cell), "old": old, "new": new,
+        });
+        self.line(&line);
+    }
+
+    /// Records a client's write that was refused, and why (`forced`,
+    /// `read-only`): nothing changed, but the attempt is part of the story.
+    pub fn client_refused(&mut self, store: &Store, now_us: u64, client: &str, cell: u32, why: &str) {
+        let line = serde_json::json!({
+            "time": seconds(now_us), "client": client, "field": store.describe(cell), "refused": why,
+        });
+        self.line(&line);
+    }
+
     /// Records a step activated or deactivated, a transition fired or an
     /// action run by a sequence.
     pub fn sequence_event(&mut self, e: crate::sequence::engine::Event, now_us: u64, task: u8, program: &str) {

@@ -298,6 +298,35 @@ mod tests {
         assert_eq!(roc.roc_type(f, 999), None);
     }
 
+    /// docs/roc-points.md lists every ROC template's parameters with the
+    /// type each travels as; the page must say what the code does.
+    #[test]
+    fn the_pages_wire_types_are_the_templates() {
+        let page = include_str!("../../../docs/roc-points.md");
+        let section = page.split("## Wire types").nth(1).expect("the section");
+        let section = section.split("## TLPs in a table").next().unwrap();
+        let db = Database::from_json(r#"{"blocks": {}}"#).unwrap();
+        let mut checked = 0;
+        for part in section.split("### ").skip(1) {
+            let name = part.split_whitespace().next().unwrap();
+            let t = db.templates.iter().position(|t| t.name == name).expect(name);
+            let b = Database::from_json(&format!(r#"{{"blocks": {{"X": {{"type": "{name}"}}}}}}"#)).unwrap();
+            let rows: Vec<Vec<&str>> = part
+                .lines()
+                .filter(|l| l.starts_with("| ") && !l.starts_with("| P "))
+                .map(|l| l.trim_matches('|').split('|').map(str::trim).collect())
+                .collect();
+            assert_eq!(rows.len(), db.templates[t].fields.len(), "{name}: every parameter is listed");
+            for (p, row) in rows.iter().enumerate() {
+                assert_eq!(row[0], p.to_string(), "{name}");
+                assert_eq!(row[1].trim_matches('`'), db.templates[t].fields[p].name, "{name} P {p}");
+                assert_eq!(Some(row[2].to_string()), b.roc_type(0, p).map(RocType::name), "{name} P {p}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 60, "{checked} rows");
+    }
+
     #[test]
     fn a_wire_type_that_cannot_carry_the_field_is_refused_where_it_is_written() {
         for (spec, ok) in [(r#""wire": "UINT8""#, true), (r#""wire": "AC8""#, false), (r#""wire": 8"#, false)] {

@@ -7,6 +7,7 @@ use linc_comms::roc::value::{self, Value};
 use linc_comms::roc::{Address, Frame};
 use linc_engines::console::fields::Addr;
 use linc_engines::console::Console;
+use linc_engines::strategy::trace::Trace;
 use linc_format::db::{FieldType, RocType, Tlp, TlpFault};
 use linc_format::Code;
 use linc_runtime::store::{Cell, Store};
@@ -94,11 +95,11 @@ fn field_value(ty: &FieldType, v: Value) -> Option<Cell> {
 impl RocDevice {
     /// The reply to a request frame addressed to this device; `peer` names
     /// the client in the log.
-    pub fn answer(&self, console: &mut Console, req: &Frame, peer: &str) -> Answer {
+    pub fn answer(&self, console: &mut Console, req: &Frame, peer: &str, trace: Option<&mut Trace>) -> Answer {
         let mut log = Vec::new();
         let result = match req.opcode {
             ops::READ => read(&console.strategy.store, &req.data),
-            ops::WRITE => self.write(console, &req.data, peer, &mut log),
+            ops::WRITE => self.write(console, &req.data, peer, &mut log, trace),
             ops::CLOCK_READ => clock_read(console, &req.data),
             ops::CLOCK_SET => self.clock_set(console, &req.data, peer, &mut log),
             ops::CONFIG => config(&console.strategy.store, &req.data),
@@ -119,6 +120,7 @@ impl RocDevice {
         data: &[u8],
         peer: &str,
         log: &mut Vec<String>,
+        mut trace: Option<&mut Trace>,
     ) -> Result<Vec<u8>, Vec<RocError>> {
         let store = &console.strategy.store;
         let writes = ops::parse_write(data, |t| resolve(store, t).map(|p| p.wire.size())).map_err(|e| vec![e])?;
@@ -132,18 +134,26 @@ impl RocDevice {
             let new = value::decode(p.wire, value).and_then(|v| field_value(p.ty, v)).ok_or_else(range)?;
             cells.push((Addr { cell: p.cell, bit: None }, new));
         }
+        let client = format!("roc {peer}");
+        let now = console.strategy.elapsed_us();
         if let Err((i, e)) = console.modify_all(&cells) {
             let at = writes[i].at;
-            let err = match e.code {
-                Code::C0009 => RocError::at_data(code::INVALID_STATE_FOR_WRITE, at),
-                _ => RocError::at_data(code::READ_ONLY, at + 2),
+            let (err, why) = match e.code {
+                Code::C0009 => (RocError::at_data(code::INVALID_STATE_FOR_WRITE, at), "forced"),
+                _ => (RocError::at_data(code::READ_ONLY, at + 2), "read-only"),
             };
-            log.push(format!("roc {peer}: write refused: {}", e.message));
+            log.push(format!("{client}: write refused: {}", e.message));
+            if let Some(t) = trace {
+                t.client_refused(&console.strategy.store, now, &client, cells[i].0.cell, why);
+            }
             return Err(vec![err]);
         }
         let store = &console.strategy.store;
         for (a, _) in &cells {
-            log.push(format!("roc {peer}: wrote {} = {}", store.describe(a.cell), store.show(a.cell)));
+            log.push(format!("{client}: wrote {} = {}", store.describe(a.cell), store.show(a.cell)));
+            if let Some(t) = trace.as_deref_mut() {
+                t.client_write(store, now, &client, a.cell);
+            }
         }
         Ok(Vec::new())
     }
