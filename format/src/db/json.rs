@@ -38,6 +38,10 @@ pub mod code {
     pub const ALIAS_TOO_BIG: Code = Code::E0817;
     pub const DEVICE: Code = Code::E0818;
     pub const TOO_MANY_CELLS: Code = Code::E0819;
+    pub const MODBUS_SHAPE: Code = Code::E0850;
+    pub const MODBUS_FIELD: Code = Code::E0851;
+    pub const MODBUS_TYPE: Code = Code::E0852;
+    pub const MODBUS_OVERLAP: Code = Code::E0853;
 }
 
 /// Longest name in bytes: the object file stores names with a u16 length.
@@ -152,7 +156,7 @@ impl<'a> Loader<'a> {
         let members = object(&root, "the database")?;
         // `roc` holds the logs and archives a run wrote with `--out`; it
         // describes a past run, not the database, so loading skips it.
-        only_keys(members, &["device", "templates", "blocks", "aliases", "tasks", "roc"], "the database")?;
+        only_keys(members, &["device", "templates", "blocks", "aliases", "tasks", "roc", "modbus"], "the database")?;
         if let Some(m) = get(members, "device") {
             self.device(&m.value)?;
         }
@@ -176,6 +180,10 @@ impl<'a> Loader<'a> {
                 self.alias(a)?;
             }
             self.expand_aliases(aliases)?;
+        }
+        // The map names blocks and aliases, so it is read after them.
+        if let Some(m) = get(members, "modbus") {
+            self.db.modbus = Some(super::modbus::load(self.db, &m.value)?);
         }
         Ok(())
     }

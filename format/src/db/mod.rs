@@ -7,6 +7,7 @@
 
 mod fields;
 mod json;
+pub mod modbus;
 mod names;
 mod period;
 mod roc;

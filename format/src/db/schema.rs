@@ -169,6 +169,8 @@ pub struct Database {
     pub tasks: Vec<Task>,
     /// The ROC device family whose point type numbers numeric TLPs use.
     pub device: Device,
+    /// The Modbus register map (`"modbus"`), if the database has one.
+    pub modbus: Option<super::modbus::ModbusMap>,
     template_index: NameMap,
     block_index: NameMap,
     alias_index: NameMap,
@@ -183,6 +185,7 @@ impl Default for Database {
             aliases: Vec::new(),
             tasks: vec![Task::DEFAULT],
             device: Device::default(),
+            modbus: None,
             template_index: NameMap::default(),
             block_index: NameMap::default(),
             alias_index: NameMap::default(),
