@@ -66,7 +66,7 @@ pub struct MbEntry {
 
 impl MbEntry {
     /// Registers or bits it takes.
-    pub fn len(&self) -> u32 {
+    pub fn width(&self) -> u32 {
         if self.ty == MbType::Real {
             2
         } else {
@@ -91,7 +91,7 @@ impl ModbusMap {
         let i = self.entries.partition_point(|e| (e.table as u8, e.address) <= (table as u8, address));
         let e = self.entries[..i].iter().rev().find(of_table)?;
         let off = u32::from(address) - u32::from(e.address);
-        (off < e.len()).then_some((e, off))
+        (off < e.width()).then_some((e, off))
     }
 }
 
@@ -193,7 +193,7 @@ fn entry(db: &Database, item: &Node) -> Result<MbEntry, DbError> {
         }
     };
     let e = MbEntry { table, address, block, field, bit, ty, low_first };
-    if u32::from(address) + e.len() > 65536 {
+    if u32::from(address) + e.width() > 65536 {
         return Err(bad(code::MODBUS_SHAPE, "a REAL at 65535 would pass the last register", anode));
     }
     Ok(e)
@@ -240,9 +240,9 @@ fn fits(table: Table, ty: MbType, fty: &FieldType, bit: Option<u8>) -> Result<()
 
 /// Two entries of one table may not share an address.
 fn overlap(entries: &[MbEntry], e: &MbEntry, item: &Node) -> Result<(), DbError> {
-    let (a0, a1) = (u32::from(e.address), u32::from(e.address) + e.len());
+    let (a0, a1) = (u32::from(e.address), u32::from(e.address) + e.width());
     if let Some(o) =
-        entries.iter().find(|o| o.table == e.table && u32::from(o.address) < a1 && a0 < u32::from(o.address) + o.len())
+        entries.iter().find(|o| o.table == e.table && u32::from(o.address) < a1 && a0 < u32::from(o.address) + o.width())
     {
         let message = format!("{} {} overlaps the entry at {} of the same table", e.table.name(), e.address, o.address);
         return Err(bad(code::MODBUS_OVERLAP, message, item));
