@@ -60,6 +60,9 @@ pub struct ServeArgs {
     /// Also be a ROC Plus device on this TCP port (loopback) or ADDR:PORT (any other address must be named).
     #[arg(long, value_name = "[ADDR:]PORT", value_parser = wire_addr)]
     pub roc: Option<SocketAddr>,
+    /// Also be a Modbus TCP server over the database's "modbus" map on this port (loopback) or ADDR:PORT.
+    #[arg(long, value_name = "[ADDR:]PORT", value_parser = wire_addr)]
+    pub modbus: Option<SocketAddr>,
     /// The ROC unit and group the device answers to.
     #[arg(long, value_name = "UNIT,GROUP", default_value = "1,2", value_parser = roc_address, requires = "roc")]
     pub roc_address: linc_comms::roc::Address,
@@ -179,6 +182,7 @@ pub fn run(a: ServeArgs, r: &mut Reporter) -> u8 {
         until_us,
         state: a.state.clone(),
         roc: a.roc.map(|addr| (addr, a.roc_address)),
+        modbus: a.modbus,
         limits,
         trace,
         ..Config::new(a.http)
@@ -191,6 +195,9 @@ pub fn run(a: ServeArgs, r: &mut Reporter) -> u8 {
     crate::out::line(&format!("serving http://{}/ ({mode}); Ctrl-C stops", server.addr()));
     if let Some(roc) = server.roc_addr() {
         crate::out::line(&format!("ROC Plus device {} on {roc}", a.roc_address));
+    }
+    if let Some(m) = server.modbus_addr() {
+        crate::out::line(&format!("Modbus TCP server on {m}"));
     }
     on_interrupt();
     if a.console {

@@ -53,6 +53,8 @@ impl AppState {
 /// The wire servers that run beside the HTTP one, on the same runtime.
 pub struct Wires {
     pub roc: Option<(std::net::TcpListener, linc_comms::roc::Address)>,
+    /// The Modbus listener and the unit of the map.
+    pub modbus: Option<(std::net::TcpListener, u8)>,
     pub asks: Sender<Ask>,
     pub limits: crate::wire::Limits,
     pub log: crate::wire::Log,
@@ -74,6 +76,10 @@ pub fn serve(listener: std::net::TcpListener, state: AppState, wires: Wires, clo
                 };
                 tokio::spawn(crate::wire::net::accept("roc", l, limits, wires.log.clone(), closing.clone(), serve_one));
             }
+        }
+        if let Some((l, unit)) = wires.modbus {
+            let (asks, limits, log) = (wires.asks.clone(), wires.limits, wires.log.clone());
+            tokio::spawn(crate::wire::modbus_server::serve(l, unit, asks, limits, log, closing.clone()));
         }
         let shutdown = async move {
             let _ = closed.await;

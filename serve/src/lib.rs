@@ -51,6 +51,9 @@ pub struct Config {
     /// A ROC Plus device on this address, answering as this unit and group
     /// (`--roc`, `--roc-address`).
     pub roc: Option<(SocketAddr, linc_comms::roc::Address)>,
+    /// A Modbus TCP server on this address, over the database's map
+    /// (`--modbus`).
+    pub modbus: Option<SocketAddr>,
     /// What the wire servers put up with.
     pub limits: wire::Limits,
     /// Where the wire servers' log lines go.
@@ -73,6 +76,7 @@ impl Config {
             until_us: None,
             state: None,
             roc: None,
+            modbus: None,
             limits: wire::Limits::default(),
             log: Arc::new(|line| eprintln!("{line}")),
             trace: None,
@@ -124,6 +128,12 @@ pub(crate) enum Ask {
         peer: String,
         reply: oneshot::Sender<wire::roc::Answer>,
     },
+    /// A Modbus request, from `peer`.
+    Modbus {
+        request: tokio_modbus::Request<'static>,
+        peer: String,
+        reply: oneshot::Sender<wire::modbus::MbAnswer>,
+    },
 }
 
 /// What a served run leaves: the console (for `--state`) and its counts.
@@ -139,6 +149,7 @@ pub struct Finished {
 pub struct Server {
     addr: SocketAddr,
     roc: Option<SocketAddr>,
+    modbus: Option<SocketAddr>,
     asks: Sender<Ask>,
     stop: Arc<AtomicBool>,
     plant: JoinHandle<Finished>,
@@ -169,6 +180,8 @@ pub enum StartError {
     /// Off loopback without a token.
     NeedsToken(SocketAddr),
     Bind(SocketAddr, std::io::Error),
+    /// `--modbus` over a database with no `"modbus"` map.
+    NoModbusMap,
 }
 
 /// A listener bound now (so a busy port fails at the start), handed to
@@ -190,6 +203,9 @@ impl std::fmt::Display for StartError {
                 )
             }
             StartError::Bind(a, e) => write!(f, "can't listen on {a}: {e}"),
+            StartError::NoModbusMap => {
+                write!(f, "--modbus needs a \"modbus\" register map in the database (docs/modbus.md)")
+            }
         }
     }
 }
@@ -203,6 +219,13 @@ pub fn start(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) -> R
     let (listener, addr) = bind(cfg.addr)?;
     let roc = cfg.roc.map(|(a, me)| bind(a).map(|(l, bound)| (l, bound, me))).transpose()?;
     let roc_addr = roc.as_ref().map(|r| r.1);
+    let unit = match (cfg.modbus, console.strategy.store.db.modbus.as_ref()) {
+        (None, _) => None,
+        (Some(_), None) => return Err(StartError::NoModbusMap),
+        (Some(_), Some(map)) => Some(map.unit),
+    };
+    let modbus = cfg.modbus.map(bind).transpose()?;
+    let modbus_addr = modbus.as_ref().map(|m| m.1);
     console.can_save = cfg.state.is_some();
     let pictures = pictures::load(dir, wants, &console.strategy);
     let (events, _) = broadcast::channel(256);
@@ -218,6 +241,7 @@ pub fn start(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) -> R
             allow_writes: cfg.allow_writes,
             state: cfg.state,
             roc: roc.as_ref().map(|r| wire::roc::RocDevice { address: r.2, allow_writes: cfg.allow_writes }),
+            modbus: modbus.as_ref().map(|_| wire::modbus::ModbusDevice { allow_writes: cfg.allow_writes }),
         },
         events.clone(),
         status.clone(),
@@ -246,13 +270,18 @@ pub fn start(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) -> R
         .map_err(|e| StartError::Bind(addr, e))?;
     let (closing, closed) = oneshot::channel();
     let state = http::AppState::new(asks.clone(), events, status, cfg.token);
-    let wires =
-        http::Wires { roc: roc.map(|(l, _, me)| (l, me)), asks: asks.clone(), limits: cfg.limits, log: cfg.log };
+    let wires = http::Wires {
+        roc: roc.map(|(l, _, me)| (l, me)),
+        modbus: modbus.zip(unit).map(|((l, _), u)| (l, u)),
+        asks: asks.clone(),
+        limits: cfg.limits,
+        log: cfg.log,
+    };
     let http = std::thread::Builder::new()
         .name("linc-net".into())
         .spawn(move || http::serve(listener, state, wires, closed))
         .map_err(|e| StartError::Bind(addr, e))?;
-    Ok(Server { addr, roc: roc_addr, asks, stop, plant, http, closing: Some(closing) })
+    Ok(Server { addr, roc: roc_addr, modbus: modbus_addr, asks, stop, plant, http, closing: Some(closing) })
 }
 
 impl Server {
@@ -264,6 +293,11 @@ impl Server {
     /// Where the ROC Plus device listens, if it does.
     pub fn roc_addr(&self) -> Option<SocketAddr> {
         self.roc
+    }
+
+    /// Where the Modbus TCP server listens, if it does.
+    pub fn modbus_addr(&self) -> Option<SocketAddr> {
+        self.modbus
     }
 
     /// A handle that runs console lines on the plant from another thread

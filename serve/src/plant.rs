@@ -54,6 +54,8 @@ pub struct Setup {
     pub state: Option<std::path::PathBuf>,
     /// The ROC Plus device, when serving one.
     pub roc: Option<crate::wire::roc::RocDevice>,
+    /// The Modbus device, when serving one.
+    pub modbus: Option<crate::wire::modbus::ModbusDevice>,
 }
 
 /// What the plant thread owns.
@@ -75,6 +77,7 @@ pub struct Plant {
     allow_writes: bool,
     state: Option<std::path::PathBuf>,
     roc: Option<crate::wire::roc::RocDevice>,
+    modbus: Option<crate::wire::modbus::ModbusDevice>,
 }
 
 impl Plant {
@@ -85,7 +88,7 @@ impl Plant {
         events: broadcast::Sender<Arc<Event>>,
         status: Arc<Mutex<Value>>,
     ) -> Plant {
-        let Setup { speed, until, allow_writes, state, roc } = setup;
+        let Setup { speed, until, allow_writes, state, roc, modbus } = setup;
         let sim = console.strategy.elapsed_us();
         let period = console.strategy.fastest_period_us().unwrap_or(1_000_000);
         let tolerance = match speed {
@@ -110,6 +113,7 @@ impl Plant {
             allow_writes,
             state,
             roc,
+            modbus,
         };
         p.publish();
         p
@@ -193,6 +197,11 @@ impl Plant {
             Ask::Roc { frame, peer, reply } => {
                 if let Some(device) = self.roc {
                     let _ = reply.send(device.answer(&mut self.console, &frame, &peer, trace));
+                }
+            }
+            Ask::Modbus { request, peer, reply } => {
+                if let Some(device) = self.modbus {
+                    let _ = reply.send(device.answer(&mut self.console, &request, &peer, trace));
                 }
             }
             Ask::Picture { name, reply } => {

@@ -241,8 +241,9 @@ fn fits(table: Table, ty: MbType, fty: &FieldType, bit: Option<u8>) -> Result<()
 /// Two entries of one table may not share an address.
 fn overlap(entries: &[MbEntry], e: &MbEntry, item: &Node) -> Result<(), DbError> {
     let (a0, a1) = (u32::from(e.address), u32::from(e.address) + e.width());
-    if let Some(o) =
-        entries.iter().find(|o| o.table == e.table && u32::from(o.address) < a1 && a0 < u32::from(o.address) + o.width())
+    if let Some(o) = entries
+        .iter()
+        .find(|o| o.table == e.table && u32::from(o.address) < a1 && a0 < u32::from(o.address) + o.width())
     {
         let message = format!("{} {} overlaps the entry at {} of the same table", e.table.name(), e.address, o.address);
         return Err(bad(code::MODBUS_OVERLAP, message, item));

@@ -3,6 +3,8 @@
 //! frames and hands each to the plant thread, which answers between scans;
 //! a scan never waits for a client and a client never sees a half-scan.
 
+pub mod modbus;
+pub mod modbus_server;
 pub mod net;
 pub mod roc;
 pub mod roc_server;

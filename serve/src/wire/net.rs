@@ -36,13 +36,14 @@ pub type Log = Arc<dyn Fn(String) + Send + Sync>;
 
 /// Refusals over the cap are logged at most once a second, with a count,
 /// so a flood of connections can't flood the log.
-struct Refusals {
+#[derive(Default)]
+pub struct Refusals {
     count: AtomicU64,
     last: std::sync::Mutex<Option<Instant>>,
 }
 
 impl Refusals {
-    fn note(&self, what: &str, peer: SocketAddr, cap: usize, log: &Log) {
+    pub fn note(&self, what: &str, peer: SocketAddr, cap: usize, log: &Log) {
         let n = self.count.fetch_add(1, Ordering::Relaxed) + 1;
         let Ok(mut last) = self.last.lock() else { return };
         if last.is_none_or(|t| t.elapsed() >= Duration::from_secs(1)) {
@@ -67,7 +68,7 @@ pub async fn accept<F, Fut>(
     Fut: std::future::Future<Output = ()> + Send + 'static,
 {
     let permits = Arc::new(Semaphore::new(limits.max_clients));
-    let refusals = Refusals { count: AtomicU64::new(0), last: std::sync::Mutex::new(None) };
+    let refusals = Refusals::default();
     loop {
         let accepted = tokio::select! {
             a = listener.accept() => a,

@@ -1,0 +1,237 @@
+//! The Modbus device: requests answered from the plant through the
+//! database's register map, on the plant's thread between scans
+//! (docs/modbus.md). Writes go through the console's rules, all or none.
+
+use linc_engines::console::fields::Addr;
+use linc_engines::console::Console;
+use linc_engines::strategy::trace::Trace;
+use linc_format::db::modbus::{MbEntry, MbType, ModbusMap, Table};
+use linc_format::Code;
+use linc_runtime::store::{Cell, Store};
+use tokio_modbus::{ExceptionCode, Request, Response};
+
+/// Most coils one read may ask for, and registers (the protocol's limits).
+const MAX_BITS: u16 = 2000;
+const MAX_REGISTERS: u16 = 125;
+
+/// What the device is.
+#[derive(Clone, Copy, Debug)]
+pub struct ModbusDevice {
+    pub allow_writes: bool,
+}
+
+/// A reply and what to log about the request.
+pub struct MbAnswer {
+    pub reply: Result<Response, ExceptionCode>,
+    pub log: Vec<String>,
+}
+
+fn cell_of(store: &Store, e: &MbEntry) -> u32 {
+    store.first[e.block] + e.field as u32
+}
+
+/// A bit's value now.
+fn bit(store: &Store, e: &MbEntry) -> bool {
+    match (&store.cells[cell_of(store, e) as usize], e.bit) {
+        (Cell::Bits { v, .. }, Some(b)) => (v >> b) & 1 == 1,
+        (Cell::Bool(b), _) => *b,
+        (Cell::Int(i), _) => *i != 0,
+        _ => false,
+    }
+}
+
+/// Register `off` of an entry now: a REAL's high word first unless the
+/// map says low first; an INT held at the ends of a register's range.
+fn register(store: &Store, e: &MbEntry, off: u32) -> u16 {
+    match &store.cells[cell_of(store, e) as usize] {
+        Cell::Real(x) => {
+            let bits = x.to_bits();
+            let high_half = (off == 0) != e.low_first;
+            if high_half {
+                (bits >> 16) as u16
+            } else {
+                bits as u16
+            }
+        }
+        Cell::Int(i) => (*i).clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16 as u16,
+        Cell::Bits { v, .. } => *v,
+        Cell::Enum { idx } => *idx,
+        _ => 0,
+    }
+}
+
+/// The entries covering `n` addresses from `start` of `table`, each with
+/// the offset in it; exception 02 when one is unmapped.
+fn span(map: &ModbusMap, table: Table, start: u16, n: u16) -> Result<Vec<(&MbEntry, u32)>, ExceptionCode> {
+    (0..n)
+        .map(|i| start.checked_add(i).and_then(|a| map.at(table, a)).ok_or(ExceptionCode::IllegalDataAddress))
+        .collect()
+}
+
+impl ModbusDevice {
+    /// The reply to a request; `peer` names the client in the log.
+    pub fn answer(&self, console: &mut Console, req: &Request<'_>, peer: &str, trace: Option<&mut Trace>) -> MbAnswer {
+        let mut log = Vec::new();
+        let reply = self.reply(console, req, peer, &mut log, trace);
+        MbAnswer { reply, log }
+    }
+
+    fn reply(
+        &self,
+        console: &mut Console,
+        req: &Request<'_>,
+        peer: &str,
+        log: &mut Vec<String>,
+        trace: Option<&mut Trace>,
+    ) -> Result<Response, ExceptionCode> {
+        let store = &console.strategy.store;
+        let Some(map) = store.db.modbus.as_ref() else { return Err(ExceptionCode::IllegalDataAddress) };
+        let count = |n: u16, max: u16| if n == 0 || n > max { Err(ExceptionCode::IllegalDataValue) } else { Ok(n) };
+        let bits = |table, a, n| -> Result<Vec<bool>, ExceptionCode> {
+            Ok(span(map, table, a, count(n, MAX_BITS)?)?.into_iter().map(|(e, _)| bit(store, e)).collect())
+        };
+        let regs = |table, a, n| -> Result<Vec<u16>, ExceptionCode> {
+            let s = span(map, table, a, count(n, MAX_REGISTERS)?)?;
+            Ok(s.into_iter().map(|(e, off)| register(store, e, off)).collect())
+        };
+        match req {
+            Request::ReadCoils(a, n) => bits(Table::Coil, *a, *n).map(Response::ReadCoils),
+            Request::ReadDiscreteInputs(a, n) => bits(Table::Discrete, *a, *n).map(Response::ReadDiscreteInputs),
+            Request::ReadHoldingRegisters(a, n) => regs(Table::Holding, *a, *n).map(Response::ReadHoldingRegisters),
+            Request::ReadInputRegisters(a, n) => regs(Table::Input, *a, *n).map(Response::ReadInputRegisters),
+            Request::WriteSingleCoil(a, v) => {
+                self.write_bits(console, *a, &[*v], peer, log, trace).map(|_| Response::WriteSingleCoil(*a, *v))
+            }
+            Request::WriteMultipleCoils(a, vs) => {
+                let n = count(vs.len().try_into().unwrap_or(u16::MAX), 1968)?;
+                self.write_bits(console, *a, vs, peer, log, trace).map(|_| Response::WriteMultipleCoils(*a, n))
+            }
+            Request::WriteSingleRegister(a, v) => {
+                self.write_regs(console, *a, &[*v], peer, log, trace).map(|_| Response::WriteSingleRegister(*a, *v))
+            }
+            Request::WriteMultipleRegisters(a, vs) => {
+                let n = count(vs.len().try_into().unwrap_or(u16::MAX), 123)?;
+                self.write_regs(console, *a, vs, peer, log, trace).map(|_| Response::WriteMultipleRegisters(*a, n))
+            }
+            _ => Err(ExceptionCode::IllegalFunction),
+        }
+    }
+
+    /// Coils from `start`: each must be mapped, then written all or none.
+    fn write_bits(
+        &self,
+        console: &mut Console,
+        start: u16,
+        values: &[bool],
+        peer: &str,
+        log: &mut Vec<String>,
+        trace: Option<&mut Trace>,
+    ) -> Result<(), ExceptionCode> {
+        let store = &console.strategy.store;
+        let map = store.db.modbus.as_ref().ok_or(ExceptionCode::IllegalDataAddress)?;
+        let entries = span(map, Table::Coil, start, values.len().try_into().unwrap_or(u16::MAX))?;
+        let mut cells = Vec::with_capacity(values.len());
+        for ((e, _), &on) in entries.iter().zip(values) {
+            let cell = cell_of(store, e);
+            let new = match (&store.cells[cell as usize], e.bit) {
+                (Cell::Bits { v, width }, Some(b)) => {
+                    Cell::Bits { v: if on { v | 1 << b } else { v & !(1 << b) }, width: *width }
+                }
+                (Cell::Int(_), _) => Cell::Int(i32::from(on)),
+                _ => Cell::Bool(on),
+            };
+            cells.push((Addr { cell, bit: e.bit }, new));
+        }
+        self.commit(console, cells, peer, log, trace)
+    }
+
+    /// Holding registers from `start`: a REAL needs both its registers in
+    /// the one request; a value must fit its field.
+    fn write_regs(
+        &self,
+        console: &mut Console,
+        start: u16,
+        values: &[u16],
+        peer: &str,
+        log: &mut Vec<String>,
+        trace: Option<&mut Trace>,
+    ) -> Result<(), ExceptionCode> {
+        let store = &console.strategy.store;
+        let map = store.db.modbus.as_ref().ok_or(ExceptionCode::IllegalDataAddress)?;
+        let entries = span(map, Table::Holding, start, values.len().try_into().unwrap_or(u16::MAX))?;
+        let mut cells = Vec::new();
+        let mut i = 0;
+        while i < entries.len() {
+            let (e, off) = entries[i];
+            let cell = cell_of(store, e);
+            let ty = &store.db.block_template(e.block).fields[e.field].ty;
+            let new = match e.ty {
+                MbType::Real => {
+                    if off != 0 || i + 1 >= entries.len() {
+                        return Err(ExceptionCode::IllegalDataValue);
+                    }
+                    let (first, second) = (u32::from(values[i]), u32::from(values[i + 1]));
+                    let bits = if e.low_first { second << 16 | first } else { first << 16 | second };
+                    i += 1;
+                    let x = f32::from_bits(bits);
+                    if !x.is_finite() {
+                        return Err(ExceptionCode::IllegalDataValue);
+                    }
+                    Cell::Real(x)
+                }
+                _ => int_cell(ty, values[i]).ok_or(ExceptionCode::IllegalDataValue)?,
+            };
+            cells.push((Addr { cell, bit: None }, new));
+            i += 1;
+        }
+        self.commit(console, cells, peer, log, trace)
+    }
+
+    /// Writes the cells through the console's rules, all or none: writes
+    /// off, a read-only or a forced field refuse the whole request
+    /// (exception 04, the device can't do it).
+    fn commit(
+        &self,
+        console: &mut Console,
+        cells: Vec<(Addr, Cell)>,
+        peer: &str,
+        log: &mut Vec<String>,
+        mut trace: Option<&mut Trace>,
+    ) -> Result<(), ExceptionCode> {
+        let client = format!("modbus {peer}");
+        if !self.allow_writes {
+            log.push(format!("{client}: write refused: this server is read-only (--allow-writes)"));
+            return Err(ExceptionCode::IllegalFunction);
+        }
+        let now = console.strategy.elapsed_us();
+        if let Err((i, e)) = console.modify_all(&cells) {
+            log.push(format!("{client}: write refused: {}", e.message));
+            let why = if e.code == Code::C0009 { "forced" } else { "read-only" };
+            if let Some(t) = trace {
+                t.client_refused(&console.strategy.store, now, &client, cells[i].0.cell, why);
+            }
+            return Err(ExceptionCode::ServerDeviceFailure);
+        }
+        let store = &console.strategy.store;
+        for (a, _) in &cells {
+            log.push(format!("{client}: wrote {} = {}", store.describe(a.cell), store.show(a.cell)));
+            if let Some(t) = trace.as_deref_mut() {
+                t.client_write(store, now, &client, a.cell);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A register written to a whole-number field: an INT takes it as a
+/// signed 16-bit value, a BITS field as unsigned bits within its width, an
+/// ENUM as one of its indices; `None` when the field can't hold it.
+fn int_cell(ty: &linc_format::db::FieldType, w: u16) -> Option<Cell> {
+    use linc_format::db::FieldType;
+    match ty {
+        FieldType::Int => Some(Cell::Int(i32::from(w as i16))),
+        FieldType::Bits { width, .. } => (u32::from(w) < 1 << width).then_some(Cell::Bits { v: w, width: *width }),
+        FieldType::Enum(names) => (usize::from(w) < names.len()).then_some(Cell::Enum { idx: w }),
+        _ => None,
+    }
+}
