@@ -7,4 +7,5 @@
 //! time.
 
 pub mod error;
+pub mod modbus;
 pub mod roc;

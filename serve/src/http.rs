@@ -78,8 +78,20 @@ pub fn serve(listener: std::net::TcpListener, state: AppState, wires: Wires, clo
             }
         }
         if let Some((l, unit)) = wires.modbus {
-            let (asks, limits, log) = (wires.asks.clone(), wires.limits, wires.log.clone());
-            tokio::spawn(crate::wire::modbus_server::serve(l, unit, asks, limits, log, closing.clone()));
+            if let Ok(l) = tokio::net::TcpListener::from_std(l) {
+                let (asks, limits, log) = (wires.asks.clone(), wires.limits, wires.log.clone());
+                let serve_one = move |stream, peer| {
+                    crate::wire::modbus_server::client(stream, peer, unit, asks.clone(), limits, log.clone())
+                };
+                tokio::spawn(crate::wire::net::accept(
+                    "modbus",
+                    l,
+                    limits,
+                    wires.log.clone(),
+                    closing.clone(),
+                    serve_one,
+                ));
+            }
         }
         let shutdown = async move {
             let _ = closed.await;

@@ -12,7 +12,7 @@ mod http;
 mod json;
 mod pictures;
 mod plant;
-mod wire;
+pub mod wire;
 
 pub use wire::{Limits, Log};
 
@@ -130,7 +130,7 @@ pub(crate) enum Ask {
     },
     /// A Modbus request, from `peer`.
     Modbus {
-        request: tokio_modbus::Request<'static>,
+        request: linc_comms::modbus::Request,
         peer: String,
         reply: oneshot::Sender<wire::modbus::MbAnswer>,
     },

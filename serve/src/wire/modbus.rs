@@ -2,17 +2,13 @@
 //! database's register map, on the plant's thread between scans
 //! (docs/modbus.md). Writes go through the console's rules, all or none.
 
+use linc_comms::modbus::{Exception as ExceptionCode, Request, Response};
 use linc_engines::console::fields::Addr;
 use linc_engines::console::Console;
 use linc_engines::strategy::trace::Trace;
 use linc_format::db::modbus::{MbEntry, MbType, ModbusMap, Table};
 use linc_format::Code;
 use linc_runtime::store::{Cell, Store};
-use tokio_modbus::{ExceptionCode, Request, Response};
-
-/// Most coils one read may ask for, and registers (the protocol's limits).
-const MAX_BITS: u16 = 2000;
-const MAX_REGISTERS: u16 = 125;
 
 /// What the device is.
 #[derive(Clone, Copy, Debug)]
@@ -23,6 +19,8 @@ pub struct ModbusDevice {
 /// A reply and what to log about the request.
 pub struct MbAnswer {
     pub reply: Result<Response, ExceptionCode>,
+    /// The request's function code, which the reply repeats.
+    pub function: u8,
     pub log: Vec<String>,
 }
 
@@ -70,50 +68,47 @@ fn span(map: &ModbusMap, table: Table, start: u16, n: u16) -> Result<Vec<(&MbEnt
 
 impl ModbusDevice {
     /// The reply to a request; `peer` names the client in the log.
-    pub fn answer(&self, console: &mut Console, req: &Request<'_>, peer: &str, trace: Option<&mut Trace>) -> MbAnswer {
+    pub fn answer(&self, console: &mut Console, req: &Request, peer: &str, trace: Option<&mut Trace>) -> MbAnswer {
         let mut log = Vec::new();
         let reply = self.reply(console, req, peer, &mut log, trace);
-        MbAnswer { reply, log }
+        MbAnswer { reply, function: req.function(), log }
     }
 
     fn reply(
         &self,
         console: &mut Console,
-        req: &Request<'_>,
+        req: &Request,
         peer: &str,
         log: &mut Vec<String>,
         trace: Option<&mut Trace>,
     ) -> Result<Response, ExceptionCode> {
         let store = &console.strategy.store;
         let Some(map) = store.db.modbus.as_ref() else { return Err(ExceptionCode::IllegalDataAddress) };
-        let count = |n: u16, max: u16| if n == 0 || n > max { Err(ExceptionCode::IllegalDataValue) } else { Ok(n) };
         let bits = |table, a, n| -> Result<Vec<bool>, ExceptionCode> {
-            Ok(span(map, table, a, count(n, MAX_BITS)?)?.into_iter().map(|(e, _)| bit(store, e)).collect())
+            Ok(span(map, table, a, n)?.into_iter().map(|(e, _)| bit(store, e)).collect())
         };
         let regs = |table, a, n| -> Result<Vec<u16>, ExceptionCode> {
-            let s = span(map, table, a, count(n, MAX_REGISTERS)?)?;
-            Ok(s.into_iter().map(|(e, off)| register(store, e, off)).collect())
+            Ok(span(map, table, a, n)?.into_iter().map(|(e, off)| register(store, e, off)).collect())
         };
+        // The decoder checked every count against the protocol's limits.
+        let n16 = |n: usize| n as u16;
         match req {
-            Request::ReadCoils(a, n) => bits(Table::Coil, *a, *n).map(Response::ReadCoils),
-            Request::ReadDiscreteInputs(a, n) => bits(Table::Discrete, *a, *n).map(Response::ReadDiscreteInputs),
-            Request::ReadHoldingRegisters(a, n) => regs(Table::Holding, *a, *n).map(Response::ReadHoldingRegisters),
-            Request::ReadInputRegisters(a, n) => regs(Table::Input, *a, *n).map(Response::ReadInputRegisters),
-            Request::WriteSingleCoil(a, v) => {
-                self.write_bits(console, *a, &[*v], peer, log, trace).map(|_| Response::WriteSingleCoil(*a, *v))
-            }
+            Request::ReadCoils(a, n) => bits(Table::Coil, *a, *n).map(Response::Bits),
+            Request::ReadDiscreteInputs(a, n) => bits(Table::Discrete, *a, *n).map(Response::Bits),
+            Request::ReadHoldingRegisters(a, n) => regs(Table::Holding, *a, *n).map(Response::Registers),
+            Request::ReadInputRegisters(a, n) => regs(Table::Input, *a, *n).map(Response::Registers),
+            Request::WriteSingleCoil(a, v) => self
+                .write_bits(console, *a, &[*v], peer, log, trace)
+                .map(|_| Response::Echo(*a, if *v { 0xFF00 } else { 0 })),
             Request::WriteMultipleCoils(a, vs) => {
-                let n = count(vs.len().try_into().unwrap_or(u16::MAX), 1968)?;
-                self.write_bits(console, *a, vs, peer, log, trace).map(|_| Response::WriteMultipleCoils(*a, n))
+                self.write_bits(console, *a, vs, peer, log, trace).map(|_| Response::Echo(*a, n16(vs.len())))
             }
             Request::WriteSingleRegister(a, v) => {
-                self.write_regs(console, *a, &[*v], peer, log, trace).map(|_| Response::WriteSingleRegister(*a, *v))
+                self.write_regs(console, *a, &[*v], peer, log, trace).map(|_| Response::Echo(*a, *v))
             }
             Request::WriteMultipleRegisters(a, vs) => {
-                let n = count(vs.len().try_into().unwrap_or(u16::MAX), 123)?;
-                self.write_regs(console, *a, vs, peer, log, trace).map(|_| Response::WriteMultipleRegisters(*a, n))
+                self.write_regs(console, *a, vs, peer, log, trace).map(|_| Response::Echo(*a, n16(vs.len())))
             }
-            _ => Err(ExceptionCode::IllegalFunction),
         }
     }
 

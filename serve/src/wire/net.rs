@@ -37,13 +37,13 @@ pub type Log = Arc<dyn Fn(String) + Send + Sync>;
 /// Refusals over the cap are logged at most once a second, with a count,
 /// so a flood of connections can't flood the log.
 #[derive(Default)]
-pub struct Refusals {
+struct Refusals {
     count: AtomicU64,
     last: std::sync::Mutex<Option<Instant>>,
 }
 
 impl Refusals {
-    pub fn note(&self, what: &str, peer: SocketAddr, cap: usize, log: &Log) {
+    fn note(&self, what: &str, peer: SocketAddr, cap: usize, log: &Log) {
         let n = self.count.fetch_add(1, Ordering::Relaxed) + 1;
         let Ok(mut last) = self.last.lock() else { return };
         if last.is_none_or(|t| t.elapsed() >= Duration::from_secs(1)) {
