@@ -196,12 +196,18 @@ impl Plant {
             }
             Ask::Roc { frame, peer, reply } => {
                 if let Some(device) = self.roc {
-                    let _ = reply.send(device.answer(&mut self.console, &frame, &peer, trace));
+                    let console = &mut self.console;
+                    let answer = guarded(|| device.answer(console, &frame, &peer, trace))
+                        .unwrap_or_else(|| device.internal_error(&frame, &peer));
+                    let _ = reply.send(answer);
                 }
             }
             Ask::Modbus { request, peer, reply } => {
                 if let Some(device) = self.modbus {
-                    let _ = reply.send(device.answer(&mut self.console, &request, &peer, trace));
+                    let console = &mut self.console;
+                    let answer = guarded(|| device.answer(console, &request, &peer, trace))
+                        .unwrap_or_else(|| device.internal_error(&request, &peer));
+                    let _ = reply.send(answer);
                 }
             }
             Ask::Picture { name, reply } => {
@@ -344,5 +350,38 @@ impl Plant {
         json!({"now": s.now_text(), "elapsed": s.elapsed_us() as f64 / 1e6, "speed": speed,
                "scans": self.scans, "late_scans": self.late, "halted": s.halted(),
                "writes": self.allow_writes, "error": error, "programs": programs})
+    }
+}
+
+/// Runs a wire device's answer so that a bug in it (a panic) costs the
+/// client its request, answered as a general error, not the plant its
+/// thread: every client and the scans go on. The fuzz of the devices
+/// (serve/tests/wire_fuzz.rs) calls them directly, so a panic still fails
+/// the tests.
+fn guarded<T>(f: impl FnOnce() -> T) -> Option<T> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::guarded;
+    use crate::wire::modbus::ModbusDevice;
+    use crate::wire::roc::RocDevice;
+    use linc_comms::roc::{Address, Frame};
+
+    #[test]
+    fn a_panicking_answer_becomes_a_general_error_not_a_dead_plant() {
+        assert_eq!(guarded(|| 7), Some(7));
+        let hook = std::panic::take_hook();
+        std::panic::set_hook(Box::new(|_| {}));
+        let caught = guarded(|| -> u8 { panic!("a bug") });
+        std::panic::set_hook(hook);
+        assert_eq!(caught, None);
+        let me = Address { unit: 1, group: 2 };
+        let req = Frame { dst: me, src: Address { unit: 3, group: 1 }, opcode: 180, data: vec![] };
+        let a = RocDevice { address: me, allow_writes: false }.internal_error(&req, "p");
+        assert_eq!((a.reply.opcode, a.reply.data.as_slice(), a.reply.dst), (255, &[50u8, 4][..], req.src));
+        let m = ModbusDevice { allow_writes: false }.internal_error(&linc_comms::modbus::Request::ReadCoils(0, 1), "p");
+        assert_eq!((m.function, m.reply), (1, Err(linc_comms::modbus::Exception::ServerDeviceFailure)));
     }
 }

@@ -254,3 +254,61 @@ fn the_trace_records_each_write_and_refusal_with_the_clients_address() {
     let refused = lines.iter().find(|l| l["refused"] == "forced").expect("the refused write");
     assert_eq!((refused["client"].as_str(), refused["field"].as_str()), (Some(client.as_str()), Some("SFP 1.DATA2")));
 }
+
+/// Runs console lines on the served plant through the API.
+fn console_line(s: &Server, line: &str) {
+    let url = format!("http://{}/api/command", s.addr());
+    let body = serde_json::json!({ "command": line }).to_string();
+    ureq::post(&url).header("Content-Type", "application/json").send(body).expect("command");
+}
+
+#[test]
+fn the_logs_and_archives_the_fsts_wrote_are_collected() {
+    let s = serve("examples/fst/plant.json", true);
+    // Two hours, then a stuck level transmitter reads high (FST 1 logs
+    // its HIGH LEVEL alarm), then an hour more.
+    console_line(&s, "ADVANCE 2h");
+    console_line(&s, "F AIN 2-1.EU=95");
+    console_line(&s, "ADVANCE 1h");
+    let mut h = Host::connect(&s);
+    // Events: PUMP ON and PUMP OFF from FST 1 (the first FST point).
+    let (op, d) = h.ask(119, &[10, 0, 0]);
+    assert_eq!(op, 119, "{d:?}");
+    let (sent, current) = (d[0], u16::from_le_bytes([d[3], d[4]]));
+    assert_eq!((sent, &d[1..3]), (10, &[0u8, 0][..]));
+    assert!(current >= 2, "events logged: {current}");
+    let first = &d[5..27];
+    assert_eq!((first[0], first[5]), (3, 1), "an FST event from FST 1");
+    assert_eq!(&first[10..20], b"PUMP ON   ");
+    let start = 1_767_592_800u32; // 2026-01-05 06:00, the run's start
+    let t = u32::from_le_bytes(first[1..5].try_into().unwrap());
+    assert!(t > start && t < start + 3 * 3600, "{t}");
+    // Slots past the current index were never written: zeros.
+    assert!(d[5 + 22 * usize::from(current)..5 + 22 * (usize::from(current) + 1)].iter().all(|&b| b == 0));
+    // Alarms: FST 1's high level alarm, as an FST alarm (set).
+    let (op, d) = h.ask(118, &[1, 0, 0]);
+    assert_eq!(op, 118);
+    let a = &d[5..28];
+    assert_eq!((a[0], a[5], &a[6..19]), (0x42, 1, &b"HIGH LEVEL   "[..]), "{a:?}");
+    assert_eq!(f32::from_le_bytes(a[19..23].try_into().unwrap()), 95.0);
+    assert_eq!(u32::from_le_bytes(a[1..5].try_into().unwrap()), start + 7200);
+    assert_eq!(h.ask(118, &[11, 0, 0]), (255, vec![17, 6]));
+    // History point 3 samples the tank level every 60 minutes: three
+    // periodic entries, stamped on the hour.
+    let (op, d) = h.ask(135, &[0, 3, 3, 0, 0, 3]);
+    assert_eq!(op, 135, "{d:?}");
+    assert_eq!((d[0], d[1], u16::from_le_bytes([d[2], d[3]]), d[4]), (0, 3, 3, 3));
+    let stamps: Vec<u32> = d[5..].chunks(4).map(|c| u32::from_le_bytes(c.try_into().unwrap())).collect();
+    assert_eq!(stamps, vec![start + 3600, start + 7200, start + 10800]);
+    let (_, d) = h.ask(135, &[0, 3, 1, 0, 0, 3]);
+    let levels: Vec<f32> = d[5..].chunks(4).map(|c| f32::from_le_bytes(c.try_into().unwrap())).collect();
+    assert!(levels.iter().all(|l| (0.0..=100.0).contains(l) && *l != 0.0), "{levels:?}");
+    // 136: the same point, one period at a time, stamped.
+    let (op, d) = h.ask(136, &[0, 0, 0, 1, 3, 1, 3]);
+    assert_eq!(op, 136, "{d:?}");
+    assert_eq!(d[5], 6, "(1 point + 1 stamp) x 3 periods");
+    assert_eq!(u32::from_le_bytes(d[6..10].try_into().unwrap()), start + 3600);
+    assert_eq!(f32::from_le_bytes(d[10..14].try_into().unwrap()), levels[0]);
+    assert_eq!(h.ask(135, &[0, 77, 1, 0, 0, 1]), (255, vec![30, 7]), "no history point 77");
+    s.stop();
+}

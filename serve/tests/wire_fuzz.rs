@@ -26,11 +26,21 @@ fn cases() -> usize {
     std::env::var("LINC_WIRE_FUZZ").ok().and_then(|v| v.parse().ok()).unwrap_or(3000)
 }
 
-fn console() -> Console {
-    let path = Path::new(ROOT).join("examples/roc/plant.json");
+fn console(db: &str) -> Console {
+    let path = Path::new(ROOT).join(db);
     let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
     let (s, _) = linc_driver::strategy::plant(&path, &Default::default(), &mut r).unwrap();
     Console::new(s)
+}
+
+/// The ROC800 example plant after three hours with a high alarm: its
+/// alarm and event logs and history archives hold entries to read.
+fn roc_console() -> Console {
+    let mut c = console("examples/fst/plant.json");
+    for line in ["ADVANCE 2h", "F AIN 2-1.EU=95", "ADVANCE 1h"] {
+        assert!(c.execute(line).iter().all(Result::is_ok), "{line}");
+    }
+    c
 }
 
 /// Requests a host could send: the seeds the mutations start from.
@@ -42,12 +52,17 @@ fn roc_seeds() -> Vec<Frame> {
         data: data.to_vec(),
     };
     vec![
-        f(180, &[3, 3, 0, 12, 17, 0, 2, 16, 0, 0]),
-        f(181, &[2, 17, 0, 2, 0, 0, 0x80, 0x3F, 3, 0, 2, 0xF4, 0x01]),
-        f(181, &[1, 16, 0, 19, 7]),
+        f(180, &[3, 103, 0, 12, 98, 0, 2, 96, 0, 0]),
+        f(181, &[2, 98, 0, 2, 0, 0, 0x80, 0x3F, 103, 0, 2, 0xF4, 0x01]),
+        f(181, &[1, 96, 0, 19, 7]),
         f(7, &[]),
         f(8, &[0, 0, 12, 1, 6, 0xE9, 0x07]),
         f(6, &[]),
+        f(118, &[10, 0, 0]),
+        f(119, &[10, 238, 0]),
+        f(135, &[0, 3, 1, 0, 0, 60]),
+        f(135, &[0, 3, 4, 0xFF, 0xFF, 3]),
+        f(136, &[0, 0, 0, 1, 1, 3, 10]),
     ]
 }
 
@@ -75,7 +90,7 @@ fn mutate(rng: &mut Rng, mut b: Vec<u8>) -> Vec<u8> {
 #[test]
 fn random_and_mutated_roc_streams_never_panic_and_stay_bounded() {
     let _one = serial();
-    let mut c = console();
+    let mut c = roc_console();
     let device = RocDevice { address: Address { unit: 1, group: 2 }, allow_writes: true };
     let seeds = roc_seeds();
     let mut rng = Rng::new(0x524F_4331);
@@ -120,7 +135,7 @@ fn random_and_mutated_roc_streams_never_panic_and_stay_bounded() {
 fn random_and_mutated_modbus_streams_never_panic_and_stay_bounded() {
     use linc_comms::modbus::{decode, encode, Deframer as Mbap};
     let _one = serial();
-    let mut c = console();
+    let mut c = console("examples/roc/plant.json");
     let device = ModbusDevice { allow_writes: true };
     let seeds: Vec<Vec<u8>> = vec![
         vec![0x03, 0, 0, 0, 5],

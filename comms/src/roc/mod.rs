@@ -3,7 +3,9 @@
 
 pub mod crc;
 pub mod frame;
+pub mod history;
 pub mod host;
+pub mod logs;
 pub mod ops;
 pub mod value;
 

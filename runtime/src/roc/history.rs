@@ -156,6 +156,17 @@ impl Point {
         }
     }
 
+    /// Where the logger writes next in the periodic or daily archive (a
+    /// ROC host's "current index"); the minute archive is indexed by the
+    /// minute of the hour, which the caller knows from the clock.
+    pub fn next_index(&self, a: Archive) -> Option<usize> {
+        match a {
+            Archive::Periodic => Some(self.next_periodic),
+            Archive::Daily => Some(self.next_daily),
+            Archive::Minute => None,
+        }
+    }
+
     /// The entry at an index given as an FST value: a whole number from 0
     /// to the archive's size − 1, else the FST halts.
     fn entry(&self, a: Archive, idx: f32) -> Result<(usize, Entry), HistError> {

@@ -7,6 +7,7 @@ pub mod modbus;
 pub mod modbus_server;
 pub mod net;
 pub mod roc;
+pub mod roc_logs;
 pub mod roc_server;
 
 pub use net::{Limits, Log};

@@ -74,6 +74,13 @@ impl ModbusDevice {
         MbAnswer { reply, function: req.function(), log }
     }
 
+    /// The reply when answering failed inside linc (a bug): exception 04
+    /// and a log line.
+    pub fn internal_error(&self, req: &Request, peer: &str) -> MbAnswer {
+        let log = vec![format!("modbus {peer}: internal error answering function {}: exception 04", req.function())];
+        MbAnswer { reply: Err(ExceptionCode::ServerDeviceFailure), function: req.function(), log }
+    }
+
     fn reply(
         &self,
         console: &mut Console,

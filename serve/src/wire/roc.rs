@@ -103,6 +103,15 @@ impl RocDevice {
             ops::CLOCK_READ => clock_read(console, &req.data),
             ops::CLOCK_SET => self.clock_set(console, &req.data, peer, &mut log),
             ops::CONFIG => config(&console.strategy.store, &req.data),
+            ops::ALARMS | ops::EVENTS => {
+                super::roc_logs::log(&console.strategy.store, &req.data, req.opcode == ops::ALARMS)
+            }
+            ops::HISTORY_POINT => {
+                super::roc_logs::point(&console.strategy.store, &req.data, console.strategy.device_seconds())
+            }
+            ops::HISTORY_POINTS => {
+                super::roc_logs::points(&console.strategy.store, &req.data, console.strategy.device_seconds())
+            }
             _ => Err(vec![RocError { code: code::INVALID_OPCODE, offset: 4 }]),
         };
         let (opcode, data) = match result {
@@ -110,6 +119,14 @@ impl RocDevice {
             Err(errors) => (ops::ERROR, ops::error_data(&errors)),
         };
         Answer { reply: Frame { dst: req.src, src: self.address, opcode, data }, log }
+    }
+
+    /// The reply when answering failed inside linc (a bug): error 50,
+    /// general error, and a log line.
+    pub fn internal_error(&self, req: &Frame, peer: &str) -> Answer {
+        let data = ops::error_data(&[RocError { code: code::GENERAL, offset: 4 }]);
+        let log = vec![format!("roc {peer}: internal error answering opcode {}: refused with error 50", req.opcode)];
+        Answer { reply: Frame { dst: req.src, src: self.address, opcode: ops::ERROR, data }, log }
     }
 
     /// Opcode 181: every value is checked (the TLP, its size, the field's
