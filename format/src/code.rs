@@ -242,6 +242,7 @@ codes! {
     E0851 => "Modbus map names a field the database lacks",
     E0852 => "Modbus map type does not fit its field",
     E0853 => "Modbus map addresses overlap",
+    E0854 => "ROC operator entry is malformed",
     E0840 => "state file is damaged or cut short",
     E0841 => "state file is of another version",
     E0842 => "state file was saved from another strategy",

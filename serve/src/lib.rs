@@ -126,6 +126,8 @@ pub(crate) enum Ask {
     Roc {
         frame: linc_comms::roc::Frame,
         peer: String,
+        /// The connection's login (the access level), if any.
+        session: Option<u8>,
         reply: oneshot::Sender<wire::roc::Answer>,
     },
     /// A Modbus request, from `peer`.

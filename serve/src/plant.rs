@@ -194,10 +194,10 @@ impl Plant {
             Ask::Blocks { reply } => {
                 let _ = reply.send(crate::json::blocks(&self.console.strategy.store));
             }
-            Ask::Roc { frame, peer, reply } => {
+            Ask::Roc { frame, peer, session, reply } => {
                 if let Some(device) = self.roc {
                     let console = &mut self.console;
-                    let answer = guarded(|| device.answer(console, &frame, &peer, trace))
+                    let answer = guarded(|| device.answer(console, &frame, &peer, session, trace))
                         .unwrap_or_else(|| device.internal_error(&frame, &peer));
                     let _ = reply.send(answer);
                 }

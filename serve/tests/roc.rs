@@ -21,7 +21,7 @@ fn serve(db: &str, writes: bool) -> Server {
 }
 
 fn serve_traced(db: &str, writes: bool, trace: Option<&Path>) -> Server {
-    let path = Path::new(ROOT).join(db);
+    let path = if Path::new(db).is_absolute() { Path::new(db).to_path_buf() } else { Path::new(ROOT).join(db) };
     let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
     let o = linc_driver::strategy::PlantOptions { now: Some("2026-01-05T06:00:00".into()), ..Default::default() };
     let (s, wants) = linc_driver::strategy::plant(&path, &o, &mut r).unwrap_or_else(|_| panic!("{}", r.take()));
@@ -310,5 +310,43 @@ fn the_logs_and_archives_the_fsts_wrote_are_collected() {
     assert_eq!(u32::from_le_bytes(d[6..10].try_into().unwrap()), start + 3600);
     assert_eq!(f32::from_le_bytes(d[10..14].try_into().unwrap()), levels[0]);
     assert_eq!(h.ask(135, &[0, 77, 1, 0, 0, 1]), (255, vec![30, 7]), "no history point 77");
+    s.stop();
+}
+
+#[test]
+fn with_operators_a_host_logs_in_before_it_reads_or_writes() {
+    // The example plant with two operators, beside its files.
+    let dir = Path::new(ROOT).join("examples/roc");
+    let text = std::fs::read_to_string(dir.join("plant.json")).unwrap();
+    let with_users = text.replacen(
+        '{',
+        r#"{ "users": { "LOI": { "password": 1000, "level": 5 }, "RO": { "password": 7, "level": 0 } },"#,
+        1,
+    );
+    let scratch = linc_test_support::fresh_dir("roc-users");
+    for f in ["drain.csv", "sim.stx"] {
+        std::fs::copy(dir.join(f), scratch.join(f)).unwrap();
+    }
+    std::fs::write(scratch.join("plant.json"), with_users).unwrap();
+    let s = serve(scratch.join("plant.json").to_str().unwrap(), true);
+    let mut h = Host::connect(&s);
+    let read = [1, 17, 0, 2];
+    assert_eq!(h.ask(180, &read), (255, vec![20, 4]), "not logged in");
+    assert_eq!(h.ask(6, &[]).0, 6, "the configuration needs no login");
+    assert_eq!(h.ask(17, &[b'L', b'O', b'I', 0xE9, 0x03, 5]), (255, vec![21, 6]), "wrong password");
+    assert_eq!(h.ask(17, &[b'R', b'O', b' ', 7, 0, 1]), (255, vec![63, 11]), "level too high");
+    assert_eq!(h.ask(17, &[b'R', b'O', b' ', 7, 0, 0]), (17, vec![]));
+    assert_eq!(h.ask(180, &read).0, 180, "level 0 reads");
+    let mut w = vec![1, 17, 0, 2];
+    w.extend_from_slice(&1.0f32.to_le_bytes());
+    assert_eq!(h.ask(181, &w), (255, vec![20, 4]), "level 0 does not write");
+    assert_eq!(h.ask(17, &[b'L', b'O', b'I', 0xE8, 0x03, 5]), (17, vec![]));
+    assert_eq!(h.ask(181, &w), (181, vec![]));
+    assert_eq!(h.ask(17, b"LOI\xE8\x03LOGOFF"), (255, vec![77, 11]));
+    assert_eq!(h.ask(17, b"LOI\xE8\x03LOGOUT"), (17, vec![]));
+    assert_eq!(h.ask(180, &read), (255, vec![20, 4]), "logged out");
+    // The login belongs to the connection: another starts logged out.
+    let mut other = Host::connect(&s);
+    assert_eq!(other.ask(180, &read), (255, vec![20, 4]));
     s.stop();
 }

@@ -211,6 +211,36 @@ pub fn days_in_month(year: u16, month: u8) -> u8 {
     linc_stdlib::functions::datetime::days_in_month(i64::from(year), u32::from(month)) as u8
 }
 
+/// Opcode 17's request, told apart by its length: a standard login (6
+/// bytes: operator ID, password, access level) or logout (11 bytes:
+/// operator ID, password, the logout text).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Login {
+    In { id: [u8; 3], password: u16, level: u8 },
+    Out { id: [u8; 3], password: u16, text: [u8; 6] },
+}
+
+/// The logout text a standard logout carries.
+pub const LOGOUT: &[u8; 6] = b"LOGOUT";
+
+impl Login {
+    /// Parses opcode 17. The enhanced login and logout (71 and 76 bytes)
+    /// and the session key request (13) are not supported: error 21.
+    pub fn parse(data: &[u8]) -> Result<Login, RocError> {
+        let id = |d: &[u8]| [d[0], d[1], d[2]];
+        let password = |d: &[u8]| u16::from_le_bytes([d[3], d[4]]);
+        match data.len() {
+            6 => Ok(Login::In { id: id(data), password: password(data), level: data[5] }),
+            11 => {
+                let mut text = [0u8; 6];
+                text.copy_from_slice(&data[5..11]);
+                Ok(Login::Out { id: id(data), password: password(data), text })
+            }
+            _ => Err(RocError::at_data(code::INVALID_LOGON, 0)),
+        }
+    }
+}
+
 /// Opcode 6's reply (revision 1, 215 bytes): run mode, the port, security
 /// mode 0, compatibility 0, revision 1, subtype 0, eleven reserved bytes,
 /// the type of ROC (6, a ROC800), then the number of points of each point
@@ -284,6 +314,17 @@ mod tests {
         assert_eq!(Clock::parse_set(&[60, 4, 3, 1, 2, 0xE8, 0x07]), Err(RocError { code: 33, offset: 6 }));
         assert_eq!(Clock::parse_set(&[0, 0, 0, 1, 13, 0xE8, 0x07]), Err(RocError { code: 33, offset: 10 }));
         assert_eq!(Clock::parse_set(&[0, 0, 0, 1, 1]), Err(RocError { code: 6, offset: 5 }));
+    }
+
+    #[test]
+    fn logins_and_logouts_by_length() {
+        assert_eq!(
+            Login::parse(&[b'L', b'O', b'I', 0xE8, 0x03, 5]),
+            Ok(Login::In { id: *b"LOI", password: 1000, level: 5 })
+        );
+        let out = [b'L', b'O', b'I', 0xE8, 0x03, b'L', b'O', b'G', b'O', b'U', b'T'];
+        assert_eq!(Login::parse(&out), Ok(Login::Out { id: *b"LOI", password: 1000, text: *LOGOUT }));
+        assert_eq!(Login::parse(&[0; 71]), Err(RocError { code: 21, offset: 6 }));
     }
 
     #[test]

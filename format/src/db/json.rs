@@ -42,6 +42,7 @@ pub mod code {
     pub const MODBUS_FIELD: Code = Code::E0851;
     pub const MODBUS_TYPE: Code = Code::E0852;
     pub const MODBUS_OVERLAP: Code = Code::E0853;
+    pub const USERS: Code = Code::E0854;
 }
 
 /// Longest name in bytes: the object file stores names with a u16 length.
@@ -156,7 +157,11 @@ impl<'a> Loader<'a> {
         let members = object(&root, "the database")?;
         // `roc` holds the logs and archives a run wrote with `--out`; it
         // describes a past run, not the database, so loading skips it.
-        only_keys(members, &["device", "templates", "blocks", "aliases", "tasks", "roc", "modbus"], "the database")?;
+        only_keys(
+            members,
+            &["device", "templates", "blocks", "aliases", "tasks", "roc", "modbus", "users"],
+            "the database",
+        )?;
         if let Some(m) = get(members, "device") {
             self.device(&m.value)?;
         }
@@ -180,6 +185,9 @@ impl<'a> Loader<'a> {
                 self.alias(a)?;
             }
             self.expand_aliases(aliases)?;
+        }
+        if let Some(m) = get(members, "users") {
+            self.db.users = super::users::load(&m.value)?;
         }
         // The map names blocks and aliases, so it is read after them.
         if let Some(m) = get(members, "modbus") {

@@ -13,6 +13,7 @@ mod period;
 mod roc;
 mod schema;
 pub mod tree;
+pub mod users;
 
 pub use json::{DbError, MAX_CELLS};
 pub use period::{duration_seconds, time_constant, MAX_PERIOD, MIN_PERIOD};

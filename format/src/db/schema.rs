@@ -171,6 +171,9 @@ pub struct Database {
     pub device: Device,
     /// The Modbus register map (`"modbus"`), if the database has one.
     pub modbus: Option<super::modbus::ModbusMap>,
+    /// The ROC operators (`"users"`): when there are any, a ROC host must
+    /// log in.
+    pub users: Vec<super::users::RocUser>,
     template_index: NameMap,
     block_index: NameMap,
     alias_index: NameMap,
@@ -186,6 +189,7 @@ impl Default for Database {
             tasks: vec![Task::DEFAULT],
             device: Device::default(),
             modbus: None,
+            users: Vec::new(),
             template_index: NameMap::default(),
             block_index: NameMap::default(),
             alias_index: NameMap::default(),

@@ -25,6 +25,9 @@ pub struct RocDevice {
 pub struct Answer {
     pub reply: Frame,
     pub log: Vec<String>,
+    /// The connection's login after the request: the access level of the
+    /// operator logged in, if one is.
+    pub session: Option<u8>,
 }
 
 /// A parameter a TLP names: its cell, how it travels and its field's type.
@@ -95,13 +98,42 @@ fn field_value(ty: &FieldType, v: Value) -> Option<Cell> {
 impl RocDevice {
     /// The reply to a request frame addressed to this device; `peer` names
     /// the client in the log.
-    pub fn answer(&self, console: &mut Console, req: &Frame, peer: &str, trace: Option<&mut Trace>) -> Answer {
+    pub fn answer(
+        &self,
+        console: &mut Console,
+        req: &Frame,
+        peer: &str,
+        session: Option<u8>,
+        trace: Option<&mut Trace>,
+    ) -> Answer {
         let mut log = Vec::new();
-        let result = match req.opcode {
+        let mut session = session;
+        let result = match security(&console.strategy.store, req.opcode, session) {
+            Err(e) => Err(vec![e]),
+            Ok(()) => self.opcode(console, req, peer, &mut session, &mut log, trace),
+        };
+        let (opcode, data) = match result {
+            Ok(data) => (req.opcode, data),
+            Err(errors) => (ops::ERROR, ops::error_data(&errors)),
+        };
+        Answer { reply: Frame { dst: req.src, src: self.address, opcode, data }, log, session }
+    }
+
+    fn opcode(
+        &self,
+        console: &mut Console,
+        req: &Frame,
+        peer: &str,
+        session: &mut Option<u8>,
+        log: &mut Vec<String>,
+        trace: Option<&mut Trace>,
+    ) -> Result<Vec<u8>, Vec<RocError>> {
+        match req.opcode {
+            ops::LOGIN => login(&console.strategy.store, &req.data, peer, session, log),
             ops::READ => read(&console.strategy.store, &req.data),
-            ops::WRITE => self.write(console, &req.data, peer, &mut log, trace),
+            ops::WRITE => self.write(console, &req.data, peer, log, trace),
             ops::CLOCK_READ => clock_read(console, &req.data),
-            ops::CLOCK_SET => self.clock_set(console, &req.data, peer, &mut log),
+            ops::CLOCK_SET => self.clock_set(console, &req.data, peer, log),
             ops::CONFIG => config(&console.strategy.store, &req.data),
             ops::ALARMS | ops::EVENTS => {
                 super::roc_logs::log(&console.strategy.store, &req.data, req.opcode == ops::ALARMS)
@@ -113,12 +145,7 @@ impl RocDevice {
                 super::roc_logs::points(&console.strategy.store, &req.data, console.strategy.device_seconds())
             }
             _ => Err(vec![RocError { code: code::INVALID_OPCODE, offset: 4 }]),
-        };
-        let (opcode, data) = match result {
-            Ok(data) => (req.opcode, data),
-            Err(errors) => (ops::ERROR, ops::error_data(&errors)),
-        };
-        Answer { reply: Frame { dst: req.src, src: self.address, opcode, data }, log }
+        }
     }
 
     /// The reply when answering failed inside linc (a bug): error 50,
@@ -126,7 +153,7 @@ impl RocDevice {
     pub fn internal_error(&self, req: &Frame, peer: &str) -> Answer {
         let data = ops::error_data(&[RocError { code: code::GENERAL, offset: 4 }]);
         let log = vec![format!("roc {peer}: internal error answering opcode {}: refused with error 50", req.opcode)];
-        Answer { reply: Frame { dst: req.src, src: self.address, opcode: ops::ERROR, data }, log }
+        Answer { reply: Frame { dst: req.src, src: self.address, opcode: ops::ERROR, data }, log, session: None }
     }
 
     /// Opcode 181: every value is checked (the TLP, its size, the field's
@@ -194,6 +221,63 @@ impl RocDevice {
         log.push(format!("roc {peer}: set the clock to {}", console.strategy.now_text()));
         Ok(Vec::new())
     }
+}
+
+/// When the database names operators, a connection must log in (opcode
+/// 17) before anything but the system configuration (6), and an operator
+/// of access level 0 may only read: error 20 (security) otherwise.
+fn security(store: &Store, opcode: u8, session: Option<u8>) -> Result<(), RocError> {
+    if store.db.users.is_empty() || opcode == ops::LOGIN || opcode == ops::CONFIG {
+        return Ok(());
+    }
+    let writes = opcode == ops::WRITE || opcode == ops::CLOCK_SET;
+    match session {
+        Some(level) if level > 0 || !writes => Ok(()),
+        _ => Err(RocError { code: code::SECURITY, offset: 4 }),
+    }
+}
+
+/// Opcode 17: a login checks the operator ID and password (error 21) and
+/// the access level asked for against the operator's (error 63); a logout
+/// needs the ID, the password and the text `LOGOUT` (error 77). A database
+/// with no operators takes any login.
+fn login(
+    store: &Store,
+    data: &[u8],
+    peer: &str,
+    session: &mut Option<u8>,
+    log: &mut Vec<String>,
+) -> Result<Vec<u8>, Vec<RocError>> {
+    let login = ops::Login::parse(data).map_err(|e| vec![e])?;
+    let (id, password) = match login {
+        ops::Login::In { id, password, .. } | ops::Login::Out { id, password, .. } => (id, password),
+    };
+    let user = store
+        .db
+        .users
+        .iter()
+        .find(|u| u.id.as_bytes().iter().copied().eq(id.iter().copied().take_while(|&b| b != b' ' && b != 0)));
+    let users = !store.db.users.is_empty();
+    if users && !user.is_some_and(|u| u.password == password) {
+        log.push(format!("roc {peer}: login refused for `{}`", String::from_utf8_lossy(&id).trim_end()));
+        return Err(vec![RocError::at_data(code::INVALID_LOGON, 0)]);
+    }
+    match login {
+        ops::Login::In { level, .. } => {
+            if user.is_some_and(|u| level > u.level) {
+                return Err(vec![RocError::at_data(code::ACCESS_LEVEL, 5)]);
+            }
+            *session = Some(level);
+            log.push(format!("roc {peer}: `{}` logged in at level {level}", String::from_utf8_lossy(&id).trim_end()));
+        }
+        ops::Login::Out { text, .. } => {
+            if &text != ops::LOGOUT {
+                return Err(vec![RocError::at_data(code::INVALID_LOGOFF, 5)]);
+            }
+            *session = None;
+        }
+    }
+    Ok(Vec::new())
 }
 
 /// Opcode 180: each TLP's value; the first TLP that names nothing is the

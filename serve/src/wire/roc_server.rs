@@ -25,6 +25,8 @@ pub(crate) async fn client(
     let mut frames = Deframer::default();
     let mut buf = [0u8; 4096];
     let mut begun: Option<Instant> = None;
+    // The operator logged in on this connection (its access level).
+    let mut session: Option<u8> = None;
     let stop = loop {
         let n = match net::read_some(&mut stream, &mut buf, &limits, begun).await {
             Ok(n) => n,
@@ -38,10 +40,11 @@ pub(crate) async fn client(
             }
             let (reply, answer) = oneshot::channel();
             let peer_text = peer.to_string();
-            if asks.send(Ask::Roc { frame, peer: peer_text, reply }).is_err() {
+            if asks.send(Ask::Roc { frame, peer: peer_text, session, reply }).is_err() {
                 return;
             }
-            let Ok(Answer { reply, log: lines }) = answer.await else { return };
+            let Ok(Answer { reply, log: lines, session: after }) = answer.await else { return };
+            session = after;
             for line in lines {
                 log(line);
             }
