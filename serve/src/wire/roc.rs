@@ -258,7 +258,7 @@ fn login(
         .iter()
         .find(|u| u.id.as_bytes().iter().copied().eq(id.iter().copied().take_while(|&b| b != b' ' && b != 0)));
     let users = !store.db.users.is_empty();
-    if users && !user.is_some_and(|u| u.password == password) {
+    if users && user.is_none_or(|u| u.password != password) {
         log.push(format!("roc {peer}: login refused for `{}`", String::from_utf8_lossy(&id).trim_end()));
         return Err(vec![RocError::at_data(code::INVALID_LOGON, 0)]);
     }
