@@ -235,3 +235,44 @@ pub fn poll(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::roc::host::commands::parse;
+
+    /// A device that answers every write with an acknowledgement and
+    /// counts the requests per destination unit.
+    struct Counter(std::collections::HashMap<u8, usize>);
+
+    impl Link for Counter {
+        fn exchange(&mut self, r: &Frame) -> Result<Frame, LinkError> {
+            *self.0.entry(r.dst.unit).or_default() += 1;
+            Ok(Frame { dst: r.src, src: r.dst, opcode: r.opcode, data: vec![] })
+        }
+    }
+
+    #[test]
+    fn poll_times_decide_how_often_each_command_runs() {
+        let list = parse(
+            "PORT,SLV UNIT,SLV GROUP,OP CODE,CNT,SRC ADDR,DEST ADDR,TYPE,POLL TIME,STORE FWD\n\
+             1,1,2,181,1,0,100,2,0,0\n\
+             1,2,2,181,1,0,100,2,1,0\n\
+             9,3,2,181,1,0,100,2,0,0\n\
+             0,4,2,181,1,0,100,2,0,0\n",
+        )
+        .unwrap();
+        let mut host = Host { me: Address { unit: 3, group: 1 }, words: Words::default() };
+        // Once: every enabled command once, the disabled one never.
+        let mut d = Counter(Default::default());
+        assert_eq!(poll(&mut host, &list, &mut d, None, |_, _| {}), vec![0, 0, 0, 0]);
+        assert_eq!((d.0.get(&1), d.0.get(&2), d.0.get(&3), d.0.get(&4)), (Some(&1), Some(&1), Some(&1), None));
+        // 1.5 s: POLL TIME 0 every pass (at most every 100 ms), 1 s twice,
+        // the control command once.
+        let mut d = Counter(Default::default());
+        poll(&mut host, &list, &mut d, Some(std::time::Duration::from_millis(1500)), |_, _| {});
+        let every = d.0[&1];
+        assert!((10..=16).contains(&every), "{every} passes");
+        assert_eq!((d.0[&2], d.0[&3]), (2, 1));
+    }
+}
