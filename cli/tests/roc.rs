@@ -126,3 +126,35 @@ fn file_errors_are_located_and_outputs_never_overwrite_inputs() {
     assert!(common::stderr(&o).contains("E0902"), "{}", common::stderr(&o));
     assert_eq!(std::fs::read_to_string(dir.join("w.json")).unwrap(), "{}", "the input is untouched");
 }
+
+#[test]
+fn serve_modbus_answers_over_tcp_and_a_database_without_a_map_is_refused() {
+    use std::io::{Read, Write};
+    let mut child = common::spawn(&[
+        "serve",
+        "examples/roc/plant.json",
+        "--http",
+        "127.0.0.1:0",
+        "--modbus",
+        "0",
+        "--speed",
+        "0.001",
+    ]);
+    let mut lines = BufReader::new(child.stdout.take().expect("stdout")).lines();
+    let _serving = lines.next().expect("a line").expect("text");
+    let line = lines.next().expect("the Modbus line").expect("text");
+    assert!(line.starts_with("Modbus TCP server on 127.0.0.1:"), "{line}");
+    let addr = line.rsplit(' ').next().unwrap().to_string();
+    let mut t = std::net::TcpStream::connect(&addr).expect("connect");
+    t.set_read_timeout(Some(std::time::Duration::from_secs(5))).unwrap();
+    // Read holding registers 0-1: the setpoint, 80.0 high word first.
+    t.write_all(&[0, 9, 0, 0, 0, 6, 1, 3, 0, 0, 0, 2]).unwrap();
+    let mut reply = [0u8; 13];
+    t.read_exact(&mut reply).unwrap();
+    assert_eq!(reply, [0, 9, 0, 0, 0, 7, 1, 3, 4, 0x42, 0xA0, 0, 0]);
+    let _ = child.kill();
+    let _ = child.wait();
+    let o = common::linc(&["serve", "examples/fst/plant.json", "--http", "127.0.0.1:0", "--modbus", "0"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(common::stderr(&o).contains("--modbus needs a \"modbus\" register map"), "{}", common::stderr(&o));
+}

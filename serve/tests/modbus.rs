@@ -3,29 +3,26 @@
 //! all or none under the console's rules, and each refusal has its
 //! exception code (docs/modbus.md).
 
+mod common;
+
+use common::{api, console_line};
 use linc_engines::console::Console;
 use linc_serve::{Config, Server, Speed};
-use serde_json::Value;
 use std::path::Path;
 use tokio_modbus::client::{Context, Reader, Writer};
 use tokio_modbus::{ExceptionCode, Slave};
 
-const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+const ROOT: &str = common::ROOT;
 
 fn serve(writes: bool) -> Server {
-    let path = Path::new(ROOT).join("examples/roc/plant.json");
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
-    let o = linc_driver::strategy::PlantOptions { now: Some("2026-01-05T06:00:00".into()), ..Default::default() };
-    let (s, wants) = linc_driver::strategy::plant(&path, &o, &mut r).unwrap_or_else(|_| panic!("{}", r.take()));
     let cfg = Config {
         // A scan every 100 s of wall time: values hold still while compared.
         speed: Speed::Times(0.001),
         allow_writes: writes,
         modbus: Some("127.0.0.1:0".parse().unwrap()),
-        log: std::sync::Arc::new(|_| {}),
-        ..Config::new("127.0.0.1:0".parse().unwrap())
+        ..common::config()
     };
-    linc_serve::start(Console::new(s), &wants, path.parent().unwrap(), cfg).expect("start")
+    common::serve("examples/roc/plant.json", cfg)
 }
 
 fn rt() -> tokio::runtime::Runtime {
@@ -34,14 +31,6 @@ fn rt() -> tokio::runtime::Runtime {
 
 async fn client(s: &Server, unit: u8) -> Context {
     tokio_modbus::client::tcp::connect_slave(s.modbus_addr().unwrap(), Slave(unit)).await.expect("connect")
-}
-
-fn api(s: &Server, block: &str, field: &str) -> String {
-    let url = format!("http://{}/api/blocks/{}", s.addr(), block.replace(' ', "%20"));
-    let body = ureq::get(&url).call().expect("GET").body_mut().read_to_string().expect("body");
-    let v: Value = serde_json::from_str(&body).expect("JSON");
-    let f = v["fields"].as_array().unwrap().iter().find(|f| f["name"] == field).expect("field");
-    f["value"].as_str().unwrap().to_string()
 }
 
 fn high_first(w: &[u16]) -> f32 {
@@ -112,9 +101,7 @@ fn writes_are_all_or_none_with_the_protocols_exceptions() {
         // their addresses are not in the holding and coil tables.
         assert_eq!(c.write_single_register(6, 1).await.unwrap(), Err(ExceptionCode::IllegalDataAddress));
         // A forced field keeps its value: 04.
-        let url = format!("http://{}/api/command", s.addr());
-        let body = serde_json::json!({"command": "F SFP 1.DATA1=60"}).to_string();
-        ureq::post(&url).header("Content-Type", "application/json").send(body).expect("force");
+        console_line(&s, "F SFP 1.DATA1=60");
         let [a, b] = words(10.0);
         assert_eq!(c.write_multiple_registers(0, &[a, b]).await.unwrap(), Err(ExceptionCode::ServerDeviceFailure));
         assert_eq!(api(&s, "SFP 1", "DATA1"), "60.0");

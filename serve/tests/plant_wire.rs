@@ -4,30 +4,24 @@
 //! (tokio-modbus) reads what the table wrote — one running plant, real
 //! TCP on 127.0.0.1.
 
+mod common;
+
 use linc_comms::roc::host::{commands, Host, TcpLink, Words};
 use linc_comms::roc::Address;
-use linc_engines::console::Console;
 use linc_serve::{Config, Speed};
-use std::path::Path;
 use std::time::{Duration, Instant};
 use tokio_modbus::client::Reader;
 
-const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
-
 #[test]
 fn a_roc_host_sets_the_point_the_fst_acts_on_and_a_modbus_client_reads_the_result() {
-    let path = Path::new(ROOT).join("examples/roc/plant.json");
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
-    let (s, wants) = linc_driver::strategy::plant(&path, &Default::default(), &mut r).unwrap();
     let cfg = Config {
         speed: Speed::Times(1.0),
         allow_writes: true,
         roc: Some(("127.0.0.1:0".parse().unwrap(), Address { unit: 1, group: 2 })),
         modbus: Some("127.0.0.1:0".parse().unwrap()),
-        log: std::sync::Arc::new(|_| {}),
-        ..Config::new("127.0.0.1:0".parse().unwrap())
+        ..common::config()
     };
-    let server = linc_serve::start(Console::new(s), &wants, path.parent().unwrap(), cfg).expect("start");
+    let server = common::serve("examples/roc/plant.json", cfg);
     let rt = tokio::runtime::Builder::new_current_thread().enable_all().build().unwrap();
     let mut mb = rt.block_on(tokio_modbus::client::tcp::connect(server.modbus_addr().unwrap())).unwrap();
     let valve = |mb: &mut tokio_modbus::client::Context| {

@@ -5,7 +5,9 @@
 //! rules, and bad frames, other addresses, split and packed frames behave
 //! as the protocol expects.
 
-use linc_engines::console::Console;
+mod common;
+
+use common::{api, console_line};
 use linc_serve::{Config, Server, Speed};
 use serde_json::Value;
 use std::io::{Read, Write};
@@ -13,7 +15,7 @@ use std::net::TcpStream;
 use std::path::Path;
 use std::time::Duration;
 
-const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+const ROOT: &str = common::ROOT;
 const ARC: crc::Crc<u16> = crc::Crc::<u16>::new(&crc::CRC_16_ARC);
 
 fn serve(db: &str, writes: bool) -> Server {
@@ -21,22 +23,16 @@ fn serve(db: &str, writes: bool) -> Server {
 }
 
 fn serve_traced(db: &str, writes: bool, trace: Option<&Path>) -> Server {
-    let path = if Path::new(db).is_absolute() { Path::new(db).to_path_buf() } else { Path::new(ROOT).join(db) };
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
-    let o = linc_driver::strategy::PlantOptions { now: Some("2026-01-05T06:00:00".into()), ..Default::default() };
-    let (s, wants) = linc_driver::strategy::plant(&path, &o, &mut r).unwrap_or_else(|_| panic!("{}", r.take()));
-    let unit = linc_comms::roc::Address { unit: 1, group: 2 };
     let cfg = Config {
         // A scan every 100 s of wall time: the values hold still while
         // the test compares the wire with the API.
         speed: Speed::Times(0.001),
         allow_writes: writes,
-        roc: Some(("127.0.0.1:0".parse().unwrap(), unit)),
-        log: std::sync::Arc::new(|_| {}),
+        roc: Some(("127.0.0.1:0".parse().unwrap(), linc_comms::roc::Address { unit: 1, group: 2 })),
         trace: trace.map(|p| linc_driver::files::AtomicFile::create(p).expect("trace file")),
-        ..Config::new("127.0.0.1:0".parse().unwrap())
+        ..common::config()
     };
-    linc_serve::start(Console::new(s), &wants, path.parent().unwrap(), cfg).expect("start")
+    common::serve(db, cfg)
 }
 
 /// A frame from host 3,1 to `dst`, as the layout says: addresses, opcode,
@@ -88,15 +84,6 @@ impl Host {
     }
 }
 
-/// A field's value as the monitor's API shows it.
-fn api(s: &Server, block: &str, field: &str) -> String {
-    let url = format!("http://{}/api/blocks/{}", s.addr(), block.replace(' ', "%20"));
-    let body = ureq::get(&url).call().expect("GET").body_mut().read_to_string().expect("body");
-    let v: Value = serde_json::from_str(&body).expect("JSON");
-    let f = v["fields"].as_array().unwrap().iter().find(|f| f["name"] == field).expect("field");
-    f["value"].as_str().unwrap().to_string()
-}
-
 fn f32_at(b: &[u8], at: usize) -> f32 {
     f32::from_le_bytes(b[at..at + 4].try_into().unwrap())
 }
@@ -146,9 +133,7 @@ fn writes_are_all_or_nothing_under_the_consoles_rules() {
     assert_eq!(h.ask(181, &w), (255, vec![19, 6 + 1 + 7 + 2]));
     assert_eq!(api(&s, "SFP 1", "DATA1"), "65.5");
     // A forced field keeps its forced value: error 51 at the point type.
-    let url = format!("http://{}/api/command", s.addr());
-    let body = serde_json::json!({"command": "F SFP 1.DATA2=0.3"}).to_string();
-    ureq::post(&url).header("Content-Type", "application/json").send(body).expect("force");
+    console_line(&s, "F SFP 1.DATA2=0.3");
     let mut w = vec![1, 17, 0, 3];
     w.extend_from_slice(&9.0f32.to_le_bytes());
     assert_eq!(h.ask(181, &w), (255, vec![51, 7]));
@@ -237,9 +222,7 @@ fn the_trace_records_each_write_and_refusal_with_the_clients_address() {
     let mut w = vec![1, 17, 0, 2];
     w.extend_from_slice(&65.5f32.to_le_bytes());
     assert_eq!(h.ask(181, &w), (181, vec![]));
-    let url = format!("http://{}/api/command", s.addr());
-    let body = serde_json::json!({"command": "F SFP 1.DATA2=0.3"}).to_string();
-    ureq::post(&url).header("Content-Type", "application/json").send(body).expect("force");
+    console_line(&s, "F SFP 1.DATA2=0.3");
     let mut w = vec![1, 17, 0, 3];
     w.extend_from_slice(&9.0f32.to_le_bytes());
     assert_eq!(h.ask(181, &w).0, 255);
@@ -253,13 +236,6 @@ fn the_trace_records_each_write_and_refusal_with_the_clients_address() {
     assert_eq!((wrote["old"].as_str(), wrote["new"].as_str()), (Some("80.0"), Some("65.5")));
     let refused = lines.iter().find(|l| l["refused"] == "forced").expect("the refused write");
     assert_eq!((refused["client"].as_str(), refused["field"].as_str()), (Some(client.as_str()), Some("SFP 1.DATA2")));
-}
-
-/// Runs console lines on the served plant through the API.
-fn console_line(s: &Server, line: &str) {
-    let url = format!("http://{}/api/command", s.addr());
-    let body = serde_json::json!({ "command": line }).to_string();
-    ureq::post(&url).header("Content-Type", "application/json").send(body).expect("command");
 }
 
 #[test]

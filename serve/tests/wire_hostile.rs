@@ -6,21 +6,16 @@
 //! (`cargo run --release -p linc-serve --example wire_load` measures the
 //! issue's 50 clients × 1,000 requests for the README.)
 
+mod common;
+
 use linc_comms::roc::{Address, Frame};
-use linc_engines::console::Console;
 use linc_serve::{Config, Limits, Server, Speed};
 use std::io::{Read, Write};
 use std::net::TcpStream;
-use std::path::Path;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
-
 fn serve(log: Arc<Mutex<Vec<String>>>) -> Server {
-    let path = Path::new(ROOT).join("examples/roc/plant.json");
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
-    let (s, wants) = linc_driver::strategy::plant(&path, &Default::default(), &mut r).unwrap();
     let cfg = Config {
         speed: Speed::Times(1.0),
         allow_writes: true,
@@ -28,9 +23,9 @@ fn serve(log: Arc<Mutex<Vec<String>>>) -> Server {
         modbus: Some("127.0.0.1:0".parse().unwrap()),
         limits: Limits { max_clients: 64, idle: Duration::from_secs(2), request: Duration::from_secs(1) },
         log: Arc::new(move |line| log.lock().unwrap().push(line)),
-        ..Config::new("127.0.0.1:0".parse().unwrap())
+        ..common::config()
     };
-    linc_serve::start(Console::new(s), &wants, path.parent().unwrap(), cfg).expect("start")
+    common::serve("examples/roc/plant.json", cfg)
 }
 
 /// One ROC read of SFP 1,DATA1 and its reply's value.

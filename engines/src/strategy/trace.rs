@@ -24,14 +24,20 @@ impl<'w> Trace<'w> {
         Trace { out, shown, failed: None }
     }
 
+    /// The old and new text of `cell` if its value changed since it was
+    /// last seen (the new one is remembered).
+    fn changed(&mut self, store: &Store, cell: u32) -> Option<(String, String)> {
+        let new = store.show(cell);
+        let slot = self.shown.get_mut(cell as usize)?;
+        if slot.as_deref() == Some(new.as_str()) {
+            return None;
+        }
+        Some((slot.replace(new.clone()).unwrap_or_default(), new))
+    }
+
     /// Records `cell` if its value changed since it was last seen.
     pub fn write(&mut self, store: &Store, now_us: u64, task: u8, program: &str, cell: u32) {
-        let new = store.show(cell);
-        let Some(slot) = self.shown.get_mut(cell as usize) else { return };
-        if slot.as_deref() == Some(new.as_str()) {
-            return;
-        }
-        let old = slot.replace(new.clone()).unwrap_or_default();
+        let Some((old, new)) = self.changed(store, cell) else { return };
         let line = serde_json::json!({
             "time": seconds(now_us), "task": task, "program": program,
             "field": store.describe(cell), "old": old, "new": new,
@@ -43,12 +49,7 @@ impl<'w> Trace<'w> {
     /// it changed the value: the client's address where a program's
     /// write has its task and program.
     pub fn client_write(&mut self, store: &Store, now_us: u64, client: &str, cell: u32) {
-        let new = store.show(cell);
-        let Some(slot) = self.shown.get_mut(cell as usize) else { return };
-        if slot.as_deref() == Some(new.as_str()) {
-            return;
-        }
-        let old = slot.replace(new.clone()).unwrap_or_default();
+        let Some((old, new)) = self.changed(store, cell) else { return };
         let line = serde_json::json!({
             "time": seconds(now_us), "client": client, "field": store.describe(cell), "old": old, "new": new,
         });

@@ -66,6 +66,12 @@ fn span(map: &ModbusMap, table: Table, start: u16, n: u16) -> Result<Vec<(&MbEnt
         .collect()
 }
 
+/// The entries a write of `n` values from `start` of `table` covers.
+fn mapped(store: &Store, table: Table, start: u16, n: usize) -> Result<Vec<(&MbEntry, u32)>, ExceptionCode> {
+    let map = store.db.modbus.as_ref().ok_or(ExceptionCode::IllegalDataAddress)?;
+    span(map, table, start, n.try_into().unwrap_or(u16::MAX))
+}
+
 impl ModbusDevice {
     /// The reply to a request; `peer` names the client in the log.
     pub fn answer(&self, console: &mut Console, req: &Request, peer: &str, trace: Option<&mut Trace>) -> MbAnswer {
@@ -130,8 +136,7 @@ impl ModbusDevice {
         trace: Option<&mut Trace>,
     ) -> Result<(), ExceptionCode> {
         let store = &console.strategy.store;
-        let map = store.db.modbus.as_ref().ok_or(ExceptionCode::IllegalDataAddress)?;
-        let entries = span(map, Table::Coil, start, values.len().try_into().unwrap_or(u16::MAX))?;
+        let entries = mapped(store, Table::Coil, start, values.len())?;
         let mut cells = Vec::with_capacity(values.len());
         for ((e, _), &on) in entries.iter().zip(values) {
             let cell = cell_of(store, e);
@@ -159,8 +164,7 @@ impl ModbusDevice {
         trace: Option<&mut Trace>,
     ) -> Result<(), ExceptionCode> {
         let store = &console.strategy.store;
-        let map = store.db.modbus.as_ref().ok_or(ExceptionCode::IllegalDataAddress)?;
-        let entries = span(map, Table::Holding, start, values.len().try_into().unwrap_or(u16::MAX))?;
+        let entries = mapped(store, Table::Holding, start, values.len())?;
         let mut cells = Vec::new();
         let mut i = 0;
         while i < entries.len() {

@@ -1,0 +1,41 @@
+//! What the wire tests share: a served example plant and the monitor's
+//! view of a field.
+#![allow(dead_code)]
+
+use linc_engines::console::Console;
+use linc_serve::{Config, Server};
+use std::path::Path;
+
+pub const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+
+/// Serves the plant `db` (relative to the repository, or absolute) from
+/// 2026-01-05 06:00 with `cfg`; wire log lines are dropped unless `cfg`
+/// keeps them.
+pub fn serve(db: &str, cfg: Config) -> Server {
+    let path = if Path::new(db).is_absolute() { Path::new(db).to_path_buf() } else { Path::new(ROOT).join(db) };
+    let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
+    let o = linc_driver::strategy::PlantOptions { now: Some("2026-01-05T06:00:00".into()), ..Default::default() };
+    let (s, wants) = linc_driver::strategy::plant(&path, &o, &mut r).unwrap_or_else(|_| panic!("{}", r.take()));
+    linc_serve::start(Console::new(s), &wants, path.parent().unwrap(), cfg).expect("start")
+}
+
+/// A quiet configuration on loopback port 0: build on it with `..`.
+pub fn config() -> Config {
+    Config { log: std::sync::Arc::new(|_| {}), ..Config::new("127.0.0.1:0".parse().unwrap()) }
+}
+
+/// A field's value as the monitor's API shows it.
+pub fn api(s: &Server, block: &str, field: &str) -> String {
+    let url = format!("http://{}/api/blocks/{}", s.addr(), block.replace(' ', "%20"));
+    let body = ureq::get(&url).call().expect("GET").body_mut().read_to_string().expect("body");
+    let v: serde_json::Value = serde_json::from_str(&body).expect("JSON");
+    let f = v["fields"].as_array().unwrap().iter().find(|f| f["name"] == field).expect("field");
+    f["value"].as_str().unwrap().to_string()
+}
+
+/// Runs a console line on the served plant through the API.
+pub fn console_line(s: &Server, line: &str) {
+    let url = format!("http://{}/api/command", s.addr());
+    let body = serde_json::json!({ "command": line }).to_string();
+    ureq::post(&url).header("Content-Type", "application/json").send(body).expect("command");
+}
