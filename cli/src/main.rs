@@ -156,6 +156,12 @@ enum Command {
         /// Write a VCD trace of the fields the scenario names (a directory of NAME.vcd for several scenarios).
         #[arg(long, value_name = "PATH")]
         vcd: Option<PathBuf>,
+        /// Run only shard K of N: the scenarios split by a stable hash of their paths (for CI matrices).
+        #[arg(long, value_name = "K/N", value_parser = linc_driver::scenarios::Shard::parse)]
+        shard: Option<linc_driver::scenarios::Shard>,
+        /// List the scenario files that would run (this shard's, with --shard) and run none.
+        #[arg(long)]
+        list: bool,
     },
     /// A command console over a running strategy: display, modify and force fields, start and stop
     /// programs, control sequences, move the simulated clock (docs/console.md).
@@ -476,7 +482,9 @@ fn dispatch(command: Command, r: &mut Reporter) -> u8 {
         }
         Command::Run(run) => run_command(*run, r),
         Command::Eval { expr, db, now, seed } => eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed, r),
-        Command::Test { paths, jobs, junit, vcd } => test_cmd::run(&test_cmd::Options { paths, jobs, junit, vcd }, r),
+        Command::Test { paths, jobs, junit, vcd, shard, list } => {
+            test_cmd::run(&test_cmd::Options { paths, jobs, junit, vcd, shard, list }, r)
+        }
         Command::Disasm { file } => disasm_cmd::run(&file, r),
         Command::Check { files, db, tree, transition, sequence, map, allow_unmapped, resources, instrument } => {
             check_cmd::run(

@@ -14,6 +14,10 @@ pub struct Options {
     pub jobs: Option<usize>,
     pub junit: Option<PathBuf>,
     pub vcd: Option<PathBuf>,
+    /// Run only this shard of the scenarios.
+    pub shard: Option<linc_driver::scenarios::Shard>,
+    /// List the scenarios that would run, and run none.
+    pub list: bool,
 }
 
 /// Every `.ltest` file under the paths, sorted, each once.
@@ -52,10 +56,19 @@ fn walk(dir: &Path, out: &mut Vec<PathBuf>, depth: usize) -> std::io::Result<()>
 
 pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     let paths = if o.paths.is_empty() { vec![PathBuf::from(".")] } else { o.paths.clone() };
-    let files = match scenarios(&paths) {
+    let mut files = match scenarios(&paths) {
         Ok(f) => f,
         Err(msg) => return usage(r, msg),
     };
+    if let Some(shard) = o.shard {
+        files.retain(|f| shard.holds(f));
+    }
+    if o.list {
+        for f in &files {
+            crate::out::line(&f.display().to_string());
+        }
+        return 0;
+    }
     if let Err(e) = check_outputs(o, &files) {
         return crate::report::refused(r, e.diagnostic());
     }

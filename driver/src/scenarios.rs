@@ -27,6 +27,53 @@ pub struct Outcome {
     pub report: Report,
 }
 
+/// A shard of a suite: the `k`-th (from 1) of `n`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    pub k: u32,
+    pub n: u32,
+}
+
+impl Shard {
+    /// `K/N` with 1 ≤ K ≤ N ≤ 1000.
+    pub fn parse(text: &str) -> Result<Shard, String> {
+        let bad = || format!("`{text}` is not a shard K/N (1 <= K <= N <= 1000, like 2/4)");
+        let (k, n) = text.split_once('/').ok_or_else(bad)?;
+        let (k, n): (u32, u32) = (k.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?);
+        if k == 0 || k > n || n > 1000 {
+            return Err(bad());
+        }
+        Ok(Shard { k, n })
+    }
+
+    /// Whether a scenario file belongs to this shard: by a stable hash
+    /// (64-bit FNV-1a) of its path as [`shard_key`] writes it, so every
+    /// runner of a CI matrix, on any platform, splits a suite alike.
+    pub fn holds(&self, path: &Path) -> bool {
+        fnv1a(shard_key(path).as_bytes()) % u64::from(self.n) == u64::from(self.k - 1)
+    }
+}
+
+/// A scenario's path as the shard hash reads it: relative to the current
+/// directory when it is under it, `/` between components, without `.`
+/// components (`./examples/a.ltest` and `examples/a.ltest` are one key).
+pub fn shard_key(path: &Path) -> String {
+    let cwd = std::env::current_dir().ok();
+    let rel = cwd.as_deref().and_then(|c| path.strip_prefix(c).ok()).unwrap_or(path);
+    let parts: Vec<String> = rel
+        .components()
+        .filter(|c| !matches!(c, std::path::Component::CurDir))
+        .map(|c| c.as_os_str().to_string_lossy().into_owned())
+        .collect();
+    parts.join("/")
+}
+
+/// 64-bit FNV-1a: fixed by its definition, unlike the standard library's
+/// hasher, which may change between releases.
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+}
+
 /// Runs the scenarios on `jobs` threads; the outcomes come back in file
 /// order whatever order they finish in, so reports are identical.
 pub fn run_all(files: &[PathBuf], jobs: usize, vcd: bool) -> Vec<Outcome> {
@@ -215,4 +262,29 @@ fn build(dir: &Path, target: Option<&Target>, r: &mut Reporter) -> Result<Strate
     let (objects, pairs) = crate::strategy::compile_wants(&db_dir, &db, &wants, r).map_err(|_| ())?;
     let vm = Vm::new(linc_runtime::vm::DEFAULT_WATCHDOG, Clock::new(1, 0));
     Strategy::build(store, objects, &pairs, vm, START).map_err(|e| r.emit(&files, &located(&e)))
+}
+
+#[cfg(test)]
+mod shard_tests {
+    use super::*;
+
+    #[test]
+    fn shards_parse_and_split_by_a_hash_that_does_not_change() {
+        assert_eq!(Shard::parse("2/4"), Ok(Shard { k: 2, n: 4 }));
+        for bad in ["0/4", "5/4", "1/0", "4", "a/b", "1/1001"] {
+            assert!(Shard::parse(bad).is_err(), "{bad}");
+        }
+        // FNV-1a's published test vectors pin the hash.
+        assert_eq!(fnv1a(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(fnv1a(b"a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(shard_key(Path::new("./examples/./fst/plant.ltest")), "examples/fst/plant.ltest");
+        let here = std::env::current_dir().unwrap().join("x/y.ltest");
+        assert_eq!(shard_key(&here), "x/y.ltest");
+        // Every file is in exactly one shard.
+        for i in 0..200 {
+            let p = PathBuf::from(format!("suite/s{i}.ltest"));
+            let owners = (1..=4).filter(|&k| Shard { k, n: 4 }.holds(&p)).count();
+            assert_eq!(owners, 1, "{}", p.display());
+        }
+    }
 }
