@@ -5,6 +5,7 @@
 //! every stage reaches the user ([`report`]).
 
 pub mod build;
+pub mod coverage;
 pub mod database;
 pub mod draw;
 pub mod eval;

@@ -1,0 +1,285 @@
+//! Coverage reports (ADR 0020, docs/testing.md): the counts a run
+//! collected, per source file, written as lcov (which `genhtml` reads),
+//! Cobertura XML (which CI systems show) or a summary table in the style
+//! of `cargo llvm-cov`; and lcov files added together (`--merge-coverage`),
+//! so shards merge into exactly what one run gives.
+//!
+//! Everything is kept sorted and the reports carry no time or machine, so
+//! equal counts give equal bytes.
+
+use linc_format::xml::{escape, Whitespace};
+use std::collections::BTreeMap;
+
+/// One source file's counts.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct FileCoverage {
+    /// Hits by line.
+    pub lines: BTreeMap<u32, u64>,
+    /// Times taken by (line, block, branch); `None` when the decision was
+    /// never evaluated (lcov's `-`).
+    pub branches: BTreeMap<(u32, u32, u32), Option<u64>>,
+    /// Hits and line of each function (an action, a step, a rung), by name.
+    pub functions: BTreeMap<String, (u32, u64)>,
+}
+
+/// Counts for every file of a run.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Coverage {
+    pub files: BTreeMap<String, FileCoverage>,
+}
+
+fn add_opt(a: Option<u64>, b: Option<u64>) -> Option<u64> {
+    match (a, b) {
+        (None, None) => None,
+        (a, b) => Some(a.unwrap_or(0).saturating_add(b.unwrap_or(0))),
+    }
+}
+
+impl Coverage {
+    /// Adds another run's counts to these.
+    pub fn merge(&mut self, other: &Coverage) {
+        for (path, f) in &other.files {
+            let mine = self.files.entry(path.clone()).or_default();
+            for (&l, &h) in &f.lines {
+                let e = mine.lines.entry(l).or_default();
+                *e = e.saturating_add(h);
+            }
+            for (&k, &t) in &f.branches {
+                let e = mine.branches.entry(k).or_insert(None);
+                *e = add_opt(*e, t);
+            }
+            for (name, &(line, h)) in &f.functions {
+                let e = mine.functions.entry(name.clone()).or_insert((line, 0));
+                e.1 = e.1.saturating_add(h);
+            }
+        }
+    }
+
+    /// The lcov tracefile.
+    pub fn to_lcov(&self) -> String {
+        let mut out = String::new();
+        for (path, f) in &self.files {
+            out.push_str(&format!("TN:\nSF:{path}\n"));
+            for (name, (line, _)) in &f.functions {
+                out.push_str(&format!("FN:{line},{name}\n"));
+            }
+            for (name, (_, hits)) in &f.functions {
+                out.push_str(&format!("FNDA:{hits},{name}\n"));
+            }
+            let fnh = f.functions.values().filter(|(_, h)| *h > 0).count();
+            out.push_str(&format!("FNF:{}\nFNH:{fnh}\n", f.functions.len()));
+            for ((line, block, branch), taken) in &f.branches {
+                let t = taken.map_or("-".to_string(), |t| t.to_string());
+                out.push_str(&format!("BRDA:{line},{block},{branch},{t}\n"));
+            }
+            let brh = f.branches.values().filter(|t| t.is_some_and(|t| t > 0)).count();
+            out.push_str(&format!("BRF:{}\nBRH:{brh}\n", f.branches.len()));
+            for (line, hits) in &f.lines {
+                out.push_str(&format!("DA:{line},{hits}\n"));
+            }
+            let lh = f.lines.values().filter(|h| **h > 0).count();
+            out.push_str(&format!("LF:{}\nLH:{lh}\nend_of_record\n", f.lines.len()));
+        }
+        out
+    }
+
+    /// Reads an lcov tracefile (one linc wrote, or any with the same
+    /// records); `Err` names the line that is not one.
+    pub fn from_lcov(text: &str) -> Result<Coverage, (usize, String)> {
+        let mut cov = Coverage::default();
+        let mut current: Option<String> = None;
+        let mut fn_lines: BTreeMap<String, u32> = BTreeMap::new();
+        for (i, line) in text.lines().enumerate() {
+            let bad = |why: &str| (i + 1, format!("{why}: `{line}`"));
+            let (tag, rest) = line.split_once(':').unwrap_or((line, ""));
+            let num = |s: &str| s.trim().parse::<u64>().map_err(|_| bad("not a number"));
+            let file = |cov: &mut Coverage, current: &Option<String>| -> Result<FileCoverage, (usize, String)> {
+                let path = current.as_ref().ok_or_else(|| bad("a record before SF"))?;
+                Ok(cov.files.remove(path).unwrap_or_default())
+            };
+            match tag {
+                "TN" | "FNF" | "FNH" | "BRF" | "BRH" | "LF" | "LH" | "" => {}
+                "SF" => current = Some(rest.to_string()),
+                "end_of_record" => current = None,
+                "FN" => {
+                    let (l, name) = rest.split_once(',').ok_or_else(|| bad("FN needs line,name"))?;
+                    fn_lines.insert(name.to_string(), num(l)? as u32);
+                }
+                "FNDA" | "DA" | "BRDA" => {
+                    let mut f = file(&mut cov, &current)?;
+                    let parts: Vec<&str> = rest.split(',').collect();
+                    match (tag, parts.as_slice()) {
+                        ("FNDA", [h, name]) => {
+                            let line = fn_lines.get(*name).copied().unwrap_or(0);
+                            let e = f.functions.entry(name.to_string()).or_insert((line, 0));
+                            e.1 = e.1.saturating_add(num(h)?);
+                        }
+                        ("DA", [l, h, ..]) => {
+                            let e = f.lines.entry(num(l)? as u32).or_default();
+                            *e = e.saturating_add(num(h)?);
+                        }
+                        ("BRDA", [l, b, br, t]) => {
+                            let key = (num(l)? as u32, num(b)? as u32, num(br)? as u32);
+                            let t = if *t == "-" { None } else { Some(num(t)?) };
+                            let e = f.branches.entry(key).or_insert(None);
+                            *e = add_opt(*e, t);
+                        }
+                        _ => return Err(bad("malformed record")),
+                    }
+                    if let Some(p) = &current {
+                        cov.files.insert(p.clone(), f);
+                    }
+                }
+                _ => return Err(bad("not an lcov record")),
+            }
+        }
+        Ok(cov)
+    }
+
+    /// Line and branch totals: (lines hit, lines, branches taken, branches).
+    fn totals(f: &FileCoverage) -> (usize, usize, usize, usize) {
+        let lh = f.lines.values().filter(|h| **h > 0).count();
+        let bh = f.branches.values().filter(|t| t.is_some_and(|t| t > 0)).count();
+        (lh, f.lines.len(), bh, f.branches.len())
+    }
+
+    /// Cobertura XML (coverage-04.dtd), every file a class of one package.
+    /// The timestamp is 0, so equal counts give equal bytes.
+    pub fn to_cobertura(&self) -> String {
+        let rate = |hit: usize, all: usize| if all == 0 { 1.0 } else { hit as f64 / all as f64 };
+        let sum = self
+            .files
+            .values()
+            .map(Coverage::totals)
+            .fold((0, 0, 0, 0), |a, t| (a.0 + t.0, a.1 + t.1, a.2 + t.2, a.3 + t.3));
+        let mut out = String::from("<?xml version=\"1.0\" ?>\n<!DOCTYPE coverage SYSTEM \"http://cobertura.sourceforge.net/xml/coverage-04.dtd\">\n");
+        out.push_str(&format!(
+            "<coverage line-rate=\"{:.4}\" branch-rate=\"{:.4}\" lines-covered=\"{}\" lines-valid=\"{}\" branches-covered=\"{}\" branches-valid=\"{}\" complexity=\"0\" version=\"linc\" timestamp=\"0\">\n  <sources>\n    <source>.</source>\n  </sources>\n  <packages>\n",
+            rate(sum.0, sum.1), rate(sum.2, sum.3), sum.0, sum.1, sum.2, sum.3
+        ));
+        out.push_str(&format!(
+            "    <package name=\"linc\" line-rate=\"{:.4}\" branch-rate=\"{:.4}\" complexity=\"0\">\n      <classes>\n",
+            rate(sum.0, sum.1),
+            rate(sum.2, sum.3)
+        ));
+        for (path, f) in &self.files {
+            let (lh, lf, bh, bf) = Coverage::totals(f);
+            let p = escape(path, Whitespace::Keep);
+            out.push_str(&format!(
+                "        <class name=\"{p}\" filename=\"{p}\" line-rate=\"{:.4}\" branch-rate=\"{:.4}\" complexity=\"0\">\n          <methods/>\n          <lines>\n",
+                rate(lh, lf), rate(bh, bf)
+            ));
+            for (line, hits) in &f.lines {
+                let branches: Vec<&Option<u64>> =
+                    f.branches.range((*line, 0, 0)..=(*line, u32::MAX, u32::MAX)).map(|(_, t)| t).collect();
+                if branches.is_empty() {
+                    out.push_str(&format!("            <line number=\"{line}\" hits=\"{hits}\" branch=\"false\"/>\n"));
+                } else {
+                    let taken = branches.iter().filter(|t| t.is_some_and(|t| t > 0)).count();
+                    let pct = taken * 100 / branches.len();
+                    out.push_str(&format!(
+                        "            <line number=\"{line}\" hits=\"{hits}\" branch=\"true\" condition-coverage=\"{pct}% ({taken}/{})\"/>\n",
+                        branches.len()
+                    ));
+                }
+            }
+            out.push_str("          </lines>\n        </class>\n");
+        }
+        out.push_str("      </classes>\n    </package>\n  </packages>\n</coverage>\n");
+        out
+    }
+
+    /// A table per file in the style of `cargo llvm-cov`: lines and
+    /// branches, missed and covered, then the totals.
+    pub fn summary(&self) -> String {
+        let pct = |hit: usize, all: usize| {
+            if all == 0 {
+                "-".to_string()
+            } else {
+                format!("{:.2}%", hit as f64 * 100.0 / all as f64)
+            }
+        };
+        let width = self.files.keys().map(|k| k.len()).max().unwrap_or(0).max("Filename".len()).max("TOTAL".len());
+        let row = |name: &str, t: (usize, usize, usize, usize)| {
+            format!(
+                "{name:<width$}  {:>7}  {:>7}  {:>7}  {:>8}  {:>7}  {:>7}\n",
+                t.1,
+                t.1 - t.0,
+                pct(t.0, t.1),
+                t.3,
+                t.3 - t.2,
+                pct(t.2, t.3)
+            )
+        };
+        let mut out = format!(
+            "{:<width$}  {:>7}  {:>7}  {:>7}  {:>8}  {:>7}  {:>7}\n",
+            "Filename", "Lines", "Missed", "Cover", "Branches", "Missed", "Cover"
+        );
+        out.push_str(&"-".repeat(out.trim_end().len()));
+        out.push('\n');
+        let mut total = (0, 0, 0, 0);
+        for (path, f) in &self.files {
+            let t = Coverage::totals(f);
+            total = (total.0 + t.0, total.1 + t.1, total.2 + t.2, total.3 + t.3);
+            out.push_str(&row(path, t));
+        }
+        out.push_str(&"-".repeat(out.lines().next().unwrap_or("").len()));
+        out.push('\n');
+        out.push_str(&row("TOTAL", total));
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> Coverage {
+        let mut f = FileCoverage::default();
+        f.lines.extend([(1, 3), (2, 0), (4, 3)]);
+        f.branches.extend([((1, 0, 0), Some(2)), ((1, 0, 1), Some(0)), ((4, 0, 0), None), ((4, 0, 1), None)]);
+        f.functions.insert("Tank".into(), (1, 3));
+        let mut c = Coverage::default();
+        c.files.insert("plant/sim.stx".into(), f);
+        c
+    }
+
+    #[test]
+    fn lcov_is_read_back_by_an_independent_parser_and_by_ours() {
+        let text = sample().to_lcov();
+        let report = lcov::Report::from_reader(lcov::Reader::new(text.as_bytes())).expect("an lcov parser reads it");
+        let (key, file) = report.sections.iter().next().expect("one section");
+        assert_eq!(key.source_file, std::path::PathBuf::from("plant/sim.stx"));
+        assert_eq!(file.lines.len(), 3);
+        assert_eq!(file.branches.len(), 4);
+        assert_eq!(file.functions.len(), 1);
+        assert_eq!(Coverage::from_lcov(&text), Ok(sample()));
+        assert!(Coverage::from_lcov("DA:1,2\n").is_err(), "a record before SF");
+        assert_eq!(Coverage::from_lcov("SF:a\nXX:1\n").unwrap_err().0, 2);
+    }
+
+    #[test]
+    fn merging_adds_counts_in_any_order_to_the_same_bytes() {
+        let (a, mut b) = (sample(), sample());
+        b.files.get_mut("plant/sim.stx").unwrap().branches.insert((4, 0, 0), Some(5));
+        let mut ab = a.clone();
+        ab.merge(&b);
+        let mut ba = b.clone();
+        ba.merge(&a);
+        assert_eq!(ab.to_lcov(), ba.to_lcov());
+        let f = &ab.files["plant/sim.stx"];
+        assert_eq!((f.lines[&1], f.branches[&(4, 0, 0)], f.branches[&(4, 0, 1)]), (6, Some(5), None));
+        assert_eq!(f.functions["Tank"], (1, 6));
+    }
+
+    #[test]
+    fn cobertura_and_the_summary_count_the_same() {
+        let x = sample().to_cobertura();
+        assert!(x.contains("lines-covered=\"2\" lines-valid=\"3\" branches-covered=\"1\" branches-valid=\"4\""), "{x}");
+        assert!(x.contains("<line number=\"1\" hits=\"3\" branch=\"true\" condition-coverage=\"50% (1/2)\"/>"), "{x}");
+        assert!(x.contains("<line number=\"2\" hits=\"0\" branch=\"false\"/>"), "{x}");
+        let s = sample().summary();
+        assert!(s.contains("plant/sim.stx") && s.contains("66.67%") && s.contains("25.00%"), "{s}");
+        assert!(s.lines().last().unwrap().starts_with("TOTAL"), "{s}");
+    }
+}
