@@ -162,6 +162,12 @@ enum Command {
         /// List the scenario files that would run (this shard's, with --shard) and run none.
         #[arg(long)]
         list: bool,
+        /// Add lcov coverage files (the shards of a CI matrix) into -o OUT, and run nothing.
+        #[arg(long, value_name = "FILE", num_args = 1.., conflicts_with_all = ["paths", "junit", "vcd", "shard", "list"])]
+        merge_coverage: Vec<PathBuf>,
+        /// Where --merge-coverage writes the sum.
+        #[arg(short, long, value_name = "OUT.info", requires = "merge_coverage")]
+        out: Option<PathBuf>,
     },
     /// A command console over a running strategy: display, modify and force fields, start and stop
     /// programs, control sequences, move the simulated clock (docs/console.md).
@@ -482,8 +488,8 @@ fn dispatch(command: Command, r: &mut Reporter) -> u8 {
         }
         Command::Run(run) => run_command(*run, r),
         Command::Eval { expr, db, now, seed } => eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed, r),
-        Command::Test { paths, jobs, junit, vcd, shard, list } => {
-            test_cmd::run(&test_cmd::Options { paths, jobs, junit, vcd, shard, list }, r)
+        Command::Test { paths, jobs, junit, vcd, shard, list, merge_coverage, out } => {
+            test_cmd::run(&test_cmd::Options { paths, jobs, junit, vcd, shard, list, merge_coverage, out }, r)
         }
         Command::Disasm { file } => disasm_cmd::run(&file, r),
         Command::Check { files, db, tree, transition, sequence, map, allow_unmapped, resources, instrument } => {

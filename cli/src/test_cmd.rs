@@ -18,6 +18,9 @@ pub struct Options {
     pub shard: Option<linc_driver::scenarios::Shard>,
     /// List the scenarios that would run, and run none.
     pub list: bool,
+    /// Add these lcov files instead of running anything (`-o` the sum).
+    pub merge_coverage: Vec<PathBuf>,
+    pub out: Option<PathBuf>,
 }
 
 /// Every `.ltest` file under the paths, sorted, each once.
@@ -54,7 +57,29 @@ fn walk(dir: &Path, out: &mut Vec<PathBuf>, depth: usize) -> std::io::Result<()>
     Ok(())
 }
 
+/// `--merge-coverage A.info B.info… -o OUT.info`: the sum as lcov, and
+/// its summary table on standard output.
+fn merge(o: &Options, r: &mut Reporter) -> u8 {
+    let Some(out) = &o.out else { return usage(r, "--merge-coverage needs -o OUT.info, where the sum goes") };
+    let inputs: Vec<&Path> = o.merge_coverage.iter().map(PathBuf::as_path).collect();
+    if let Err(e) = linc_driver::files::check_output(out, &inputs) {
+        return crate::report::refused(r, e.diagnostic());
+    }
+    let sum = match linc_driver::coverage::merge_files(&o.merge_coverage, r) {
+        Ok(c) => c,
+        Err(status) => return status,
+    };
+    if let Err(e) = linc_driver::files::write_atomic(out, sum.to_lcov().as_bytes()) {
+        return crate::report::refused(r, e.diagnostic());
+    }
+    crate::out::line(sum.summary().trim_end());
+    0
+}
+
 pub fn run(o: &Options, r: &mut Reporter) -> u8 {
+    if !o.merge_coverage.is_empty() {
+        return merge(o, r);
+    }
     let paths = if o.paths.is_empty() { vec![PathBuf::from(".")] } else { o.paths.clone() };
     let mut files = match scenarios(&paths) {
         Ok(f) => f,

@@ -56,3 +56,39 @@ fn four_shards_give_the_same_results_as_one_run() {
     let bad = common::linc(&["test", &d, "--shard", "5/4"]);
     assert_eq!(bad.status.code(), Some(2));
 }
+
+#[test]
+fn merged_coverage_files_add_up_to_the_same_bytes_in_any_order() {
+    let dir = linc_test_support::fresh_dir("merge-coverage");
+    let a = "TN:\nSF:plant/sim.stx\nFN:5,Tank\nFNDA:3,Tank\nFNF:1\nFNH:1\nBRDA:7,0,0,2\nBRDA:7,0,1,0\nBRF:2\nBRH:1\nDA:6,3\nDA:8,0\nLF:2\nLH:1\nend_of_record\n";
+    let b = "TN:\nSF:plant/sim.stx\nFN:5,Tank\nFNDA:1,Tank\nFNF:1\nFNH:1\nBRDA:7,0,0,0\nBRDA:7,0,1,1\nBRF:2\nBRH:1\nDA:6,1\nDA:8,1\nLF:2\nLH:2\nend_of_record\n\
+             TN:\nSF:plant/other.stx\nDA:1,0\nLF:1\nLH:0\nend_of_record\n";
+    std::fs::write(dir.join("a.info"), a).unwrap();
+    std::fs::write(dir.join("b.info"), b).unwrap();
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let o = common::linc(&["test", "--merge-coverage", &p("a.info"), &p("b.info"), "-o", &p("ab.info")]);
+    assert_eq!(o.status.code(), Some(0), "{}", common::stderr(&o));
+    assert!(
+        common::stdout(&o).contains("plant/sim.stx") && common::stdout(&o).contains("TOTAL"),
+        "{}",
+        common::stdout(&o)
+    );
+    let ab = std::fs::read_to_string(dir.join("ab.info")).unwrap();
+    assert!(
+        ab.contains("DA:6,4\nDA:8,1\n") && ab.contains("BRDA:7,0,0,2\nBRDA:7,0,1,1\n") && ab.contains("FNDA:4,Tank"),
+        "{ab}"
+    );
+    assert!(ab.contains("SF:plant/other.stx"), "{ab}");
+    common::linc(&["test", "--merge-coverage", &p("b.info"), &p("a.info"), "-o", &p("ba.info")]);
+    assert_eq!(std::fs::read_to_string(dir.join("ba.info")).unwrap(), ab, "order does not matter");
+    // Not lcov: located at its line.
+    std::fs::write(dir.join("bad.info"), "SF:x\nDA:1,1\nnonsense\n").unwrap();
+    let o =
+        common::linc(&["test", "--merge-coverage", &p("bad.info"), "-o", &p("out.info"), "--message-format", "short"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(common::stderr(&o).contains("bad.info:3:1: error[E0912]"), "{}", common::stderr(&o));
+    // Never over an input.
+    let o = common::linc(&["test", "--merge-coverage", &p("a.info"), "-o", &p("a.info")]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(std::fs::read_to_string(dir.join("a.info")).unwrap(), a);
+}

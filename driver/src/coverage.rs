@@ -230,6 +230,35 @@ impl Coverage {
     }
 }
 
+/// Reads and adds lcov files (`linc test --merge-coverage`), reporting a
+/// file that can't be read (E0900) or is not lcov (E0912, at its line);
+/// `Err` is the exit status.
+pub fn merge_files(paths: &[std::path::PathBuf], r: &mut crate::Reporter) -> Result<Coverage, u8> {
+    let mut all = Coverage::default();
+    for path in paths {
+        let text = crate::files::read_input_text(path).map_err(|e| {
+            r.unreadable(path, &e);
+            2u8
+        })?;
+        match Coverage::from_lcov(&text) {
+            Ok(c) => all.merge(&c),
+            Err((line, why)) => {
+                let start: usize = text.split_inclusive('\n').take(line - 1).map(str::len).sum();
+                let end = start + text[start..].find('\n').unwrap_or(text.len() - start);
+                let id = r.file(path.display().to_string(), text);
+                let d = linc_compiler::Diagnostic::error(
+                    linc_format::Code::E0912,
+                    why,
+                    linc_compiler::Span::new(start, end),
+                );
+                r.emit_own(d.label("here").in_file(id));
+                return Err(2);
+            }
+        }
+    }
+    Ok(all)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
