@@ -264,9 +264,14 @@ pub fn start(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) -> R
                     t.finish().err().map(|e| format!("can't write the trace: {e}"))
                 }
             };
-            let committed = trace_file.map(|f| f.commit().map_err(|e| e.diagnostic().message.clone()));
+            // A trace that could not be written whole is not put in place:
+            // dropping the file removes its temporary.
+            let committed = match (trace_error.is_none(), trace_file) {
+                (true, Some(f)) => f.commit().err().map(|e| e.diagnostic().message.clone()),
+                _ => None,
+            };
             let mut finished = plant.finish();
-            finished.trace_error = trace_error.or(committed.and_then(Result::err));
+            finished.trace_error = trace_error.or(committed);
             finished
         })
         .map_err(|e| StartError::Bind(addr, e))?;
