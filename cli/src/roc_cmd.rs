@@ -69,6 +69,7 @@ fn poll_cmd(a: PollArgs, r: &mut Reporter) -> u8 {
         Ok(w) => w,
         Err(s) => return s,
     };
+    // `--out` may not name an input: refused before any request is sent.
     if let Some(out) = &a.out {
         let inputs: Vec<&std::path::Path> =
             [Some(a.commands.as_path()), a.words.as_deref()].into_iter().flatten().collect();
@@ -100,9 +101,7 @@ fn poll_cmd(a: PollArgs, r: &mut Reporter) -> u8 {
         }
     }
     if let Some(path) = &a.out {
-        let inputs: Vec<&std::path::Path> =
-            [Some(a.commands.as_path()), a.words.as_deref()].into_iter().flatten().collect();
-        if let Err(s) = linc_driver::roc::write_words(path, &inputs, &host.words, &status, r) {
+        if let Err(s) = linc_driver::roc::write_words(path, &host.words, &status, r) {
             return s;
         }
     }

@@ -2,7 +2,7 @@
 //! with their errors located in the file, and the word table written back
 //! atomically, never over an input.
 
-use crate::files::{check_output, read_input_text, write_atomic};
+use crate::files::{read_input_text, write_atomic};
 use crate::Reporter;
 use linc_comms::error::FileError;
 use linc_comms::roc::host::{Command, Words};
@@ -39,10 +39,9 @@ pub fn words(path: Option<&Path>, r: &mut Reporter) -> Result<Words, u8> {
     }
 }
 
-/// Writes the word table with each command's status (`--out`), refusing
-/// to write over one of `inputs`.
-pub fn write_words(out: &Path, inputs: &[&Path], words: &Words, status: &[u16], r: &mut Reporter) -> Result<(), u8> {
-    check_output(out, inputs)
-        .and_then(|_| write_atomic(out, words.to_json(Some(status)).as_bytes()))
-        .map_err(|e| crate::report::refused(r, e.diagnostic()))
+/// Writes the word table with each command's status (`--out`),
+/// atomically (the caller has checked that `out` is not an input before
+/// polling began).
+pub fn write_words(out: &Path, words: &Words, status: &[u16], r: &mut Reporter) -> Result<(), u8> {
+    write_atomic(out, words.to_json(Some(status)).as_bytes()).map_err(|e| crate::report::refused(r, e.diagnostic()))
 }

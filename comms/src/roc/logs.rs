@@ -4,6 +4,7 @@
 //! will be written) and the records: 23 bytes an alarm, 22 an event.
 
 use super::ops::{code, RocError};
+use super::value::pad_ascii;
 
 /// Records one request may ask for.
 pub const MAX_RECORDS: u8 = 10;
@@ -42,10 +43,6 @@ pub struct Record {
     pub value: f32,
 }
 
-fn ascii(text: &[u8], n: usize, out: &mut Vec<u8>) {
-    out.extend(text.iter().copied().chain(std::iter::repeat(b' ')).take(n));
-}
-
 /// An FST alarm record (type 2, condition set): the type byte, the time,
 /// the FST number, 13 characters of description, the value.
 pub fn alarm(r: &Record) -> [u8; ALARM_RECORD] {
@@ -53,7 +50,7 @@ pub fn alarm(r: &Record) -> [u8; ALARM_RECORD] {
     out.push(2 | 0x40);
     out.extend_from_slice(&r.time.to_le_bytes());
     out.push(r.fst);
-    ascii(&r.text, 13, &mut out);
+    pad_ascii(&r.text, 13, &mut out);
     out.extend_from_slice(&r.value.to_le_bytes());
     out.try_into().unwrap_or([0; ALARM_RECORD])
 }
@@ -66,7 +63,7 @@ pub fn event(r: &Record) -> [u8; EVENT_RECORD] {
     out.extend_from_slice(&r.time.to_le_bytes());
     out.push(r.fst);
     out.extend_from_slice(&r.value.to_le_bytes());
-    ascii(&r.text, 10, &mut out);
+    pad_ascii(&r.text, 10, &mut out);
     out.extend_from_slice(&[0, 0]);
     out.try_into().unwrap_or([0; EVENT_RECORD])
 }

@@ -28,13 +28,12 @@ pub fn encode(t: RocType, v: &Value, out: &mut Vec<u8>) {
             out.extend_from_slice(&x.to_le_bytes());
         }
         RocType::Ac(n) => {
-            let text = match v {
-                Value::Text(b) => b.clone(),
-                Value::Int(i) => i.to_string().into_bytes(),
-                Value::Real(x) => x.to_string().into_bytes(),
+            let text: std::borrow::Cow<[u8]> = match v {
+                Value::Text(b) => b.into(),
+                Value::Int(i) => i.to_string().into_bytes().into(),
+                Value::Real(x) => x.to_string().into_bytes().into(),
             };
-            let n = usize::from(n);
-            out.extend(text.iter().copied().chain(std::iter::repeat(b' ')).take(n));
+            pad_ascii(&text, usize::from(n), out);
         }
         _ => {
             let i = match v {
@@ -47,6 +46,12 @@ pub fn encode(t: RocType, v: &Value, out: &mut Vec<u8>) {
             out.extend_from_slice(&i.to_le_bytes()[..t.size()]);
         }
     }
+}
+
+/// `n` bytes of text: cut to `n`, or padded with spaces (the AC types,
+/// and the descriptions in log records).
+pub fn pad_ascii(text: &[u8], n: usize, out: &mut Vec<u8>) {
+    out.extend(text.iter().copied().chain(std::iter::repeat(b' ')).take(n));
 }
 
 /// The value `bytes` hold as type `t`; `None` when they are not its size.

@@ -16,30 +16,8 @@ pub struct Addr {
 /// Resolves `BLOCK.FIELD[.BitN]` (or an alias) against the store. A block
 /// name may hold spaces (`AIN 2-1.EU`).
 pub fn address(store: &Store, path: &str) -> Result<Addr, String> {
-    let mut parts: Vec<String> = path.split('.').map(|p| p.trim().to_string()).collect();
-    if let Some(a) = parts.first().and_then(|p| store.db.alias(p)) {
-        let mut expanded = a.target.clone();
-        expanded.extend(parts.drain(1..));
-        parts = expanded;
-    }
-    let (Some(b), Some(f)) = (parts.first(), parts.get(1)) else {
-        return Err(format!("`{path}` is not BLOCK.FIELD"));
-    };
-    let block = store.db.block(b).ok_or_else(|| format!("the database has no block `{b}`"))?;
-    let cell = store.cell_of(block, f).ok_or_else(|| format!("`{b}` has no field `{f}`"))?;
-    let t = store.db.block_template(block);
-    let bit = match parts.get(2) {
-        None => None,
-        Some(sub) => {
-            let field = t.field(f).map(|i| &t.fields[i].ty);
-            let n = field.and_then(|ty| ty.bit_index(sub)).ok_or_else(|| format!("`{b}.{f}` has no bit `{sub}`"))?;
-            Some(n)
-        }
-    };
-    if parts.len() > 3 {
-        return Err(format!("`{path}` has too many parts"));
-    }
-    Ok(Addr { cell, bit })
+    let (block, field, bit) = store.db.field_path(path)?;
+    Ok(Addr { cell: store.first[block] + field as u32, bit })
 }
 
 /// A field's (or bit's) value as `linc run --show` prints it.

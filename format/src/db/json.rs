@@ -252,9 +252,9 @@ impl<'a> Loader<'a> {
                 let names = Device::ALL.map(Device::name).join(", ");
                 DbError::at(code::DEVICE, format!("unknown device family `{}` (expected {names})", m.key), m.key_span)
             })?;
-            let t = match &m.value.v {
-                Json::Num(x) if x.fract() == 0.0 && (0.0..=65_535.0).contains(x) => *x as u16,
-                _ => {
+            let t = match m.value.whole(0.0, 65_535.0) {
+                Some(x) => x as u16,
+                None => {
                     let message = format!("point type of {what} on {} must be a whole number from 0 to 65535", m.key);
                     return Err(DbError::at(code::OUT_OF_RANGE, message, m.value.span));
                 }

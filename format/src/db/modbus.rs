@@ -109,7 +109,9 @@ pub(super) fn load(db: &Database, node: &Node) -> Result<ModbusMap, DbError> {
     for m in members {
         match m.key.as_str() {
             "unit" => {
-                map.unit = whole(&m.value, 0.0, 255.0)
+                map.unit = m
+                    .value
+                    .whole(0.0, 255.0)
                     .ok_or_else(|| bad(code::MODBUS_SHAPE, "`unit` is a whole number from 0 to 255", &m.value))?
                     as u8
             }
@@ -131,13 +133,6 @@ pub(super) fn load(db: &Database, node: &Node) -> Result<ModbusMap, DbError> {
     }
     map.entries.sort_by_key(|e| (e.table as u8, e.address));
     Ok(map)
-}
-
-fn whole(node: &Node, lo: f64, hi: f64) -> Option<u32> {
-    match node.v {
-        Json::Num(x) if x.fract() == 0.0 && (lo..=hi).contains(&x) => Some(x as u32),
-        _ => None,
-    }
 }
 
 fn text<'a>(spec: &'a [Member], key: &str, entry: &Node) -> Result<Option<(&'a str, &'a Node)>, DbError> {
@@ -166,12 +161,13 @@ fn entry(db: &Database, item: &Node) -> Result<MbEntry, DbError> {
     })?;
     let anode =
         &get(spec, "address").ok_or_else(|| bad(code::MODBUS_SHAPE, "a map entry needs `address`", item))?.value;
-    let address = whole(anode, 0.0, 65535.0)
+    let address = anode
+        .whole(0.0, 65535.0)
         .ok_or_else(|| bad(code::MODBUS_SHAPE, "`address` is a whole number from 0 to 65535", anode))?
         as u16;
     let (path, pnode) = text(spec, "field", item)?
         .ok_or_else(|| bad(code::MODBUS_SHAPE, "a map entry needs `field` (BLOCK.FIELD)", item))?;
-    let (block, field, bit) = resolve(db, path).map_err(|why| bad(code::MODBUS_FIELD, why, pnode))?;
+    let (block, field, bit) = db.field_path(path).map_err(|why| bad(code::MODBUS_FIELD, why, pnode))?;
     let fty = &db.block_template(block).fields[field].ty;
     let ty = match text(spec, "type", item)? {
         None if table.bits() => MbType::Bool,
@@ -197,30 +193,6 @@ fn entry(db: &Database, item: &Node) -> Result<MbEntry, DbError> {
         return Err(bad(code::MODBUS_SHAPE, "a REAL at 65535 would pass the last register", anode));
     }
     Ok(e)
-}
-
-/// `BLOCK.FIELD`, `BLOCK.FIELD.BitN` or an alias of one.
-fn resolve(db: &Database, path: &str) -> Result<(usize, usize, Option<u8>), String> {
-    let mut parts: Vec<String> = path.split('.').map(|p| p.trim().to_string()).collect();
-    if let Some(a) = parts.first().and_then(|p| db.alias(p)) {
-        let mut expanded = a.target.clone();
-        expanded.extend(parts.drain(1..));
-        parts = expanded;
-    }
-    let (Some(b), Some(f)) = (parts.first(), parts.get(1)) else {
-        return Err(format!("`{path}` is not BLOCK.FIELD"));
-    };
-    let block = db.block(b).ok_or_else(|| format!("the database has no block `{b}`"))?;
-    let t = db.block_template(block);
-    let field = t.field(f).ok_or_else(|| format!("`{b}` has no field `{f}`"))?;
-    let bit = match parts.get(2) {
-        None => None,
-        Some(sub) => Some(t.fields[field].ty.bit_index(sub).ok_or_else(|| format!("`{b}.{f}` has no bit `{sub}`"))?),
-    };
-    if parts.len() > 3 {
-        return Err(format!("`{path}` has too many parts"));
-    }
-    Ok((block, field, bit))
 }
 
 /// Whether a field of `fty` can sit in `table` as `ty`.

@@ -247,6 +247,35 @@ impl Database {
         self.alias_index.get(name)
     }
 
+    /// The block, field and bit that `BLOCK.FIELD`, `BLOCK.FIELD.BitN`
+    /// (or the bit's name) or an alias of one names, as people type them
+    /// (the console, `--set`, a Modbus map); `Err` says what is wrong.
+    /// A block name may hold spaces (`AIN 2-1.EU`).
+    pub fn field_path(&self, path: &str) -> Result<(usize, usize, Option<u8>), String> {
+        let mut parts: Vec<String> = path.split('.').map(|p| p.trim().to_string()).collect();
+        if let Some(a) = parts.first().and_then(|p| self.alias(p)) {
+            let mut expanded = a.target.clone();
+            expanded.extend(parts.drain(1..));
+            parts = expanded;
+        }
+        let (Some(b), Some(f)) = (parts.first(), parts.get(1)) else {
+            return Err(format!("`{path}` is not BLOCK.FIELD"));
+        };
+        let block = self.block(b).ok_or_else(|| format!("the database has no block `{b}`"))?;
+        let t = self.block_template(block);
+        let field = t.field(f).ok_or_else(|| format!("`{b}` has no field `{f}`"))?;
+        let bit = match parts.get(2) {
+            None => None,
+            Some(sub) => {
+                Some(t.fields[field].ty.bit_index(sub).ok_or_else(|| format!("`{b}.{f}` has no bit `{sub}`"))?)
+            }
+        };
+        if parts.len() > 3 {
+            return Err(format!("`{path}` has too many parts"));
+        }
+        Ok((block, field, bit))
+    }
+
     /// A user task by number.
     pub fn task(&self, number: u8) -> Option<&Task> {
         self.tasks.iter().find(|t| t.number == number)

@@ -57,6 +57,14 @@ impl Node {
         }
     }
 
+    /// The whole number this is, if it is one from `lo` to `hi`.
+    pub fn whole(&self, lo: f64, hi: f64) -> Option<i64> {
+        match self.v {
+            Json::Num(x) if x.fract() == 0.0 && (lo..=hi).contains(&x) => Some(x as i64),
+            _ => None,
+        }
+    }
+
     /// What kind of value this is, for messages.
     pub fn kind(&self) -> &'static str {
         match self.v {

@@ -17,13 +17,6 @@ pub struct RocUser {
 /// The highest access level.
 pub const MAX_LEVEL: u8 = 5;
 
-fn whole(node: &Node, hi: f64) -> Option<u32> {
-    match node.v {
-        Json::Num(x) if x.fract() == 0.0 && (0.0..=hi).contains(&x) => Some(x as u32),
-        _ => None,
-    }
-}
-
 /// `"users": {"LOI": {"password": 1000, "level": 5}, …}`.
 pub(super) fn load(node: &Node) -> Result<Vec<RocUser>, DbError> {
     let bad = |message: String, span| DbError::at(code::USERS, message, span);
@@ -43,13 +36,14 @@ pub(super) fn load(node: &Node) -> Result<Vec<RocUser>, DbError> {
             match f.key.as_str() {
                 "password" => {
                     password = Some(
-                        whole(&f.value, 65535.0)
+                        f.value
+                            .whole(0.0, 65535.0)
                             .ok_or_else(|| bad("a password is a whole number from 0 to 65535".into(), f.value.span))?
                             as u16,
                     )
                 }
                 "level" => {
-                    level = Some(whole(&f.value, f64::from(MAX_LEVEL)).ok_or_else(|| {
+                    level = Some(f.value.whole(0.0, f64::from(MAX_LEVEL)).ok_or_else(|| {
                         bad(format!("an access level is a whole number from 0 to {MAX_LEVEL}"), f.value.span)
                     })? as u8)
                 }

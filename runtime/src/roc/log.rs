@@ -85,6 +85,11 @@ impl Log {
         self.entries.iter()
     }
 
+    /// The `i`-th entry held, oldest first.
+    pub fn get(&self, i: usize) -> Option<&LogEntry> {
+        self.entries.get(i)
+    }
+
     pub fn len(&self) -> usize {
         self.entries.len()
     }

@@ -7,7 +7,6 @@ use linc_engines::console::fields::Addr;
 use linc_engines::console::Console;
 use linc_engines::strategy::trace::Trace;
 use linc_format::db::modbus::{MbEntry, MbType, ModbusMap, Table};
-use linc_format::Code;
 use linc_runtime::store::{Cell, Store};
 
 /// What the device is.
@@ -202,42 +201,21 @@ impl ModbusDevice {
         cells: Vec<(Addr, Cell)>,
         peer: &str,
         log: &mut Vec<String>,
-        mut trace: Option<&mut Trace>,
+        trace: Option<&mut Trace>,
     ) -> Result<(), ExceptionCode> {
         let client = format!("modbus {peer}");
         if !self.allow_writes {
             log.push(format!("{client}: write refused: this server is read-only (--allow-writes)"));
             return Err(ExceptionCode::IllegalFunction);
         }
-        let now = console.strategy.elapsed_us();
-        if let Err((i, e)) = console.modify_all(&cells) {
-            log.push(format!("{client}: write refused: {}", e.message));
-            let why = if e.code == Code::C0009 { "forced" } else { "read-only" };
-            if let Some(t) = trace {
-                t.client_refused(&console.strategy.store, now, &client, cells[i].0.cell, why);
-            }
-            return Err(ExceptionCode::ServerDeviceFailure);
-        }
-        let store = &console.strategy.store;
-        for (a, _) in &cells {
-            log.push(format!("{client}: wrote {} = {}", store.describe(a.cell), store.show(a.cell)));
-            if let Some(t) = trace.as_deref_mut() {
-                t.client_write(store, now, &client, a.cell);
-            }
-        }
-        Ok(())
+        super::commit(console, &cells, &client, log, trace).map_err(|_| ExceptionCode::ServerDeviceFailure)
     }
 }
 
 /// A register written to a whole-number field: an INT takes it as a
-/// signed 16-bit value, a BITS field as unsigned bits within its width, an
-/// ENUM as one of its indices; `None` when the field can't hold it.
+/// signed 16-bit value, a BITS or ENUM field as unsigned; `None` when the
+/// field can't hold it.
 fn int_cell(ty: &linc_format::db::FieldType, w: u16) -> Option<Cell> {
-    use linc_format::db::FieldType;
-    match ty {
-        FieldType::Int => Some(Cell::Int(i32::from(w as i16))),
-        FieldType::Bits { width, .. } => (u32::from(w) < 1 << width).then_some(Cell::Bits { v: w, width: *width }),
-        FieldType::Enum(names) => (usize::from(w) < names.len()).then_some(Cell::Enum { idx: w }),
-        _ => None,
-    }
+    let v = if matches!(ty, linc_format::db::FieldType::Int) { i64::from(w as i16) } else { i64::from(w) };
+    super::whole_cell(ty, v)
 }

@@ -5,11 +5,10 @@
 use super::modbus::MbAnswer;
 use super::net::{self, Limits, Log};
 use crate::Ask;
-use linc_comms::modbus::{self, Deframer, Exception};
+use linc_comms::modbus::{self, Deframer};
 use std::net::SocketAddr;
 use std::sync::mpsc::Sender;
 use std::time::Instant;
-use tokio::io::AsyncWriteExt;
 use tokio::net::TcpStream;
 use tokio::sync::oneshot;
 
@@ -57,14 +56,14 @@ pub(crate) async fn client(
                     for line in lines {
                         log(line);
                     }
-                    modbus::encode(head, function, &reply.map_err(|e: Exception| e))
+                    modbus::encode(head, function, &reply)
                 }
             };
-            if tokio::time::timeout(limits.idle, stream.write_all(&bytes)).await.map_or(true, |r| r.is_err()) {
-                break 'conn net::Stop::Closed;
+            if let Err(stop) = net::reply(&mut stream, &bytes, &limits).await {
+                break 'conn stop;
             }
         }
-        begun = if frames.pending() == 0 { None } else { begun.or(Some(Instant::now())) };
+        begun = net::waiting_since(frames.pending(), begun);
     };
     if let Some(why) = stop.why(&limits) {
         log(format!("modbus {peer}: dropped: {why}"));

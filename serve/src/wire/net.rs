@@ -128,3 +128,23 @@ pub async fn read_some<R: AsyncRead + Unpin>(
         Ok(Ok(n)) => Ok(n),
     }
 }
+
+/// Writes a reply, giving a client that does not read it [`Limits::idle`]
+/// before the connection is dropped; `Err` ends the connection.
+pub async fn reply(stream: &mut tokio::net::TcpStream, bytes: &[u8], limits: &Limits) -> Result<(), Stop> {
+    use tokio::io::AsyncWriteExt;
+    match tokio::time::timeout(limits.idle, stream.write_all(bytes)).await {
+        Ok(Ok(())) => Ok(()),
+        _ => Err(Stop::Closed),
+    }
+}
+
+/// When the bytes waiting for the rest of their request began to wait:
+/// `None` when nothing waits, else `begun` or now.
+pub fn waiting_since(pending: usize, begun: Option<Instant>) -> Option<Instant> {
+    if pending == 0 {
+        None
+    } else {
+        begun.or(Some(Instant::now()))
+    }
+}

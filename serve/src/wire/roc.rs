@@ -9,7 +9,6 @@ use linc_engines::console::fields::Addr;
 use linc_engines::console::Console;
 use linc_engines::strategy::trace::Trace;
 use linc_format::db::{FieldType, RocType, Tlp, TlpFault};
-use linc_format::Code;
 use linc_runtime::store::{Cell, Store};
 
 /// What the device is.
@@ -63,36 +62,13 @@ fn wire_value(cell: &Cell) -> Value {
 /// field can't hold it (out of its range, not finite, not an enumeration
 /// value).
 fn field_value(ty: &FieldType, v: Value) -> Option<Cell> {
-    let whole = |v: &Value| match v {
-        Value::Int(i) => Some(*i),
+    match (ty, v) {
+        (FieldType::Real, Value::Real(x)) if x.is_finite() => Some(Cell::Real(x)),
+        (FieldType::Real, Value::Int(i)) => Some(Cell::Real(i as f32)),
+        (FieldType::String, Value::Text(t)) => Some(Cell::Text(t)),
+        (_, Value::Int(i)) => super::whole_cell(ty, i),
         _ => None,
-    };
-    Some(match ty {
-        FieldType::Real => match v {
-            Value::Real(x) if x.is_finite() => Cell::Real(x),
-            Value::Int(i) => Cell::Real(i as f32),
-            _ => return None,
-        },
-        FieldType::Int => Cell::Int(i32::try_from(whole(&v)?).ok()?),
-        FieldType::Bool => Cell::Bool(match whole(&v)? {
-            0 => false,
-            1 => true,
-            _ => return None,
-        }),
-        FieldType::Bits { width, .. } => {
-            let v = whole(&v)?;
-            (0..1 << width).contains(&v).then_some(Cell::Bits { v: v as u16, width: *width })?
-        }
-        FieldType::Enum(names) => {
-            let i = usize::try_from(whole(&v)?).ok().filter(|&i| i < names.len())?;
-            Cell::Enum { idx: i as u16 }
-        }
-        FieldType::String => match v {
-            Value::Text(t) => Cell::Text(t),
-            _ => return None,
-        },
-        _ => return None,
-    })
+    }
 }
 
 impl RocDevice {
@@ -164,7 +140,7 @@ impl RocDevice {
         data: &[u8],
         peer: &str,
         log: &mut Vec<String>,
-        mut trace: Option<&mut Trace>,
+        trace: Option<&mut Trace>,
     ) -> Result<Vec<u8>, Vec<RocError>> {
         let store = &console.strategy.store;
         let writes = ops::parse_write(data, |t| resolve(store, t).map(|p| p.wire.size())).map_err(|e| vec![e])?;
@@ -178,26 +154,12 @@ impl RocDevice {
             let new = value::decode(p.wire, value).and_then(|v| field_value(p.ty, v)).ok_or_else(range)?;
             cells.push((Addr { cell: p.cell, bit: None }, new));
         }
-        let client = format!("roc {peer}");
-        let now = console.strategy.elapsed_us();
-        if let Err((i, e)) = console.modify_all(&cells) {
+        if let Err((i, why)) = super::commit(console, &cells, &format!("roc {peer}"), log, trace) {
             let at = writes[i].at;
-            let (err, why) = match e.code {
-                Code::C0009 => (RocError::at_data(code::INVALID_STATE_FOR_WRITE, at), "forced"),
-                _ => (RocError::at_data(code::READ_ONLY, at + 2), "read-only"),
-            };
-            log.push(format!("{client}: write refused: {}", e.message));
-            if let Some(t) = trace {
-                t.client_refused(&console.strategy.store, now, &client, cells[i].0.cell, why);
-            }
-            return Err(vec![err]);
-        }
-        let store = &console.strategy.store;
-        for (a, _) in &cells {
-            log.push(format!("{client}: wrote {} = {}", store.describe(a.cell), store.show(a.cell)));
-            if let Some(t) = trace.as_deref_mut() {
-                t.client_write(store, now, &client, a.cell);
-            }
+            return Err(vec![match why {
+                super::Refused::Forced => RocError::at_data(code::INVALID_STATE_FOR_WRITE, at),
+                super::Refused::ReadOnly => RocError::at_data(code::READ_ONLY, at + 2),
+            }]);
         }
         Ok(Vec::new())
     }

@@ -26,7 +26,7 @@ fn records(store: &Store, log: &Log, req: LogRequest, alarms: bool) -> Vec<u8> {
         let slot = (u64::from(req.start) + j) % cap;
         // The newest entry at this slot, if one is held.
         let newest = total.checked_sub(1).and_then(|last| last.checked_sub((last + cap - slot) % cap));
-        let entry = newest.filter(|&k| k >= first && k < total).and_then(|k| log.iter().nth((k - first) as usize));
+        let entry = newest.filter(|&k| k >= first && k < total).and_then(|k| log.get((k - first) as usize));
         let size = if alarms { logs::ALARM_RECORD } else { logs::EVENT_RECORD };
         out.push(match entry {
             None => vec![0; size],

@@ -7,7 +7,6 @@ use linc_comms::roc::{Address, Deframer};
 use std::net::SocketAddr;
 use std::sync::mpsc::Sender;
 use std::time::Instant;
-use tokio::io::AsyncWriteExt;
 use tokio::net::TcpStream;
 use tokio::sync::oneshot;
 
@@ -27,20 +26,18 @@ pub(crate) async fn client(
     let mut begun: Option<Instant> = None;
     // The operator logged in on this connection (its access level).
     let mut session: Option<u8> = None;
-    let stop = loop {
+    let stop = 'conn: loop {
         let n = match net::read_some(&mut stream, &mut buf, &limits, begun).await {
             Ok(n) => n,
             Err(stop) => break stop,
         };
         frames.push(&buf[..n]);
-        let mut failed = false;
         while let Some(frame) = frames.next_frame() {
             if frame.dst != me {
                 continue;
             }
             let (reply, answer) = oneshot::channel();
-            let peer_text = peer.to_string();
-            if asks.send(Ask::Roc { frame, peer: peer_text, session, reply }).is_err() {
+            if asks.send(Ask::Roc { frame, peer: peer.to_string(), session, reply }).is_err() {
                 return;
             }
             let Ok(Answer { reply, log: lines, session: after }) = answer.await else { return };
@@ -49,15 +46,11 @@ pub(crate) async fn client(
                 log(line);
             }
             let Some(bytes) = reply.encode() else { continue };
-            if tokio::time::timeout(limits.idle, stream.write_all(&bytes)).await.map_or(true, |r| r.is_err()) {
-                failed = true;
-                break;
+            if let Err(stop) = net::reply(&mut stream, &bytes, &limits).await {
+                break 'conn stop;
             }
         }
-        if failed {
-            break net::Stop::Closed;
-        }
-        begun = if frames.pending() == 0 { None } else { begun.or(Some(Instant::now())) };
+        begun = net::waiting_since(frames.pending(), begun);
     };
     if frames.dropped > 0 {
         log(format!("roc {peer}: {} bytes made no frame (bad CRC or noise) and were dropped", frames.dropped));

@@ -59,10 +59,10 @@ impl Words {
                 return Err(bad(message, m.value.span));
             }
             for (i, item) in items.iter().enumerate() {
-                let w = match item.v {
-                    Json::Num(x) if x.fract() == 0.0 && (-32768.0..=65535.0).contains(&x) => (x as i64) as u16,
-                    _ => return Err(bad("a word is a whole number from -32768 to 65535", item.span)),
-                };
+                let w = item
+                    .whole(-32768.0, 65535.0)
+                    .ok_or_else(|| bad("a word is a whole number from -32768 to 65535", item.span))?
+                    as u16;
                 if std::mem::replace(&mut set[start + i], true) {
                     return Err(bad(format!("word {} is given twice (runs overlap)", start + i), item.span));
                 }
