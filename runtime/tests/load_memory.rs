@@ -10,49 +10,17 @@ use linc_runtime::object::{
     UnitKind,
 };
 use linc_runtime::wire::{Bytes, Code};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-struct Counting;
-
-static LIVE: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let live = LIVE.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
-        PEAK.fetch_max(live, Ordering::Relaxed);
-        // SAFETY: forwarded unchanged to the system allocator.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
-        // SAFETY: `ptr` was allocated by `alloc` above with this layout.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        // Counted as a new block and a freed one, at the new block's peak.
-        let live = LIVE.fetch_add(new_size, Ordering::Relaxed) + new_size;
-        PEAK.fetch_max(live, Ordering::Relaxed);
-        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
-        // SAFETY: forwarded unchanged to the system allocator.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
+use linc_test_support::alloc::{serial, Counting};
 
 #[global_allocator]
 static ALLOCATOR: Counting = Counting;
 
-static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
-
-/// The peak of live heap bytes while `f` runs, beyond what was live before.
+/// The peak of live heap bytes while `f` runs, beyond what was live before,
+/// with its result (callers hold [`serial`]).
 fn peak_of<T>(f: impl FnOnce() -> T) -> (usize, T) {
-    let before = LIVE.load(Ordering::Relaxed);
-    PEAK.store(before, Ordering::Relaxed);
-    let r = f();
-    (PEAK.load(Ordering::Relaxed) - before, r)
+    let mut out = None;
+    let peak = linc_test_support::alloc::peak_of(|| out = Some(f()));
+    (peak, out.expect("the closure ran"))
 }
 
 /// The most heap a load may need, in multiples of the file's size.
@@ -129,7 +97,7 @@ fn dense(n: usize) -> Vec<(&'static str, ObjectFile)> {
 
 #[test]
 fn loading_needs_at_most_ten_times_the_file() {
-    let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _one = serial();
     for (what, obj) in dense(2 << 20) {
         let bytes = obj.to_bytes();
         drop(obj);
@@ -145,7 +113,7 @@ fn loading_needs_at_most_ten_times_the_file() {
 /// steps.
 #[test]
 fn tables_longer_than_their_names_allow_are_refused_unread() {
-    let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _one = serial();
     let mut o = object(vec![unit(vec![block(vec![Op::Ret {}])])]);
     o.symbols = vec![empty_symbol(); (1 << 16) + 1];
     let bytes = o.to_bytes();
@@ -170,6 +138,8 @@ fn tables_longer_than_their_names_allow_are_refused_unread() {
 #[test]
 fn a_block_too_large_to_translate_is_left_to_the_interpreter() {
     use linc_runtime::{Database, Program, Store};
+    // It measures nothing, but its allocations would count in the others'.
+    let _one = serial();
     let code = |n: usize| {
         let mut ops = vec![Op::PushI { v: 1 }];
         ops.resize(n - 2, Op::Not {});
@@ -191,7 +161,7 @@ fn a_block_too_large_to_translate_is_left_to_the_interpreter() {
 #[test]
 fn linking_copies_no_block_it_does_not_change() {
     use linc_runtime::{Database, Program, Store};
-    let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _one = serial();
     let mut ops = vec![Op::PushI { v: 1 }];
     ops.resize(1 << 20, Op::Not {});
     ops.extend([Op::StoreLoc { n: 0 }, Op::Ret {}]);
@@ -209,7 +179,7 @@ fn linking_copies_no_block_it_does_not_change() {
 #[test]
 fn blocks_need_memory_in_proportion_to_their_text() {
     use linc_runtime::{Database, Store};
-    let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _one = serial();
     let fields: Vec<String> = (0..10_000).map(|i| format!("\"F{i}\": \"REAL\"")).collect();
     let text = |n: usize| {
         let blocks: Vec<String> = (0..n).map(|i| format!("\"B{i}\": {{ \"type\": \"BIG\" }}")).collect();
