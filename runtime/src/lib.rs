@@ -11,6 +11,7 @@
 //! [`vm::Activation`] that the caller owns. [`load`] does the first two.
 
 pub use linc_format::{db, isa, object, records, text, wire};
+pub mod cover;
 pub mod errors;
 pub mod jit;
 pub mod link;

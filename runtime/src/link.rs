@@ -73,9 +73,30 @@ pub struct Linked {
     programs: Vec<LinkedProgram>,
     /// Machine code of the blocks the compiling tier has translated.
     pub(crate) jit: crate::jit::Cache,
+    /// Coverage counters, when a run collects coverage (shared by clones).
+    cover: Option<std::sync::Arc<crate::cover::Counters>>,
 }
 
 impl Linked {
+    /// Counts what runs from now on (`linc test --coverage`); without it,
+    /// nothing is counted and runs cost what they always did.
+    pub fn enable_coverage(&mut self) {
+        if self.cover.is_none() {
+            self.cover = Some(std::sync::Arc::new(crate::cover::Counters::new(self.object())));
+        }
+    }
+
+    /// The coverage counters, when enabled.
+    pub fn coverage(&self) -> Option<&crate::cover::Counters> {
+        self.cover.as_deref()
+    }
+
+    /// The counters of block `block` of `program`'s unit, when enabled.
+    pub(crate) fn cover_block(&self, program: usize, block: usize) -> Option<&crate::cover::BlockCounters> {
+        let unit = self.programs.get(program)?.unit;
+        self.cover.as_deref()?.block(unit, block)
+    }
+
     /// Whether the compiling tier has compiled block `block` of `program` yet.
     pub fn is_compiled(&self, program: usize, block: usize) -> bool {
         self.jit.is_compiled((program, block))
@@ -153,7 +174,7 @@ impl Verified {
             linked.push(link_program(&self, unit, p, store).map_err(|e| (i, e))?);
         }
         let jit = crate::jit::Cache::new(linked.iter().map(|p| p.blocks.len()));
-        Ok(Linked { verified: self, programs: linked, jit })
+        Ok(Linked { verified: self, programs: linked, jit, cover: None })
     }
 }
 

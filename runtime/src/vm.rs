@@ -11,9 +11,10 @@ mod cells;
 mod fst_ops;
 mod strings;
 
+use crate::cover::{BlockCounters, Counter};
 use crate::errors::{Fault, RuntimeError};
 use crate::isa::{Kind, Op};
-use crate::jit::{Buffers, JitRun, Services};
+use crate::jit::{Buffers, JitRun, Mode, Services};
 use crate::link::{Linked, LinkedBlock, LinkedProgram};
 use crate::object::{CodeBlock, Unit};
 use crate::store::{Cell, Store};
@@ -137,6 +138,14 @@ impl Activation {
 pub fn can_resume_at(ops: &[Op], at: usize) -> bool {
     matches!(ops.get(at), Some(Op::Step { .. }))
         || at.checked_sub(1).and_then(|p| ops.get(p)).is_some_and(|op| matches!(op, Op::Yield {} | Op::Pause { .. }))
+}
+
+/// Adds one to counter `i`, if there is one (coverage).
+#[inline(always)]
+fn count(counters: &[Counter], i: usize) {
+    if let Some(c) = counters.get(i) {
+        c.bump();
+    }
 }
 
 /// The code an activation runs, looked up once per run.
@@ -314,13 +323,15 @@ impl Vm {
         self.clock.now = store.now;
         let (mut budget, mut ref_cell) = (self.watchdog, 0);
         let interpreted_from = budget;
+        let cover = linked.cover_block(act.program, act.block);
         if self.jit && pc == 0 {
-            let traced = trace.is_some();
-            if let Some(c) = linked.jit.get(linked, store, (act.program, act.block), self.jit_after, traced) {
+            let mode = Mode { traced: trace.is_some(), covered: cover.is_some() };
+            if let Some(c) = linked.jit.get(linked, store, (act.program, act.block), self.jit_after, mode) {
                 let (mut mem, mut stack, mut locals) =
                     (take(&mut self.jit_mem), take(&mut self.num), take(&mut self.locals));
                 let buf = Buffers { mem: &mut mem, stack: &mut stack, locals: &mut locals };
-                let services = Services { vm: self, consts: &linked.object().strings, trace: &mut trace };
+                let consts = &linked.object().strings;
+                let services = Services { vm: self, consts, trace: &mut trace, cover };
                 let ran = c.run(store, &mut act.retained, budget, buf, services);
                 (self.jit_mem, self.num, self.locals) = (mem, stack, locals);
                 match ran {
@@ -332,7 +343,14 @@ impl Vm {
                         act.result = Some(v);
                         return Ok(Outcome::Done);
                     }
-                    JitRun::Bail { pc: at, ref_cell: r, budget: b } => (pc, ref_cell, budget) = (at, r, b),
+                    JitRun::Bail { pc: at, ref_cell: r, budget: b } => {
+                        // Compiled code counted the instruction it stopped
+                        // at; the interpreter is about to count it.
+                        if let Some(c) = cover.filter(|c| c.is_point(at)) {
+                            c.hits[at].unbump();
+                        }
+                        (pc, ref_cell, budget) = (at, r, b);
+                    }
                     JitRun::Fault { pc: at } => {
                         act.result = None;
                         let f = self.jit_fault.take().unwrap_or_else(corrupt);
@@ -342,7 +360,12 @@ impl Vm {
                 }
             }
         }
-        let result = self.exec(&l, act, store, &mut pc, &mut trace, (budget, ref_cell));
+        let result = match cover {
+            // Two copies of the loop: the one that runs without coverage
+            // has no counting in it at all (ADR 0020).
+            None => self.exec::<false>(&l, act, store, &mut pc, &mut trace, (budget, ref_cell), None),
+            Some(c) => self.exec::<true>(&l, act, store, &mut pc, &mut trace, (budget, ref_cell), Some(c)),
+        };
         if self.jit {
             linked.jit.note_interpreted((act.program, act.block), interpreted_from.saturating_sub(self.budget_left));
         }
@@ -358,7 +381,8 @@ impl Vm {
         }
     }
 
-    fn exec(
+    #[allow(clippy::too_many_arguments)]
+    fn exec<const COVER: bool>(
         &mut self,
         l: &Running,
         act: &mut Activation,
@@ -366,8 +390,10 @@ impl Vm {
         pc_out: &mut usize,
         trace: &mut Tracer,
         (mut budget, mut ref_cell): (u64, u32),
+        cover: Option<&BlockCounters>,
     ) -> Result<Outcome, Fault> {
         let ops = l.ops;
+        let (hits, taken): (&[Counter], &[Counter]) = cover.map_or((&[], &[]), |c| (&c.hits, &c.taken));
         let mut ref_bit = 0u8;
         // The program counter and budget live in locals (registers) and are
         // written back only when the run stops. A run the compiled tier
@@ -387,6 +413,9 @@ impl Vm {
                 ));
             }
             budget -= 1;
+            if COVER {
+                count(hits, pc);
+            }
             pc += 1;
             match op {
                 Op::PushI { v } => self.push_i(v),
@@ -670,11 +699,17 @@ impl Vm {
                 Op::Jump { to } => pc = to as usize,
                 Op::JumpIfFalse { to } => {
                     if self.pop() == 0 {
+                        if COVER {
+                            count(taken, pc - 1);
+                        }
                         pc = to as usize;
                     }
                 }
                 Op::JumpIfTrue { to } => {
                     if self.pop() != 0 {
+                        if COVER {
+                            count(taken, pc - 1);
+                        }
                         pc = to as usize;
                     }
                 }

@@ -34,6 +34,9 @@ struct Ending {
     /// [`TRACED`] writes only their number.
     trace: Vec<(u32, String, u64)>,
     notes: u64,
+    /// A covered run's counts at the instructions a report reads: (pc,
+    /// runs, jumps taken).
+    coverage: Vec<(usize, u64, u64)>,
 }
 
 /// Writes of a run whose values a traced case keeps, and of those the ones
@@ -70,6 +73,15 @@ impl Case {
 
     /// A run; `traced` runs report every write (the trace is compared too).
     fn run_traced(&self, jit: bool, cycles: u32, traced: bool) -> Ending {
+        self.run(jit, cycles, traced, false)
+    }
+
+    /// A run, traced or not, counting coverage or not.
+    fn run(&self, jit: bool, cycles: u32, traced: bool, covered: bool) -> Ending {
+        let mut linked = self.linked.clone();
+        if covered {
+            linked.enable_coverage();
+        }
         let mut store = Store::new(guide_db().clone());
         store.now = 1_000_000.0;
         if let Some(c) = self.force {
@@ -78,7 +90,7 @@ impl Case {
         let mut vm = Vm::new(self.watchdog, Clock::new(1, 0));
         vm.jit = jit;
         vm.jit_after = 0;
-        let mut act = Activation::new(&self.linked, 0, 0);
+        let mut act = Activation::new(&linked, 0, 0);
         let mut error = None;
         let (mut trace, mut notes) = (Vec::new(), 0);
         for _ in 0..cycles {
@@ -90,7 +102,7 @@ impl Case {
                 }
             };
             let tracer: linc_runtime::vm::Tracer = if traced { Some(&mut note) } else { None };
-            if let Err(e) = vm.run(&self.linked, &mut act, &mut store, tracer) {
+            if let Err(e) = vm.run(&linked, &mut act, &mut store, tracer) {
                 error = Some(e);
                 break;
             }
@@ -103,16 +115,30 @@ impl Case {
             error,
             trace,
             notes,
+            coverage: coverage_points(&linked),
         }
     }
 
     fn assert_tiers_agree(&self, what: &str) {
-        for traced in [false, true] {
-            let a = self.run_traced(false, 3, traced);
-            let b = self.run_traced(true, 3, traced);
-            assert_eq!(a, b, "tiers differ on {what} (traced: {traced})");
+        for (traced, covered) in [(false, false), (true, false), (false, true), (true, true)] {
+            let a = self.run(false, 3, traced, covered);
+            let b = self.run(true, 3, traced, covered);
+            assert_eq!(a, b, "tiers differ on {what} (traced: {traced}, covered: {covered})");
+            assert!(covered || a.coverage.is_empty(), "{what}: counted though not covered");
         }
     }
+}
+
+/// The counts a report reads of block 0 of a covered run (empty when the
+/// run was not covered).
+fn coverage_points(linked: &Linked) -> Vec<(usize, u64, u64)> {
+    let Some(counters) = linked.coverage() else { return Vec::new() };
+    let counts = counters.counts();
+    let block = &counts.units[0].blocks[0];
+    let ops = linked.ops(0, 0).expect("block 0");
+    let code = &linked.object().units[0].blocks[0];
+    let points = linc_runtime::cover::points(ops, &code.lines);
+    (0..ops.len()).filter(|&pc| points[pc]).map(|pc| (pc, block.hits[pc], block.taken[pc])).collect()
 }
 
 /// Every string literal of a Rust source (normal and raw), roughly: enough
@@ -254,10 +280,11 @@ fn generated_programs_agree_on_both_tiers() {
         let Some(case) = Case::new(&src, watchdog, force) else { continue };
         ran += 1;
         compiled += u64::from(case.compiles());
-        // One case in four is traced: every write and the store at it.
-        let traced = seed % 4 == 0;
-        let a = case.run_traced(false, 2, traced);
-        let b = case.run_traced(true, 2, traced);
+        // One case in four is traced: every write and the store at it; one
+        // in three counts coverage.
+        let (traced, covered) = (seed % 4 == 0, seed % 3 == 0);
+        let a = case.run(false, 2, traced, covered);
+        let b = case.run(true, 2, traced, covered);
         failed += u64::from(a.error.is_some());
         assert_eq!(a, b, "tiers differ on case {seed}:\n{src}");
     }
@@ -346,4 +373,51 @@ fn a_tracer_that_panics_in_compiled_code_is_an_internal_error_not_an_abort() {
     let e = vm.run(&case.linked, &mut act, &mut store, Some(&mut note)).expect_err("stops");
     assert_eq!((e.code.as_str(), e.line), ("R0099", 1), "{e}");
     assert!(case.linked.is_compiled_traced(0, 0));
+}
+
+/// Counts by source line of a covered run: (line, runs of its first
+/// statement), and each decision's (line, evaluations, jumps taken).
+fn by_line(linked: &Linked) -> (Vec<(u32, u64)>, Vec<(u32, u64, u64)>) {
+    let counts = linked.coverage().expect("covered").counts();
+    let (block, code) = (&counts.units[0].blocks[0], &linked.object().units[0].blocks[0]);
+    let mut lines: Vec<(u32, u64)> = Vec::new();
+    for l in &code.lines {
+        if lines.last().is_none_or(|&(line, _)| line != l.line) {
+            lines.push((l.line, block.hits[l.op as usize]));
+        }
+    }
+    let line_of = |pc: usize| code.lines.iter().take_while(|l| l.op as usize <= pc).last().map_or(0, |l| l.line);
+    let ops = linked.ops(0, 0).expect("block 0");
+    let decisions = (0..ops.len())
+        .filter(|&pc| linc_runtime::cover::is_decision(&ops[pc]))
+        .map(|pc| (line_of(pc), block.hits[pc], block.taken[pc]))
+        .collect();
+    (lines, decisions)
+}
+
+#[test]
+fn coverage_counts_statements_and_decisions_alike_on_both_tiers() {
+    let src = "Recipe.N1 := 0;\nFOR Counters.N0 := 1 TO 3 DO\n  IF Counters.N0 > 1 THEN\n    Recipe.N1 := Recipe.N1 + 1;\n  END_IF;\nEND_FOR;\n";
+    let case = Case::new(src, 1_000_000, None).expect("compiles");
+    for jit in [false, true] {
+        let mut linked = case.linked.clone();
+        linked.enable_coverage();
+        let mut store = Store::new(guide_db().clone());
+        let mut vm = Vm::new(1_000_000, Clock::new(1, 0));
+        (vm.jit, vm.jit_after) = (jit, 0);
+        let mut act = Activation::new(&linked, 0, 0);
+        for _ in 0..2 {
+            vm.run(&linked, &mut act, &mut store, None).expect("runs");
+        }
+        assert_eq!(linked.is_compiled(0, 0), jit);
+        let (lines, decisions) = by_line(&linked);
+        // Two runs: the FOR statement twice, its body three times a run,
+        // the increment on two of the three passes.
+        assert_eq!(lines, [(1, 2), (2, 2), (3, 6), (4, 4)], "jit: {jit}");
+        // The loop's test leaves the loop once a run; the IF skips its arm
+        // once a run.
+        let mut d = decisions.clone();
+        d.sort();
+        assert_eq!(d, [(2, 8, 2), (3, 6, 2)], "jit: {jit}");
+    }
 }

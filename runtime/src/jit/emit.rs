@@ -88,7 +88,7 @@ pub(super) fn emit(
     (ops, shapes): (&[Op], &[(u32, LabelShape)]),
     plan: &Plan,
     (locals, retained): (usize, usize),
-    traced: bool,
+    (traced, points): (bool, Option<&[bool]>),
 ) -> Option<(Entry, JITModule, usize)> {
     let states = stack_types(ops, shapes)?;
     let max_depth = states.iter().flatten().map(Vec::len).max().unwrap_or(0);
@@ -101,7 +101,7 @@ pub(super) fn emit(
     let mut fbc = FunctionBuilderContext::new();
     {
         let b = FunctionBuilder::new(&mut ctx.func, &mut fbc);
-        let shape = Shape { ops, plan, traced, states: &states, locals, retained, max_depth, ptr, call_conv };
+        let shape = Shape { ops, plan, traced, points, states: &states, locals, retained, max_depth, ptr, call_conv };
         let mut e = Emitter::new(b, shape);
         e.body()?;
         e.b.seal_all_blocks();
@@ -130,6 +130,8 @@ struct Shape<'a> {
     plan: &'a Plan,
     /// Whether every write is reported to the run's tracer.
     traced: bool,
+    /// In covered code, the instructions counted (ADR 0020).
+    points: Option<&'a [bool]>,
     states: &'a [Option<Vec<Ty>>],
     locals: usize,
     retained: usize,
@@ -156,6 +158,8 @@ struct Emitter<'a, 'f> {
     mem: Option<Value>,
     kinds: Option<Value>,
     retained: Option<Value>,
+    /// Covered code: the frame's hit and taken counter bases.
+    counters: Option<(Value, Value)>,
     /// Stack types at the instruction being translated.
     stack: Vec<Ty>,
     block_end: usize,
@@ -200,6 +204,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
             mem: None,
             kinds: None,
             retained: None,
+            counters: None,
             stack: Vec::new(),
             block_end: 0,
             exits: Default::default(),
@@ -254,6 +259,9 @@ impl<'a, 'f> Emitter<'a, 'f> {
         self.mem = Some(self.load_ptr(offset_of!(Frame, mem)));
         self.kinds = Some(self.load_ptr(offset_of!(Frame, kinds)));
         self.retained = Some(self.load_ptr(offset_of!(Frame, retained)));
+        if self.s.points.is_some() {
+            self.counters = Some((self.load_ptr(offset_of!(Frame, hits)), self.load_ptr(offset_of!(Frame, taken))));
+        }
         let f = self.frame();
         let budget = self.b.ins().load(types::I64, MemFlags::trusted(), f, frame_off(offset_of!(Frame, budget)));
         self.b.def_var(self.budget, budget);
@@ -294,6 +302,9 @@ impl<'a, 'f> Emitter<'a, 'f> {
         }
         let end = self.ends[start];
         self.block_end = end;
+        // Counted before the budget check: a bail-out at an instruction has
+        // always counted it, and the interpreter takes that count back.
+        self.count_hit(start);
         let n = (end - start) as i64;
         let bud = self.b.use_var(self.budget);
         let short = self.b.ins().icmp_imm(IntCC::UnsignedLessThan, bud, n);
@@ -301,6 +312,9 @@ impl<'a, 'f> Emitter<'a, 'f> {
         let left = self.b.ins().iadd_imm(bud, -n);
         self.b.def_var(self.budget, left);
         for pc in start..end {
+            if pc != start {
+                self.count_hit(pc);
+            }
             self.op(pc)?;
             if self.b.func.dfg.num_insts() > super::MAX_BLOCK_IR {
                 return None;
@@ -312,6 +326,24 @@ impl<'a, 'f> Emitter<'a, 'f> {
             self.b.ins().jump(next, &[]);
         }
         Some(())
+    }
+
+    /// Covered code: one more run of instruction `pc`, if it is counted.
+    fn count_hit(&mut self, pc: usize) {
+        if let (Some((hits, _)), Some(true)) = (self.counters, self.s.points.and_then(|p| p.get(pc).copied())) {
+            self.add_to(hits, pc, None);
+        }
+    }
+
+    /// Adds one, or `by` (an I64 of 0 or 1), to counter `pc` of `base`.
+    pub(super) fn add_to(&mut self, base: Value, pc: usize, by: Option<Value>) {
+        let off = (pc * 8) as i32;
+        let old = self.b.ins().load(types::I64, MemFlags::trusted(), base, off);
+        let new = match by {
+            Some(v) => self.b.ins().iadd(old, v),
+            None => self.b.ins().iadd_imm(old, 1),
+        };
+        self.b.ins().store(MemFlags::trusted(), new, base, off);
     }
 
     fn var(&self, d: usize, ty: Ty) -> Variable {

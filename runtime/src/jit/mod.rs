@@ -52,17 +52,39 @@ pub const MAX_BLOCK_OPS: usize = 2_048;
 #[cfg(feature = "jit")]
 pub(crate) const MAX_BLOCK_IR: usize = 8 * MAX_BLOCK_OPS;
 
-/// A block's compiled code once tried (`None`: not in the subset), and the
-/// instructions the interpreter has run of it so far; clones of a `Linked`
-/// share it.
+/// Which variant of a block's code a run needs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Mode {
+    /// Every write is reported to the run's tracer.
+    pub traced: bool,
+    /// Statement starts and decisions are counted (ADR 0020).
+    pub covered: bool,
+}
+
+impl Mode {
+    fn index(self) -> usize {
+        usize::from(self.traced) | usize::from(self.covered) << 1
+    }
+}
+
+/// A block's compiled code once tried, per [`Mode`] (`None`: not in the
+/// subset), and the instructions the interpreter has run of it so far;
+/// clones of a `Linked` share it.
 #[derive(Default)]
 pub(crate) struct SlotState {
-    code: OnceLock<Option<Arc<Compiled>>>,
-    /// The same block compiled to report its writes (for traced runs).
-    traced: OnceLock<Option<Arc<Compiled>>>,
+    variants: [OnceLock<Option<Arc<Compiled>>>; 4],
     interpreted: std::sync::atomic::AtomicU64,
     /// Whether the block has a backward jump (a loop), once looked at.
     looping: OnceLock<bool>,
+}
+
+impl SlotState {
+    /// Whether a variant that is `traced` or not has been compiled.
+    fn compiled(&self, traced: bool) -> bool {
+        [false, true]
+            .into_iter()
+            .any(|covered| self.variants[Mode { traced, covered }.index()].get().is_some_and(Option::is_some))
+    }
 }
 
 type Slot = Arc<SlotState>;
@@ -95,10 +117,10 @@ impl Cache {
         store: &Store,
         (program, block): (usize, usize),
         after: u64,
-        traced: bool,
+        mode: Mode,
     ) -> Option<Arc<Compiled>> {
         let slot = self.blocks.get(program)?.get(block)?;
-        let cell = if traced { &slot.traced } else { &slot.code };
+        let cell = &slot.variants[mode.index()];
         if let Some(code) = cell.get() {
             return code.clone();
         }
@@ -112,23 +134,27 @@ impl Cache {
         if !looping && slot.interpreted.load(std::sync::atomic::Ordering::Relaxed) < after {
             return None;
         }
-        cell.get_or_init(|| compile_as(linked, store, (program, block), traced).map(Arc::new)).clone()
+        cell.get_or_init(|| compile_as(linked, store, (program, block), mode).map(Arc::new)).clone()
+    }
+
+    fn slot(&self, (program, block): (usize, usize)) -> Option<&Slot> {
+        self.blocks.get(program).and_then(|p| p.get(block))
     }
 
     /// Whether a block has been compiled (for tests and listings).
-    pub fn is_compiled(&self, (program, block): (usize, usize)) -> bool {
-        self.blocks.get(program).and_then(|p| p.get(block)).is_some_and(|s| s.code.get().is_some_and(Option::is_some))
+    pub fn is_compiled(&self, at: (usize, usize)) -> bool {
+        self.slot(at).is_some_and(|s| s.compiled(false))
     }
 
     /// Whether a block's traced variant has been compiled (for tests).
-    pub fn is_compiled_traced(&self, (program, block): (usize, usize)) -> bool {
-        self.blocks.get(program).and_then(|p| p.get(block)).is_some_and(|s| s.traced.get().is_some_and(Option::is_some))
+    pub fn is_compiled_traced(&self, at: (usize, usize)) -> bool {
+        self.slot(at).is_some_and(|s| s.compiled(true))
     }
 
     /// Counts instructions the interpreter ran of a block not yet compiled.
-    pub(crate) fn note_interpreted(&self, (program, block): (usize, usize), instructions: u64) {
-        if let Some(slot) = self.blocks.get(program).and_then(|p| p.get(block)) {
-            if slot.code.get().is_none() || slot.traced.get().is_none() {
+    pub(crate) fn note_interpreted(&self, at: (usize, usize), instructions: u64) {
+        if let Some(slot) = self.slot(at) {
+            if slot.variants.iter().any(|v| v.get().is_none()) {
                 slot.interpreted.fetch_add(instructions, std::sync::atomic::Ordering::Relaxed);
             }
         }
@@ -139,7 +165,7 @@ impl Cache {
 /// outside the subset or is larger than [`MAX_BLOCK_OPS`] (the interpreter
 /// then runs it).
 pub fn compile(linked: &Linked, store: &Store, program: usize, block: usize) -> Option<Compiled> {
-    compile_as(linked, store, (program, block), false)
+    compile_as(linked, store, (program, block), Mode::default())
 }
 
 /// How a compiled run ended.
@@ -169,10 +195,12 @@ pub(crate) struct Buffers<'a> {
 }
 
 /// What the runtime services a compiled run calls use: the VM's string
-/// stack and budgets, the object's constants and the run's tracer.
+/// stack and budgets, the object's constants and the run's tracer; and the
+/// block's coverage counters, which covered code adds to.
 #[cfg_attr(not(feature = "jit"), allow(dead_code))]
 pub(crate) struct Services<'a, 't> {
     pub vm: &'a mut Vm,
     pub consts: &'a [Bytes],
     pub trace: &'a mut crate::vm::Tracer<'t>,
+    pub cover: Option<&'a crate::cover::BlockCounters>,
 }

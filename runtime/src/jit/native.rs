@@ -2,7 +2,7 @@
 //! by Cranelift ([`super::emit`]), and running it against the store.
 
 use super::plan::{Plan, BOOL, INT, READONLY, REAL};
-use super::{emit, Buffers, JitRun, Services, MAX_BLOCK_OPS};
+use super::{emit, Buffers, JitRun, Mode, Services, MAX_BLOCK_OPS};
 use crate::isa::{Kind, Op};
 use crate::link::Linked;
 use crate::store::{Cell, Store};
@@ -34,6 +34,9 @@ pub(crate) struct Frame {
     /// The code running, whose plan the trace service copies out.
     pub code: *const Compiled,
     pub mem_len: usize,
+    /// The block's coverage counters by instruction (covered code only).
+    pub hits: *mut u64,
+    pub taken: *mut u64,
 }
 
 pub(crate) type Entry = unsafe extern "C" fn(*mut Frame) -> u32;
@@ -48,6 +51,8 @@ pub struct Compiled {
     max_depth: usize,
     locals: usize,
     retained: usize,
+    /// Whether the code counts into the block's coverage counters.
+    covered: bool,
 }
 
 // SAFETY: the module is only touched when the `Compiled` is dropped, and
@@ -65,14 +70,15 @@ impl Drop for Compiled {
     }
 }
 
-/// Compiles a block; `traced` code reports every write to the run's
-/// tracer as the interpreter does.
+/// Compiles a block; traced code reports every write to the run's tracer
+/// as the interpreter does, covered code counts as the interpreter does.
 pub(super) fn compile_as(
     linked: &Linked,
     store: &Store,
     (program, block): (usize, usize),
-    traced: bool,
+    mode: Mode,
 ) -> Option<Compiled> {
+    let Mode { traced, covered } = mode;
     let prog = linked.program(program)?;
     let unit = linked.unit(program)?;
     let ops = linked.ops(program, block)?;
@@ -84,8 +90,9 @@ pub(super) fn compile_as(
     let locals = usize::from(code.locals);
     let retained = usize::from(unit.retained);
     let shapes = linked.shapes(program, block);
-    let (entry, module, max_depth) = emit::emit((ops, shapes), &plan, (locals, retained), traced)?;
-    Some(Compiled { entry, module: Some(module), plan, max_depth, locals, retained })
+    let points = covered.then(|| crate::cover::points(ops, &code.lines));
+    let (entry, module, max_depth) = emit::emit((ops, shapes), &plan, (locals, retained), (traced, points.as_deref()))?;
+    Some(Compiled { entry, module: Some(module), plan, max_depth, locals, retained, covered })
 }
 
 /// Whether the compiled tier translates this instruction (the table's
@@ -108,7 +115,12 @@ impl Compiled {
         services: Services<'_, '_>,
     ) -> JitRun {
         let Buffers { mem, stack, locals } = buf;
-        let Services { vm, consts, trace } = services;
+        let Services { vm, consts, trace, cover } = services;
+        let (hits, taken) = match cover {
+            Some(c) if self.covered => c.bases(),
+            None if !self.covered => (std::ptr::null_mut(), std::ptr::null_mut()),
+            _ => return JitRun::Refused,
+        };
         if retained.len() != self.retained || !self.copy_in(store, mem) {
             return JitRun::Refused;
         }
@@ -134,11 +146,15 @@ impl Compiled {
             trace: (trace as *mut crate::vm::Tracer<'_>).cast(),
             code: self,
             mem_len: mem.len(),
+            hits,
+            taken,
         };
         // SAFETY: the code only touches `mem` below the plan's slot count
         // (it checks every computed slot), `kinds` likewise, `retained`
         // below `self.retained`, `stack` below `max_depth` and `locals`
-        // below `self.locals`: all sized above. The services reach the VM
+        // below `self.locals`: all sized above; covered code adds to
+        // `hits` and `taken` below the block's length, which is what the
+        // counters were made for. The services reach the VM
         // and the store only through the frame while the code runs.
         let status = unsafe { (self.entry)(&mut frame) };
         self.copy_out(store, mem);

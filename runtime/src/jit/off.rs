@@ -2,7 +2,7 @@
 //! compiles, and every block runs on the interpreter, which is the
 //! reference anyway (`--tier compiled` then reports 0 blocks compiled).
 
-use super::{Buffers, JitRun, Services};
+use super::{Buffers, JitRun, Mode, Services};
 use crate::link::Linked;
 use crate::store::Store;
 
@@ -24,6 +24,6 @@ impl Compiled {
     }
 }
 
-pub(super) fn compile_as(_: &Linked, _: &Store, _: (usize, usize), _: bool) -> Option<Compiled> {
+pub(super) fn compile_as(_: &Linked, _: &Store, _: (usize, usize), _: Mode) -> Option<Compiled> {
     None
 }

@@ -172,7 +172,7 @@ impl Emitter<'_, '_> {
         Some(())
     }
 
-    pub(super) fn flow(&mut self, _pc: usize, op: Op) -> Option<()> {
+    pub(super) fn flow(&mut self, pc: usize, op: Op) -> Option<()> {
         let target = |e: &Self, to: u32| e.blocks.get(to as usize).copied().flatten();
         match op {
             Op::Jump { to } => {
@@ -181,6 +181,12 @@ impl Emitter<'_, '_> {
             }
             Op::JumpIfFalse { to } | Op::JumpIfTrue { to } => {
                 let c = self.pop(Ty::I)?;
+                if let Some((_, taken)) = self.counters {
+                    let cc = if matches!(op, Op::JumpIfTrue { .. }) { IntCC::NotEqual } else { IntCC::Equal };
+                    let jumps = self.b.ins().icmp_imm(cc, c, 0);
+                    let by = self.b.ins().uextend(types::I64, jumps);
+                    self.add_to(taken, pc, Some(by));
+                }
                 let t = target(self, to)?;
                 let next = self.blocks.get(self.block_end).copied().flatten()?;
                 if matches!(op, Op::JumpIfTrue { .. }) {
