@@ -377,7 +377,9 @@ fn a_tracer_that_panics_in_compiled_code_is_an_internal_error_not_an_abort() {
 
 /// Counts by source line of a covered run: (line, runs of its first
 /// statement), and each decision's (line, evaluations, jumps taken).
-fn by_line(linked: &Linked) -> (Vec<(u32, u64)>, Vec<(u32, u64, u64)>) {
+type LineCounts = (Vec<(u32, u64)>, Vec<(u32, u64, u64)>);
+
+fn by_line(linked: &Linked) -> LineCounts {
     let counts = linked.coverage().expect("covered").counts();
     let (block, code) = (&counts.units[0].blocks[0], &linked.object().units[0].blocks[0]);
     let mut lines: Vec<(u32, u64)> = Vec::new();
