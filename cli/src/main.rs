@@ -162,11 +162,15 @@ enum Command {
         /// List the scenario files that would run (this shard's, with --shard) and run none.
         #[arg(long)]
         list: bool,
+        /// Count what the scenarios ran (ST statements and branches, steps, transitions, rungs, FST
+        /// steps and branches) and write it to -o FILE as lcov or Cobertura XML, or print a summary.
+        #[arg(long, value_name = "FORMAT", conflicts_with = "list", value_parser = linc_driver::coverage::Format::parse)]
+        coverage: Option<linc_driver::coverage::Format>,
         /// Add lcov coverage files (the shards of a CI matrix) into -o OUT, and run nothing.
-        #[arg(long, value_name = "FILE", num_args = 1.., conflicts_with_all = ["paths", "junit", "vcd", "shard", "list"])]
+        #[arg(long, value_name = "FILE", num_args = 1.., conflicts_with_all = ["paths", "junit", "vcd", "shard", "list", "coverage"])]
         merge_coverage: Vec<PathBuf>,
-        /// Where --merge-coverage writes the sum.
-        #[arg(short, long, value_name = "OUT.info", requires = "merge_coverage")]
+        /// Where --coverage writes its report, or --merge-coverage the sum.
+        #[arg(short, long, value_name = "FILE")]
         out: Option<PathBuf>,
     },
     /// A command console over a running strategy: display, modify and force fields, start and stop
@@ -488,8 +492,8 @@ fn dispatch(command: Command, r: &mut Reporter) -> u8 {
         }
         Command::Run(run) => run_command(*run, r),
         Command::Eval { expr, db, now, seed } => eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed, r),
-        Command::Test { paths, jobs, junit, vcd, shard, list, merge_coverage, out } => {
-            test_cmd::run(&test_cmd::Options { paths, jobs, junit, vcd, shard, list, merge_coverage, out }, r)
+        Command::Test { paths, jobs, junit, vcd, shard, list, coverage, merge_coverage, out } => {
+            test_cmd::run(&test_cmd::Options { paths, jobs, junit, vcd, shard, list, coverage, merge_coverage, out }, r)
         }
         Command::Disasm { file } => disasm_cmd::run(&file, r),
         Command::Check { files, db, tree, transition, sequence, map, allow_unmapped, resources, instrument } => {

@@ -6,6 +6,8 @@
 
 use crate::report::usage;
 use linc_compiler::scenario::{self, Target};
+use linc_driver::coverage::{Coverage, Format};
+use linc_driver::scenarios::{Outcome, Recording};
 use linc_driver::Reporter;
 use std::path::{Path, PathBuf};
 
@@ -18,6 +20,8 @@ pub struct Options {
     pub shard: Option<linc_driver::scenarios::Shard>,
     /// List the scenarios that would run, and run none.
     pub list: bool,
+    /// Count coverage and report it in this format (to `out`).
+    pub coverage: Option<linc_driver::coverage::Format>,
     /// Add these lcov files instead of running anything (`-o` the sum).
     pub merge_coverage: Vec<PathBuf>,
     pub out: Option<PathBuf>,
@@ -80,6 +84,12 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     if !o.merge_coverage.is_empty() {
         return merge(o, r);
     }
+    if o.out.is_some() && o.coverage.is_none() {
+        return usage(r, "-o names where --coverage or --merge-coverage writes; give one of them");
+    }
+    if o.coverage.is_some_and(|f| f != Format::Summary) && o.out.is_none() {
+        return usage(r, "--coverage lcov and --coverage cobertura need -o FILE, where the report goes");
+    }
     let paths = if o.paths.is_empty() { vec![PathBuf::from(".")] } else { o.paths.clone() };
     let mut files = match scenarios(&paths) {
         Ok(f) => f,
@@ -99,7 +109,8 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     }
     let jobs = o.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())).max(1);
     let started = std::time::Instant::now();
-    let outcomes = linc_driver::scenarios::run_all(&files, jobs, o.vcd.is_some());
+    let rec = Recording { vcd: o.vcd.is_some(), coverage: o.coverage.is_some() };
+    let outcomes = linc_driver::scenarios::run_all(&files, jobs, rec);
     crate::out::line(&format!("running {} scenario{}", outcomes.len(), if outcomes.len() == 1 { "" } else { "s" }));
     for out in &outcomes {
         crate::out::line(&format!("test {} ... {}", out.name, if out.passed { "ok" } else { "FAILED" }));
@@ -129,7 +140,32 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
             return status;
         }
     }
+    if let Some(format) = o.coverage {
+        if let Err(status) = write_coverage(format, o.out.as_deref(), &outcomes, r) {
+            return status;
+        }
+    }
     u8::from(!failed.is_empty())
+}
+
+/// The scenarios' coverage added up (in file order; sums do not depend on
+/// it) and written as `format`: to `out`, or a summary to standard output.
+fn write_coverage(format: Format, out: Option<&Path>, outcomes: &[Outcome], r: &mut Reporter) -> Result<(), u8> {
+    let mut all = Coverage::default();
+    outcomes.iter().filter_map(|o| o.coverage.as_ref()).for_each(|c| all.merge(c));
+    let text = match format {
+        Format::Lcov => all.to_lcov(),
+        Format::Cobertura => all.to_cobertura(),
+        Format::Summary => all.summary(),
+    };
+    match out {
+        Some(path) => linc_driver::files::write_atomic(path, text.as_bytes())
+            .map_err(|e| crate::report::refused(r, e.diagnostic())),
+        None => {
+            crate::out::line(text.trim_end());
+            Ok(())
+        }
+    }
 }
 
 /// `--junit` and `--vcd` may not name one file, nor a scenario or a file a
@@ -137,7 +173,7 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
 /// any scenario runs. Files read later (a strategy's action files) are
 /// protected when the report is written (`files::AtomicFile`).
 fn check_outputs(o: &Options, files: &[PathBuf]) -> Result<(), linc_driver::files::Refused> {
-    let outputs = [("--junit", &o.junit), ("--vcd", &o.vcd)];
+    let outputs = [("--junit", &o.junit), ("--vcd", &o.vcd), ("-o", &o.out)];
     let outputs: Vec<(&str, &Path)> = outputs.iter().filter_map(|(f, p)| Some((*f, p.as_deref()?))).collect();
     linc_driver::files::check_distinct(&outputs)?;
     let mut inputs: Vec<PathBuf> = files.to_vec();
@@ -151,7 +187,7 @@ fn check_outputs(o: &Options, files: &[PathBuf]) -> Result<(), linc_driver::file
         }
     }
     let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
-    let mut targets: Vec<PathBuf> = o.junit.iter().cloned().collect();
+    let mut targets: Vec<PathBuf> = o.junit.iter().chain(&o.out).cloned().collect();
     if let Some(vcd) = &o.vcd {
         targets.extend(crate::test_report::vcd_targets(vcd, files));
     }

@@ -20,15 +20,18 @@ fn cases(xml: &str) -> BTreeMap<String, bool> {
 fn four_shards_give_the_same_results_as_one_run() {
     let dir = linc_test_support::fresh_dir("shards");
     let plant = std::fs::canonicalize(concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/ladder/plant.json")).unwrap();
-    // 24 small scenarios on the ladder example; every third one fails.
+    // 24 small scenarios on the ladder example; every third one fails, and
+    // they press different inputs, so they cover different rungs.
     for i in 0..24 {
         let expect = if i % 3 == 0 { "Dig_1b.Out" } else { "NOT Dig_1b.Out" };
-        let text = format!("strategy {}\nexpect always {expect}\nrun 300ms\n", plant.display());
+        let press = format!("at {}ms M Dig_{}a.In=1\n", 100 * (i % 3), 1 + i % 6);
+        let text = format!("strategy {}\n{press}expect always {expect}\nrun 300ms\n", plant.display());
         std::fs::write(dir.join(format!("s{i:02}.ltest")), text).unwrap();
     }
     let d = dir.to_string_lossy().into_owned();
     let all_xml = dir.join("all.xml").to_string_lossy().into_owned();
-    let o = common::linc(&["test", &d, "--junit", &all_xml]);
+    let all_info = dir.join("all.info").to_string_lossy().into_owned();
+    let o = common::linc(&["test", &d, "--junit", &all_xml, "--coverage", "lcov", "-o", &all_info]);
     assert_eq!(o.status.code(), Some(1), "some fail");
     let all = cases(&std::fs::read_to_string(&all_xml).unwrap());
     assert_eq!((all.len(), all.values().filter(|p| !**p).count()), (24, 8));
@@ -36,6 +39,7 @@ fn four_shards_give_the_same_results_as_one_run() {
     assert_eq!(listed.lines().count(), 24);
     let mut merged = BTreeMap::new();
     let mut listed_shards = Vec::new();
+    let mut infos = Vec::new();
     for k in 1..=4 {
         let shard = format!("{k}/4");
         let list = common::stdout(&common::linc(&["test", &d, "--shard", &shard, "--list"]));
@@ -43,7 +47,9 @@ fn four_shards_give_the_same_results_as_one_run() {
         assert!(!list.is_empty(), "shard {shard} holds some of 24 scenarios");
         listed_shards.extend(list.lines().map(String::from));
         let xml = dir.join(format!("shard{k}.xml")).to_string_lossy().into_owned();
-        common::linc(&["test", &d, "--shard", &shard, "--junit", &xml]);
+        let info = dir.join(format!("shard{k}.info")).to_string_lossy().into_owned();
+        common::linc(&["test", &d, "--shard", &shard, "--junit", &xml, "--coverage", "lcov", "-o", &info]);
+        infos.push(info);
         let part = cases(&std::fs::read_to_string(&xml).unwrap());
         assert_eq!(part.len(), list.lines().count());
         for (name, passed) in part {
@@ -53,6 +59,20 @@ fn four_shards_give_the_same_results_as_one_run() {
     listed_shards.sort();
     assert_eq!(listed_shards, listed.lines().map(String::from).collect::<Vec<_>>(), "the shards cover the suite once");
     assert_eq!(merged, all, "the same pass/fail set");
+    // The shards' coverage, merged, is the single run's, byte for byte.
+    let merged_info = dir.join("merged.info").to_string_lossy().into_owned();
+    let mut args: Vec<&str> = vec!["test", "--merge-coverage"];
+    args.extend(infos.iter().map(String::as_str));
+    args.extend(["-o", &merged_info]);
+    let o = common::linc(&args);
+    assert_eq!(o.status.code(), Some(0), "{}", common::stderr(&o));
+    let single = std::fs::read_to_string(&all_info).unwrap();
+    assert!(single.contains("interlock.ld") && single.contains("BRDA:"), "{single}");
+    assert_eq!(std::fs::read_to_string(&merged_info).unwrap(), single);
+    // And a run on one thread counts what a run on several does.
+    let serial_info = dir.join("serial.info").to_string_lossy().into_owned();
+    common::linc(&["test", &d, "--jobs", "1", "--coverage", "lcov", "-o", &serial_info]);
+    assert_eq!(std::fs::read_to_string(&serial_info).unwrap(), single);
     let bad = common::linc(&["test", &d, "--shard", "5/4"]);
     assert_eq!(bad.status.code(), Some(2));
 }

@@ -10,6 +10,29 @@
 use linc_format::xml::{escape, Whitespace};
 use std::collections::BTreeMap;
 
+/// What `linc test --coverage` writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// An lcov tracefile (`genhtml` reads it).
+    Lcov,
+    /// Cobertura XML (CI systems show it).
+    Cobertura,
+    /// A table per file, in the style of `cargo llvm-cov`.
+    Summary,
+}
+
+impl Format {
+    /// `lcov`, `cobertura` or `summary`.
+    pub fn parse(text: &str) -> Result<Format, String> {
+        match text {
+            "lcov" => Ok(Format::Lcov),
+            "cobertura" => Ok(Format::Cobertura),
+            "summary" => Ok(Format::Summary),
+            _ => Err(format!("`{text}` is not a coverage format: lcov, cobertura or summary")),
+        }
+    }
+}
+
 /// One source file's counts.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct FileCoverage {
@@ -143,7 +166,8 @@ impl Coverage {
         (lh, f.lines.len(), bh, f.branches.len())
     }
 
-    /// Cobertura XML (coverage-04.dtd), every file a class of one package.
+    /// Cobertura XML (coverage-04.dtd), every file a class of one package
+    /// with its functions (actions, steps, transitions) as methods.
     /// The timestamp is 0, so equal counts give equal bytes.
     pub fn to_cobertura(&self) -> String {
         let rate = |hit: usize, all: usize| if all == 0 { 1.0 } else { hit as f64 / all as f64 };
@@ -166,9 +190,11 @@ impl Coverage {
             let (lh, lf, bh, bf) = Coverage::totals(f);
             let p = escape(path, Whitespace::Keep);
             out.push_str(&format!(
-                "        <class name=\"{p}\" filename=\"{p}\" line-rate=\"{:.4}\" branch-rate=\"{:.4}\" complexity=\"0\">\n          <methods/>\n          <lines>\n",
+                "        <class name=\"{p}\" filename=\"{p}\" line-rate=\"{:.4}\" branch-rate=\"{:.4}\" complexity=\"0\">\n",
                 rate(lh, lf), rate(bh, bf)
             ));
+            out.push_str(&methods(f));
+            out.push_str("          <lines>\n");
             for (line, hits) in &f.lines {
                 let branches: Vec<&Option<u64>> =
                     f.branches.range((*line, 0, 0)..=(*line, u32::MAX, u32::MAX)).map(|(_, t)| t).collect();
@@ -189,8 +215,9 @@ impl Coverage {
         out
     }
 
-    /// A table per file in the style of `cargo llvm-cov`: lines and
-    /// branches, missed and covered, then the totals.
+    /// A table per file in the style of `cargo llvm-cov`: functions
+    /// (actions, steps, transitions), lines and branches, each with its
+    /// missed count and the share covered, then the totals.
     pub fn summary(&self) -> String {
         let pct = |hit: usize, all: usize| {
             if all == 0 {
@@ -200,34 +227,54 @@ impl Coverage {
             }
         };
         let width = self.files.keys().map(|k| k.len()).max().unwrap_or(0).max("Filename".len()).max("TOTAL".len());
-        let row = |name: &str, t: (usize, usize, usize, usize)| {
-            format!(
-                "{name:<width$}  {:>7}  {:>7}  {:>7}  {:>8}  {:>7}  {:>7}\n",
-                t.1,
-                t.1 - t.0,
-                pct(t.0, t.1),
-                t.3,
-                t.3 - t.2,
-                pct(t.2, t.3)
+        let columns = |name: &str, cells: [String; 9]| {
+            let [a, b, c, d, e, f, g, h, i] = cells;
+            format!("{name:<width$}  {a:>9}  {b:>7}  {c:>8}  {d:>7}  {e:>7}  {f:>7}  {g:>8}  {h:>7}  {i:>7}\n")
+        };
+        let row = |name: &str, t: [usize; 6]| {
+            let [fh, ff, lh, lf, bh, bf] = t;
+            let n = |v: usize| v.to_string();
+            columns(
+                name,
+                [n(ff), n(ff - fh), pct(fh, ff), n(lf), n(lf - lh), pct(lh, lf), n(bf), n(bf - bh), pct(bh, bf)],
             )
         };
-        let mut out = format!(
-            "{:<width$}  {:>7}  {:>7}  {:>7}  {:>8}  {:>7}  {:>7}\n",
-            "Filename", "Lines", "Missed", "Cover", "Branches", "Missed", "Cover"
-        );
-        out.push_str(&"-".repeat(out.trim_end().len()));
+        let heads = ["Functions", "Missed", "Executed", "Lines", "Missed", "Cover", "Branches", "Missed", "Cover"];
+        let mut out = columns("Filename", heads.map(String::from));
+        let rule = "-".repeat(out.trim_end().len());
+        out.push_str(&rule);
         out.push('\n');
-        let mut total = (0, 0, 0, 0);
+        let mut total = [0; 6];
         for (path, f) in &self.files {
-            let t = Coverage::totals(f);
-            total = (total.0 + t.0, total.1 + t.1, total.2 + t.2, total.3 + t.3);
+            let (lh, lf, bh, bf) = Coverage::totals(f);
+            let fh = f.functions.values().filter(|(_, h)| *h > 0).count();
+            let t = [fh, f.functions.len(), lh, lf, bh, bf];
+            total.iter_mut().zip(t).for_each(|(a, b)| *a += b);
             out.push_str(&row(path, t));
         }
-        out.push_str(&"-".repeat(out.lines().next().unwrap_or("").len()));
+        out.push_str(&rule);
         out.push('\n');
         out.push_str(&row("TOTAL", total));
         out
     }
+}
+
+/// A file's functions (actions, steps, transitions) as Cobertura methods,
+/// each with its line and hits.
+fn methods(f: &FileCoverage) -> String {
+    if f.functions.is_empty() {
+        return "          <methods/>\n".to_string();
+    }
+    let mut out = String::from("          <methods>\n");
+    for (name, (line, hits)) in &f.functions {
+        let rate = if *hits > 0 { "1.0000" } else { "0.0000" };
+        out.push_str(&format!(
+            "            <method name=\"{}\" signature=\"\" line-rate=\"{rate}\" branch-rate=\"1.0000\">\n              <lines>\n                <line number=\"{line}\" hits=\"{hits}\"/>\n              </lines>\n            </method>\n",
+            escape(name, Whitespace::Keep)
+        ));
+    }
+    out.push_str("          </methods>\n");
+    out
 }
 
 /// Reads and adds lcov files (`linc test --merge-coverage`), reporting a

@@ -6,6 +6,7 @@
 
 pub mod build;
 pub mod coverage;
+pub mod coverage_map;
 pub mod database;
 pub mod draw;
 pub mod eval;

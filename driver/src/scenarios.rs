@@ -25,6 +25,17 @@ pub struct Outcome {
     pub passed: bool,
     pub details: String,
     pub report: Report,
+    /// What the scenario's strategy ran, when coverage was asked for.
+    pub coverage: Option<crate::coverage::Coverage>,
+}
+
+/// What a scenario run records besides its result.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Recording {
+    /// Sample the fields the scenario names (for VCD).
+    pub vcd: bool,
+    /// Count coverage (ADR 0020).
+    pub coverage: bool,
 }
 
 /// A shard of a suite: the `k`-th (from 1) of `n`.
@@ -54,9 +65,10 @@ impl Shard {
     }
 }
 
-/// A scenario's path as the shard hash reads it: relative to the current
-/// directory when it is under it, `/` between components, without `.`
-/// components (`./examples/a.ltest` and `examples/a.ltest` are one key).
+/// A path as the shard hash reads it and coverage reports name source
+/// files: relative to the current directory when it is under it, `/`
+/// between components, without `.` components (`./examples/a.ltest` and
+/// `examples/a.ltest` are one key).
 pub fn shard_key(path: &Path) -> String {
     let cwd = std::env::current_dir().ok();
     let rel = cwd.as_deref().and_then(|c| path.strip_prefix(c).ok()).unwrap_or(path);
@@ -76,7 +88,7 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 
 /// Runs the scenarios on `jobs` threads; the outcomes come back in file
 /// order whatever order they finish in, so reports are identical.
-pub fn run_all(files: &[PathBuf], jobs: usize, vcd: bool) -> Vec<Outcome> {
+pub fn run_all(files: &[PathBuf], jobs: usize, rec: Recording) -> Vec<Outcome> {
     let next = std::sync::atomic::AtomicUsize::new(0);
     let mut slots: Vec<Option<Outcome>> = (0..files.len()).map(|_| None).collect();
     let results = std::sync::Mutex::new(&mut slots);
@@ -85,7 +97,7 @@ pub fn run_all(files: &[PathBuf], jobs: usize, vcd: bool) -> Vec<Outcome> {
             scope.spawn(|| loop {
                 let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                 let Some(file) = files.get(i) else { break };
-                let out = run_one(file, vcd);
+                let out = run_one(file, rec);
                 if let Ok(mut r) = results.lock() {
                     r[i] = Some(out);
                 }
@@ -96,14 +108,20 @@ pub fn run_all(files: &[PathBuf], jobs: usize, vcd: bool) -> Vec<Outcome> {
 }
 
 /// Runs one scenario file; everything it prints is in the outcome. The
-/// fields it names are sampled only for a VCD (`vcd`).
-pub fn run_one(file: &Path, vcd: bool) -> Outcome {
+/// fields it names are sampled only for a VCD, coverage counted only when
+/// asked for (a scenario that fails before its run counts nothing).
+pub fn run_one(file: &Path, rec: Recording) -> Outcome {
     let name = file.display().to_string();
     // What goes wrong before the run is part of the scenario's report, in
     // the short format, so that reports come out in file order.
     let mut r = Reporter::in_memory(Format::Short);
-    let fail =
-        |r: &mut Reporter| Outcome { name: name.clone(), passed: false, details: r.take(), report: Report::default() };
+    let fail = |r: &mut Reporter| Outcome {
+        name: name.clone(),
+        passed: false,
+        details: r.take(),
+        report: Report::default(),
+        coverage: rec.coverage.then(Default::default),
+    };
     let bytes = match crate::files::read_input(file) {
         Ok(t) => t,
         Err(e) => {
@@ -136,12 +154,22 @@ pub fn run_one(file: &Path, vcd: bool) -> Outcome {
     if r.errors() > 0 {
         return fail(&mut r);
     }
-    let watch = if vcd { watched(&sc) } else { Vec::new() };
+    let watch = if rec.vcd { watched(&sc) } else { Vec::new() };
     strategy.store.now = START;
+    if rec.coverage {
+        strategy.enable_coverage();
+    }
     let mut console = linc_engines::console::Console::new(strategy);
     let report = linc_engines::scenario::run(&mut console, steps, &watch);
     let details = details(&name, &report);
-    Outcome { name, passed: report.failures.is_empty(), details, report }
+    let coverage = rec.coverage.then(|| {
+        let mut cov = crate::coverage::Coverage::default();
+        for (object, counts) in console.strategy.coverage() {
+            crate::coverage_map::add_object(&mut cov, object, &counts, &|f| shard_key(Path::new(f)));
+        }
+        cov
+    });
+    Outcome { name, passed: report.failures.is_empty(), details, report, coverage }
 }
 
 /// The failures as `FILE:LINE: at TIME: message` with the values read.

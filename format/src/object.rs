@@ -4,7 +4,7 @@
 //! table is a u32 count and its records, as declared below with `records!`):
 //!
 //! ```text
-//! magic "LINCSTO\x1a" | version u16 (2) | flags u16 | crc32 u32 | length u32
+//! magic "LINCSTO\x1a" | version u16 (3) | flags u16 | crc32 u32 | length u32
 //! object: source name, symbols, constant pool, units
 //! unit:   kind u8, name, source file, block type, retained u16, code blocks,
 //!         charts (sequences), step listing (FST tables)
@@ -22,7 +22,7 @@ use crate::records;
 use crate::wire::{Bytes, Code, Reader, Wire};
 
 pub const MAGIC: &[u8; 8] = b"LINCSTO\x1a";
-pub const VERSION: u16 = 2;
+pub const VERSION: u16 = 3;
 const HEADER: usize = 8 + 2 + 2 + 4 + 4;
 
 /// The storage class of a field, as the compiler assumed it.
@@ -164,17 +164,18 @@ records! {
     }
 
     /// A step: its name, whether it is initial (1), its retained slot pair
-    /// (`.X` at `2 × slot`, `.T` in seconds as REAL bits at `2 × slot + 1`)
-    /// and its associations.
-    StepRec "step" { name: String, initial: u8, slot: u16, assocs: Vec<AssocRec> }
+    /// (`.X` at `2 × slot`, `.T` in seconds as REAL bits at `2 × slot + 1`),
+    /// its associations and its source line (for coverage reports).
+    StepRec "step" { name: String, initial: u8, slot: u16, assocs: Vec<AssocRec>, line: u32 }
 
     /// `Action(Q, time)`: an action of the same chart, a qualifier (the
     /// letter's byte: b'P', b'N', ...), and the time of L, D and E in µs.
     AssocRec "association" { action: u16, qualifier: u8, time_us: u64 }
 
     /// A transition: source and target steps of the same chart, priority
-    /// (`u32::MAX` for none) and the code block computing its condition.
-    TransitionRec "transition" { name: String, from: Vec<u16>, to: Vec<u16>, priority: u32, block: u16 }
+    /// (`u32::MAX` for none), the code block computing its condition and
+    /// its source line (for coverage reports).
+    TransitionRec "transition" { name: String, from: Vec<u16>, to: Vec<u16>, priority: u32, block: u16, line: u32 }
 
     /// An action: a code block (`kind` 0) or a chart of this unit (`kind` 1).
     ActionRec "action" { name: String, kind: u8, index: u16 }

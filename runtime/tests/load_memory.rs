@@ -76,11 +76,19 @@ fn dense(n: usize) -> Vec<(&'static str, ObjectFile)> {
     o.strings = vec![Bytes(vec![b'x'; n.saturating_sub(2 << 16)])];
     out.push(("fst steps", o));
     let mut u = Unit { kind: UnitKind::Sequence, retained: u16::MAX, ..unit(vec![ret()]) };
-    let step = |i: usize| StepRec { name: String::new(), initial: u8::from(i == 0), slot: 0, assocs: Vec::new() };
+    let step =
+        |i: usize| StepRec { name: String::new(), initial: u8::from(i == 0), slot: 0, assocs: Vec::new(), line: 0 };
     let chart = ChartRec {
         steps: (0..n / 27).map(step).collect(),
         transitions: vec![
-            TransitionRec { name: String::new(), from: vec![], to: vec![], priority: 0, block: 0 };
+            TransitionRec {
+                name: String::new(),
+                from: vec![],
+                to: vec![],
+                priority: 0,
+                block: 0,
+                line: 0
+            };
             n / 54
         ],
         actions: vec![ActionRec { name: String::new(), kind: 0, index: 0 }; n / 54],
@@ -89,7 +97,7 @@ fn dense(n: usize) -> Vec<(&'static str, ObjectFile)> {
     out.push(("charts", object(vec![u])));
     let mut u = Unit { kind: UnitKind::Sequence, retained: u16::MAX, ..unit(vec![ret()]) };
     let assocs = vec![AssocRec { action: 0, qualifier: b'N', time_us: 0 }; n / 11];
-    let steps = vec![StepRec { name: String::new(), initial: 1, slot: 0, assocs }];
+    let steps = vec![StepRec { name: String::new(), initial: 1, slot: 0, assocs, line: 0 }];
     u.charts = vec![ChartRec { steps, transitions: Vec::new(), actions: Vec::new() }];
     out.push(("associations", object(vec![u])));
     out

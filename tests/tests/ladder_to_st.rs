@@ -245,7 +245,10 @@ fn the_st_of_each_found_case_reads_back() {
     let rep = linc_compiler::check_ladder(src, "case", gctx);
     assert!(!rep.has_errors(), "{src}: {:?}", rep.diagnostics);
     let st = to_st::file(rep.tree.as_ref().expect("tree"));
-    assert_eq!(st, "Dig_A.Out.Bit0 := [Block_5.Val1]{2} > 1.0;\n");
+    assert_eq!(
+        st,
+        "IF [Block_5.Val1]{2} > 1.0 THEN\n    Dig_A.Out.Bit0 := TRUE;\nELSE\n    Dig_A.Out.Bit0 := FALSE;\nEND_IF;\n"
+    );
     assert!(!linc_compiler::check_source(&st, "case", gctx).has_errors());
     // A string with a `'` keeps its double quotes.
     let e = linc_compiler::parser::parse_expr("\"it's\" = 'a$'b'").0.expect("parses");

@@ -173,7 +173,7 @@ fn an_object_of_version_1_is_refused_naming_both_versions() {
     bytes[12..16].copy_from_slice(&crc.to_le_bytes());
     let e = linc_runtime::load(&bytes).expect_err("version 1");
     assert_eq!(e.code(), "E0701");
-    assert_eq!(e.to_string(), "object format version 1 is not supported (this linc reads version 2)");
+    assert_eq!(e.to_string(), "object format version 1 is not supported (this linc reads version 3)");
 }
 
 #[test]

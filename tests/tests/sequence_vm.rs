@@ -37,12 +37,14 @@ fn sequence() -> ObjectFile {
                 initial: 1,
                 slot: 0,
                 assocs: vec![AssocRec { action: 0, qualifier: b'N', time_us: 0 }],
+                line: 1,
             },
             StepRec {
                 name: "B".into(),
                 initial: 0,
                 slot: 1,
                 assocs: vec![AssocRec { action: 1, qualifier: b'P', time_us: 0 }],
+                line: 2,
             },
         ],
         transitions: vec![TransitionRec {
@@ -51,6 +53,7 @@ fn sequence() -> ObjectFile {
             to: vec![1],
             priority: u32::MAX,
             block: 0,
+            line: 3,
         }],
         actions: vec![
             ActionRec { name: "count".into(), kind: 0, index: 1 },

@@ -2,7 +2,10 @@
 //! then do the rest, so a ladder action means exactly what its ST means.
 //!
 //! Series is `AND`, a parallel branch `OR`, the function boxes their ST
-//! operators; `(x)` is `x := c;`, `(/x)` is `x := NOT (c);`, `(S x)` and
+//! operators; `(x)` is `IF c THEN x := TRUE; ELSE x := FALSE; END_IF;` and
+//! `(/x)` the same with the values swapped (a rung is energised or not: one
+//! decision, which coverage counts, ADR 0020), `x := TRUE;` or `x := FALSE;`
+//! on a rung without contacts; `(S x)` and
 //! `(R x)` are `IF c THEN x := TRUE/FALSE; END_IF;`, a variable output is
 //! `IF c THEN target := value; END_IF;`. A forward jump wraps the rungs it
 //! skips in `IF NOT (c) THEN … END_IF;`; when two jumps cross, the rungs
@@ -26,7 +29,17 @@ const MAX_EMITTED: usize = 100_000;
 /// `bad` are contacts and coils already reported (left out). An error comes
 /// back when the jumps nest or cross too much to be written out.
 pub fn action(a: &Action, targets: &[Option<usize>], bad: &HashSet<Span>) -> (ast::Action, Vec<Diagnostic>) {
-    let mut d = Desugar { rungs: &a.rungs, targets, bad, emitted: 0, stopped: false, errors: Vec::new() };
+    desugar(a, targets, bad, true)
+}
+
+/// [`action`] for the rung `cond -> (T);` of a ladder transition condition:
+/// its coil is an assignment of the condition, the value wanted.
+pub fn condition_rung(a: &Action, targets: &[Option<usize>]) -> (ast::Action, Vec<Diagnostic>) {
+    desugar(a, targets, &HashSet::new(), false)
+}
+
+fn desugar(a: &Action, targets: &[Option<usize>], bad: &HashSet<Span>, decide: bool) -> (ast::Action, Vec<Diagnostic>) {
+    let mut d = Desugar { rungs: &a.rungs, targets, bad, emitted: 0, stopped: false, errors: Vec::new(), decide };
     let body = d.block(0, a.rungs.len(), 0);
     let action =
         ast::Action { name: a.name.clone(), block_type: a.block_type.clone(), body, header: a.header, span: a.span };
@@ -41,6 +54,9 @@ struct Desugar<'r> {
     /// E0312 was reported: nothing more is written.
     stopped: bool,
     errors: Vec<Diagnostic>,
+    /// Whether a normal or negated coil is a decision (an IF) or an
+    /// assignment of the rung's value (a transition's condition).
+    decide: bool,
 }
 
 impl Desugar<'_> {
@@ -176,6 +192,13 @@ impl Desugar<'_> {
             Output::Coil { kind, target, .. } => {
                 let ExprKind::Var(v) = &target.kind else { return Some(Stmt::Error { span }) };
                 let assign = |value: Expr| Stmt::Assign { target: v.clone(), value: Box::new(value), span };
+                let value = |on: bool| Expr { kind: ExprKind::Bool(on), span: target.span };
+                let energised = *kind == CoilKind::Normal;
+                if self.decide && rung.cond.is_some() && matches!(kind, CoilKind::Normal | CoilKind::Negated) {
+                    let cond = self.cond_or_true(rung);
+                    let (on, off) = (vec![assign(value(energised))], vec![assign(value(!energised))]);
+                    return Some(Stmt::If { arms: vec![(cond, on)], otherwise: Some(off), span });
+                }
                 let cond = self.cond_or_true(rung);
                 Some(match kind {
                     CoilKind::Normal => assign(cond),

@@ -111,6 +111,12 @@ pub fn element_spans(src: &str, stem: &str) -> Vec<crate::span::Span> {
 /// syntax, labels and jumps. Contacts and coils are typed by the ST
 /// checker when the sequence is checked.
 pub fn desugar_body(body: &str, name: &str) -> (crate::ast::Action, Vec<Diagnostic>) {
+    desugar_body_as(body, name, true)
+}
+
+/// [`desugar_body`], with coils as decisions (`decide`) or as assignments
+/// of the rung's value (a transition's condition).
+fn desugar_body_as(body: &str, name: &str, decide: bool) -> (crate::ast::Action, Vec<Diagnostic>) {
     let (ladder, mut diagnostics) = parser::parse(body, name);
     let Some(a) = ladder.actions.into_iter().next() else {
         let name = crate::ast::Ident { text: name.into(), span: crate::span::Span::default() };
@@ -119,7 +125,10 @@ pub fn desugar_body(body: &str, name: &str) -> (crate::ast::Action, Vec<Diagnost
     };
     let (targets, jump_errors) = check::jumps(&a.rungs);
     diagnostics.extend(jump_errors);
-    let (st, errors) = desugar::action(&a, &targets, &std::collections::HashSet::new());
+    let (st, errors) = match decide {
+        true => desugar::action(&a, &targets, &std::collections::HashSet::new()),
+        false => desugar::condition_rung(&a, &targets),
+    };
     diagnostics.extend(errors);
     (st, diagnostics)
 }
@@ -130,7 +139,7 @@ pub fn desugar_body(body: &str, name: &str) -> (crate::ast::Action, Vec<Diagnost
 pub fn desugar_condition(cond: &str) -> (Option<crate::ast::Expr>, Vec<Diagnostic>) {
     // Read as a rung whose coil stands for the transition; its value is the condition.
     let rung = format!("{cond} -> (T);");
-    let (st, diagnostics) = desugar_body(&rung, "T");
+    let (st, diagnostics) = desugar_body_as(&rung, "T", false);
     let expr = st.body.into_iter().find_map(|s| match s {
         crate::ast::Stmt::Assign { value, .. } => Some(*value),
         _ => None,

@@ -26,6 +26,11 @@ impl SequenceBuilder {
         SequenceBuilder { l, blocks: Vec::new(), slots: steps.len() }
     }
 
+    /// The source line `span` starts on.
+    pub fn line_of(&self, span: crate::span::Span) -> u32 {
+        self.l.lines.at(span.start).0
+    }
+
     /// The number the next block gets, or E0132 at `span` (once) when the
     /// unit is full: the number would not fit the 16 bits it is stored in.
     fn next(&mut self, span: crate::span::Span) -> u16 {

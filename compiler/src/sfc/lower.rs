@@ -106,7 +106,8 @@ impl Lowering<'_, '_> {
                 assocs.push(AssocRec { action: at, qualifier, time_us });
             }
             let slot = self.slots.get(s.name.text.as_str().to_ascii_uppercase().as_str()).copied().unwrap_or(0);
-            steps.push(StepRec { name: s.name.text.to_string(), initial: u8::from(s.initial), slot, assocs });
+            let (name, initial, line) = (s.name.text.to_string(), u8::from(s.initial), self.b.line_of(s.span));
+            steps.push(StepRec { name, initial, slot, assocs, line });
         }
         let mut transitions = Vec::with_capacity(c.transitions.len());
         for t in &c.transitions {
@@ -115,7 +116,8 @@ impl Lowering<'_, '_> {
             let cond = t.cond.as_ref().map(|e| self.checker.transition(e));
             let block = cond.map_or(0, |h| self.b.condition(&name, &h));
             let priority = t.priority.map_or(u32::MAX, |(p, _)| u32::try_from(p.max(0)).unwrap_or(u32::MAX - 1));
-            transitions.push(TransitionRec { name, from: ids(&t.from), to: ids(&t.to), priority, block });
+            let line = self.b.line_of(t.span);
+            transitions.push(TransitionRec { name, from: ids(&t.from), to: ids(&t.to), priority, block, line });
         }
         self.charts[me] = ChartRec { steps, transitions, actions };
         u16::try_from(me).map_err(|_| LowerError::TooMany { span: Span::default(), what: "charts" })

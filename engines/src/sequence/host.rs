@@ -55,6 +55,14 @@ impl Host for VmHost<'_, '_> {
     }
 
     fn event(&mut self, e: Event) {
+        if let Some(c) = self.linked.coverage() {
+            let unit = self.linked.program(self.act.program).map_or(usize::MAX, |p| p.unit);
+            match e {
+                Event::Activated(step) => c.entered(unit, step),
+                Event::Fired(transition) => c.fired(unit, transition),
+                Event::Deactivated(_) | Event::Ran(_) => {}
+            }
+        }
         if let Some(t) = self.trace.as_mut() {
             t.trace.sequence_event(e, t.now_us, t.task, t.program);
         }

@@ -12,6 +12,18 @@ impl Strategy {
         self.objects.iter().map(Linked::compiled_blocks).fold((0, 0), |(c, a), (c2, a2)| (c + c2, a + a2))
     }
 
+    /// Counts what runs from now on, for coverage reports (ADR 0020).
+    pub fn enable_coverage(&mut self) {
+        self.objects.iter_mut().for_each(Linked::enable_coverage);
+    }
+
+    /// Each object with the coverage counted so far (none when coverage
+    /// is off).
+    pub fn coverage(&self) -> Vec<(&linc_runtime::ObjectFile, linc_runtime::cover::Counts)> {
+        let counted = self.objects.iter().filter_map(|l| l.coverage().map(|c| (l.object(), c.counts())));
+        counted.collect()
+    }
+
     /// The period of the fastest task, µs: one scan of the strategy.
     pub fn scan_us(&self) -> u64 {
         self.tasks.iter().map(|t| t.period_us).min().unwrap_or(100_000).max(1)
