@@ -4,7 +4,8 @@
 //! (compiled once, linked once; the measurement is `Vm::run`), and the same
 //! computation written natively over the same data. After criterion's
 //! measurements the bench prints the VM/native ratio of each kernel, on the
-//! interpreter and on the compiling tier (ADR 0011).
+//! interpreter and on the compiling tier (ADR 0011), and what counting
+//! coverage costs on each (ADR 0020).
 
 use criterion::{criterion_group, Criterion};
 use linc_conformance::exec::compile;
@@ -96,9 +97,17 @@ struct Ready {
 }
 
 fn ready(k: &Kernel, jit: bool) -> Ready {
+    ready_as(k, jit, false)
+}
+
+/// A kernel ready to run, counting coverage when `covered`.
+fn ready_as(k: &Kernel, jit: bool, covered: bool) -> Ready {
     let verified = linc_runtime::load(&compile(k.source, guide_db())).expect("kernel loads");
     let store = Store::new(guide_db().clone());
-    let linked = verified.link(&store, &[Program { unit: 0, own: None }]).expect("kernel links");
+    let mut linked = verified.link(&store, &[Program { unit: 0, own: None }]).expect("kernel links");
+    if covered {
+        linked.enable_coverage();
+    }
     let act = Activation::new(&linked, 0, 0);
     let mut vm = Vm::new(DEFAULT_WATCHDOG * 10, Clock::new(1, 0));
     vm.jit = jit;
@@ -121,6 +130,14 @@ fn bench(c: &mut Criterion) {
         g.bench_function("linc VM", |b| b.iter(|| r.vm.run(&r.linked, &mut r.act, &mut r.store, None).map(|_| ())));
         let mut r = ready(k, true);
         g.bench_function("linc compiled", |b| {
+            b.iter(|| r.vm.run(&r.linked, &mut r.act, &mut r.store, None).map(|_| ()))
+        });
+        let mut r = ready_as(k, false, true);
+        g.bench_function("linc VM, coverage on", |b| {
+            b.iter(|| r.vm.run(&r.linked, &mut r.act, &mut r.store, None).map(|_| ()))
+        });
+        let mut r = ready_as(k, true, true);
+        g.bench_function("linc compiled, coverage on", |b| {
             b.iter(|| r.vm.run(&r.linked, &mut r.act, &mut r.store, None).map(|_| ()))
         });
         g.bench_function("native Rust", |b| b.iter(k.native));
@@ -157,6 +174,19 @@ fn ratios() {
         println!("  {:<45} VM {:>10.1?}  native {:>10.1?}  ratio {:>6.1}x", k.name, vm, native, ratio(vm));
         let how = if translated { format!("compiled in {compile:.1?}") } else { "not compiled: interpreter".into() };
         println!("  {:<45} compiled {:>10.1?}  ratio {:>6.1}x  ({how})", "", compiled, ratio(compiled));
+        let mut r = ready_as(k, false, true);
+        let vm_cov = median(|| run_vm(&mut r));
+        let mut r = ready_as(k, true, true);
+        let compiled_cov = median(|| run_vm(&mut r));
+        let slower = |on: Duration, off: Duration| on.as_secs_f64() / off.as_secs_f64().max(1e-12);
+        println!(
+            "  {:<45} coverage on: VM {:>10.1?} ({:.2}x of off)  compiled {:>10.1?} ({:.2}x of off)",
+            "",
+            vm_cov,
+            slower(vm_cov, vm),
+            compiled_cov,
+            slower(compiled_cov, compiled)
+        );
     }
 }
 

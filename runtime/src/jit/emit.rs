@@ -158,8 +158,10 @@ struct Emitter<'a, 'f> {
     mem: Option<Value>,
     kinds: Option<Value>,
     retained: Option<Value>,
-    /// Covered code: the frame's hit and taken counter bases.
+    /// Covered code: the frame's hit and taken counter bases, and the
+    /// counts kept in variables until an exit ([`cover`]).
     counters: Option<(Value, Value)>,
+    counter_vars: cover::CounterVars,
     /// Stack types at the instruction being translated.
     stack: Vec<Ty>,
     block_end: usize,
@@ -205,6 +207,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
             kinds: None,
             retained: None,
             counters: None,
+            counter_vars: cover::CounterVars::default(),
             stack: Vec::new(),
             block_end: 0,
             exits: Default::default(),
@@ -261,6 +264,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
         self.retained = Some(self.load_ptr(offset_of!(Frame, retained)));
         if self.s.points.is_some() {
             self.counters = Some((self.load_ptr(offset_of!(Frame, hits)), self.load_ptr(offset_of!(Frame, taken))));
+            self.declare_counters();
         }
         let f = self.frame();
         let budget = self.b.ins().load(types::I64, MemFlags::trusted(), f, frame_off(offset_of!(Frame, budget)));
@@ -326,24 +330,6 @@ impl<'a, 'f> Emitter<'a, 'f> {
             self.b.ins().jump(next, &[]);
         }
         Some(())
-    }
-
-    /// Covered code: one more run of instruction `pc`, if it is counted.
-    fn count_hit(&mut self, pc: usize) {
-        if let (Some((hits, _)), Some(true)) = (self.counters, self.s.points.and_then(|p| p.get(pc).copied())) {
-            self.add_to(hits, pc, None);
-        }
-    }
-
-    /// Adds one, or `by` (an I64 of 0 or 1), to counter `pc` of `base`.
-    pub(super) fn add_to(&mut self, base: Value, pc: usize, by: Option<Value>) {
-        let off = (pc * 8) as i32;
-        let old = self.b.ins().load(types::I64, MemFlags::trusted(), base, off);
-        let new = match by {
-            Some(v) => self.b.ins().iadd(old, v),
-            None => self.b.ins().iadd_imm(old, 1),
-        };
-        self.b.ins().store(MemFlags::trusted(), new, base, off);
     }
 
     fn var(&self, d: usize, ty: Ty) -> Variable {
@@ -419,6 +405,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
     }
 }
 
+mod cover;
 mod exits;
 mod ops;
 mod services;

@@ -63,6 +63,7 @@ impl Emitter<'_, '_> {
                 vals.push(self.b.use_var(var));
             }
         }
+        self.counter_values(&mut vals);
         if bail_at.is_some() {
             vals.push(self.b.use_var(self.ref_slot));
             vals.push(self.b.use_var(self.budget));
@@ -168,7 +169,8 @@ impl Emitter<'_, '_> {
         self.flush_values(&mut vals.into_iter());
     }
 
-    /// Stores the next values, one per promoted slot, to their slots.
+    /// Stores the next values, one per promoted slot, to their slots, then
+    /// adds the counts kept in variables to their counters.
     fn flush_values(&mut self, vals: &mut impl Iterator<Item = Value>) {
         let Some(mem) = self.mem else { return };
         for slot in 0..self.slots.len() {
@@ -177,5 +179,6 @@ impl Emitter<'_, '_> {
                 self.b.ins().store(MemFlags::trusted(), v, mem, (slot * 4) as i32);
             }
         }
+        self.flush_counters(vals);
     }
 }

@@ -181,11 +181,11 @@ impl Emitter<'_, '_> {
             }
             Op::JumpIfFalse { to } | Op::JumpIfTrue { to } => {
                 let c = self.pop(Ty::I)?;
-                if let Some((_, taken)) = self.counters {
+                if self.counters.is_some() {
                     let cc = if matches!(op, Op::JumpIfTrue { .. }) { IntCC::NotEqual } else { IntCC::Equal };
                     let jumps = self.b.ins().icmp_imm(cc, c, 0);
                     let by = self.b.ins().uextend(types::I64, jumps);
-                    self.add_to(taken, pc, Some(by));
+                    self.count_taken(pc, by);
                 }
                 let t = target(self, to)?;
                 let next = self.blocks.get(self.block_end).copied().flatten()?;
