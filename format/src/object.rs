@@ -292,7 +292,7 @@ pub fn crc32(data: &[u8]) -> u32 {
 
 impl ObjectFile {
     /// The object with every source position (line and column of the line
-    /// and loop tables) set to zero: what a change of layout alone leaves
+    /// and loop tables, the lines of steps and transitions) set to zero: what a change of layout alone leaves
     /// the same, so `linc fmt` can be proved to keep a program's meaning.
     pub fn without_positions(&self) -> ObjectFile {
         let mut o = self.clone();
@@ -303,6 +303,10 @@ impl ObjectFile {
             for l in &mut block.loops {
                 (l.line, l.col) = (0, 0);
             }
+        }
+        for chart in o.units.iter_mut().flat_map(|u| u.charts.iter_mut()) {
+            chart.steps.iter_mut().for_each(|s| s.line = 0);
+            chart.transitions.iter_mut().for_each(|t| t.line = 0);
         }
         o
     }
