@@ -1,6 +1,7 @@
 //! `linc fst list`: an FST table (`.csv`, as ROCLINK 800 exports it) read
 //! through the driver and listed as the FST Editor shows it (`linc check`
-//! checks tables in the compile session like any source).
+//! checks tables in the compile session like any source); `linc fst to-st`:
+//! the driver's translation, printed or written.
 
 use linc_compiler::fst;
 use linc_driver::{source, Reporter};
@@ -32,4 +33,27 @@ pub fn list(path: &Path, db: Option<&Path>, r: &mut Reporter) -> u8 {
     let offsets = object.as_ref().and_then(fst::offsets);
     crate::out::print(&fst::list::listing(&table, offsets.as_deref()));
     0
+}
+
+/// `linc fst to-st TABLE.csv --db DB [--block NAME] [-o OUT.st]`.
+pub fn to_st(path: &Path, db: &Path, block: Option<&str>, out: Option<&Path>, r: &mut Reporter) -> u8 {
+    if let Some(out) = out {
+        if let Err(e) = linc_driver::files::check_output(out, &[path, db]) {
+            return crate::report::refused(r, e.diagnostic());
+        }
+    }
+    let text = match linc_driver::fst_translate::to_st(path, db, block, r) {
+        Ok(t) => t,
+        Err(status) => return status,
+    };
+    match out {
+        Some(out) => match linc_driver::files::write_atomic(out, text.as_bytes()) {
+            Ok(()) => 0,
+            Err(e) => crate::report::refused(r, e.diagnostic()),
+        },
+        None => {
+            crate::out::print(&text);
+            0
+        }
+    }
 }

@@ -312,6 +312,20 @@ enum FstCommand {
         #[arg(long)]
         db: Option<PathBuf>,
     },
+    /// Translate a table without waits to the ST action that does what one cycle of it does
+    /// (docs/fst-translation.md); a step that cannot be translated faithfully is a located error.
+    ToSt {
+        file: PathBuf,
+        /// The ROC point database the table's points live in.
+        #[arg(long)]
+        db: PathBuf,
+        /// The FST block that runs the table (needed when the database has several).
+        #[arg(long)]
+        block: Option<String>,
+        /// Write the action here instead of standard output.
+        #[arg(short, long)]
+        out: Option<PathBuf>,
+    },
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -469,6 +483,9 @@ fn dispatch(command: Command, r: &mut Reporter) -> u8 {
         Command::Compile { files, out, db, map } => compile_cmd::run(&files, &out, db.as_deref(), map.as_deref(), r),
         Command::Sfc { command } => sfc(command, r),
         Command::Fst { command: FstCommand::List { file, db } } => fst_src::list(&file, db.as_deref(), r),
+        Command::Fst { command: FstCommand::ToSt { file, db, block, out } } => {
+            fst_src::to_st(&file, &db, block.as_deref(), out.as_deref(), r)
+        }
         Command::Ladder { command } => ladder_cmd::run(command, r),
         Command::Serve(args) => serve_cmd::run(*args, r),
         Command::Roc { command } => roc_cmd::run(command, r),

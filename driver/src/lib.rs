@@ -12,6 +12,7 @@ pub mod draw;
 pub mod eval;
 pub mod files;
 pub mod fmt;
+pub mod fst_translate;
 pub mod ladder;
 pub mod report;
 pub mod roc;

@@ -82,7 +82,7 @@ pub fn lower(table: &Checked, name: &str, file: &str) -> Result<ObjectFile, Vec<
 }
 
 /// A step as the listing and traces show it: `CMD ARG1 ARG2`.
-fn describe(cmd: Cmd, a1: &Arg, a2: &Arg) -> String {
+pub(crate) fn describe(cmd: Cmd, a1: &Arg, a2: &Arg) -> String {
     let text = |a: &Arg| match a {
         Arg::None => None,
         Arg::Const(c) => Some(c.to_string()),

@@ -12,6 +12,7 @@ pub mod list;
 pub mod lower;
 pub mod reader;
 pub mod tlp;
+pub mod translate;
 
 pub use commands::Cmd;
 

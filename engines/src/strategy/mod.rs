@@ -20,6 +20,7 @@ pub mod trace;
 
 pub use control::{ProgramInfo, ProgramState};
 pub use errors::{ErrorStatus, StrategyError, RUNTIME_CODES};
+pub use fst::DEFAULT_STEPS;
 use linc_format::Code;
 pub use state::StateError;
 

@@ -1,0 +1,316 @@
+//! `linc fst to-st` against the table it translates (issue 20): generated
+//! tables run as FST tables and, translated, as an ST action on an ACTION
+//! block of the same database, must leave the same database and the same
+//! trace of field changes (time, field, old and new value); a table the
+//! translation refuses must be refused with a located E0430–E0433.
+//!
+//! `cargo test` runs 300 tables for 60 simulated seconds each;
+//! `FST_TRANSLATE_CASES=10000 FST_TRANSLATE_SECONDS=3600 cargo test
+//! --release -p linc-conformance --test fst_translate -- --nocapture` is the
+//! long run whose figures the README gives.
+
+use linc_compiler::fst;
+use linc_conformance::fst::START;
+use linc_conformance::rng::Rng;
+use linc_engines::strategy::{trace::Trace, Strategy, Want, WantKind};
+use linc_runtime::vm::{Clock, Vm};
+use linc_runtime::{Database, Store};
+
+/// The points of a test database; `FST 1` gets the case's values.
+const POINTS: &str = r#"
+    "SFP 1": { "type": "SFP", "values": { "DATA1": 12.5 } },
+    "AIN 3-1": { "type": "AIN", "values": { "EU": 42.0, "HIAL": 90.0 } },
+    "AOU 5-1": { "type": "AOU" },
+    "DOU 4-1": { "type": "DOU" }"#;
+
+/// Argument values: constants (zeros of both signs, halves, the edges of
+/// the REAL range) and parameters of every class a table reads.
+const VALUES: &[&str] = &[
+    "0",
+    "-0",
+    "1",
+    "-1",
+    "0.5",
+    "-0.5",
+    "2.5",
+    "3",
+    "255",
+    "300",
+    "1e38",
+    "-1e38",
+    "\"FST 1,R1\"",
+    "\"FST 1,R2\"",
+    "\"FST 1,RR\"",
+    "\"FST 1,CMPFLG\"",
+    "\"FST 1,TMR1\"",
+    "\"FST 1,MISC1\"",
+    "\"AIN 3-1,EU\"",
+    "\"SFP 1,DATA1\"",
+    "\"DOU 4-1,STATUS\"",
+];
+
+/// Parameters SAV writes (REAL, 8-bit, timer, status).
+const TARGETS: &[&str] = &[
+    "\"FST 1,R1\"",
+    "\"FST 1,R2\"",
+    "\"SFP 1,DATA1\"",
+    "\"FST 1,CMPFLG\"",
+    "\"FST 1,TMR2\"",
+    "\"FST 1,MISC1\"",
+    "\"DOU 4-1,STATUS\"",
+];
+
+const PLAIN: &[&str] = &["ABS", "EXP", "INT", "LOG", "LN", "SQR", "P3", "NOT"];
+const VALUED: &[&str] = &["+", "-", "*", "/", "VAL"];
+const LOGICAL: &[&str] = &["AND", "OR", "XOR"];
+/// What AND, OR and XOR take: whole constants 0–255 or any parameter.
+const BYTES: &[&str] = &["0", "1", "3", "255", "\"FST 1,R1\"", "\"FST 1,CMPFLG\"", "\"AIN 3-1,EU\""];
+const COMPARE: &[&str] = &["==", "!=", "<", "<=", ">", ">="];
+
+/// One random table of 2–16 steps (one in ten of 20–39), every step labelled `Sn`; branches go
+/// forward mostly, and now and then a command the translation refuses.
+fn generated(rng: &mut Rng) -> String {
+    // Now and then longer than a cycle's 20 steps.
+    let n = if rng.one_in(10) { 20 + rng.below(20) } else { 2 + rng.below(15) };
+    let pick = |rng: &mut Rng, from: &[&'static str]| from[rng.below(from.len())];
+    let mut rows = Vec::new();
+    let mut ended = false;
+    for i in 0..n {
+        let value = pick(rng, VALUES);
+        let ahead = |rng: &mut Rng| {
+            let to = if rng.one_in(12) { rng.below(i + 1) } else { i + 1 + rng.below(n - i) };
+            format!("S{}", to.min(n - 1))
+        };
+        let (cmd, a1, a2) = match rng.below(21) {
+            0..=2 => (pick(rng, VALUED), value.to_string(), String::new()),
+            3 => (pick(rng, LOGICAL), pick(rng, BYTES).to_string(), String::new()),
+            4..=5 => (pick(rng, PLAIN), String::new(), String::new()),
+            6..=8 => (pick(rng, COMPARE), value.to_string(), ahead(rng)),
+            9 => ("CT", (1 + rng.below(4)).to_string(), ahead(rng)),
+            10 => ("ST", (1 + rng.below(4)).to_string(), value.to_string()),
+            11..=12 => ("SAV", pick(rng, TARGETS).to_string(), String::new()),
+            13 => ("GO", ahead(rng), String::new()),
+            14 => ("MSG", "LEVEL $1 'OK'".to_string(), value.to_string()),
+            15 => (pick(rng, &["DO", "TDO"]), "DOU 4-1".to_string(), value.to_string()),
+            16 => ("AO", "AOU 5-1".to_string(), value.to_string()),
+            17 => match rng.below(5) {
+                0 => ("WT", "1".to_string(), String::new()),
+                1 => ("ALM", "HI".to_string(), value.to_string()),
+                2 => ("**", value.to_string(), String::new()),
+                3 => ("BRK", "1".to_string(), String::new()),
+                _ => ("DWK", String::new(), String::new()),
+            },
+            18 if !ended => {
+                ended = true;
+                ("END", String::new(), String::new())
+            }
+            _ => ("VAL", value.to_string(), String::new()),
+        };
+        rows.push(format!("{i},S{i},{cmd},{a1},{a2}"));
+    }
+    format!("STEP,LABEL,CMD,ARGUMENT1,ARGUMENT2\n{}\n", rows.join("\n"))
+}
+
+/// The database of a case: `FST 1` running (RUNFLG 1) with random
+/// registers, and an `ACTION` block for the translation when `action`.
+fn database(rng: &mut Rng, action: bool) -> String {
+    let reg = |rng: &mut Rng| ["0", "1.5", "-2", "0.25", "3", "-0.0", "100"][rng.below(7)];
+    let fst = format!(
+        r#""FST 1": {{ "type": "FST", "values": {{ "RUNFLG": 1, "IP": 0, "R1": {}, "R2": {}, "R3": {}, "R4": {}, "CMPFLG": {} }} }}"#,
+        reg(rng),
+        reg(rng),
+        reg(rng),
+        reg(rng),
+        rng.below(256)
+    );
+    let extra = if action {
+        r#", "TRANS": { "type": "ACTION", "values": { "FileName": "t.st", "ActName": "T", "Trigger": true, "Qualifier": "N" } }"#
+    } else {
+        ""
+    };
+    format!(r#"{{ "device": "ROC800", "blocks": {{ {fst}, {POINTS}{extra} }} }}"#)
+}
+
+/// The changes a trace records, without the program that made them.
+fn changes(trace: &[u8]) -> Vec<String> {
+    let text = String::from_utf8_lossy(trace);
+    let mut out = Vec::new();
+    for line in text.lines() {
+        let v: serde_json::Value = serde_json::from_str(line).expect("trace lines are JSON");
+        // The ACTION block's own flags (Active …) are the translation's.
+        let field = v.get("field").filter(|f| !f.as_str().is_some_and(|f| f.starts_with("TRANS.")));
+        if let Some(field) = field {
+            out.push(format!("{} {field} {} -> {}", v["time"], v["old"], v["new"]));
+        }
+    }
+    out
+}
+
+/// Runs `s` for `seconds` with a trace; the store's cells and the changes.
+fn run(mut s: Strategy, seconds: u64) -> (Vec<String>, Vec<String>) {
+    let mut bytes = Vec::new();
+    let mut trace = Trace::new(&mut bytes, &s.store);
+    let errors = s.run_for(seconds * 1_000_000, Some(&mut trace));
+    trace.finish().expect("trace");
+    assert!(errors.is_empty(), "runtime errors: {errors:?}");
+    let cells = s.store.cells.iter().map(|c| format!("{c:?}")).collect();
+    (cells, changes(&bytes))
+}
+
+enum Outcome {
+    /// The table does not compile: its first error's code.
+    NotATable(&'static str),
+    /// The translation's codes.
+    Refused(Vec<&'static str>),
+    Same,
+}
+
+/// One case: the table against its translation.
+fn differential(table: &str, db_seed: u64, seconds: u64) -> Outcome {
+    let (db_a, db_b) = (database(&mut Rng::new(db_seed), false), database(&mut Rng::new(db_seed), true));
+    let db = Database::from_json(&db_a).expect("database");
+    let (diagnostics, object) = fst::compile(table, "t", "t.csv", Some(&db));
+    let Some(object) = object else {
+        let first = diagnostics.iter().find(|d| d.is_error()).expect("a table that does not compile has an error");
+        return Outcome::NotATable(first.code.as_str());
+    };
+    let (read, _) = fst::reader::read(table);
+    let (checked, _) = fst::check::check(&read, Some(&db));
+    let checked = checked.expect("a table that compiles checks");
+    let target = fst::translate::Target { block: "FST 1", steps_per_cycle: 20, action: "T" };
+    let st = match fst::translate::to_st(&read, &checked, &target) {
+        Ok(st) => st,
+        Err(refusals) => {
+            for d in &refusals {
+                assert!(
+                    ["E0430", "E0431", "E0432", "E0433"].contains(&d.code.as_str()),
+                    "refused with {}:\n{table}",
+                    d.code.as_str()
+                );
+                assert!(
+                    d.span.end > d.span.start && d.span.end <= table.len(),
+                    "a refusal at its cell: {d:?}\n{table}"
+                );
+            }
+            return Outcome::Refused(refusals.iter().map(|d| d.code.as_str()).collect());
+        }
+    };
+    // The table on its FST block.
+    let store = Store::new(db);
+    let block = store.db.block("FST 1").expect("FST 1");
+    let want = Want { block, file: "t.csv".into(), action: String::new(), kind: WantKind::Fst };
+    let verified = linc_runtime::verify::verify(object).expect("verifies");
+    let vm = Vm::new(linc_runtime::vm::DEFAULT_WATCHDOG, Clock::new(1, 0));
+    let a = Strategy::build(store, vec![verified], &[(want, 0)], vm, START).expect("builds");
+    // The translation on an ACTION block of the same database.
+    let db = Database::from_json(&db_b).expect("database");
+    let bytes = match linc_conformance::compiled(&st, "t.st", &db) {
+        Ok(b) => b,
+        Err(codes) => panic!("the translation does not compile ({codes:?}):\n{table}\n{st}"),
+    };
+    let verified = linc_runtime::load(&bytes).expect("loads");
+    let store = Store::new(db);
+    let wants: Vec<_> = linc_engines::strategy::wanted(&store).into_iter().map(|w| (w, 0)).collect();
+    let vm = Vm::new(linc_runtime::vm::DEFAULT_WATCHDOG, Clock::new(1, 0));
+    let b = Strategy::build(store, vec![verified], &wants, vm, START).expect("builds");
+    let ((cells_a, trace_a), (cells_b, trace_b)) = (run(a, seconds), run(b, seconds));
+    let first_difference = trace_a.iter().zip(&trace_b).position(|(x, y)| x != y);
+    if let Some(at) = first_difference.or((trace_a.len() != trace_b.len()).then(|| trace_a.len().min(trace_b.len()))) {
+        panic!(
+            "the traces differ at change {at}: table {:?}, translation {:?}\n{table}\n{st}",
+            trace_a.get(at),
+            trace_b.get(at)
+        );
+    }
+    assert_eq!(cells_a[..], cells_b[..cells_a.len()], "the databases differ\n{table}\n{st}");
+    Outcome::Same
+}
+
+#[test]
+fn generated_tables_and_their_translations_do_the_same() {
+    let env = |k: &str, d: u64| std::env::var(k).ok().and_then(|v| v.parse().ok()).unwrap_or(d);
+    let (cases, seconds) = (env("FST_TRANSLATE_CASES", 300), env("FST_TRANSLATE_SECONDS", 60));
+    let (mut same, mut refused, mut invalid) = (0u64, 0u64, 0u64);
+    let mut codes = std::collections::BTreeMap::<&str, u64>::new();
+    let started = std::time::Instant::now();
+    for case in 0..cases {
+        let table = generated(&mut Rng::new(case));
+        match differential(&table, case, seconds) {
+            Outcome::Same => same += 1,
+            Outcome::Refused(c) => {
+                refused += 1;
+                c.into_iter().for_each(|c| *codes.entry(c).or_default() += 1);
+            }
+            Outcome::NotATable(c) => {
+                invalid += 1;
+                *codes.entry(c).or_default() += 1;
+            }
+        }
+    }
+    eprintln!("codes: {codes:?}");
+    eprintln!(
+        "{cases} tables: {same} translated and the same for {seconds} s, {refused} refused, {invalid} did not compile; {:.1} s",
+        started.elapsed().as_secs_f64()
+    );
+    assert!(same * 3 >= cases, "only {same} of {cases} tables were translated");
+    assert!(refused * 20 >= cases, "the refusals are exercised too: {refused}");
+}
+
+/// The translation's codes for `rows` (`LABEL,CMD,ARG1,ARG2`), each with the
+/// line and text of the cell it points at.
+fn refusals(rows: &[&str]) -> Vec<(&'static str, usize, String)> {
+    let table = linc_conformance::fst::table(rows);
+    let db = Database::from_json(&database(&mut Rng::new(0), false)).expect("database");
+    let (read, _) = fst::reader::read(&table);
+    let (checked, diagnostics) = fst::check::check(&read, Some(&db));
+    assert!(!diagnostics.iter().any(|d| d.is_error()), "{diagnostics:?}");
+    let target = fst::translate::Target { block: "FST 1", steps_per_cycle: 20, action: "T" };
+    match fst::translate::to_st(&read, &checked.expect("checked"), &target) {
+        Ok(st) => panic!("translated:\n{st}"),
+        Err(ds) => ds
+            .iter()
+            .map(|d| {
+                let line = table[..d.span.start].matches('\n').count() + 1;
+                (d.code.as_str(), line, table[d.span.start..d.span.end].to_string())
+            })
+            .collect(),
+    }
+}
+
+#[test]
+fn refusals_are_located_at_the_step_that_stops_the_translation() {
+    // Each command without an ST equivalent, at its own cell.
+    let r = refusals(&[",VAL,1,", ",WT,5,", ",ALM,HI,1", ",END,,"]);
+    assert_eq!(r, [("E0430", 3, "WT".to_string()), ("E0430", 4, "ALM".to_string())]);
+    // A loop: at the step whose jump goes back.
+    let r = refusals(&["TOP,VAL,\"AIN 3-1,EU\",", ",>,50,TOP", ",END,,"]);
+    assert_eq!(r, [("E0431", 3, ">".to_string())]);
+    // 25 steps in a row: the cycle stops before the 21st (step 20).
+    let mut long = vec![",+,1,"; 24];
+    long.push(",END,,");
+    assert_eq!(refusals(&long), [("E0432", 22, "+".to_string())]);
+    // MSG text that no ST string constant stores as written.
+    assert_eq!(refusals(&[",MSG,it's \"x\",1"])[0].0, "E0430");
+    // Branches that cross: each step reachable two ways, over and over.
+    let crossing: Vec<String> = (0..17).map(|i| format!("S{i},<,1,S{}", i + 2)).collect();
+    let mut rows: Vec<&str> = crossing.iter().map(String::as_str).collect();
+    rows.extend(["S17,VAL,1,", "S18,END,,"]);
+    assert_eq!(refusals(&rows)[0].0, "E0433");
+}
+
+#[test]
+fn a_translation_reads_like_the_table() {
+    let table = linc_conformance::fst::table(&[
+        ",VAL,\"AIN 3-1,EU\",",
+        ",>=,\"AIN 3-1,HIAL\",HIGH",
+        ",DO,DOU 4-1,0",
+        ",END,,",
+        "HIGH,DO,DOU 4-1,1",
+    ]);
+    let db = Database::from_json(&database(&mut Rng::new(0), false)).expect("database");
+    let (read, _) = fst::reader::read(&table);
+    let (checked, _) = fst::check::check(&read, Some(&db));
+    let target = fst::translate::Target { block: "FST 1", steps_per_cycle: 20, action: "ALARM" };
+    let st = fst::translate::to_st(&read, &checked.expect("checked"), &target).expect("translates");
+    insta::assert_snapshot!("fst_to_st_alarm", st);
+}
