@@ -120,7 +120,8 @@ impl Case {
     }
 
     fn assert_tiers_agree(&self, what: &str) {
-        for (traced, covered) in [(false, false), (true, false), (false, true), (true, true)] {
+        // Coverage with a trace is the generated cases' (one in twelve).
+        for (traced, covered) in [(false, false), (true, false), (false, true)] {
             let a = self.run(false, 3, traced, covered);
             let b = self.run(true, 3, traced, covered);
             assert_eq!(a, b, "tiers differ on {what} (traced: {traced}, covered: {covered})");
