@@ -135,3 +135,17 @@ fn to_st_never_writes_over_its_input() {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/fst/alarm.csv")).unwrap();
     assert!(text.starts_with("STEP,LABEL,CMD"), "the table is intact");
 }
+
+#[test]
+fn a_block_whose_state_an_action_cannot_reproduce_is_refused() {
+    let dir = linc_test_support::fresh_dir("fst-to-st-state");
+    for (field, why) in [("\"IP\": 5", "IP 5"), ("\"IP\": 0, \"BRK\": 3", "BRK 3")] {
+        let db = plant("alarm.csv", "FST 3", false).replace("\"IP\": 0", field);
+        copy_example(&dir, &db);
+        let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+        let o = common::linc(&["fst", "to-st", &p("alarm.csv"), "--db", &p("plant.json"), "--block", "FST 3"]);
+        assert_eq!(o.status.code(), Some(1), "{}", common::stdout(&o));
+        let err = common::stderr(&o);
+        assert!(err.contains("error[E0430]") && err.contains(why), "{err}");
+    }
+}

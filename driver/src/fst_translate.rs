@@ -62,6 +62,13 @@ pub fn to_st(path: &Path, db: &Path, block: Option<&str>, r: &mut Reporter) -> R
         r.emit_own(Diagnostic::command(Code::E0430, why));
         return Err(1);
     }
+    // The table writes IP (step 0's offset, 0) after each cycle; IP is
+    // read-only to ST, so an action leaves it as the database has it.
+    if int("IP") != 0 {
+        let why = format!("block `{name}` has IP {}: the table sets it to 0, which an ST action cannot", int("IP"));
+        r.emit_own(Diagnostic::command(Code::E0430, why));
+        return Err(1);
+    }
     let steps = match int("STEPS") {
         n if n > 0 => n as u32,
         _ => linc_engines::strategy::DEFAULT_STEPS,
