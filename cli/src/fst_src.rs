@@ -1,7 +1,7 @@
 //! `linc fst list`: an FST table (`.csv`, as ROCLINK 800 exports it) read
 //! through the driver and listed as the FST Editor shows it (`linc check`
 //! checks tables in the compile session like any source); `linc fst to-st`:
-//! the driver's translation, printed or written.
+//! the driver's translations, printed or written.
 
 use linc_compiler::fst;
 use linc_driver::{source, Reporter};
@@ -35,14 +35,21 @@ pub fn list(path: &Path, db: Option<&Path>, r: &mut Reporter) -> u8 {
     0
 }
 
-/// `linc fst to-st TABLE.csv --db DB [--block NAME] [-o OUT.st]`.
-pub fn to_st(path: &Path, db: &Path, block: Option<&str>, out: Option<&Path>, r: &mut Reporter) -> u8 {
+/// `linc fst to-st` and `to-sfc`: the driver's translation `make`,
+/// printed or written to `out` (never over the table or the database).
+pub fn translate(
+    path: &Path,
+    db: &Path,
+    out: Option<&Path>,
+    r: &mut Reporter,
+    make: impl FnOnce(&mut Reporter) -> Result<String, u8>,
+) -> u8 {
     if let Some(out) = out {
         if let Err(e) = linc_driver::files::check_output(out, &[path, db]) {
             return crate::report::refused(r, e.diagnostic());
         }
     }
-    let text = match linc_driver::fst_translate::to_st(path, db, block, r) {
+    let text = match make(r) {
         Ok(t) => t,
         Err(status) => return status,
     };

@@ -326,6 +326,23 @@ enum FstCommand {
         #[arg(short, long)]
         out: Option<PathBuf>,
     },
+    /// Translate a table to a sequence: a step where each cycle can start (step 0, after each WT), its
+    /// P action the cycle from there, transitions where the table goes on (docs/fst-translation.md).
+    ToSfc {
+        file: PathBuf,
+        /// The ROC point database the table's points live in.
+        #[arg(long)]
+        db: PathBuf,
+        /// The FST block that runs the table (needed when the database has several).
+        #[arg(long)]
+        block: Option<String>,
+        /// A numeric field nothing else uses (BLOCK.FIELD), where a step that can go on in several ways notes which.
+        #[arg(long, value_name = "BLOCK.FIELD")]
+        exit: Option<String>,
+        /// Write the sequence here instead of standard output.
+        #[arg(short, long)]
+        out: Option<PathBuf>,
+    },
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -484,7 +501,14 @@ fn dispatch(command: Command, r: &mut Reporter) -> u8 {
         Command::Sfc { command } => sfc(command, r),
         Command::Fst { command: FstCommand::List { file, db } } => fst_src::list(&file, db.as_deref(), r),
         Command::Fst { command: FstCommand::ToSt { file, db, block, out } } => {
-            fst_src::to_st(&file, &db, block.as_deref(), out.as_deref(), r)
+            fst_src::translate(&file, &db, out.as_deref(), r, |r| {
+                linc_driver::fst_translate::to_st(&file, &db, block.as_deref(), r)
+            })
+        }
+        Command::Fst { command: FstCommand::ToSfc { file, db, block, exit, out } } => {
+            fst_src::translate(&file, &db, out.as_deref(), r, |r| {
+                linc_driver::fst_translate::to_sfc(&file, &db, block.as_deref(), exit.as_deref(), r)
+            })
         }
         Command::Ladder { command } => ladder_cmd::run(command, r),
         Command::Serve(args) => serve_cmd::run(*args, r),

@@ -1,5 +1,5 @@
-//! `linc fst to-st`: an FST table translated to the ST action that does
-//! what one cycle of it does (`docs/fst-translation.md`). The translation
+//! `linc fst to-st` and `to-sfc`: an FST table translated to the ST action
+//! of one cycle, or to a sequence (`docs/fst-translation.md`). The translation
 //! itself is the compiler's (`linc_compiler::fst::translate`); this reads
 //! the files, finds the FST block that would run the table and its
 //! steps-per-cycle limit, and reports what stops the translation.
@@ -22,10 +22,19 @@ pub fn action_name(path: &Path) -> String {
     name
 }
 
-/// The ST translation of `path` against the database `db` for the FST
-/// block `block` (the one FST block when there is one). Problems are
-/// reported to `r`; `Err` is the exit status.
-pub fn to_st(path: &Path, db: &Path, block: Option<&str>, r: &mut Reporter) -> Result<String, u8> {
+/// A table read and checked against its database, with the FST block that
+/// would run it and that block's steps-per-cycle limit.
+struct Prepared {
+    table: fst::Table,
+    checked: fst::Checked,
+    block: String,
+    steps: u32,
+    files: linc_compiler::render::SourceFiles,
+    id: linc_compiler::FileId,
+}
+
+/// Reads, checks and finds the block; problems are reported to `r`.
+fn prepare(path: &Path, db: &Path, block: Option<&str>, r: &mut Reporter) -> Result<Prepared, u8> {
     let mut dbfiles = linc_compiler::render::SourceFiles::new();
     let db = crate::database::load(Some(db), &mut dbfiles, r)?.unwrap_or_default();
     let (text, files, id) = match source::read(path, r)? {
@@ -35,13 +44,10 @@ pub fn to_st(path: &Path, db: &Path, block: Option<&str>, r: &mut Reporter) -> R
     let (table, mut diagnostics) = fst::reader::read(&text);
     let (checked, more) = fst::check::check(&table, Some(&db));
     diagnostics.extend(more);
-    let emit = |r: &mut Reporter, ds: &[Diagnostic]| {
-        r.emit_all(&files, &ds.iter().map(|d| d.clone().in_file(id)).collect::<Vec<_>>());
-    };
     let checked = match checked {
         Some(c) if !diagnostics.iter().any(Diagnostic::is_error) => c,
         _ => {
-            emit(r, &diagnostics);
+            r.emit_all(&files, &diagnostics.iter().map(|d| d.clone().in_file(id)).collect::<Vec<_>>());
             return Err(1);
         }
     };
@@ -57,26 +63,47 @@ pub fn to_st(path: &Path, db: &Path, block: Option<&str>, r: &mut Reporter) -> R
         _ => 0,
     };
     let name = db.blocks[b].name.clone();
-    if int("BRK") != 0 {
-        let why = format!("block `{name}` has BRK {}: the table runs one command a period", int("BRK"));
-        r.emit_own(Diagnostic::command(Code::E0430, why));
-        return Err(1);
-    }
-    // The table writes IP (step 0's offset, 0) after each cycle; IP is
-    // read-only to ST, so an action leaves it as the database has it.
-    if int("IP") != 0 {
-        let why = format!("block `{name}` has IP {}: the table sets it to 0, which an ST action cannot", int("IP"));
-        r.emit_own(Diagnostic::command(Code::E0430, why));
-        return Err(1);
+    // BRK slows the table from the start; the table writes IP (step 0's
+    // offset, 0) after each cycle, and IP is read-only to ST.
+    for (field, why) in
+        [("BRK", "the table runs one command a period"), ("IP", "the table sets it to 0, which ST cannot")]
+    {
+        if int(field) != 0 {
+            let why = format!("block `{name}` has {field} {}: {why}", int(field));
+            r.emit_own(Diagnostic::command(Code::E0430, why));
+            return Err(1);
+        }
     }
     let steps = match int("STEPS") {
         n if n > 0 => n as u32,
         _ => linc_engines::strategy::DEFAULT_STEPS,
     };
-    let action = action_name(path);
-    let target = fst::translate::Target { block: &name, steps_per_cycle: steps, action: &action };
-    fst::translate::to_st(&table, &checked, &target).map_err(|ds| {
-        emit(r, &ds);
+    Ok(Prepared { table, checked, block: name, steps, files, id })
+}
+
+impl Prepared {
+    fn refused(&self, r: &mut Reporter, ds: &[Diagnostic]) -> u8 {
+        r.emit_all(&self.files, &ds.iter().map(|d| d.clone().in_file(self.id)).collect::<Vec<_>>());
         1
-    })
+    }
+}
+
+/// The ST translation of `path` against the database `db` for the FST
+/// block `block` (the one FST block when there is one). Problems are
+/// reported to `r`; `Err` is the exit status.
+pub fn to_st(path: &Path, db: &Path, block: Option<&str>, r: &mut Reporter) -> Result<String, u8> {
+    let p = prepare(path, db, block, r)?;
+    let action = action_name(path);
+    let target = fst::translate::Target { block: &p.block, steps_per_cycle: p.steps, action: &action };
+    fst::translate::to_st(&p.table, &p.checked, &target).map_err(|ds| p.refused(r, &ds))
+}
+
+/// The sequence translation of `path` (`linc fst to-sfc`), with `exit`
+/// (`BLOCK.FIELD`) the field a step that leaves in several ways records
+/// its way in.
+pub fn to_sfc(path: &Path, db: &Path, block: Option<&str>, exit: Option<&str>, r: &mut Reporter) -> Result<String, u8> {
+    let p = prepare(path, db, block, r)?;
+    let exit = exit.map(|f| format!("[{f}]"));
+    let target = fst::translate::SfcTarget { block: &p.block, steps_per_cycle: p.steps, exit: exit.as_deref() };
+    fst::translate::to_sfc(&p.table, &p.checked, &target).map_err(|ds| p.refused(r, &ds))
 }

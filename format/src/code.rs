@@ -173,6 +173,7 @@ codes! {
     E0431 => "FST loop without a wait",
     E0432 => "FST cycle longer than the steps-per-cycle limit",
     E0433 => "FST branches too tangled to translate",
+    E0434 => "FST sequence translation needs an exit field",
     W0401 => "FST message text cut to length",
     E0500 => "scenario target missing or repeated",
     E0501 => "`at` without a console command",

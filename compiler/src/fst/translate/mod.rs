@@ -14,7 +14,10 @@
 //! than the budget (E0432), or control flow too tangled to nest (E0433).
 //! A refusal is never a guess.
 
+mod sfc;
 mod st;
+
+pub use sfc::{to_sfc, SfcTarget};
 
 use super::{Arg, Checked, Cmd, Table};
 use crate::diagnostic::Diagnostic;
@@ -69,11 +72,13 @@ fn flow(step: &super::Step) -> Flow {
 }
 
 impl Graph {
-    fn of(table: &Checked) -> Graph {
+    /// The control flow of one cycle; with `waits`, a WT ends it too.
+    fn of(table: &Checked, waits: bool) -> Graph {
         let exit = table.steps.len();
         let next = |i: usize| if i + 1 < exit { i + 1 } else { exit };
         let succ = (table.steps.iter().enumerate())
             .map(|(i, s)| match flow(s) {
+                Flow::Next if waits && s.cmd == Cmd::Wt => (exit, None),
                 Flow::Next => (next(i), None),
                 Flow::Exit => (exit, None),
                 Flow::Go(t) => (t.min(exit), None),
@@ -95,15 +100,15 @@ fn at(table: &Table, i: usize) -> Span {
     table.rows.get(i).map_or_else(|| table.rows.last().map_or(Span::new(0, 0), |r| r.cmd.span), |r| r.cmd.span)
 }
 
-/// The steps reachable from step 0 in depth-first post-order (every step
+/// The steps reachable from `start` in depth-first post-order (every step
 /// after all it leads to), or E0431 at the step whose jump closes a loop.
-fn post_order(g: &Graph, table: &Table) -> Result<Vec<Node>, Vec<Diagnostic>> {
+fn post_order(g: &Graph, table: &Table, start: Node) -> Result<Vec<Node>, Vec<Diagnostic>> {
     // 0 unseen, 1 on the current path, 2 done; an explicit stack, so a
     // long table cannot exhaust the thread's.
     let mut state = vec![0u8; g.exit + 1];
     let mut order = Vec::new();
-    let mut stack: Vec<(Node, Vec<Node>)> = vec![(0, g.successors(0).collect())];
-    state[0] = 1;
+    let mut stack: Vec<(Node, Vec<Node>)> = vec![(start, g.successors(start).collect())];
+    state[start] = 1;
     while let Some((n, rest)) = stack.last_mut() {
         let n = *n;
         match rest.pop() {
@@ -139,19 +144,20 @@ fn longest(g: &Graph, order: &[Node]) -> Vec<u32> {
     len
 }
 
-/// E0432 at the first step the budget does not reach on the longest path.
-fn check_budget(g: &Graph, table: &Table, len: &[u32], budget: u32) -> Result<(), Vec<Diagnostic>> {
-    if len[0] <= budget {
+/// E0432 at the first step the budget does not reach on the longest path
+/// from `start`.
+fn check_budget(g: &Graph, table: &Table, len: &[u32], budget: u32, start: Node) -> Result<(), Vec<Diagnostic>> {
+    if len[start] <= budget {
         return Ok(());
     }
-    let (mut n, mut begun) = (0, 0);
+    let (mut n, mut begun) = (start, 0);
     while begun < budget {
         begun += 1;
         n = g.successors(n).max_by_key(|&s| len[s]).unwrap_or(g.exit);
     }
     Err(vec![Diagnostic::error(
         Code::E0432,
-        format!("a cycle may run {} steps, more than the block's limit of {budget}", len[0]),
+        format!("a cycle may run {} steps, more than the block's limit of {budget}", len[start]),
         at(table, n),
     )
     .label(format!("the cycle stops before this step and goes on at the next one (step {n})"))
@@ -185,8 +191,8 @@ fn post_dominators(g: &Graph, order: &[Node]) -> Vec<Node> {
 
 /// The ST action of a table without waits, or why it has none.
 pub fn to_st(table: &Table, checked: &Checked, target: &Target) -> Result<String, Vec<Diagnostic>> {
-    let g = Graph::of(checked);
-    let order = post_order(&g, table)?;
+    let g = Graph::of(checked, false);
+    let order = post_order(&g, table, 0)?;
     let refused: Vec<Diagnostic> = (order.iter().copied())
         .filter(|&n| n < g.exit)
         .filter_map(|n| st::refusal(&checked.steps[n], true).map(|why| no_equivalent(table, checked, n, why)))
@@ -197,11 +203,11 @@ pub fn to_st(table: &Table, checked: &Checked, target: &Target) -> Result<String
         return Err(refused);
     }
     let len = longest(&g, &order);
-    check_budget(&g, table, &len, target.steps_per_cycle)?;
+    check_budget(&g, table, &len, target.steps_per_cycle, 0)?;
     let ipdom = post_dominators(&g, &order);
     let mut w = st::Writer::new(target.block, table, checked);
     let reachable = order.len();
-    let mut e = Emit { g: &g, ipdom: &ipdom, budget: 20 * reachable + 1_000 };
+    let mut e = Emit { g: &g, checked, ipdom: &ipdom, budget: 20 * reachable + 1_000, on_exit: &|_| None };
     w.line(0, &format!("ACTION {}", target.action));
     w.line(1, &format!("IF {} = 1 THEN", w.field("RUNFLG")));
     e.emit(&mut w, 0, g.exit, 2).map_err(|_| vec![tangled(table)])?;
@@ -222,19 +228,50 @@ fn tangled(table: &Table) -> Diagnostic {
         .help("branches that cross each other must be written once for each way in; here that grows too large")
 }
 
-/// The state of writing nested IFs: the graph, its post-dominators, and
-/// how many more steps may be written (paths that cross are written once
-/// for each way in; this bounds the text for any table).
+/// The state of writing nested IFs: the graph, its post-dominators, how
+/// many more steps may be written (paths that cross are written once for
+/// each way in; this bounds the text for any table), and the statement
+/// that records where a path leaves the code for (the step the table goes
+/// on with: 0 after END or the last step, the step after a WT).
 struct Emit<'g> {
     g: &'g Graph,
+    checked: &'g Checked,
     ipdom: &'g [Node],
     budget: usize,
+    on_exit: &'g dyn Fn(usize) -> Option<String>,
+}
+
+/// The step a cycle goes on with after leaving at step `n` (`None`: it
+/// does not leave there).
+fn resumes_after(g: &Graph, checked: &Checked, n: Node) -> Option<usize> {
+    match (g.succ.get(n)?, checked.steps.get(n)?.cmd) {
+        ((e, None), Cmd::Wt) if *e == g.exit => Some(n + 1),
+        ((e, None), _) if *e == g.exit => Some(0),
+        _ => None,
+    }
 }
 
 /// The most IF statements nested in a translation (ST allows 100).
 const MAX_NESTING: usize = 90;
 
 impl Emit<'_> {
+    /// Whether a branch's way to `node` writes nothing before `meet`.
+    fn is_empty(&self, node: Node, meet: Node) -> bool {
+        node == meet && (node != self.g.exit || (self.on_exit)(0).is_none())
+    }
+
+    /// One way of a branch: its steps, or, off the end of the table, what
+    /// records that the next cycle starts at step 0.
+    fn arm(&mut self, w: &mut st::Writer, node: Node, meet: Node, depth: usize) -> Result<(), ()> {
+        if node == self.g.exit {
+            if let Some(line) = (self.on_exit)(0) {
+                w.line(depth, &line);
+            }
+            return Ok(());
+        }
+        self.emit(w, node, meet, depth)
+    }
+
     /// Writes the steps from `n` until `stop`, at indentation `depth`.
     fn emit(&mut self, w: &mut st::Writer, mut n: Node, stop: Node, depth: usize) -> Result<(), ()> {
         while n != stop && n != self.g.exit {
@@ -243,20 +280,23 @@ impl Emit<'_> {
             }
             self.budget -= 1;
             w.step(n, depth);
+            if let Some(line) = resumes_after(self.g, self.checked, n).and_then(self.on_exit) {
+                w.line(depth, &line);
+            }
             match self.g.succ[n] {
                 (next, None) => n = next,
                 (when, Some(otherwise)) => {
                     let meet = self.ipdom[n];
                     let cond = w.condition(n);
-                    if when == meet {
+                    if self.is_empty(when, meet) {
                         w.line(depth, &format!("IF NOT ({cond}) THEN"));
-                        self.emit(w, otherwise, meet, depth + 1)?;
+                        self.arm(w, otherwise, meet, depth + 1)?;
                     } else {
                         w.line(depth, &format!("IF {cond} THEN"));
-                        self.emit(w, when, meet, depth + 1)?;
-                        if otherwise != meet {
+                        self.arm(w, when, meet, depth + 1)?;
+                        if !self.is_empty(otherwise, meet) {
                             w.line(depth, "ELSE");
-                            self.emit(w, otherwise, meet, depth + 1)?;
+                            self.arm(w, otherwise, meet, depth + 1)?;
                         }
                     }
                     w.line(depth, "END_IF;");

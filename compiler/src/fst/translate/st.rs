@@ -13,6 +13,9 @@ use linc_format::object::Class;
 pub(super) fn refusal(step: &Step, in_one_run: bool) -> Option<&'static str> {
     Some(match step.cmd {
         Cmd::Wt if in_one_run => "WT waits for a time; one run of an action cannot (a sequence can: `linc fst to-sfc`)",
+        Cmd::Wt if !matches!(step.arg1, Arg::Const(_)) => {
+            "WT for a time read from a parameter: a transition tests a time written in the sequence"
+        }
         Cmd::Brk => "BRK slows the table to one command a period; an action runs its statements at once",
         Cmd::Alm | Cmd::Evt => "ALM and EVT write the device's alarm and event logs, which ST cannot reach",
         Cmd::Dwk | Cmd::Mnd => "DWK and MND read the device clock, which ST has no function for",

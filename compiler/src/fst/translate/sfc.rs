@@ -1,0 +1,150 @@
+//! FST tables read as sequences (`linc fst to-sfc`): each place a cycle
+//! can start from — step 0, and the step after each WT — is a step of the
+//! sequence, whose P action is what the table does from there until it
+//! leaves (END, a WT, or the last step), written as `to-st` writes a cycle.
+//! Its transitions go where the table goes on: after a WT, when the step
+//! has been active the wait (in whole 100 ms intervals, as the table
+//! counts); after END, at the next scan, to the step of step 0. A step
+//! that can leave in more than one way records which in a field the
+//! engineer names (`--exit BLOCK.FIELD`), which the transitions test.
+
+use super::{check_budget, longest, post_dominators, post_order, resumes_after, st, Emit, Graph, Node};
+use crate::diagnostic::Diagnostic;
+use crate::fst::{Arg, Checked, Cmd, Table};
+use linc_format::Code;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// What the translation is for (see [`super::Target`]), and the field a
+/// step that leaves in several ways records its way in.
+pub struct SfcTarget<'a> {
+    pub block: &'a str,
+    pub steps_per_cycle: u32,
+    pub exit: Option<&'a str>,
+}
+
+/// One place a cycle starts from: the steps it can run (successors
+/// first) and where it can go on, with the wait (100 ms intervals) first.
+struct Region {
+    order: Vec<Node>,
+    exits: BTreeSet<(usize, Option<u64>)>,
+}
+
+/// The wait of WT `secs`, in 100 ms intervals, as the table counts it.
+fn intervals(secs: f32) -> u64 {
+    ((f64::from(secs).clamp(0.1, 999_999.0) * 10.0).round() as u64).max(1)
+}
+
+/// The regions from step 0 on, each checked; refusals as for `to-st`.
+fn regions(
+    g: &Graph,
+    table: &Table,
+    checked: &Checked,
+    budget: u32,
+) -> Result<BTreeMap<usize, Region>, Vec<Diagnostic>> {
+    let n = checked.steps.len();
+    let (mut out, mut todo) = (BTreeMap::new(), vec![0usize]);
+    while let Some(r) = todo.pop() {
+        if out.contains_key(&r) {
+            continue;
+        }
+        if r >= n {
+            // After a WT on the last step: the cycle that wakes does nothing.
+            out.insert(r, Region { order: Vec::new(), exits: BTreeSet::from([(0, None)]) });
+            continue;
+        }
+        let order = post_order(g, table, r)?;
+        let refused: Vec<Diagnostic> = (order.iter().copied())
+            .filter(|&s| s < g.exit)
+            .filter_map(|s| {
+                st::refusal(&checked.steps[s], false).map(|why| super::no_equivalent(table, checked, s, why))
+            })
+            .collect();
+        if !refused.is_empty() {
+            return Err(refused);
+        }
+        check_budget(g, table, &longest(g, &order), budget, r)?;
+        let mut exits = BTreeSet::new();
+        for &s in order.iter().filter(|&&s| s < g.exit) {
+            match resumes_after(g, checked, s) {
+                Some(next) if checked.steps[s].cmd == Cmd::Wt => {
+                    let wait = match checked.steps[s].arg1 {
+                        Arg::Const(c) => intervals(c),
+                        _ => 1,
+                    };
+                    exits.insert((next, Some(wait)));
+                    todo.push(next);
+                }
+                Some(next) => {
+                    exits.insert((next, None));
+                }
+                None if g.succ[s].1 == Some(g.exit) => {
+                    exits.insert((0, None));
+                }
+                None => {}
+            }
+        }
+        out.insert(r, Region { order, exits });
+    }
+    Ok(out)
+}
+
+/// The sequence of a table, or why it has none.
+pub fn to_sfc(table: &Table, checked: &Checked, target: &SfcTarget) -> Result<String, Vec<Diagnostic>> {
+    let g = Graph::of(checked, true);
+    let regions = regions(&g, table, checked, target.steps_per_cycle)?;
+    let several = regions.iter().find(|(_, r)| r.exits.len() > 1).map(|(&start, _)| start);
+    let exit = match (several, target.exit) {
+        (Some(start), None) => return Err(vec![needs_exit_field(table, start)]),
+        (Some(_), Some(f)) => Some(f),
+        (None, _) => None,
+    };
+    let mut out = header(target, checked.steps.len());
+    for (&r, region) in &regions {
+        let kind = if r == 0 { "INITIAL_STEP" } else { "STEP" };
+        let action = if region.order.is_empty() { String::new() } else { format!(" R{r}(P);") };
+        out.push_str(&format!("{kind} S{r}:{action} END_STEP\n"));
+    }
+    for (&r, region) in &regions {
+        for &(next, wait) in &region.exits {
+            let mut cond = Vec::new();
+            if let (Some(f), true) = (exit, region.exits.len() > 1) {
+                cond.push(format!("{f} = {next}"));
+            }
+            if let Some(k) = wait {
+                cond.push(format!("S{r}.T >= {}.{}", k / 10, k % 10));
+            }
+            let cond = if cond.is_empty() { "TRUE".to_string() } else { cond.join(" AND ") };
+            out.push_str(&format!("TRANSITION FROM S{r} TO S{next} := {cond}; END_TRANSITION\n"));
+        }
+    }
+    for (&r, region) in regions.iter().filter(|(_, region)| !region.order.is_empty()) {
+        let ipdom = post_dominators(&g, &region.order);
+        let mut w = st::Writer::new(target.block, table, checked);
+        let record = |next: usize| exit.filter(|_| region.exits.len() > 1).map(|f| format!("{f} := {next};"));
+        let budget = 20 * region.order.len() + 1_000;
+        let mut e = Emit { g: &g, checked, ipdom: &ipdom, budget, on_exit: &record };
+        w.line(0, &format!("ACTION R{r}"));
+        e.emit(&mut w, r, g.exit, 1).map_err(|_| vec![super::tangled(table)])?;
+        w.line(0, "END_ACTION");
+        out.push('\n');
+        out.push_str(&w.finish());
+    }
+    Ok(out)
+}
+
+fn needs_exit_field(table: &Table, start: usize) -> Diagnostic {
+    Diagnostic::error(
+        Code::E0434,
+        format!("the cycle from step {start} can go on in more than one way: the sequence needs a field to note which"),
+        super::at(table, start),
+    )
+    .label("from here the table may reach END or a WT, or more than one WT")
+    .help("name a numeric field that nothing else uses with --exit BLOCK.FIELD")
+}
+
+fn header(t: &SfcTarget, steps: usize) -> String {
+    format!(
+        "(* `linc fst to-sfc`: {steps} steps of an FST table as a sequence, for block\n   {}, at most {} steps a cycle. Each step is where a cycle can start: its\n   P action is the cycle from there, its transitions where the table goes on.\n   Run it on an SFC_CON block in the FST block's task, with the FST block's\n   FileName cleared. *)\n\n",
+        t.block, t.steps_per_cycle
+    )
+}
