@@ -93,15 +93,22 @@ fn tool(name: &str) -> bool {
     found
 }
 
+/// The examples' report in `format`, written as `name` in a fresh
+/// directory `tag`: the directory and the report.
+fn examples_report(tag: &str, format: &str, name: &str) -> (PathBuf, PathBuf) {
+    let dir = linc_test_support::fresh_dir(tag);
+    let report = dir.join(name);
+    let o = covered(&["examples"], format, &report);
+    assert_eq!(o.status.code(), Some(0), "{}", common::stderr(&o));
+    (dir, report)
+}
+
 #[test]
 fn the_cobertura_report_validates_against_its_dtd() {
     if !tool("xmllint") {
         return;
     }
-    let dir = linc_test_support::fresh_dir("coverage-cobertura");
-    let xml = dir.join("coverage.xml");
-    let o = covered(&["examples"], "cobertura", &xml);
-    assert_eq!(o.status.code(), Some(0), "{}", common::stderr(&o));
+    let (dir, xml) = examples_report("coverage-cobertura", "cobertura", "coverage.xml");
     let dtd = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/cobertura-04.dtd");
     let check = |file: &Path| {
         std::process::Command::new("xmllint").args(["--noout", "--nonet", "--dtdvalid", dtd]).arg(file).output()
@@ -121,10 +128,7 @@ fn genhtml_renders_the_lcov_report() {
     if !tool("genhtml") {
         return;
     }
-    let dir = linc_test_support::fresh_dir("coverage-genhtml");
-    let info = dir.join("coverage.info");
-    let o = covered(&["examples"], "lcov", &info);
-    assert_eq!(o.status.code(), Some(0), "{}", common::stderr(&o));
+    let (dir, info) = examples_report("coverage-genhtml", "lcov", "coverage.info");
     let html = dir.join("html");
     let g = std::process::Command::new("genhtml")
         .args(["--quiet", "--branch-coverage", "--function-coverage", "-o"])

@@ -51,7 +51,8 @@ pub struct Coverage {
     pub files: BTreeMap<String, FileCoverage>,
 }
 
-fn add_opt(a: Option<u64>, b: Option<u64>) -> Option<u64> {
+/// Two counts added; `None` (never reached) only when both are.
+pub(crate) fn add_opt(a: Option<u64>, b: Option<u64>) -> Option<u64> {
     match (a, b) {
         (None, None) => None,
         (a, b) => Some(a.unwrap_or(0).saturating_add(b.unwrap_or(0))),

@@ -15,7 +15,7 @@
 //!   step as `step NAME` (times entered) and each transition as
 //!   `transition NAME` (times fired).
 
-use crate::coverage::{Coverage, FileCoverage};
+use crate::coverage::{add_opt, Coverage, FileCoverage};
 use linc_runtime::cover::{is_decision, BlockCounts, Counts, UnitCounts};
 use linc_runtime::isa::Op;
 use linc_runtime::object::{CodeBlock, Unit, UnitKind};
@@ -97,15 +97,8 @@ fn add_decisions(file: &mut FileCoverage, block: &CodeBlock, c: &BlockCounts, pe
         let evaluated = runs > 0;
         for (outcome, n) in [(0, when_true), (1, when_false)] {
             let e = file.branches.entry((line, id, outcome)).or_insert(None);
-            *e = add(*e, evaluated.then_some(n));
+            *e = add_opt(*e, evaluated.then_some(n));
         }
-    }
-}
-
-fn add(a: Option<u64>, b: Option<u64>) -> Option<u64> {
-    match (a, b) {
-        (None, None) => None,
-        (a, b) => Some(a.unwrap_or(0).saturating_add(b.unwrap_or(0))),
     }
 }
 

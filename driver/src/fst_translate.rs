@@ -8,7 +8,7 @@ use crate::{source, Reporter};
 use linc_compiler::fst;
 use linc_compiler::Diagnostic;
 use linc_format::Code;
-use linc_runtime::store::{Cell, Store};
+use linc_runtime::store::Store;
 use std::path::Path;
 
 /// An action name from a file's stem: letters, digits and `_`, starting
@@ -55,14 +55,9 @@ fn prepare(path: &Path, db: &Path, block: Option<&str>, r: &mut Reporter) -> Res
         r.emit_own(*d);
         2u8
     })?;
-    let store = Store::new(db.clone());
-    let int = |field: &str| match store.cell_of(b, field).and_then(|c| store.cells.get(c as usize)) {
-        Some(Cell::Int(i)) => *i,
-        Some(Cell::Bits { v, .. }) => i32::from(*v),
-        Some(Cell::Real(x)) => *x as i32,
-        _ => 0,
-    };
     let name = db.blocks[b].name.clone();
+    let store = Store::new(db);
+    let int = |field: &str| linc_engines::strategy::register(&store, b, field);
     // BRK slows the table from the start; the table writes IP (step 0's
     // offset, 0) after each cycle, and IP is read-only to ST.
     for (field, why) in
@@ -74,10 +69,8 @@ fn prepare(path: &Path, db: &Path, block: Option<&str>, r: &mut Reporter) -> Res
             return Err(1);
         }
     }
-    let steps = match int("STEPS") {
-        n if n > 0 => n as u32,
-        _ => linc_engines::strategy::DEFAULT_STEPS,
-    };
+    // BRK is 0 here, so this is STEPS or the default.
+    let steps = linc_engines::strategy::steps_per_cycle(0, int("STEPS"));
     Ok(Prepared { table, checked, block: name, steps, files, id })
 }
 

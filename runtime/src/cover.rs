@@ -72,6 +72,12 @@ impl BlockCounters {
         (base(&self.hits), base(&self.taken))
     }
 
+    /// The instructions a report reads, by index: what compiled code counts.
+    #[cfg_attr(not(feature = "jit"), allow(dead_code))]
+    pub(crate) fn points(&self) -> &[bool] {
+        &self.points
+    }
+
     /// Whether a report reads instruction `pc`'s counts.
     pub fn is_point(&self, pc: usize) -> bool {
         self.points.get(pc).copied().unwrap_or(false)

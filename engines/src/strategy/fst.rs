@@ -67,6 +67,22 @@ pub(super) struct FstRun {
     running: bool,
 }
 
+/// An FST block's whole-number register as the engine reads it (0 when
+/// the block has no such field).
+pub fn register(store: &Store, block: usize, field: &str) -> i32 {
+    int(store, store.cell_of(block, field))
+}
+
+/// The steps a cycle may begin with these BRK and STEPS: one while BRK
+/// delays the table, else STEPS, or [`DEFAULT_STEPS`] when it is 0.
+pub fn steps_per_cycle(brk: i32, steps: i32) -> u32 {
+    match (brk, steps) {
+        (1.., _) => 1,
+        (_, s @ 1..) => s as u32,
+        _ => DEFAULT_STEPS,
+    }
+}
+
 fn int(store: &Store, cell: Option<u32>) -> i32 {
     match cell.and_then(|c| store.cells.get(c as usize)) {
         Some(Cell::Int(i)) => *i,
@@ -140,11 +156,7 @@ impl Strategy {
             return Ok(());
         }
         let brk = int(&self.store, c.brk);
-        let budget = match (brk, int(&self.store, c.steps)) {
-            (1.., _) => 1,
-            (_, s @ 1..) => s as u32,
-            _ => DEFAULT_STEPS,
-        };
+        let budget = steps_per_cycle(brk, int(&self.store, c.steps));
         let result = self.fst_cycle(m, task, budget, brk, trace.as_deref_mut());
         let ip = self.next_ip(m, result.is_err());
         if let Some(cell) = c.ip {

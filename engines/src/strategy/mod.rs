@@ -20,7 +20,7 @@ pub mod trace;
 
 pub use control::{ProgramInfo, ProgramState};
 pub use errors::{ErrorStatus, StrategyError, RUNTIME_CODES};
-pub use fst::DEFAULT_STEPS;
+pub use fst::{register, steps_per_cycle};
 use linc_format::Code;
 pub use state::StateError;
 

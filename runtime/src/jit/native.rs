@@ -90,8 +90,13 @@ pub(super) fn compile_as(
     let locals = usize::from(code.locals);
     let retained = usize::from(unit.retained);
     let shapes = linked.shapes(program, block);
-    let points = covered.then(|| crate::cover::points(ops, &code.lines));
-    let (entry, module, max_depth) = emit::emit((ops, shapes), &plan, (locals, retained), (traced, points.as_deref()))?;
+    // The counters' own points: a bail-out takes back the count of exactly
+    // these (`Vm::run`).
+    let points = match covered {
+        true => Some(linked.cover_block(program, block)?.points()),
+        false => None,
+    };
+    let (entry, module, max_depth) = emit::emit((ops, shapes), &plan, (locals, retained), (traced, points))?;
     Some(Compiled { entry, module: Some(module), plan, max_depth, locals, retained, covered })
 }
 

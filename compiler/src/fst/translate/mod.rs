@@ -193,27 +193,39 @@ fn post_dominators(g: &Graph, order: &[Node]) -> Vec<Node> {
 pub fn to_st(table: &Table, checked: &Checked, target: &Target) -> Result<String, Vec<Diagnostic>> {
     let g = Graph::of(checked, false);
     let order = post_order(&g, table, 0)?;
-    let refused: Vec<Diagnostic> = (order.iter().copied())
-        .filter(|&n| n < g.exit)
-        .filter_map(|n| st::refusal(&checked.steps[n], true).map(|why| no_equivalent(table, checked, n, why)))
-        .collect();
-    if !refused.is_empty() {
-        let mut refused = refused;
-        refused.sort_by_key(|d| d.span.start);
-        return Err(refused);
-    }
+    refuse_steps(&g, table, checked, &order, true)?;
     let len = longest(&g, &order);
     check_budget(&g, table, &len, target.steps_per_cycle, 0)?;
     let ipdom = post_dominators(&g, &order);
     let mut w = st::Writer::new(target.block, table, checked);
-    let reachable = order.len();
-    let mut e = Emit { g: &g, checked, ipdom: &ipdom, budget: 20 * reachable + 1_000, on_exit: &|_| None };
+    let mut e = Emit::new(&g, checked, &ipdom, order.len(), &|_| None);
     w.line(0, &format!("ACTION {}", target.action));
     w.line(1, &format!("IF {} = 1 THEN", w.field("RUNFLG")));
     e.emit(&mut w, 0, g.exit, 2).map_err(|_| vec![tangled(table)])?;
     w.line(1, "END_IF;");
     w.line(0, "END_ACTION");
     Ok(st::header(target, checked.steps.len()) + &w.finish())
+}
+
+/// E0430 at each step of `order` without a faithful equivalent (`in_one_run`:
+/// for an action, where WT is one), in source order.
+fn refuse_steps(
+    g: &Graph,
+    table: &Table,
+    checked: &Checked,
+    order: &[Node],
+    in_one_run: bool,
+) -> Result<(), Vec<Diagnostic>> {
+    let mut refused: Vec<Diagnostic> = (order.iter().copied())
+        .filter(|&n| n < g.exit)
+        .filter_map(|n| st::refusal(&checked.steps[n], in_one_run).map(|why| no_equivalent(table, checked, n, why)))
+        .collect();
+    refused.sort_by_key(|d| d.span.start);
+    if refused.is_empty() {
+        Ok(())
+    } else {
+        Err(refused)
+    }
 }
 
 fn no_equivalent(table: &Table, checked: &Checked, n: usize, why: &str) -> Diagnostic {
@@ -254,7 +266,19 @@ fn resumes_after(g: &Graph, checked: &Checked, n: Node) -> Option<usize> {
 /// The most IF statements nested in a translation (ST allows 100).
 const MAX_NESTING: usize = 90;
 
-impl Emit<'_> {
+impl<'g> Emit<'g> {
+    /// Writing the code of `steps` reachable steps: each may be written 20
+    /// times over (paths that cross), and a little more for short tables.
+    fn new(
+        g: &'g Graph,
+        checked: &'g Checked,
+        ipdom: &'g [Node],
+        steps: usize,
+        on_exit: &'g dyn Fn(usize) -> Option<String>,
+    ) -> Emit<'g> {
+        Emit { g, checked, ipdom, budget: 20 * steps + 1_000, on_exit }
+    }
+
     /// Whether a branch's way to `node` writes nothing before `meet`.
     fn is_empty(&self, node: Node, meet: Node) -> bool {
         node == meet && (node != self.g.exit || (self.on_exit)(0).is_none())

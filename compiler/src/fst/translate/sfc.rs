@@ -53,15 +53,7 @@ fn regions(
             continue;
         }
         let order = post_order(g, table, r)?;
-        let refused: Vec<Diagnostic> = (order.iter().copied())
-            .filter(|&s| s < g.exit)
-            .filter_map(|s| {
-                st::refusal(&checked.steps[s], false).map(|why| super::no_equivalent(table, checked, s, why))
-            })
-            .collect();
-        if !refused.is_empty() {
-            return Err(refused);
-        }
+        super::refuse_steps(g, table, checked, &order, false)?;
         check_budget(g, table, &longest(g, &order), budget, r)?;
         let mut exits = BTreeSet::new();
         for &s in order.iter().filter(|&&s| s < g.exit) {
@@ -121,8 +113,7 @@ pub fn to_sfc(table: &Table, checked: &Checked, target: &SfcTarget) -> Result<St
         let ipdom = post_dominators(&g, &region.order);
         let mut w = st::Writer::new(target.block, table, checked);
         let record = |next: usize| exit.filter(|_| region.exits.len() > 1).map(|f| format!("{f} := {next};"));
-        let budget = 20 * region.order.len() + 1_000;
-        let mut e = Emit { g: &g, checked, ipdom: &ipdom, budget, on_exit: &record };
+        let mut e = Emit::new(&g, checked, &ipdom, region.order.len(), &record);
         w.line(0, &format!("ACTION R{r}"));
         e.emit(&mut w, r, g.exit, 1).map_err(|_| vec![super::tangled(table)])?;
         w.line(0, "END_ACTION");
