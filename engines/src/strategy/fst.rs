@@ -278,13 +278,9 @@ impl Strategy {
             Some(Cell::Real(r)) => r.to_string().parse::<f64>().unwrap_or(0.0),
             _ => 0.0,
         };
-        let line = serde_json::json!({
-            "time": seconds(self.now_us), "task": task,
-            "program": self.store.db.blocks[member.block].name,
-            "step": step, "cmd": cmd.map(String::as_str).unwrap_or(""),
-            "RR": rr, "CF": int(&self.store, f.cells.cf),
-        });
-        t.line(&line);
+        let program = &self.store.db.blocks[member.block].name;
+        let cmd = cmd.map(String::as_str).unwrap_or("");
+        t.fst_step(self.now_us, task, program, (step, cmd), rr, int(&self.store, f.cells.cf));
     }
 }
 
