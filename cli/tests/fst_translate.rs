@@ -180,5 +180,11 @@ fn a_block_whose_state_an_action_cannot_reproduce_is_refused() {
         assert_eq!(o.status.code(), Some(1), "{}", common::stdout(&o));
         let err = common::stderr(&o);
         assert!(err.contains("error[E0430]") && err.contains(why), "{err}");
+        // Located at the value in the database file.
+        let (_, value) = field.rsplit_once(": ").expect("key: value");
+        let line = db.lines().position(|l| l.contains(field)).expect("the field's line") + 1;
+        let column =
+            db.lines().nth(line - 1).and_then(|l| l.find(field)).expect("column") + field.len() - value.len() + 1;
+        assert!(err.contains(&format!("plant.json:{line}:{column}")), "at {line}:{column}:\n{err}");
     }
 }

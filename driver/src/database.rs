@@ -33,7 +33,7 @@ pub fn load(path: Option<&Path>, files: &mut SourceFiles, r: &mut Reporter) -> R
 
 /// The text with a leading byte order mark replaced by three spaces (JSON
 /// white space of the same length, so offsets stay those of the file).
-fn without_bom(text: &str) -> std::borrow::Cow<'_, str> {
+pub(crate) fn without_bom(text: &str) -> std::borrow::Cow<'_, str> {
     match text.strip_prefix('\u{feff}') {
         Some(rest) => format!("   {rest}").into(),
         None => text.into(),

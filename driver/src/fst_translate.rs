@@ -6,7 +6,7 @@
 
 use crate::{source, Reporter};
 use linc_compiler::fst;
-use linc_compiler::Diagnostic;
+use linc_compiler::{Diagnostic, FileId};
 use linc_format::Code;
 use linc_runtime::store::Store;
 use std::path::Path;
@@ -65,13 +65,30 @@ fn prepare(path: &Path, db: &Path, block: Option<&str>, r: &mut Reporter) -> Res
     {
         if int(field) != 0 {
             let why = format!("block `{name}` has {field} {}: {why}", int(field));
-            r.emit_own(Diagnostic::command(Code::E0430, why));
+            r.emit(&dbfiles, &in_database(&dbfiles, &name, field, why));
             return Err(1);
         }
     }
     // BRK is 0 here, so this is STEPS or the default.
     let steps = linc_engines::strategy::steps_per_cycle(0, int("STEPS"));
     Ok(Prepared { table, checked, block: name, steps, files, id })
+}
+
+/// E0430 for a block's `field`, at its value in the database file (or at
+/// the block, when the value is the template's), the one file `files` holds.
+fn in_database(files: &linc_compiler::render::SourceFiles, block: &str, field: &str, why: String) -> Diagnostic {
+    let root = files.get(0).and_then(|f| linc_format::db::tree::parse(&crate::database::without_bom(f.text())).ok());
+    let at = root.as_ref().and_then(|root| linc_format::db::tree::deepest(root, &["blocks", block, "values", field]));
+    match at {
+        Some(m) if m.key == field => {
+            let span = linc_compiler::Span::new(m.value.span.0, m.value.span.1);
+            Diagnostic::error(Code::E0430, why, span).label("the table cannot start from this").in_file(FileId(0))
+        }
+        Some(m) => Diagnostic::error(Code::E0430, why, linc_compiler::Span::new(m.key_span.0, m.key_span.1))
+            .label("this block")
+            .in_file(FileId(0)),
+        None => Diagnostic::command(Code::E0430, why),
+    }
 }
 
 impl Prepared {

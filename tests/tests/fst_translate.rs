@@ -235,44 +235,67 @@ fn translated(table: &str, db: &Database, mode: Mode) -> Result<(String, Vec<u8>
             return Err(Outcome::Refused(refusals.iter().map(|d| d.code.as_str()).collect()));
         }
     };
-    let bytes = match mode {
-        Mode::St => linc_conformance::compiled(&text, "t.st", db),
-        Mode::Sfc => {
-            let ctx = linc_compiler::check::Context { db, resolve_blocks: true, steps: None };
-            let (diagnostics, object) = linc_compiler::sfc::compile_sequence(&text, "t", "t.sfc", ctx);
-            object.map(|o| o.to_bytes()).ok_or_else(|| diagnostics.iter().map(|d| d.code.as_str()).collect())
-        }
-    };
-    match bytes {
+    match compile_translation(&text, db, mode) {
         Ok(b) => Ok((text, b)),
         Err(codes) => panic!("the translation does not compile ({codes:?}):\n{table}\n{text}"),
     }
 }
 
-/// One case: the table against its translation.
-fn differential(table: &str, db_seed: u64, seconds: u64, mode: Mode) -> Outcome {
+/// The object of a translation's text, or its codes if it does not compile.
+fn compile_translation(text: &str, db: &Database, mode: Mode) -> Result<Vec<u8>, Vec<&'static str>> {
+    match mode {
+        Mode::St => linc_conformance::compiled(text, "t.st", db),
+        Mode::Sfc => {
+            let ctx = linc_compiler::check::Context { db, resolve_blocks: true, steps: None };
+            let (diagnostics, object) = linc_compiler::sfc::compile_sequence(text, "t", "t.sfc", ctx);
+            object.map(|o| o.to_bytes()).ok_or_else(|| diagnostics.iter().map(|d| d.code.as_str()).collect())
+        }
+    }
+}
+
+/// The databases of case `db_seed`: the table's, and the translation's
+/// (the same, with the block that runs the translation).
+fn databases(db_seed: u64, mode: Mode) -> (Database, Database) {
     let db_a = database(&mut Rng::new(db_seed), None);
     let db_b = database(&mut Rng::new(db_seed), Some(mode));
-    let db = Database::from_json(&db_a).expect("database");
+    (Database::from_json(&db_a).expect("database"), Database::from_json(&db_b).expect("database"))
+}
+
+/// One case: the table against its translation.
+fn differential(table: &str, db_seed: u64, seconds: u64, mode: Mode) -> Outcome {
+    let (db, db_translated) = databases(db_seed, mode);
     let (diagnostics, object) = fst::compile(table, "t", "t.csv", Some(&db));
     let Some(object) = object else {
         let first = diagnostics.iter().find(|d| d.is_error()).expect("a table that does not compile has an error");
         return Outcome::NotATable(first.code.as_str());
     };
-    let db_translated = Database::from_json(&db_b).expect("database");
-    let (st, bytes) = match translated(table, &db_translated, mode) {
+    let (text, bytes) = match translated(table, &db_translated, mode) {
         Ok(t) => t,
         Err(outcome) => return outcome,
     };
-    // The table on its FST block.
+    if let Err(difference) = same(object, db, &bytes, db_translated, seconds) {
+        panic!("{difference}\n{table}\n{text}");
+    }
+    Outcome::Same
+}
+
+/// Runs the table's object on `FST 1` of `db` and the translation's on its
+/// block of `db_translated`, each for `seconds`; where their traces or
+/// databases first differ, if they do.
+fn same(
+    table: linc_runtime::ObjectFile,
+    db: Database,
+    translation: &[u8],
+    db_translated: Database,
+    seconds: u64,
+) -> Result<(), String> {
     let store = Store::new(db);
     let block = store.db.block("FST 1").expect("FST 1");
     let want = Want { block, file: "t.csv".into(), action: String::new(), kind: WantKind::Fst };
-    let verified = linc_runtime::verify::verify(object).expect("verifies");
+    let verified = linc_runtime::verify::verify(table).expect("verifies");
     let vm = Vm::new(linc_runtime::vm::DEFAULT_WATCHDOG, Clock::new(1, 0));
     let a = Strategy::build(store, vec![verified], &[(want, 0)], vm, START).expect("builds");
-    // The translation on its own block of the same database.
-    let verified = linc_runtime::load(&bytes).expect("loads");
+    let verified = linc_runtime::load(translation).expect("loads");
     let store = Store::new(db_translated);
     let wants: Vec<_> = linc_engines::strategy::wanted(&store).into_iter().map(|w| (w, 0)).collect();
     let vm = Vm::new(linc_runtime::vm::DEFAULT_WATCHDOG, Clock::new(1, 0));
@@ -281,14 +304,13 @@ fn differential(table: &str, db_seed: u64, seconds: u64, mode: Mode) -> Outcome 
     if trace_a != trace_b {
         let (mut a, mut b) = (trace_a.lines(), trace_b.lines());
         let at = (0..).find(|_| a.next() != b.next()).unwrap_or_default();
-        panic!(
-            "the traces differ at change {at}: table {:?}, translation {:?}\n{table}\n{st}",
-            trace_a.lines().nth(at),
-            trace_b.lines().nth(at)
-        );
+        let (a, b) = (trace_a.lines().nth(at), trace_b.lines().nth(at));
+        return Err(format!("the traces differ at change {at}: table {a:?}, translation {b:?}"));
     }
-    assert_eq!(cells_a[..], cells_b[..cells_a.len()], "the databases differ\n{table}\n{st}");
-    Outcome::Same
+    if cells_a[..] != cells_b[..cells_a.len()] {
+        return Err(format!("the databases differ: {cells_a:?} against {:?}", &cells_b[..cells_a.len()]));
+    }
+    Ok(())
 }
 
 #[test]
@@ -409,4 +431,44 @@ fn a_sequence_has_a_step_where_each_cycle_can_start() {
     insta::assert_snapshot!("fst_to_sfc_wait", sfc);
     // A WT whose time is a parameter has no transition to test it.
     assert_eq!(as_sequence(&[",WT,\"FST 1,R1\",", ",END,,"], None), Err(vec!["E0430"]));
+}
+
+/// The differential can fail: translations changed by one token each — a
+/// comparison's edge, a constant, an output, the sign of a zero — run
+/// against their table are each told apart, as ST and as a sequence.
+#[test]
+fn the_differential_tells_a_wrong_translation_apart() {
+    let table = linc_conformance::fst::table(&[
+        ",VAL,\"SFP 1,DATA1\",",
+        ",+,0.5,",
+        ",SAV,\"SFP 1,DATA1\",",
+        ",>,2,HIGH",
+        ",DO,DOU 4-1,0",
+        ",END,,",
+        "HIGH,VAL,0,",
+        ",SAV,\"SFP 1,DATA1\",",
+        ",DO,DOU 4-1,1",
+    ]);
+    let mutants = [
+        ("[FST 1.RR] > 2.0", "[FST 1.RR] >= 2.0"),
+        ("[FST 1.RR] := [FST 1.RR] + 0.5;", "[FST 1.RR] := [FST 1.RR] + 0.25;"),
+        ("[DOU 4-1.STATUS] := 1;", "[DOU 4-1.STATUS] := 0;"),
+        ("[FST 1.RR] := 0.0;", "[FST 1.RR] := -0.0;"),
+    ];
+    for mode in [Mode::St, Mode::Sfc] {
+        let case = |text: &str| {
+            let (db, db_translated) = databases(0, mode);
+            let bytes = compile_translation(text, &db_translated, mode).expect("compiles");
+            let (_, object) = fst::compile(&table, "t", "t.csv", Some(&db));
+            same(object.expect("the table compiles"), db, &bytes, db_translated, 10)
+        };
+        let Ok((text, _)) = translated(&table, &databases(0, mode).1, mode) else { panic!("translates") };
+        assert_eq!(case(&text), Ok(()), "the translation itself");
+        for (from, to) in mutants {
+            let mutant = text.replacen(from, to, 1);
+            assert_ne!(mutant, text, "{from} is in the translation");
+            let difference = case(&mutant).expect_err(to);
+            assert!(difference.starts_with("the traces differ at change "), "{difference}");
+        }
+    }
 }
