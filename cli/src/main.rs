@@ -172,6 +172,15 @@ enum Command {
         /// Where --coverage writes its report, or --merge-coverage the sum.
         #[arg(short, long, value_name = "FILE")]
         out: Option<PathBuf>,
+        /// Fail (E0913, exit 1) when under this share of functions (actions, steps, transitions) ran.
+        #[arg(long, value_name = "PERCENT", value_parser = linc_driver::coverage::Gate::parse_percent)]
+        fail_under_functions: Option<f64>,
+        /// Fail (E0913, exit 1) when under this share of lines ran.
+        #[arg(long, value_name = "PERCENT", value_parser = linc_driver::coverage::Gate::parse_percent)]
+        fail_under_lines: Option<f64>,
+        /// Fail (E0913, exit 1) when under this share of branch outcomes was taken.
+        #[arg(long, value_name = "PERCENT", value_parser = linc_driver::coverage::Gate::parse_percent)]
+        fail_under_branches: Option<f64>,
     },
     /// A command console over a running strategy: display, modify and force fields, start and stop
     /// programs, control sequences, move the simulated clock (docs/console.md).
@@ -533,8 +542,29 @@ fn dispatch(command: Command, r: &mut Reporter) -> u8 {
         }
         Command::Run(run) => run_command(*run, r),
         Command::Eval { expr, db, now, seed } => eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed, r),
-        Command::Test { paths, jobs, junit, vcd, shard, list, coverage, merge_coverage, out } => {
-            test_cmd::run(&test_cmd::Options { paths, jobs, junit, vcd, shard, list, coverage, merge_coverage, out }, r)
+        Command::Test {
+            paths,
+            jobs,
+            junit,
+            vcd,
+            shard,
+            list,
+            coverage,
+            merge_coverage,
+            out,
+            fail_under_functions,
+            fail_under_lines,
+            fail_under_branches,
+        } => {
+            let gate = linc_driver::coverage::Gate {
+                functions: fail_under_functions,
+                lines: fail_under_lines,
+                branches: fail_under_branches,
+            };
+            test_cmd::run(
+                &test_cmd::Options { paths, jobs, junit, vcd, shard, list, coverage, merge_coverage, out, gate },
+                r,
+            )
         }
         Command::Disasm { file } => disasm_cmd::run(&file, r),
         Command::Check { files, db, tree, transition, sequence, map, allow_unmapped, resources, instrument } => {

@@ -6,7 +6,7 @@
 
 use crate::report::usage;
 use linc_compiler::scenario::{self, Target};
-use linc_driver::coverage::{Coverage, Format};
+use linc_driver::coverage::{Coverage, Format, Gate};
 use linc_driver::scenarios::{Outcome, Recording};
 use linc_driver::Reporter;
 use std::path::{Path, PathBuf};
@@ -25,6 +25,8 @@ pub struct Options {
     /// Add these lcov files instead of running anything (`-o` the sum).
     pub merge_coverage: Vec<PathBuf>,
     pub out: Option<PathBuf>,
+    /// The shares of coverage under which the run fails.
+    pub gate: Gate,
 }
 
 /// Every `.ltest` file under the paths, sorted, each once.
@@ -77,12 +79,28 @@ fn merge(o: &Options, r: &mut Reporter) -> u8 {
         return crate::report::refused(r, e.diagnostic());
     }
     crate::out::line(sum.summary().trim_end());
-    0
+    gate(&sum, &o.gate, r)
+}
+
+/// Reports each kind of coverage under what `--fail-under-*` asks (E0913);
+/// the exit status, 1 if any is.
+fn gate(coverage: &Coverage, gate: &Gate, r: &mut Reporter) -> u8 {
+    let short = coverage.short_of(gate);
+    for (kind, share, want) in &short {
+        r.command(
+            linc_format::Code::E0913,
+            format!("{share:.2}% of {kind} covered, under the {want}% --fail-under-{kind} asks for"),
+        );
+    }
+    u8::from(!short.is_empty())
 }
 
 pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     if !o.merge_coverage.is_empty() {
         return merge(o, r);
+    }
+    if o.gate.is_set() && o.coverage.is_none() {
+        return usage(r, "--fail-under-* needs --coverage (or --merge-coverage), whose counts it checks");
     }
     if o.out.is_some() && o.coverage.is_none() {
         return usage(r, "-o names where --coverage or --merge-coverage writes; give one of them");
@@ -141,8 +159,10 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
         }
     }
     if let Some(format) = o.coverage {
-        if let Err(status) = write_coverage(format, o.out.as_deref(), &outcomes, r) {
-            return status;
+        match write_coverage(format, o.out.as_deref(), &outcomes, r) {
+            Ok(all) if gate(&all, &o.gate, r) != 0 => return 1,
+            Ok(_) => {}
+            Err(status) => return status,
         }
     }
     u8::from(!failed.is_empty())
@@ -150,7 +170,8 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
 
 /// The scenarios' coverage added up (in file order; sums do not depend on
 /// it) and written as `format`: to `out`, or a summary to standard output.
-fn write_coverage(format: Format, out: Option<&Path>, outcomes: &[Outcome], r: &mut Reporter) -> Result<(), u8> {
+/// The sum, for the gate.
+fn write_coverage(format: Format, out: Option<&Path>, outcomes: &[Outcome], r: &mut Reporter) -> Result<Coverage, u8> {
     let mut all = Coverage::default();
     outcomes.iter().filter_map(|o| o.coverage.as_ref()).for_each(|c| all.merge(c));
     let text = match format {
@@ -160,12 +181,10 @@ fn write_coverage(format: Format, out: Option<&Path>, outcomes: &[Outcome], r: &
     };
     match out {
         Some(path) => linc_driver::files::write_atomic(path, text.as_bytes())
-            .map_err(|e| crate::report::refused(r, e.diagnostic())),
-        None => {
-            crate::out::line(text.trim_end());
-            Ok(())
-        }
+            .map_err(|e| crate::report::refused(r, e.diagnostic()))?,
+        None => crate::out::line(text.trim_end()),
     }
+    Ok(all)
 }
 
 /// `--junit` and `--vcd` may not name one file, nor a scenario or a file a

@@ -82,6 +82,48 @@ fn the_summary_prints_a_table_per_file_with_totals() {
     assert_eq!(o.status.code(), Some(2), "{}", common::stderr(&o));
 }
 
+/// `--fail-under-*` fails the run (E0913, exit 1) when a share is under
+/// its threshold, as `cargo llvm-cov` does; the ladder example covers 100%
+/// of functions, 62.50% of lines and 58.33% of branch outcomes.
+#[test]
+fn a_share_under_its_threshold_fails_the_run() {
+    let run = |extra: &[&str]| {
+        let mut args = vec!["test", "examples/ladder", "--coverage", "summary"];
+        args.extend(extra);
+        common::linc(&args)
+    };
+    let o = run(&["--fail-under-functions", "100", "--fail-under-lines", "62.5", "--fail-under-branches", "58%"]);
+    assert_eq!(o.status.code(), Some(0), "at or over each threshold: {}", common::stderr(&o));
+    let o = run(&["--fail-under-lines", "63", "--fail-under-branches", "60"]);
+    assert_eq!(o.status.code(), Some(1), "{}", common::stderr(&o));
+    let err = common::stderr(&o);
+    let errors: Vec<&str> = err.lines().filter(|l| l.contains("error[E0913]")).collect();
+    assert_eq!(
+        errors,
+        [
+            "error[E0913]: 62.50% of lines covered, under the 63% --fail-under-lines asks for",
+            "error[E0913]: 58.33% of branches covered, under the 60% --fail-under-branches asks for"
+        ],
+        "{err}"
+    );
+    assert!(common::stdout(&o).contains("TOTAL"), "the report is still printed");
+    // A share is a number from 0 to 100, and a gate needs counts.
+    assert_eq!(run(&["--fail-under-lines", "101"]).status.code(), Some(2));
+    assert_eq!(run(&["--fail-under-lines", "x"]).status.code(), Some(2));
+    let o = common::linc(&["test", "examples/ladder", "--fail-under-lines", "50"]);
+    assert_eq!(o.status.code(), Some(2), "{}", common::stderr(&o));
+    // Merged shards are gated the same way; the sum is written first.
+    let dir = linc_test_support::fresh_dir("coverage-gate");
+    let info = dir.join("ladder.info");
+    assert_eq!(covered(&["examples/ladder"], "lcov", &info).status.code(), Some(0));
+    let sum = dir.join("sum.info").to_string_lossy().into_owned();
+    let info = info.to_string_lossy().into_owned();
+    let o = common::linc(&["test", "--merge-coverage", &info, "-o", &sum, "--fail-under-branches", "90"]);
+    assert_eq!(o.status.code(), Some(1), "{}", common::stderr(&o));
+    assert!(common::stderr(&o).contains("58.33% of branches covered"), "{}", common::stderr(&o));
+    assert!(std::path::Path::new(&sum).exists(), "the sum is written");
+}
+
 /// Whether a tool is on the machine; when it is not, the test is skipped
 /// unless `LINC_REQUIRE_COVERAGE_TOOLS` is set (as `.ci/run` does).
 fn tool(name: &str) -> bool {

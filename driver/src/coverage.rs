@@ -172,11 +172,8 @@ impl Coverage {
     /// The timestamp is 0, so equal counts give equal bytes.
     pub fn to_cobertura(&self) -> String {
         let rate = |hit: usize, all: usize| if all == 0 { 1.0 } else { hit as f64 / all as f64 };
-        let sum = self
-            .files
-            .values()
-            .map(Coverage::totals)
-            .fold((0, 0, 0, 0), |a, t| (a.0 + t.0, a.1 + t.1, a.2 + t.2, a.3 + t.3));
+        let [_, (lh, lf), (bh, bf)] = self.sums();
+        let sum = (lh, lf, bh, bf);
         let mut out = String::from("<?xml version=\"1.0\" ?>\n<!DOCTYPE coverage SYSTEM \"http://cobertura.sourceforge.net/xml/coverage-04.dtd\">\n");
         out.push_str(&format!(
             "<coverage line-rate=\"{:.4}\" branch-rate=\"{:.4}\" lines-covered=\"{}\" lines-valid=\"{}\" branches-covered=\"{}\" branches-valid=\"{}\" complexity=\"0\" version=\"linc\" timestamp=\"0\">\n  <sources>\n    <source>.</source>\n  </sources>\n  <packages>\n",
@@ -256,6 +253,60 @@ impl Coverage {
         out.push_str(&rule);
         out.push('\n');
         out.push_str(&row("TOTAL", total));
+        out
+    }
+}
+
+/// The shares `linc test --fail-under-functions`, `--fail-under-lines` and
+/// `--fail-under-branches` ask for, in percent, as `cargo llvm-cov` takes
+/// them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Gate {
+    pub functions: Option<f64>,
+    pub lines: Option<f64>,
+    pub branches: Option<f64>,
+}
+
+impl Gate {
+    /// A share from the command line: a number from 0 to 100.
+    pub fn parse_percent(text: &str) -> Result<f64, String> {
+        match text.trim_end_matches('%').parse::<f64>() {
+            Ok(p) if (0.0..=100.0).contains(&p) => Ok(p),
+            _ => Err(format!("`{text}` is not a share from 0 to 100 (percent)")),
+        }
+    }
+
+    pub fn is_set(&self) -> bool {
+        self.functions.is_some() || self.lines.is_some() || self.branches.is_some()
+    }
+}
+
+impl Coverage {
+    /// Hit and found counts of functions, lines and branches over all files.
+    pub fn sums(&self) -> [(usize, usize); 3] {
+        let mut sums = [(0, 0); 3];
+        for f in self.files.values() {
+            let (lh, lf, bh, bf) = Coverage::totals(f);
+            let fh = f.functions.values().filter(|(_, h)| *h > 0).count();
+            for (sum, (hit, all)) in sums.iter_mut().zip([(fh, f.functions.len()), (lh, lf), (bh, bf)]) {
+                *sum = (sum.0 + hit, sum.1 + all);
+            }
+        }
+        sums
+    }
+
+    /// Each kind whose share is under what `gate` asks: its name, its share
+    /// and the threshold, all in percent. A kind with nothing to cover
+    /// (no branches at all) is wholly covered, so it never fails a gate.
+    pub fn short_of(&self, gate: &Gate) -> Vec<(&'static str, f64, f64)> {
+        let kinds = [("functions", gate.functions), ("lines", gate.lines), ("branches", gate.branches)];
+        let mut out = Vec::new();
+        for ((name, want), (hit, all)) in kinds.into_iter().zip(self.sums()) {
+            let share = if all == 0 { 100.0 } else { hit as f64 * 100.0 / all as f64 };
+            if let Some(want) = want.filter(|w| share < *w) {
+                out.push((name, share, want));
+            }
+        }
         out
     }
 }

@@ -259,6 +259,7 @@ codes! {
     E0910 => "trace line is not a trace record",
     E0911 => "trend field the trace never writes",
     E0912 => "coverage file is not an lcov tracefile",
+    E0913 => "coverage is under the share asked for",
     E0920 => "ROC host word file is invalid",
     E0921 => "ROC command list has the wrong shape",
     E0922 => "ROC command has a value out of range",
