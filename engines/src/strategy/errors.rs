@@ -161,7 +161,7 @@ impl Strategy {
     /// clears the error status; the engine sets it back to FALSE. Programs
     /// stopped by an error stay stopped.
     pub(super) fn check_clear(&mut self, task: u8, mut trace: Option<&mut Trace>) {
-        let Some(cell) = self.system.and_then(|s| self.store.cell_of(s, "Clear")) else { return };
+        let Some(cell) = self.clear else { return };
         if self.store.cells.get(cell as usize) != Some(&Cell::Bool(true)) || self.halted {
             return;
         }

@@ -159,6 +159,9 @@ struct Member {
     /// Kept as it is but not scanned (the console's SUSPEND).
     suspended: bool,
     cells: BlockCells,
+    /// The qualifier each value of the block's `Qualifier` enumeration
+    /// stands for, read from the names once, not at every scan.
+    quals: Box<[Qualifier]>,
     /// The sequence an SFC_CON block runs.
     seq: Option<Box<crate::sequence::Sequence>>,
     /// The state of the table an FST block runs.
@@ -183,6 +186,8 @@ pub struct Strategy {
     error: Option<ErrorStatus>,
     error_program: Option<usize>,
     system: Option<usize>,
+    /// SYSTEM.Clear, looked up once: it is read after every program's scan.
+    clear: Option<u32>,
     halted: bool,
     /// Runtime errors of this `run_for`, in order (entered or not).
     failures: Vec<crate::RuntimeError>,
@@ -230,6 +235,8 @@ impl Strategy {
             let program = programs[*o].len();
             programs[*o].push(Program { unit, own: Some(w.block) });
             let cells = BlockCells::of(&store, w.block);
+            let names = cells.qualifier.map(|c| store.enum_names(c)).unwrap_or_default();
+            let quals = names.iter().map(|n| Qualifier::parse(n).unwrap_or(Qualifier::N)).collect();
             let act = Activation::default();
             members.push(Member {
                 block: w.block,
@@ -240,6 +247,7 @@ impl Strategy {
                 stopped: false,
                 suspended: false,
                 cells,
+                quals,
                 seq: None,
                 fst: None,
             });
@@ -276,6 +284,7 @@ impl Strategy {
             error: None,
             error_program: None,
             system: None,
+            clear: None,
             halted: false,
             failures: Vec::new(),
             now_us: 0,
@@ -292,6 +301,7 @@ impl Strategy {
         let system = (0..self.store.db.blocks.len())
             .find(|&b| self.store.db.block_template(b).name.eq_ignore_ascii_case(errors::SYSTEM));
         self.system = system;
+        self.clear = system.and_then(|s| self.store.cell_of(s, "Clear"));
         let Some(sys) = system else { return Ok(()) };
         let name = text_field(&self.store, sys, "ErrProg").unwrap_or_default();
         if name.is_empty() {
@@ -429,8 +439,8 @@ impl Strategy {
         };
         let q = c
             .qualifier
-            .and_then(|cell| self.store.enum_names(cell).get(enum_index(&self.store, cell)))
-            .and_then(|n| Qualifier::parse(n))
+            .and_then(|cell| self.members[m].quals.get(enum_index(&self.store, cell)))
+            .copied()
             .unwrap_or(Qualifier::N);
         let time = match c.qual_time.and_then(|c| self.store.cells.get(c as usize)) {
             Some(Cell::Real(r)) => micros(f64::from(*r)),

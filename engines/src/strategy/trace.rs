@@ -174,17 +174,19 @@ mod tests {
     use super::*;
     use crate::db::Database;
 
-    fn store() -> Store {
+    /// A store of one FST block, and the cell of its R1.
+    fn store() -> (Store, u32) {
         let db = r#"{ "device": "ROC800", "blocks": { "FST 1": { "type": "FST" } } }"#;
-        Store::new(Database::from_json(db).expect("database"))
+        let s = Store::new(Database::from_json(db).expect("database"));
+        let cell = s.db.block("FST 1").and_then(|b| s.cell_of(b, "R1")).expect("R1");
+        (s, cell)
     }
 
     /// The lines written field by field are the bytes the `Value` of each
     /// prints, escapes and awkward times included.
     #[test]
     fn lines_are_the_json_values_they_stand_for() {
-        let mut s = store();
-        let cell = s.db.block("FST 1").and_then(|b| s.cell_of(b, "R1")).expect("R1");
+        let (mut s, cell) = store();
         let mut out = Vec::new();
         let mut t = Trace::new(&mut out, &s);
         s.cells[cell as usize] = Cell::Real(2.5);
@@ -210,8 +212,7 @@ mod tests {
     /// is one, though `==` calls them equal.
     #[test]
     fn a_change_is_a_change_of_bits() {
-        let mut s = store();
-        let cell = s.db.block("FST 1").and_then(|b| s.cell_of(b, "R1")).expect("R1");
+        let (mut s, cell) = store();
         let mut out = Vec::new();
         let mut t = Trace::new(&mut out, &s);
         t.write(&s, 0, 0, "p", cell);
