@@ -6,27 +6,9 @@ use linc_driver::Reporter;
 use std::path::{Path, PathBuf};
 
 pub fn run(o: &Options, out: Option<&Path>, r: &mut Reporter) -> u8 {
-    if let Some(path) = out {
-        let inputs: Vec<&Path> =
-            [Some(o.file.as_path()), o.db.as_deref(), o.state.as_deref()].into_iter().flatten().collect();
-        if let Err(e) = linc_driver::files::check_output(path, &inputs) {
-            return crate::report::refused(r, e.diagnostic());
-        }
-    }
-    let (svg, status) = match linc_driver::draw::picture(o, r) {
-        Ok(drawn) => drawn,
-        Err(status) => return status,
-    };
-    match out {
-        Some(path) => match linc_driver::files::write_atomic(path, svg.as_bytes()) {
-            Ok(()) => status,
-            Err(e) => crate::report::refused(r, e.diagnostic()),
-        },
-        None => {
-            crate::out::print(&svg);
-            status
-        }
-    }
+    let inputs: Vec<&Path> =
+        [Some(o.file.as_path()), o.db.as_deref(), o.state.as_deref()].into_iter().flatten().collect();
+    crate::out::print_or_write(out, &inputs, r, |r| linc_driver::draw::picture(o, r))
 }
 
 /// `linc draw`'s options.

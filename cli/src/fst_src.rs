@@ -44,23 +44,5 @@ pub fn translate(
     r: &mut Reporter,
     make: impl FnOnce(&mut Reporter) -> Result<String, u8>,
 ) -> u8 {
-    if let Some(out) = out {
-        if let Err(e) = linc_driver::files::check_output(out, &[path, db]) {
-            return crate::report::refused(r, e.diagnostic());
-        }
-    }
-    let text = match make(r) {
-        Ok(t) => t,
-        Err(status) => return status,
-    };
-    match out {
-        Some(out) => match linc_driver::files::write_atomic(out, text.as_bytes()) {
-            Ok(()) => 0,
-            Err(e) => crate::report::refused(r, e.diagnostic()),
-        },
-        None => {
-            crate::out::print(&text);
-            0
-        }
-    }
+    crate::out::print_or_write(out, &[path, db], r, |r| make(r).map(|text| (text, 0)))
 }

@@ -21,6 +21,37 @@ pub fn line(text: &str) {
     let _ = out.write_all(b"\n");
 }
 
+/// What a command made, printed, or written atomically to `out` (`-o`),
+/// which is checked against the command's `inputs` before anything is
+/// made. `make` gives the text and the exit status, or the status alone
+/// when it failed.
+pub fn print_or_write(
+    out: Option<&std::path::Path>,
+    inputs: &[&std::path::Path],
+    r: &mut linc_driver::Reporter,
+    make: impl FnOnce(&mut linc_driver::Reporter) -> Result<(String, u8), u8>,
+) -> u8 {
+    if let Some(out) = out {
+        if let Err(e) = linc_driver::files::check_output(out, inputs) {
+            return crate::report::refused(r, e.diagnostic());
+        }
+    }
+    let (text, status) = match make(r) {
+        Ok(made) => made,
+        Err(status) => return status,
+    };
+    match out {
+        Some(out) => match linc_driver::files::write_atomic(out, text.as_bytes()) {
+            Ok(()) => status,
+            Err(e) => crate::report::refused(r, e.diagnostic()),
+        },
+        None => {
+            print(&text);
+            status
+        }
+    }
+}
+
 /// Standard output written as it is made (a listing or a drawing can be
 /// many times its input), escaped like [`print`] and buffered.
 pub struct Stream {

@@ -75,20 +75,19 @@ fn prepare(path: &Path, db: &Path, block: Option<&str>, r: &mut Reporter) -> Res
 }
 
 /// E0430 for a block's `field`, at its value in the database file (or at
-/// the block, when the value is the template's), the one file `files` holds.
+/// the block's name, when the value is the template's), the one file
+/// `files` holds.
 fn in_database(files: &linc_compiler::render::SourceFiles, block: &str, field: &str, why: String) -> Diagnostic {
     let root = files.get(0).and_then(|f| linc_format::db::tree::parse(&crate::database::without_bom(f.text())).ok());
-    let at = root.as_ref().and_then(|root| linc_format::db::tree::deepest(root, &["blocks", block, "values", field]));
-    match at {
-        Some(m) if m.key == field => {
-            let span = linc_compiler::Span::new(m.value.span.0, m.value.span.1);
-            Diagnostic::error(Code::E0430, why, span).label("the table cannot start from this").in_file(FileId(0))
-        }
-        Some(m) => Diagnostic::error(Code::E0430, why, linc_compiler::Span::new(m.key_span.0, m.key_span.1))
-            .label("this block")
-            .in_file(FileId(0)),
-        None => Diagnostic::command(Code::E0430, why),
-    }
+    let written = |path: &[&str]| linc_format::db::tree::member_at(root.as_ref()?, path);
+    let (span, label) = if let Some(m) = written(&["blocks", block, "values", field]) {
+        (m.value.span, "the table cannot start from this")
+    } else if let Some(m) = written(&["blocks", block]) {
+        (m.key_span, "this block")
+    } else {
+        return Diagnostic::command(Code::E0430, why);
+    };
+    Diagnostic::error(Code::E0430, why, linc_compiler::Span::new(span.0, span.1)).label(label).in_file(FileId(0))
 }
 
 impl Prepared {

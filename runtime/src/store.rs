@@ -174,22 +174,27 @@ impl Store {
 
     /// A cell's value as ST would print it.
     pub fn show(&self, cell: u32) -> String {
-        match self.cells.get(cell as usize) {
-            Some(Cell::Real(r)) => format_value(&Value::Real(*r)),
-            Some(Cell::Int(i)) => i.to_string(),
-            Some(Cell::Bool(b)) => format_value(&Value::Bool(*b)),
-            Some(Cell::Bits { v, width }) => bits_value(*v, *width).to_string(),
-            Some(Cell::Enum { idx }) => {
+        self.cells.get(cell as usize).map(|v| self.show_as(cell, v)).unwrap_or_default()
+    }
+
+    /// `value` as ST would print it were it `cell`'s (whose field gives an
+    /// ENUM its names): a trace shows the value a cell had before a write.
+    pub fn show_as(&self, cell: u32, value: &Cell) -> String {
+        match value {
+            Cell::Real(r) => format_value(&Value::Real(*r)),
+            Cell::Int(i) => i.to_string(),
+            Cell::Bool(b) => format_value(&Value::Bool(*b)),
+            Cell::Bits { v, width } => bits_value(*v, *width).to_string(),
+            Cell::Enum { idx } => {
                 let name = self.enum_names(cell).get(usize::from(*idx)).cloned().unwrap_or_default();
                 format_value(&Value::Bytes(name.into_bytes()))
             }
-            Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => format_value(&Value::Bytes(t.clone())),
-            Some(Cell::Alarms(a)) => {
+            Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t) => format_value(&Value::Bytes(t.clone())),
+            Cell::Alarms(a) => {
                 let on: Vec<&str> =
                     a.names.iter().zip(&a.active).filter(|(_, on)| **on).map(|(n, _)| n.as_str()).collect();
                 format!("[{}]", on.join(", "))
             }
-            None => String::new(),
         }
     }
 

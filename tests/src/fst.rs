@@ -41,6 +41,12 @@ pub fn strategy(table: &str, db: Database) -> Strategy {
 pub fn strategy_at(table: &str, db: Database, start: f64) -> Strategy {
     let (diagnostics, object) = linc_compiler::fst::compile(table, "t", "t.csv", Some(&db));
     let object = object.unwrap_or_else(|| panic!("table does not compile: {diagnostics:?}"));
+    strategy_of(object, db, start)
+}
+
+/// A table's compiled `object` run by the block `FST 1` of `db`, the clock
+/// starting at `start`.
+pub fn strategy_of(object: linc_runtime::ObjectFile, db: Database, start: f64) -> Strategy {
     let verified = linc_runtime::verify::verify(object).unwrap_or_else(|e| panic!("verify: {e}"));
     let store = Store::new(db);
     let block = store.db.block("FST 1").expect("FST 1");

@@ -14,7 +14,7 @@
 use linc_compiler::fst;
 use linc_conformance::fst::START;
 use linc_conformance::rng::Rng;
-use linc_engines::strategy::{trace::Trace, Strategy, Want, WantKind};
+use linc_engines::strategy::{trace::Trace, Strategy};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::{Database, Store};
 use std::borrow::Cow;
@@ -289,12 +289,7 @@ fn same(
     db_translated: Database,
     seconds: u64,
 ) -> Result<(), String> {
-    let store = Store::new(db);
-    let block = store.db.block("FST 1").expect("FST 1");
-    let want = Want { block, file: "t.csv".into(), action: String::new(), kind: WantKind::Fst };
-    let verified = linc_runtime::verify::verify(table).expect("verifies");
-    let vm = Vm::new(linc_runtime::vm::DEFAULT_WATCHDOG, Clock::new(1, 0));
-    let a = Strategy::build(store, vec![verified], &[(want, 0)], vm, START).expect("builds");
+    let a = linc_conformance::fst::strategy_of(table, db, START);
     let verified = linc_runtime::load(translation).expect("loads");
     let store = Store::new(db_translated);
     let wants: Vec<_> = linc_engines::strategy::wanted(&store).into_iter().map(|w| (w, 0)).collect();

@@ -9,10 +9,10 @@ use std::io::Write;
 /// Writes trace lines, remembering each field's last value to give the old one.
 pub struct Trace<'w> {
     out: &'w mut dyn Write,
-    shown: Vec<Option<String>>,
-    /// Each cell as it was when last shown: a write that leaves the bits
-    /// as they were is dismissed without formatting the value, which is
-    /// most writes of a running strategy.
+    /// Each cell as it was last seen: a write that leaves the bits as they
+    /// were is dismissed without formatting the value, which is most
+    /// writes of a running strategy; the old text of a change is shown
+    /// from it.
     seen: Vec<Cell>,
     /// The line being written, kept to spare an allocation per line.
     buf: Vec<u8>,
@@ -36,25 +36,21 @@ pub fn seconds(us: u64) -> serde_json::Value {
 
 impl<'w> Trace<'w> {
     pub fn new(out: &'w mut dyn Write, store: &Store) -> Trace<'w> {
-        let shown = (0..store.cells.len() as u32).map(|c| Some(store.show(c))).collect();
-        Trace { out, shown, seen: store.cells.clone(), buf: Vec::new(), failed: None }
+        Trace { out, seen: store.cells.clone(), buf: Vec::new(), failed: None }
     }
 
     /// The old and new text of `cell` if its value changed since it was
-    /// last seen (the new one is remembered).
+    /// last seen (the new one is remembered). Bits that differ but show
+    /// the same (two NaNs) are no change.
     fn changed(&mut self, store: &Store, cell: u32) -> Option<(String, String)> {
         let now = store.cells.get(cell as usize)?;
         let seen = self.seen.get_mut(cell as usize)?;
         if identical(seen, now) {
             return None;
         }
+        let (old, new) = (store.show_as(cell, seen), store.show_as(cell, now));
         seen.clone_from(now);
-        let new = store.show(cell);
-        let slot = self.shown.get_mut(cell as usize)?;
-        if slot.as_deref() == Some(new.as_str()) {
-            return None;
-        }
-        Some((slot.replace(new.clone()).unwrap_or_default(), new))
+        (old != new).then_some((old, new))
     }
 
     /// Records `cell` if its value changed since it was last seen. The
@@ -71,8 +67,7 @@ impl<'w> Trace<'w> {
         b.extend_from_slice(b",\"new\":");
         let _ = serde_json::to_writer(&mut b, &new);
         b.extend_from_slice(b"}\n");
-        self.raw(&b);
-        self.buf = b;
+        self.end(b);
     }
 
     /// Records a write by a client on the wire (`roc 127.0.0.1:51000`) if
@@ -112,8 +107,7 @@ impl<'w> Trace<'w> {
             let _ = write!(b, ",\"active\":{v}");
         }
         b.extend_from_slice(b"}\n");
-        self.raw(&b);
-        self.buf = b;
+        self.end(b);
     }
 
     /// Records a step an FST table executed: its number and command
@@ -125,15 +119,13 @@ impl<'w> Trace<'w> {
         b.extend_from_slice(b",\"RR\":");
         let _ = serde_json::to_writer(&mut b, &rr);
         let _ = writeln!(b, ",\"CF\":{cf}}}");
-        self.raw(&b);
-        self.buf = b;
+        self.end(b);
     }
 
     /// The buffer, holding the start of a line every program's event has:
     /// `{"time":…,"task":…,"program":…`.
     fn head(&mut self, now_us: u64, task: u8, program: &str) -> Vec<u8> {
-        let mut b = std::mem::take(&mut self.buf);
-        b.clear();
+        let mut b = self.start();
         b.extend_from_slice(b"{\"time\":");
         let _ = serde_json::to_writer(&mut b, &(now_us as f64 / 1e6));
         let _ = write!(b, ",\"task\":{task},\"program\":");
@@ -143,21 +135,28 @@ impl<'w> Trace<'w> {
 
     /// Records any other event (an error entered or cleared).
     pub fn line(&mut self, v: &serde_json::Value) {
-        let mut b = std::mem::take(&mut self.buf);
-        b.clear();
+        let mut b = self.start();
         let _ = serde_json::to_writer(&mut b, v);
         b.push(b'\n');
-        self.raw(&b);
-        self.buf = b;
+        self.end(b);
     }
 
-    /// Writes one whole line, so that a sink sees one write per line.
-    fn raw(&mut self, line: &[u8]) {
+    /// The line buffer, empty, to write a line into.
+    fn start(&mut self) -> Vec<u8> {
+        let mut b = std::mem::take(&mut self.buf);
+        b.clear();
+        b
+    }
+
+    /// Writes the line in `b` whole, so that a sink sees one write per
+    /// line, and keeps the buffer for the next.
+    fn end(&mut self, b: Vec<u8>) {
         if self.failed.is_none() {
-            if let Err(e) = self.out.write_all(line) {
+            if let Err(e) = self.out.write_all(&b) {
                 self.failed = Some(e);
             }
         }
+        self.buf = b;
     }
 
     /// The first write error, if any (reported once, at the end).

@@ -83,14 +83,15 @@ pub fn get<'a>(members: &'a [Member], key: &str) -> Option<&'a Member> {
     members.iter().find(|m| m.key == key)
 }
 
-/// The member at the end of `path` (keys from the root object down), or
-/// the deepest one on the way that is written: a complaint about a value
-/// can point at it, or at its nearest written parent when the value is a
-/// default.
-pub fn deepest<'a>(root: &'a Node, path: &[&str]) -> Option<&'a Member> {
-    let (first, rest) = path.split_first()?;
-    let member = get(root.as_object()?, first)?;
-    deepest(&member.value, rest).or(Some(member))
+/// The member at the end of `path` (keys from the root object down), if
+/// it is written: a complaint about a value can point at it.
+pub fn member_at<'a>(root: &'a Node, path: &[&str]) -> Option<&'a Member> {
+    let (last, parents) = path.split_last()?;
+    let mut node = root;
+    for key in parents {
+        node = &get(node.as_object()?, key)?.value;
+    }
+    get(node.as_object()?, last)
 }
 
 /// Parses a whole JSON text: a database.
@@ -366,15 +367,17 @@ mod tests {
         (e.code.as_str(), e.span)
     }
 
-    /// A path is followed as far as it is written.
+    /// A path names a member only if every key on it is written.
     #[test]
-    fn the_deepest_member_on_a_path() {
+    fn the_member_at_a_path() {
         let n = parse(r#"{"blocks": {"F": {"values": {"BRK": 3}}}}"#).expect("parses");
-        let at = |path: &[&str]| deepest(&n, path).map(|m| (m.key.clone(), m.value.span));
+        let at = |path: &[&str]| member_at(&n, path).map(|m| (m.key.clone(), m.value.span));
         assert_eq!(at(&["blocks", "F", "values", "BRK"]), Some(("BRK".into(), (36, 37))));
-        assert_eq!(at(&["blocks", "F", "values", "IP"]), Some(("values".into(), (28, 38))));
-        assert_eq!(at(&["blocks", "G", "values", "IP"]), Some(("blocks".into(), (11, 40))));
-        assert_eq!(at(&["nothing"]), None);
+        assert_eq!(at(&["blocks", "F", "values"]), Some(("values".into(), (28, 38))));
+        assert_eq!(at(&["blocks", "F", "values", "IP"]), None);
+        assert_eq!(at(&["blocks", "G", "values", "BRK"]), None);
+        assert_eq!(at(&["blocks", "F", "values", "BRK", "x"]), None);
+        assert_eq!(at(&[]), None);
     }
 
     #[test]

@@ -61,21 +61,35 @@ impl Emitter<'_, '_> {
     }
 
     fn count(&mut self, pc: usize, taken: bool, by: Option<Value>) {
-        let Some((hits, takens)) = self.counters else { return };
-        let add = |e: &mut Self, old: Value| match by {
-            Some(v) => e.b.ins().iadd(old, v),
-            None => e.b.ins().iadd_imm(old, 1),
-        };
-        if let Some(&i) = self.counter_vars.index.get(&(pc, taken)) {
-            let var = self.counter_vars.vars[i].2;
-            let old = self.b.use_var(var);
-            let new = add(self, old);
-            self.b.def_var(var, new);
+        if self.counters.is_none() {
             return;
         }
+        match self.counter_vars.index.get(&(pc, taken)) {
+            Some(&i) => {
+                let var = self.counter_vars.vars[i].2;
+                let old = self.b.use_var(var);
+                let new = self.plus(old, by);
+                self.b.def_var(var, new);
+            }
+            None => self.add_to_counter(pc, taken, by),
+        }
+    }
+
+    /// `old` plus `by`, or plus one.
+    fn plus(&mut self, old: Value, by: Option<Value>) -> Value {
+        match by {
+            Some(v) => self.b.ins().iadd(old, v),
+            None => self.b.ins().iadd_imm(old, 1),
+        }
+    }
+
+    /// Adds `by`, or one, to the counter in memory of instruction `pc`
+    /// (its taken count if `taken`).
+    fn add_to_counter(&mut self, pc: usize, taken: bool, by: Option<Value>) {
+        let Some((hits, takens)) = self.counters else { return };
         let (base, off) = (if taken { takens } else { hits }, (pc * 8) as i32);
         let old = self.b.ins().load(types::I64, MemFlags::trusted(), base, off);
-        let new = add(self, old);
+        let new = self.plus(old, by);
         self.b.ins().store(MemFlags::trusted(), new, base, off);
     }
 
@@ -89,14 +103,10 @@ impl Emitter<'_, '_> {
 
     /// Adds the next values, one per count variable, to their counters.
     pub(super) fn flush_counters(&mut self, vals: &mut impl Iterator<Item = Value>) {
-        let Some((hits, takens)) = self.counters else { return };
         for i in 0..self.counter_vars.vars.len() {
             let Some(v) = vals.next() else { return };
             let (pc, taken, _) = self.counter_vars.vars[i];
-            let (base, off) = (if taken { takens } else { hits }, (pc * 8) as i32);
-            let old = self.b.ins().load(types::I64, MemFlags::trusted(), base, off);
-            let new = self.b.ins().iadd(old, v);
-            self.b.ins().store(MemFlags::trusted(), new, base, off);
+            self.add_to_counter(pc, taken, Some(v));
         }
     }
 }
