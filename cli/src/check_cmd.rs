@@ -1,9 +1,9 @@
 //! `linc check`: check files in one session, printing diagnostics.
 
-use linc_compiler::check::Context;
-use linc_compiler::render::{Format, SourceFiles};
+use linc_compiler::diag::render::{Format, SourceFiles};
 use linc_compiler::session::{CheckOptions, Input, Session};
 use linc_compiler::sfc::resources::Instrument;
+use linc_compiler::Context;
 use linc_driver::Reporter;
 use std::path::PathBuf;
 

@@ -1,7 +1,7 @@
 //! `linc compile FILE... -o OUT.sto`.
 
-use linc_compiler::check::Context;
-use linc_compiler::render::SourceFiles;
+use linc_compiler::diag::render::SourceFiles;
+use linc_compiler::Context;
 use linc_driver::build::{compile, Failed};
 use linc_driver::database::load as load_db;
 use linc_driver::Reporter;

@@ -1,7 +1,7 @@
 //! `linc explain CODE`: print a code's explanation page.
 
-use linc_compiler::codes::{lookup, CODES};
-use linc_compiler::render;
+use linc_compiler::diag::codes::{lookup, CODES};
+use linc_compiler::diag::render;
 
 pub fn run(code: Option<&str>, list: bool, r: &mut linc_driver::Reporter) -> u8 {
     match code {

@@ -10,7 +10,7 @@ use std::path::Path;
 /// `linc fst list TABLE.csv [--db DB]`: the table as the FST Editor shows
 /// it, with each step's instruction offset when a database lets it compile.
 pub fn list(path: &Path, db: Option<&Path>, r: &mut Reporter) -> u8 {
-    let mut dbfiles = linc_compiler::render::SourceFiles::new();
+    let mut dbfiles = linc_compiler::diag::render::SourceFiles::new();
     let db = match linc_driver::database::load(db, &mut dbfiles, r) {
         Ok(db) => db,
         Err(status) => return status,

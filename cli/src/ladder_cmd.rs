@@ -4,9 +4,9 @@
 //! is exactly that ST, so it is the way to review what a rung does.
 
 use clap::Subcommand;
-use linc_compiler::check::Context;
+use linc_compiler::diag::render::SourceFiles;
 use linc_compiler::ladder;
-use linc_compiler::render::SourceFiles;
+use linc_compiler::Context;
 use linc_driver::database::load as load_db;
 use linc_driver::Reporter;
 use std::path::{Path, PathBuf};
@@ -71,7 +71,7 @@ fn to_st(file: &Path, db: Option<&Path>, r: &mut Reporter) -> u8 {
         }
     };
     let name = file.display().to_string();
-    let (text, invalid) = linc_compiler::files::decode(bytes);
+    let (text, invalid) = linc_compiler::diag::files::decode(bytes);
     let id = files.add_decoded(name, text.clone(), invalid.clone());
     if let Some(e) = linc_compiler::session::SessionError::not_utf8(&invalid) {
         r.emit(&files, &e.to_diagnostic().in_file(id));
@@ -99,7 +99,7 @@ fn show(file: &Path, values: ladder::pretty::draw::Values, r: &mut Reporter) -> 
             return 2;
         }
     };
-    let (text, _) = linc_compiler::files::decode(bytes);
+    let (text, _) = linc_compiler::diag::files::decode(bytes);
     let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");
     let mut out = crate::out::Stream::new();
     let drawn = ladder::draw_to(&text, stem, values, &mut |s| out.text(s));

@@ -424,11 +424,11 @@ fn now(s: &str) -> Result<String, String> {
     }
 }
 
-fn format(m: MessageFormat) -> linc_compiler::render::Format {
+fn format(m: MessageFormat) -> linc_compiler::diag::render::Format {
     match m {
-        MessageFormat::Human => linc_compiler::render::Format::Human,
-        MessageFormat::Short => linc_compiler::render::Format::Short,
-        MessageFormat::Json => linc_compiler::render::Format::Json,
+        MessageFormat::Human => linc_compiler::diag::render::Format::Human,
+        MessageFormat::Short => linc_compiler::diag::render::Format::Short,
+        MessageFormat::Json => linc_compiler::diag::render::Format::Json,
     }
 }
 
@@ -443,7 +443,7 @@ fn sfc(command: SfcCommand, r: &mut Reporter) -> u8 {
 
 /// The message format asked for on a command line clap refused, so that
 /// even that error comes in the format the caller reads.
-fn format_in_args() -> linc_compiler::render::Format {
+fn format_in_args() -> linc_compiler::diag::render::Format {
     let args: Vec<String> = std::env::args().collect();
     let value = args.iter().enumerate().find_map(|(i, a)| match a.strip_prefix("--message-format") {
         Some("") => args.get(i + 1).cloned(),
@@ -451,9 +451,9 @@ fn format_in_args() -> linc_compiler::render::Format {
         None => None,
     });
     match value.as_deref() {
-        Some("json") => linc_compiler::render::Format::Json,
-        Some("short") => linc_compiler::render::Format::Short,
-        _ => linc_compiler::render::Format::Human,
+        Some("json") => linc_compiler::diag::render::Format::Json,
+        Some("short") => linc_compiler::diag::render::Format::Short,
+        _ => linc_compiler::diag::render::Format::Human,
     }
 }
 

@@ -4,7 +4,7 @@
 //! (from a database, an object or a source), and none may reach the
 //! terminal raw. Line ends stay line ends.
 
-use linc_compiler::render::escape_text;
+use linc_compiler::diag::render::escape_text;
 use std::io::Write;
 
 /// Prints `text` as it is (escaped).

@@ -1,7 +1,7 @@
 //! `linc run`: run an action against a database for some cycles.
 
 use crate::report::usage;
-use linc_compiler::render::SourceFiles;
+use linc_compiler::diag::render::SourceFiles;
 use linc_driver::database::load as load_db;
 use linc_driver::database::{set_and_show, start_time, write_db};
 use linc_driver::strategy::{own_block, program_object};

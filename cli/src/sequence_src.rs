@@ -1,10 +1,10 @@
 //! `.sfc` files on the command line: read, checked (and lowered) by the
 //! compiler's sequence front end, diagnostics printed through the renderer.
 
-use linc_compiler::check::Context;
-use linc_compiler::render::SourceFiles;
+use linc_compiler::diag::render::SourceFiles;
 use linc_compiler::sfc;
 use linc_compiler::sfc::{resources, resources::Instrument};
+use linc_compiler::Context;
 use linc_driver::Reporter;
 use linc_runtime::ObjectFile;
 use std::path::Path;
@@ -40,7 +40,7 @@ pub fn check_with(
 ) -> Result<Checked, ()> {
     let bytes = linc_driver::files::read_input(path).map_err(|e| r.unreadable(path, &e))?;
     let name = path.display().to_string();
-    let (text, invalid) = linc_compiler::files::decode(bytes);
+    let (text, invalid) = linc_compiler::diag::files::decode(bytes);
     let mut files = SourceFiles::new();
     let id = files.add_decoded(name.clone(), text.clone(), invalid.clone());
     let mut diagnostics = Vec::new();

@@ -3,7 +3,7 @@
 //! and loading a map for `check`/`compile --map`. The rewriting is the
 //! compiler's (`linc_compiler::sfc::generic`); this reads, prints, writes.
 
-use linc_compiler::render::{Format, SourceFiles};
+use linc_compiler::diag::render::{Format, SourceFiles};
 use linc_compiler::sfc::generic::{self, Map};
 use linc_compiler::{sfc, Diagnostic};
 use linc_driver::database::load as load_db;

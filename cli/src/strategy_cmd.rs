@@ -3,7 +3,7 @@
 
 use crate::report::usage;
 use crate::run_cmd::Common;
-use linc_compiler::render::SourceFiles;
+use linc_compiler::diag::render::SourceFiles;
 use linc_driver::database::load as load_db;
 use linc_driver::database::{duration, set_and_show, start_time, write_db};
 use linc_driver::single::SequenceRun;

@@ -387,7 +387,7 @@ fn every_cli_code_is_registered() {
         let text = fs::read_to_string(entry.expect("entry").path()).expect("source");
         for (i, _) in text.match_indices("E09") {
             let code = &text[i..i + 5];
-            assert!(linc_compiler::codes::lookup(code).is_some(), "{code} is printed but not registered");
+            assert!(linc_compiler::diag::codes::lookup(code).is_some(), "{code} is printed but not registered");
             seen += 1;
         }
     }

@@ -18,8 +18,8 @@
 mod workload;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use linc_compiler::check::Context;
 use linc_compiler::session::{CheckOptions, Session};
+use linc_compiler::Context;
 use linc_runtime::Database;
 use std::hint::black_box;
 
@@ -62,9 +62,9 @@ fn bench(c: &mut Criterion) {
     g.bench_function("baseline: count lines (native)", |b| {
         b.iter(|| black_box(&src).bytes().filter(|&b| b == b'\n').count())
     });
-    g.bench_function("lex", |b| b.iter(|| linc_compiler::lexer::lex(black_box(&src)).0.len()));
+    g.bench_function("lex", |b| b.iter(|| linc_compiler::st::lexer::lex(black_box(&src)).0.len()));
     g.bench_function("lex + parse", |b| {
-        b.iter(|| linc_compiler::parser::parse_file(black_box(&src), "bench").0.map(|f| f.actions.len()))
+        b.iter(|| linc_compiler::st::parser::parse_file(black_box(&src), "bench").0.map(|f| f.actions.len()))
     });
     g.bench_function("check (lex + parse + resolve + types)", |b| {
         b.iter(|| linc_compiler::check_source(black_box(&src), "bench", ctx).diagnostics.len())

@@ -1,6 +1,6 @@
 //! Times `linc check`'s front end on a file (for profiling; see README Figures).
-use linc_compiler::check::Context;
 use linc_compiler::session::{CheckOptions, Session};
+use linc_compiler::Context;
 use linc_runtime::Database;
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -29,7 +29,7 @@ fn main() {
 fn parse_only(src: &str) -> f64 {
     let t = std::time::Instant::now();
     let mut n = 0usize;
-    let (ok, _) = linc_compiler::parser::parse_actions(src, &mut |_| n += 1);
+    let (ok, _) = linc_compiler::st::parser::parse_actions(src, &mut |_| n += 1);
     assert!(ok);
     t.elapsed().as_secs_f64()
 }

@@ -1,41 +1,30 @@
-//! The linc compiler front end for LIN Structured Text.
+//! The linc compiler: every language of a strategy to the one instruction
+//! set, against a function-block database.
 //!
-//! Data flows one way: bytes → [`files`] text → [`lexer`] tokens →
-//! [`parser`] syntax tree ([`ast`]), one action at a time → [`check`]ed
-//! against a [`linc_format::Database`] into the checked program ([`hir`]) →
-//! [`lower`]ed to an object file. A [`session::Session`] drives this for the
-//! files of one run. Every stage reports plain-data errors that become
-//! [`Diagnostic`]s, rendered in one place ([`render`]).
+//! Each language is a room: Structured Text ([`st`]), which the others are
+//! lowered through, sequences ([`sfc`]), ladder ([`ladder`]) and FST tables
+//! ([`fst`]); [`fmt`] lays each out. Data flows one way: bytes → text
+//! ([`diag::files`]) → tokens → syntax tree, one action at a time → checked
+//! against a [`linc_format::Database`] into the checked program → lowered
+//! to an object file. A [`session::Session`] drives this for the files of
+//! one run. Every stage reports plain-data errors that become
+//! [`Diagnostic`]s, rendered in one place ([`diag`]).
 
-pub mod ast;
-pub mod check;
-pub mod codes;
-pub mod depth_guard;
-pub mod diagnostic;
-pub mod errors;
-pub mod files;
+pub mod diag;
 pub mod fmt;
 pub mod fst;
-pub mod hir;
 pub mod ladder;
-pub mod lexer;
-pub mod lower;
-pub mod parse_support;
-pub mod parser;
-pub mod pretty;
-pub mod render;
 pub mod scenario;
 pub mod session;
 pub mod sfc;
 pub mod source_kind;
-pub mod span;
-pub mod token;
+pub mod st;
 
-pub use diagnostic::{Diagnostic, Severity};
-pub use span::{FileId, Span};
+pub use diag::{Diagnostic, FileId, Severity, Span};
+pub use st::check::Context;
 
-use check::Context;
 use session::{CheckOptions, Input, Session, Tree};
+use st::{ast, hir};
 
 /// The result of checking one text: the tree (if the parser could build
 /// one), the checked program (only when there are no errors) and every

@@ -13,10 +13,10 @@
 //! and lowered later ([`compile_expectation`]), once the strategy it runs
 //! against is known (its database and its sequences' steps).
 
-use crate::check::Context;
-use crate::diagnostic::Diagnostic;
-use crate::lower::Lines;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
+use crate::st::check::Context;
+use crate::st::lower::Lines;
 use linc_format::object::ObjectFile;
 use linc_format::Code;
 
@@ -253,7 +253,7 @@ pub fn compile_expectation(
     let Some(checked) = report.program.filter(|_| !failed) else {
         return Err(report.diagnostics);
     };
-    crate::lower::lower_expectation(&checked, &Lines::new(expr), steps)
+    crate::st::lower::lower_expectation(&checked, &Lines::new(expr), steps)
         .map_err(|errors| errors.iter().map(|e| e.to_diagnostic()).collect())
 }
 

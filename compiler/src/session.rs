@@ -8,17 +8,17 @@
 //! object, naming the right file in every diagnostic. `check` and `compile`
 //! run the same checks, so they reject the same files (ADR 0007).
 
-use crate::ast;
-use crate::check::{CheckError, Checker, Context, FastHash, Limits};
-use crate::diagnostic::{Capped, Diagnostic, Omitted, MAX_ERRORS};
-use crate::errors::LexError;
-use crate::files::{self, SourceFiles, SUBSTITUTE};
-use crate::hir;
-use crate::lower::{self, Lines, Unit};
-use crate::parse_support::Item;
-use crate::parser::{self, ParseErrors};
+use crate::diag::files::{self, SourceFiles, SUBSTITUTE};
+use crate::diag::span::{FileId, Span};
+use crate::diag::{Capped, Diagnostic, Omitted, MAX_ERRORS};
 use crate::source_kind::{self, SourceKind};
-use crate::span::{FileId, Span};
+use crate::st::ast;
+use crate::st::check::{CheckError, Checker, Context, FastHash, Limits};
+use crate::st::errors::LexError;
+use crate::st::hir;
+use crate::st::lower::{self, Lines, Unit};
+use crate::st::parse_support::Item;
+use crate::st::parser::{self, ParseErrors};
 use linc_format::Code;
 use linc_format::ObjectFile;
 use std::collections::hash_map::Entry;
@@ -52,11 +52,11 @@ pub enum Tree {
 }
 
 impl Tree {
-    /// The S-expression view of [`crate::pretty`].
+    /// The S-expression view of [`crate::st::pretty`].
     pub fn pretty(&self) -> String {
         match self {
-            Tree::Actions(f) => crate::pretty::file(f),
-            Tree::Expr(e) => crate::pretty::expr(e) + "\n",
+            Tree::Actions(f) => crate::st::pretty::file(f),
+            Tree::Expr(e) => crate::st::pretty::expr(e) + "\n",
         }
     }
 }
@@ -98,7 +98,7 @@ pub enum SessionError {
     ObjectFile {
         name: String,
     },
-    /// Errors over the number kept per file ([`crate::diagnostic::MAX_ERRORS`]).
+    /// Errors over the number kept per file ([`crate::diag::MAX_ERRORS`]).
     Omitted {
         span: Span,
         count: usize,
@@ -545,7 +545,7 @@ fn collect(
     };
     omitted.add(errors.omitted.count, errors.omitted.first);
     let mut out: Vec<Diagnostic> = errors.lex.iter().filter(|e| !substituted(e)).map(LexError::to_diagnostic).collect();
-    out.extend(errors.syntax.iter().map(crate::errors::SyntaxError::to_diagnostic));
+    out.extend(errors.syntax.iter().map(crate::st::errors::SyntaxError::to_diagnostic));
     out.extend(checked.iter().map(CheckError::to_diagnostic));
     out.extend(session.iter().map(SessionError::to_diagnostic));
     if let (n @ 1.., Some(first)) = (omitted.count, omitted.first) {

@@ -5,8 +5,8 @@
 //! source at all. The session ([`crate::session::Session`]) checks and
 //! compiles each kind by this.
 
-use crate::check::Context;
-use crate::diagnostic::Diagnostic;
+use crate::diag::Diagnostic;
+use crate::st::check::Context;
 use linc_format::{Code, ObjectFile};
 use std::path::Path;
 

@@ -2,9 +2,9 @@
 //! printer and dropping the trees) stays within the default 2 MiB stack of a
 //! test thread, at the nesting limits and far beyond them.
 
-use linc_compiler::check::Context;
-use linc_compiler::lower::{self, Lines};
-use linc_compiler::parse_support::{MAX_EXPR_DEPTH, MAX_NESTING};
+use linc_compiler::st::lower::{self, Lines};
+use linc_compiler::st::parse_support::{MAX_EXPR_DEPTH, MAX_NESTING};
+use linc_compiler::Context;
 use linc_runtime::Database;
 
 fn db() -> Database {
@@ -21,7 +21,7 @@ fn codes(src: String) -> Vec<&'static str> {
             let ctx = Context { db: &db, resolve_blocks: true, steps: None };
             let r = linc_compiler::check_source(&src, "deep", ctx);
             if let Some(t) = &r.tree {
-                let _ = linc_compiler::pretty::file(t);
+                let _ = linc_compiler::st::pretty::file(t);
             }
             if let Some(p) = &r.program {
                 lower::lower_program(p, "deep.st", &Lines::new(&src)).expect("lowers");

@@ -6,9 +6,9 @@
 //! `cargo test` runs a reduced number of inputs; set `LINC_FUZZ_CASES` for a
 //! long run (the figure in the README used 200,000).
 
-use linc_compiler::check::Context;
-use linc_compiler::render::{render, Format, SourceFiles};
+use linc_compiler::diag::render::{render, Format, SourceFiles};
 use linc_compiler::session::{CheckOptions, Session};
+use linc_compiler::Context;
 use linc_runtime::Database;
 
 use linc_test_support::Rng;
@@ -198,7 +198,7 @@ fn exercise(db: &Database, bytes: &[u8]) {
             }
         }
         if let Some(t) = report.tree {
-            let _ = linc_compiler::pretty::file(&t);
+            let _ = linc_compiler::st::pretty::file(&t);
         }
     }
 }

@@ -6,8 +6,8 @@
 
 mod workload;
 
-use linc_compiler::check::Context;
 use linc_compiler::session::{CheckOptions, Session};
+use linc_compiler::Context;
 use linc_runtime::Database;
 use std::time::{Duration, Instant};
 

@@ -4,8 +4,8 @@
 //! the bound (a ratio under 8) is generous for a shared machine and a debug
 //! build, and a quadratic step gives a ratio near 16.
 
-use linc_compiler::check::Context;
-use linc_compiler::diagnostic::MAX_ERRORS;
+use linc_compiler::diag::MAX_ERRORS;
+use linc_compiler::Context;
 use linc_runtime::Database;
 use std::time::{Duration, Instant};
 
@@ -166,7 +166,7 @@ fn junk_after_an_error(n: usize) -> String {
 }
 
 fn syntax_errors(src: &str) -> Vec<&'static str> {
-    let (_, errors) = linc_compiler::parser::parse_file(src, "a");
+    let (_, errors) = linc_compiler::st::parser::parse_file(src, "a");
     errors.syntax.iter().map(|e| e.to_diagnostic().code.as_str()).collect()
 }
 

@@ -5,8 +5,8 @@
 
 mod workload;
 
-use linc_compiler::check::Context;
 use linc_compiler::session::{CheckOptions, Session};
+use linc_compiler::Context;
 use linc_runtime::Database;
 use linc_test_support::alloc::{peak_of, serial, Counting};
 

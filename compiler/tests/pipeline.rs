@@ -6,7 +6,7 @@
 
 mod workload;
 
-use linc_compiler::parser::{parse_actions, parse_actions_pipelined, PIPELINE_MIN};
+use linc_compiler::st::parser::{parse_actions, parse_actions_pipelined, PIPELINE_MIN};
 
 /// Everything a parse produces, as text to compare.
 fn parse_with(pipelined: bool, src: &str) -> (Vec<String>, bool, String) {

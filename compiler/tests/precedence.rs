@@ -3,8 +3,8 @@
 //! and chains of three, must group as the precedence table says (§12.6):
 //! tighter first, equal levels to the left; prefix operators bind tightest.
 
-use linc_compiler::parser::parse_expr;
-use linc_compiler::pretty;
+use linc_compiler::st::parser::parse_expr;
+use linc_compiler::st::pretty;
 
 /// The operators, with their level (lower binds tighter).
 const OPS: [(&str, u8); 15] = [

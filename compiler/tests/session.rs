@@ -1,9 +1,9 @@
 //! One compile session over several files: diagnostics name their own file,
 //! action names are unique across files, and checking and compiling agree.
 
-use linc_compiler::check::Context;
-use linc_compiler::render::{render, Format};
+use linc_compiler::diag::render::{render, Format};
 use linc_compiler::session::{CheckOptions, Session};
+use linc_compiler::Context;
 use linc_compiler::{Diagnostic, FileId};
 use linc_runtime::Database;
 

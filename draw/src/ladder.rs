@@ -8,8 +8,8 @@
 
 use crate::geom::{p, Geometry, Link, Rect, Solid, P};
 use crate::svg::{id, num, text_width, Svg};
+use linc_compiler::diag::span::Span;
 use linc_compiler::ladder::ast::{Action, BoxOp, CoilKind, Cond, Output, Rung};
-use linc_compiler::span::Span;
 
 /// The truth of an element's operand (a contact's expression, a coil's
 /// target) by its span, after a run.
@@ -219,9 +219,9 @@ fn output_w(ctx: &Ctx, out: &Output) -> f64 {
     }
 }
 
-fn assign_text(ctx: &Ctx, s: &linc_compiler::ast::Stmt) -> String {
+fn assign_text(ctx: &Ctx, s: &linc_compiler::st::ast::Stmt) -> String {
     match s {
-        linc_compiler::ast::Stmt::Assign { span, .. } => ctx.text(*span).trim_end_matches(';').trim().to_string(),
+        linc_compiler::st::ast::Stmt::Assign { span, .. } => ctx.text(*span).trim_end_matches(';').trim().to_string(),
         _ => String::new(),
     }
 }

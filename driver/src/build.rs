@@ -4,8 +4,8 @@
 //! reads the files and reports.
 
 use crate::Reporter;
-use linc_compiler::check::Context;
 use linc_compiler::session::{CheckOptions, Session};
+use linc_compiler::Context;
 use linc_runtime::{Database, ObjectFile};
 use std::path::PathBuf;
 

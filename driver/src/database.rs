@@ -4,7 +4,7 @@
 
 use crate::report::usage;
 use crate::Reporter;
-use linc_compiler::render::SourceFiles;
+use linc_compiler::diag::render::SourceFiles;
 use linc_compiler::Diagnostic;
 use linc_engines::console::fields::{address, set, Addr};
 use linc_format::Code;

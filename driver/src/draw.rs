@@ -6,9 +6,9 @@
 use crate::database::{duration, load as load_db, set_and_show, start_time};
 use crate::report::{refused, usage};
 use crate::Reporter;
-use linc_compiler::check::Context;
-use linc_compiler::render::SourceFiles;
+use linc_compiler::diag::render::SourceFiles;
 use linc_compiler::source_kind::SourceKind;
+use linc_compiler::Context;
 use linc_compiler::{fst, ladder, sfc, Diagnostic, FileId};
 use linc_draw::fst::FstState;
 use linc_draw::sfc::StepState;
@@ -150,7 +150,7 @@ fn ladder_file(o: &Options, r: &mut Reporter) -> Result<String, u8> {
         return Ok(linc_draw::ladder::file(&text, &file.actions, None).0);
     };
     let known = crate::ladder::after_run(&o.file, db, &o.set, o.cycles.unwrap_or(0), r)?;
-    let look = |span: linc_compiler::span::Span| known.get(&(span.start, span.end)).copied();
+    let look = |span: linc_compiler::diag::span::Span| known.get(&(span.start, span.end)).copied();
     Ok(linc_draw::ladder::file(&text, &file.actions, Some(&look)).0)
 }
 

@@ -4,10 +4,10 @@
 
 use crate::database::load as load_db;
 use crate::Reporter;
-use linc_compiler::check::Context;
-use linc_compiler::lower::{self, Lines};
-use linc_compiler::render::SourceFiles;
+use linc_compiler::diag::render::SourceFiles;
 use linc_compiler::session::{CheckOptions, Input, Session};
+use linc_compiler::st::lower::{self, Lines};
+use linc_compiler::Context;
 use linc_runtime::store::Store;
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::Database;

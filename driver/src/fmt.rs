@@ -4,7 +4,7 @@
 //! directory when no file is named.
 
 use crate::Reporter;
-use linc_compiler::render::SourceFiles;
+use linc_compiler::diag::render::SourceFiles;
 use linc_runtime::store::Store;
 use linc_runtime::Database;
 use std::path::{Path, PathBuf};

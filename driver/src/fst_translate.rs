@@ -29,13 +29,13 @@ struct Prepared {
     checked: fst::Checked,
     block: String,
     steps: u32,
-    files: linc_compiler::render::SourceFiles,
+    files: linc_compiler::diag::render::SourceFiles,
     id: linc_compiler::FileId,
 }
 
 /// Reads, checks and finds the block; problems are reported to `r`.
 fn prepare(path: &Path, db: &Path, block: Option<&str>, r: &mut Reporter) -> Result<Prepared, u8> {
-    let mut dbfiles = linc_compiler::render::SourceFiles::new();
+    let mut dbfiles = linc_compiler::diag::render::SourceFiles::new();
     let db = crate::database::load(Some(db), &mut dbfiles, r)?.unwrap_or_default();
     let (text, files, id) = match source::read(path, r)? {
         (Some(t), files, id) => (t, files, id),
@@ -77,7 +77,7 @@ fn prepare(path: &Path, db: &Path, block: Option<&str>, r: &mut Reporter) -> Res
 /// E0430 for a block's `field`, at its value in the database file (or at
 /// the block's name, when the value is the template's), the one file
 /// `files` holds.
-fn in_database(files: &linc_compiler::render::SourceFiles, block: &str, field: &str, why: String) -> Diagnostic {
+fn in_database(files: &linc_compiler::diag::render::SourceFiles, block: &str, field: &str, why: String) -> Diagnostic {
     let root = files.get(0).and_then(|f| linc_format::db::tree::parse(&crate::database::without_bom(f.text())).ok());
     let written = |path: &[&str]| linc_format::db::tree::member_at(root.as_ref()?, path);
     let (span, label) = if let Some(m) = written(&["blocks", block, "values", field]) {

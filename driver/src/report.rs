@@ -11,7 +11,7 @@
 //! A reporter can also collect into memory (a scenario prepared on another
 //! thread), so that reports come out in a fixed order.
 
-use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::diag::render::{self, Format, SourceFiles};
 use linc_compiler::{Diagnostic, FileId, Span};
 use linc_format::Code;
 use linc_runtime::RuntimeError;

@@ -5,7 +5,7 @@
 //! the same for any number of threads. `linc test` prints the outcomes.
 
 use crate::Reporter;
-use linc_compiler::render::{Format, SourceFiles};
+use linc_compiler::diag::render::{Format, SourceFiles};
 use linc_compiler::scenario::{self, Action, How, Target};
 use linc_engines::scenario::{Check, Report, Step};
 use linc_engines::strategy::{Strategy, Want};
@@ -130,7 +130,7 @@ pub fn run_one(file: &Path, rec: Recording) -> Outcome {
         }
     };
     let mut sources = SourceFiles::new();
-    let (text, invalid) = linc_compiler::files::decode(bytes);
+    let (text, invalid) = linc_compiler::diag::files::decode(bytes);
     let id = sources.add_decoded(name.clone(), text.clone(), invalid.clone());
     if let Some(e) = linc_compiler::session::SessionError::not_utf8(&invalid) {
         r.emit(&sources, &e.to_diagnostic().in_file(id));

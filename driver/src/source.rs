@@ -4,7 +4,7 @@
 //! that is not UTF-8 reported once as a located E0017).
 
 use crate::Reporter;
-use linc_compiler::render::SourceFiles;
+use linc_compiler::diag::render::SourceFiles;
 use linc_compiler::source_kind::SourceKind;
 use linc_compiler::FileId;
 use std::path::Path;
@@ -38,7 +38,7 @@ pub fn read(path: &Path, r: &mut Reporter) -> Result<(Option<String>, SourceFile
         r.unreadable(path, &e);
         2u8
     })?;
-    let (text, invalid) = linc_compiler::files::decode(bytes);
+    let (text, invalid) = linc_compiler::diag::files::decode(bytes);
     let mut files = SourceFiles::new();
     let id = files.add_decoded(path.display().to_string(), text.clone(), invalid.clone());
     match linc_compiler::session::SessionError::not_utf8(&invalid) {

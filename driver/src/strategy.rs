@@ -4,7 +4,7 @@
 
 use crate::build::{compile, Failed};
 use crate::Reporter;
-use linc_compiler::span::FileId;
+use linc_compiler::diag::span::FileId;
 use linc_compiler::{Diagnostic, Span};
 use linc_engines::strategy::{StrategyError, Want};
 use linc_format::Code;
@@ -125,7 +125,7 @@ pub fn plant(
     o: &PlantOptions,
     r: &mut Reporter,
 ) -> Result<(linc_engines::strategy::Strategy, Vec<Want>), u8> {
-    use linc_compiler::render::SourceFiles;
+    use linc_compiler::diag::render::SourceFiles;
     let now = crate::database::start_time(o.now.as_deref()).map_err(|m| crate::report::usage(r, m))?;
     let mut files = SourceFiles::new();
     let Some(db) = crate::database::load(Some(db_path), &mut files, r)? else { return Err(2) };
@@ -145,7 +145,7 @@ pub fn plant(
 /// `linc draw` build their strategies with.
 pub fn assemble(
     dir: &Path,
-    db: (&linc_compiler::render::SourceFiles, &str),
+    db: (&linc_compiler::diag::render::SourceFiles, &str),
     store: Store,
     wants: &[Want],
     now: i64,

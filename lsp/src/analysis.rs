@@ -4,8 +4,8 @@
 
 use crate::server::{Doc, Lang};
 use crate::workspace::Workspace;
-use linc_compiler::check::Context;
 use linc_compiler::session::{CheckOptions, Session};
+use linc_compiler::Context;
 use linc_compiler::{Diagnostic, Severity};
 use lsp_types::{DiagnosticRelatedInformation, DiagnosticSeverity, Location, NumberOrString};
 

@@ -98,7 +98,7 @@ fn main() {
     let args: Vec<usize> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
     let (clients, n) = (args.first().copied().unwrap_or(50), args.get(1).copied().unwrap_or(1000));
     let path = Path::new(ROOT).join("examples/roc/plant.json");
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
+    let mut r = linc_driver::Reporter::in_memory(linc_compiler::diag::render::Format::Short);
     let (s, wants) = linc_driver::strategy::plant(&path, &Default::default(), &mut r).expect("plant");
     let cfg = Config {
         speed: Speed::Times(1.0),

@@ -4,7 +4,7 @@
 //! active steps and their whole seconds, powered elements, the current
 //! FST step with RR and CF), so a monitor of a quiet plant costs nothing.
 
-use linc_compiler::check::Context;
+use linc_compiler::Context;
 use linc_compiler::{fst, ladder, sfc};
 use linc_driver::ladder::LiveElements;
 use linc_engines::strategy::{Strategy, Want, WantKind};
@@ -100,7 +100,7 @@ impl Picture {
                 if self.key.as_deref() == Some(key.as_str()) {
                     return false;
                 }
-                let look = |span: linc_compiler::span::Span| truths.get(&(span.start, span.end)).copied();
+                let look = |span: linc_compiler::diag::span::Span| truths.get(&(span.start, span.end)).copied();
                 self.svg = linc_draw::ladder::file(text, actions, Some(&look)).0;
                 self.key = Some(key);
             }

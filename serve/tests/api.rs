@@ -15,7 +15,7 @@ const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
 
 fn plant(db: &str) -> (Console, Vec<linc_engines::strategy::Want>) {
     let path = Path::new(ROOT).join(db);
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
+    let mut r = linc_driver::Reporter::in_memory(linc_compiler::diag::render::Format::Short);
     let o = linc_driver::strategy::PlantOptions { now: Some("2026-01-05T06:00:00".into()), ..Default::default() };
     let (s, wants) = linc_driver::strategy::plant(&path, &o, &mut r).unwrap_or_else(|_| panic!("{}", r.take()));
     (Console::new(s), wants)

@@ -150,7 +150,7 @@ fn the_monitor_page_shows_the_running_sequence_and_holds_a_step() {
         return;
     }
     let db = Path::new(ROOT).join("examples/sequences/plant.json");
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
+    let mut r = linc_driver::Reporter::in_memory(linc_compiler::diag::render::Format::Short);
     let (s, wants) = linc_driver::strategy::plant(&db, &Default::default(), &mut r).expect("plant");
     let cfg = linc_serve::Config {
         speed: linc_serve::Speed::Times(2.0),

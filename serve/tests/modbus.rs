@@ -124,7 +124,7 @@ fn a_read_only_server_refuses_writes() {
 #[test]
 fn a_database_without_a_map_refuses_to_serve_modbus() {
     let path = Path::new(ROOT).join("examples/fst/plant.json");
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
+    let mut r = linc_driver::Reporter::in_memory(linc_compiler::diag::render::Format::Short);
     let (st, wants) = linc_driver::strategy::plant(&path, &Default::default(), &mut r).unwrap();
     let cfg = Config { modbus: Some("127.0.0.1:0".parse().unwrap()), ..Config::new("127.0.0.1:0".parse().unwrap()) };
     let e = linc_serve::start(Console::new(st), &wants, path.parent().unwrap(), cfg).err().expect("refused");

@@ -28,7 +28,7 @@ fn cases() -> usize {
 
 fn console(db: &str) -> Console {
     let path = Path::new(ROOT).join(db);
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::render::Format::Short);
+    let mut r = linc_driver::Reporter::in_memory(linc_compiler::diag::render::Format::Short);
     let (s, _) = linc_driver::strategy::plant(&path, &Default::default(), &mut r).unwrap();
     Console::new(s)
 }

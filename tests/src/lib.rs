@@ -5,9 +5,9 @@
 //! diagnostics together, and the case also asserts which codes appear, so a
 //! changed snapshot can never hide a changed verdict.
 
-use linc_compiler::check::Context;
-use linc_compiler::render::{self, Format, SourceFiles};
-use linc_compiler::{pretty, Diagnostic};
+use linc_compiler::diag::render::{self, Format, SourceFiles};
+use linc_compiler::Context;
+use linc_compiler::{st::pretty, Diagnostic};
 use linc_runtime::Database;
 use std::sync::OnceLock;
 
@@ -171,8 +171,8 @@ pub mod fst;
 pub mod gen;
 
 pub mod exec {
-    use linc_compiler::check::Context;
-    use linc_compiler::lower::{self, Lines};
+    use linc_compiler::st::lower::{self, Lines};
+    use linc_compiler::Context;
     use linc_runtime::store::Store;
     use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
     use linc_runtime::{Database, Program, RuntimeError};

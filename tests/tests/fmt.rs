@@ -6,7 +6,7 @@
 
 use linc_compiler::fmt::format;
 use linc_compiler::source_kind::SourceKind;
-use linc_compiler::token::Raw;
+use linc_compiler::st::token::Raw;
 use linc_conformance::gen::Gen;
 use linc_conformance::rng::Rng;
 use linc_conformance::{assert_format_preserves, compiled, guide_db};

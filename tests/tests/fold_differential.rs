@@ -11,8 +11,8 @@
 //! the VM computes everything. The two runs must leave the same values and
 //! stop with the same fault at the same line.
 
-use linc_compiler::check::Context;
-use linc_compiler::lower::{self, Lines};
+use linc_compiler::st::lower::{self, Lines};
+use linc_compiler::Context;
 use linc_conformance::guide_db;
 use linc_conformance::rng::Rng;
 use linc_runtime::store::Store;

@@ -4,8 +4,8 @@
 //! The snapshot pins the table and the rendered diagnostics; the case also
 //! asserts the exact codes.
 
+use linc_compiler::diag::render::{self, Format, SourceFiles};
 use linc_compiler::fst::{check, reader, Checked, Cmd};
-use linc_compiler::render::{self, Format, SourceFiles};
 use linc_compiler::Diagnostic;
 use linc_runtime::Database;
 
@@ -183,7 +183,7 @@ fn the_manuals_tables_check_clean() {
 /// clean, the Wrong one gives the page's code.
 #[test]
 fn the_explanations_examples_hold() {
-    let fst_codes = linc_compiler::codes::CODES.iter().filter(|c| c.as_str()[1..].starts_with("04"));
+    let fst_codes = linc_compiler::diag::codes::CODES.iter().filter(|c| c.as_str()[1..].starts_with("04"));
     let mut pages = 0;
     for code in fst_codes {
         let blocks: Vec<&str> =

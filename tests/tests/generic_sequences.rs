@@ -1,9 +1,9 @@
 //! Generic sequences (guide §9.1.4): the three levels of mapping against the
 //! guide's database, diagnostics located in the `.sfc` text, and the text
 //! rewrites that keep comments and layout.
-use linc_compiler::check::Context;
 use linc_compiler::sfc::generic::{bind, generalise, generic_names, parse_map, specialise, Named};
 use linc_compiler::sfc::{check_generic, parser};
+use linc_compiler::Context;
 use linc_conformance::guide_db;
 
 const MAP: &str = r#"{

@@ -3,10 +3,10 @@
 //! guide's eight rungs over every input combination. Each snapshot holds
 //! the source, the ST it desugars into (ADR 0009) and the diagnostics.
 
-use linc_compiler::check::Context;
+use linc_compiler::diag::render::{self, Format, SourceFiles};
 use linc_compiler::ladder::pretty::to_st;
-use linc_compiler::lower::{self, Lines};
-use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::st::lower::{self, Lines};
+use linc_compiler::Context;
 use linc_runtime::store::{Cell, Store};
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{Database, Program};

@@ -5,9 +5,9 @@
 //! `linc ladder to-st` prints for them; and no input text makes
 //! the ladder front end panic or run away.
 
-use linc_compiler::check::Context;
 use linc_compiler::ladder::pretty::to_st;
-use linc_compiler::lower::{self, Lines};
+use linc_compiler::st::lower::{self, Lines};
+use linc_compiler::Context;
 use linc_conformance::rng::Rng;
 use linc_runtime::store::{Cell, Store};
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};

@@ -6,9 +6,9 @@
 //! the desugared tree (AND, OR and XOR chains compared flat: they are
 //! associative, and a long series is printed with fewer brackets).
 
-use linc_compiler::ast::{Expr, ExprKind, SourceFile, Stmt, UnOp, Var};
-use linc_compiler::check::Context;
 use linc_compiler::ladder::pretty::to_st;
+use linc_compiler::st::ast::{Expr, ExprKind, SourceFile, Stmt, UnOp, Var};
+use linc_compiler::Context;
 use linc_conformance::rng::Rng;
 use linc_runtime::Database;
 
@@ -251,7 +251,7 @@ fn the_st_of_each_found_case_reads_back() {
     );
     assert!(!linc_compiler::check_source(&st, "case", gctx).has_errors());
     // A string with a `'` keeps its double quotes.
-    let e = linc_compiler::parser::parse_expr("\"it's\" = 'a$'b'").0.expect("parses");
+    let e = linc_compiler::st::parser::parse_expr("\"it's\" = 'a$'b'").0.expect("parses");
     assert_eq!(to_st::expr(&e), "\"it's\" = 'a$'b'");
     // One level deeper is refused by the ladder itself, and a keyword is no action name.
     let deep = format!("[{}Dig_1a.In{}] -> (/Dig_1b.Out);\n", "NOT (".repeat(199), ")".repeat(199));

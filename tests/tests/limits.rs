@@ -1,7 +1,7 @@
 //! Limits of the object format (E0132) and literals out of range: `check`
 //! reports them exactly as `compile` does, once per action.
-use linc_compiler::check::Context;
 use linc_compiler::session::{CheckOptions, Session};
+use linc_compiler::Context;
 use linc_conformance::{assert_check_agrees_with_compile, check_and_compile, invalid, valid};
 use linc_runtime::Database;
 
@@ -71,12 +71,12 @@ fn session_codes(db: &Database, files: &[&str], compile: bool) -> Vec<(&'static 
     for (i, src) in files.iter().enumerate() {
         let id = s.add(format!("f{i}.st"), src.as_bytes().to_vec());
         for d in s.check(id, CheckOptions::default()).diagnostics {
-            out.push((d.code.as_str(), linc_compiler::render::line_col(s.files(), d.file, d.span.start).0));
+            out.push((d.code.as_str(), linc_compiler::diag::render::line_col(s.files(), d.file, d.span.start).0));
         }
     }
     if compile {
         for d in s.compile().err().unwrap_or_default() {
-            out.push((d.code.as_str(), linc_compiler::render::line_col(s.files(), d.file, d.span.start).0));
+            out.push((d.code.as_str(), linc_compiler::diag::render::line_col(s.files(), d.file, d.span.start).0));
         }
     }
     out

@@ -7,8 +7,8 @@
 //! 100,000 steps used to compile into an object whose slot numbers had
 //! wrapped round.)
 
-use linc_compiler::check::Context;
 use linc_compiler::sfc::{self, lower::MAX_BLOCKS, lower::MAX_STEPS};
+use linc_compiler::Context;
 use linc_runtime::Database;
 
 fn db() -> Database {

@@ -1,7 +1,7 @@
 //! A `.sfc` sequence from source to a running SFC_CON block: checked,
 //! lowered into one sequence unit, verified, and run by a strategy.
-use linc_compiler::check::Context;
 use linc_compiler::sfc::compile_sequence;
+use linc_compiler::Context;
 use linc_engines::strategy::{trace::Trace, wanted, Strategy};
 use linc_runtime::vm::{Clock, Vm};
 use linc_runtime::{Database, Store};

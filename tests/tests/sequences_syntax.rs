@@ -4,9 +4,9 @@
 //! and asserts the exact codes; the snapshot pins the tree and the rendered
 //! diagnostics.
 
-use linc_compiler::check::Context;
-use linc_compiler::render::{self, Format, SourceFiles};
+use linc_compiler::diag::render::{self, Format, SourceFiles};
 use linc_compiler::sfc::pretty;
+use linc_compiler::Context;
 use linc_conformance::guide_db;
 use linc_runtime::Database;
 

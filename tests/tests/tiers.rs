@@ -5,8 +5,8 @@
 //! (code, message, line, column). 2,400 generated cases by default (about
 //! 2,000 compile); `TIER_CASES=100000` for a long run.
 
-use linc_compiler::check::Context;
-use linc_compiler::lower::{self, Lines};
+use linc_compiler::st::lower::{self, Lines};
+use linc_compiler::Context;
 use linc_conformance::gen::Gen;
 use linc_conformance::guide_db;
 use linc_runtime::store::Store;

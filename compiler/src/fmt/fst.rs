@@ -5,7 +5,7 @@
 const HEADER: [&str; 6] = ["STEP", "LABEL", "CMD", "ARGUMENT1", "ARGUMENT2", "COMMENT"];
 
 pub(crate) fn format(src: &str) -> String {
-    let body = src.strip_prefix(crate::files::BOM).unwrap_or(src);
+    let body = src.strip_prefix(crate::diag::files::BOM).unwrap_or(src);
     let delim = crate::fst::reader::delimiter(body);
     let mut reader =
         csv::ReaderBuilder::new().has_headers(false).flexible(true).delimiter(delim).from_reader(body.as_bytes());

@@ -37,7 +37,7 @@ struct Scan<'a> {
 
 /// A `.ld` file.
 pub(crate) fn format(src: &str) -> String {
-    let start = if src.starts_with(crate::files::BOM) { crate::files::BOM.len_utf8() } else { 0 };
+    let start = if src.starts_with(crate::diag::files::BOM) { crate::diag::files::BOM.len_utf8() } else { 0 };
     let mut sc = Scan { s: src, b: src.as_bytes(), pos: start };
     let mut out = Out::default();
     let mut pieces = Vec::new();

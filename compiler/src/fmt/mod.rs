@@ -13,7 +13,7 @@ mod printer;
 mod sfc;
 mod tokens;
 
-use crate::diagnostic::Diagnostic;
+use crate::diag::Diagnostic;
 use crate::source_kind::SourceKind;
 
 /// Formats `src`, a file of the given kind; the syntax errors that stop it.
@@ -37,7 +37,7 @@ pub fn format(kind: SourceKind, src: &str) -> Result<String, Vec<Diagnostic>> {
 }
 
 fn skipped(src: &str) -> bool {
-    let text = src.trim_start_matches(crate::files::BOM).trim_start();
+    let text = src.trim_start_matches(crate::diag::files::BOM).trim_start();
     text.starts_with("(*") && text.find("*)").is_some_and(|end| text[..end].contains("linc-fmt: skip"))
 }
 
@@ -55,7 +55,7 @@ fn syntax_errors(kind: SourceKind, src: &str) -> Vec<Diagnostic> {
     let mut diags = match kind {
         SourceKind::Actions => {
             // Read and dropped an item at a time: a large file is never held as a tree.
-            let (_, e) = crate::parser::parse_actions(src, &mut |_| {});
+            let (_, e) = crate::st::parser::parse_actions(src, &mut |_| {});
             e.lex.iter().map(|e| e.to_diagnostic()).chain(e.syntax.iter().map(|e| e.to_diagnostic())).collect()
         }
         SourceKind::Sequence => crate::sfc::parser::parse(src).1,

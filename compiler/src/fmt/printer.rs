@@ -3,7 +3,7 @@
 
 use super::out::{Out, INDENT};
 use super::tokens::{column, Comment, Gap, Lexed, Token};
-use crate::token::Raw;
+use crate::st::token::Raw;
 
 pub(crate) struct Printer<'a> {
     pub src: &'a str,

@@ -5,7 +5,7 @@
 use super::ladder;
 use super::printer::Printer;
 use super::tokens::tokens;
-use crate::token::Raw;
+use crate::st::token::Raw;
 
 /// Where a step's line is in the output, for alignment.
 struct StepLine {

@@ -3,7 +3,7 @@
 //! skips comments; the formatter must keep every one in place, so it reads
 //! the gaps itself (a gap holds only blanks and `(* … *)`, which do not nest).
 
-use crate::token::Raw;
+use crate::st::token::Raw;
 use logos::Logos;
 
 /// A comment in a gap.
@@ -53,7 +53,7 @@ pub(crate) struct Lexed {
 /// Every token of `src` and the gap after the last one.
 pub(crate) fn tokens(src: &str) -> Lexed {
     let mut lexer = Raw::lexer(src);
-    let first = if src.starts_with(crate::files::BOM) { crate::files::BOM.len_utf8() } else { 0 };
+    let first = if src.starts_with(crate::diag::files::BOM) { crate::diag::files::BOM.len_utf8() } else { 0 };
     lexer.bump(first);
     let (mut toks, mut comments) = (Vec::new(), Vec::new());
     let mut prev = first;

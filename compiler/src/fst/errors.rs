@@ -2,8 +2,8 @@
 //! in one place so that every code and its wording live next to each other
 //! (`docs/errors/E04xx.md` explains each).
 
-use crate::diagnostic::Diagnostic;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
 use linc_format::Code;
 
 /// The header row is missing or is not the FST Editor's.

@@ -9,8 +9,8 @@
 //! it was, as division by zero does on the device.
 
 use super::{Arg, Checked, Cmd, Param};
-use crate::lower::LowerError;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::st::lower::LowerError;
 use linc_format::isa::{HistFn, Kind, Op, Zero};
 use linc_format::object::{Class, CodeBlock, LineEntry, ObjectFile, Sub, Symbol, Unit, UnitKind};
 use linc_format::wire::{Bytes, Code};

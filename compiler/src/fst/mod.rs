@@ -16,8 +16,8 @@ pub mod translate;
 
 pub use commands::Cmd;
 
-use crate::diagnostic::Diagnostic;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
 use linc_format::object::{Class, ObjectFile};
 use linc_format::Database;
 

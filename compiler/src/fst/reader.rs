@@ -6,8 +6,8 @@
 use super::errors;
 use super::tlp::distance;
 use super::{Cell, Cmd, Row, Table};
-use crate::diagnostic::{Diagnostic, MAX_ERRORS};
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::{Diagnostic, MAX_ERRORS};
 
 /// The header's columns, as compared: upper case, spaces removed.
 const COLUMNS: [&str; 6] = ["STEP", "LABEL", "CMD", "ARGUMENT1", "ARGUMENT2", "COMMENT"];

@@ -196,7 +196,7 @@ pub fn suggest(db: &Database, point: &str) -> Option<String> {
 }
 
 /// Edit distance, for "did you mean" (the ST checker's).
-pub(super) use crate::check::distance;
+pub(super) use crate::st::check::distance;
 
 #[cfg(test)]
 mod tests {

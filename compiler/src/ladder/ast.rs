@@ -2,8 +2,8 @@
 //! coil targets and variable outputs hold ST syntax trees (the ST parser
 //! reads them), with spans in the `.ld` file.
 
-use crate::ast::{Expr, Ident, Stmt};
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::st::ast::{Expr, Ident, Stmt};
 
 /// A `.ld` file: its actions (one, named after the file, without headers).
 #[derive(Clone, Debug, PartialEq)]

@@ -5,9 +5,9 @@
 //! ST checker, which sees the desugared rungs.
 
 use super::ast::{Action, Cond, Output, Rung};
-use crate::check::{Checker, Context, Limits};
-use crate::diagnostic::Diagnostic;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
+use crate::st::check::{Checker, Context, Limits};
 use linc_format::Code;
 use linc_stdlib::Ty;
 use std::collections::{HashMap, HashSet};
@@ -121,7 +121,7 @@ struct Types<'a> {
 }
 
 impl Types<'_> {
-    fn ty(&mut self, e: &crate::ast::Expr) -> Ty {
+    fn ty(&mut self, e: &crate::st::ast::Expr) -> Ty {
         let ty = self.c.expression(e).ty;
         // The ST checker reports these errors when it checks the rungs.
         self.c.take_errors();
@@ -158,8 +158,8 @@ impl Types<'_> {
         }
     }
 
-    fn coil(&mut self, target: &crate::ast::Expr, span: Span) {
-        if !matches!(target.kind, crate::ast::ExprKind::Var(_)) {
+    fn coil(&mut self, target: &crate::st::ast::Expr, span: Span) {
+        if !matches!(target.kind, crate::st::ast::ExprKind::Var(_)) {
             self.diags.push(
                 Diagnostic::error(Code::E0308, "a coil's target is not a variable", target.span)
                     .label("a coil writes a digital variable")

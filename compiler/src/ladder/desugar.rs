@@ -13,10 +13,10 @@
 //! each way in, so each condition is still evaluated once, where its rung is.
 
 use super::ast::{Action, BoxOp, CoilKind, Cond, Output, Rung};
-use crate::ast::{self, BinOp, Expr, ExprKind, Stmt, UnOp};
-use crate::diagnostic::Diagnostic;
-use crate::parse_support::MAX_EXPR_DEPTH;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
+use crate::st::ast::{self, BinOp, Expr, ExprKind, Stmt, UnOp};
+use crate::st::parse_support::MAX_EXPR_DEPTH;
 use linc_format::Code;
 use std::collections::HashSet;
 

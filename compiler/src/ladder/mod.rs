@@ -16,8 +16,8 @@ pub mod pretty {
     pub mod to_st;
 }
 
-use crate::check::Context;
-use crate::diagnostic::Diagnostic;
+use crate::diag::Diagnostic;
+use crate::st::check::Context;
 
 /// Whether a file name is a ladder source (`.ld`, any case).
 pub fn is_ladder(name: &str) -> bool {
@@ -29,7 +29,12 @@ pub fn is_ladder(name: &str) -> bool {
 /// to `each` before the next action is read: only one action is held.
 /// `stem` names the action of a file without headers. Returns the ladder
 /// front end's diagnostics (the ST checker's come later), in source order.
-pub fn desugar_each(src: &str, stem: &str, ctx: Context, each: &mut dyn FnMut(crate::ast::Action)) -> Vec<Diagnostic> {
+pub fn desugar_each(
+    src: &str,
+    stem: &str,
+    ctx: Context,
+    each: &mut dyn FnMut(crate::st::ast::Action),
+) -> Vec<Diagnostic> {
     let mut diagnostics = Vec::new();
     let mut read = parser::parse_each(src, stem, &mut |a| {
         let (targets, jump_errors) = check::jumps(&a.rungs);
@@ -100,7 +105,7 @@ pub fn draw_to(
 }
 
 /// The spans of the elements `--values` shows, for the caller to evaluate.
-pub fn element_spans(src: &str, stem: &str) -> Vec<crate::span::Span> {
+pub fn element_spans(src: &str, stem: &str) -> Vec<crate::diag::span::Span> {
     let mut out = Vec::new();
     parser::parse_each(src, stem, &mut |a| pretty::draw::element_spans(&a, &mut out));
     out
@@ -110,18 +115,18 @@ pub fn element_spans(src: &str, stem: &str) -> Vec<crate::span::Span> {
 /// `name` (spans relative to `body`), with the ladder's own diagnostics:
 /// syntax, labels and jumps. Contacts and coils are typed by the ST
 /// checker when the sequence is checked.
-pub fn desugar_body(body: &str, name: &str) -> (crate::ast::Action, Vec<Diagnostic>) {
+pub fn desugar_body(body: &str, name: &str) -> (crate::st::ast::Action, Vec<Diagnostic>) {
     desugar_body_as(body, name, true)
 }
 
 /// [`desugar_body`], with coils as decisions (`decide`) or as assignments
 /// of the rung's value (a transition's condition).
-fn desugar_body_as(body: &str, name: &str, decide: bool) -> (crate::ast::Action, Vec<Diagnostic>) {
+fn desugar_body_as(body: &str, name: &str, decide: bool) -> (crate::st::ast::Action, Vec<Diagnostic>) {
     let (ladder, mut diagnostics) = parser::parse(body, name);
     let Some(a) = ladder.actions.into_iter().next() else {
-        let name = crate::ast::Ident { text: name.into(), span: crate::span::Span::default() };
-        let span = crate::span::Span::new(0, body.len());
-        return (crate::ast::Action { name, block_type: None, body: Vec::new(), header: None, span }, diagnostics);
+        let name = crate::st::ast::Ident { text: name.into(), span: crate::diag::span::Span::default() };
+        let span = crate::diag::span::Span::new(0, body.len());
+        return (crate::st::ast::Action { name, block_type: None, body: Vec::new(), header: None, span }, diagnostics);
     };
     let (targets, jump_errors) = check::jumps(&a.rungs);
     diagnostics.extend(jump_errors);
@@ -136,12 +141,12 @@ fn desugar_body_as(body: &str, name: &str, decide: bool) -> (crate::ast::Action,
 /// A sequence's ladder transition condition (one rung without an output,
 /// §20.5.7) as the ST expression it stands for (spans relative to `cond`),
 /// with the ladder front end's diagnostics.
-pub fn desugar_condition(cond: &str) -> (Option<crate::ast::Expr>, Vec<Diagnostic>) {
+pub fn desugar_condition(cond: &str) -> (Option<crate::st::ast::Expr>, Vec<Diagnostic>) {
     // Read as a rung whose coil stands for the transition; its value is the condition.
     let rung = format!("{cond} -> (T);");
     let (st, diagnostics) = desugar_body_as(&rung, "T", false);
     let expr = st.body.into_iter().find_map(|s| match s {
-        crate::ast::Stmt::Assign { value, .. } => Some(*value),
+        crate::st::ast::Stmt::Assign { value, .. } => Some(*value),
         _ => None,
     });
     (expr, diagnostics)

@@ -9,12 +9,12 @@
 //! mistake gives one error.
 
 use super::ast::{Action, BoxOp, CoilKind, Cond, File, Output, Rung};
-use crate::ast::{Expr, Ident, Stmt};
-use crate::diagnostic::{Diagnostic, MAX_ERRORS};
-use crate::errors::SyntaxError;
-use crate::parser::{parse_expr, parse_file, ParseErrors};
+use crate::diag::span::Span;
+use crate::diag::{Diagnostic, MAX_ERRORS};
 use crate::sfc::shift;
-use crate::span::Span;
+use crate::st::ast::{Expr, Ident, Stmt};
+use crate::st::errors::SyntaxError;
+use crate::st::parser::{parse_expr, parse_file, ParseErrors};
 use linc_format::Code;
 
 /// How deeply branches and boxes may nest (the stack is not unbounded).
@@ -93,7 +93,7 @@ struct Parser<'s> {
 /// Whether `text` is an ST keyword, which cannot name an action or a block
 /// type in ST (so its ST, `linc ladder to-st`, would not read back).
 fn keyword(text: &str) -> bool {
-    !matches!(crate::lexer::Lexer::new(text).next(), Some((_, crate::lexer::Tok::Name(_), _)))
+    !matches!(crate::st::lexer::Lexer::new(text).next(), Some((_, crate::st::lexer::Tok::Name(_), _)))
 }
 
 fn is_ident(c: u8) -> bool {
@@ -287,7 +287,7 @@ impl Parser<'_> {
             Some(n) => n,
             None => {
                 self.error("an action name");
-                Ident { text: crate::ast::Name::default(), span: self.here() }
+                Ident { text: crate::st::ast::Name::default(), span: self.here() }
             }
         };
         if name.text.chars().count() > 8 || name.text.starts_with(|c: char| c.is_ascii_digit()) || keyword(&name.text) {
@@ -559,8 +559,8 @@ impl Parser<'_> {
         }
         match (stmts.len(), stmts.pop()) {
             (1, Some(s @ Stmt::Assign { .. })) => {
-                let mut a = crate::ast::Action {
-                    name: Ident { text: crate::ast::Name::default(), span: Span::default() },
+                let mut a = crate::st::ast::Action {
+                    name: Ident { text: crate::st::ast::Name::default(), span: Span::default() },
                     block_type: None,
                     body: vec![s],
                     header: None,

@@ -2,11 +2,11 @@
 //!
 //! A sequence is its root chart and the actions its steps name. A chart is
 //! steps and transitions; an action holds ST statements (the ST tree of
-//! [`crate::ast`]) or a nested chart. Every name keeps its span so that each
+//! [`crate::st::ast`]) or a nested chart. Every name keeps its span so that each
 //! check can point at what it is about.
 
-use crate::ast::{Action as StAction, Expr, Ident};
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::st::ast::{Action as StAction, Expr, Ident};
 
 /// One `.sfc` file: the root chart, then the actions.
 #[derive(Clone, Debug, PartialEq)]

@@ -6,10 +6,10 @@
 use super::ast::{Action, ActionBody, Assoc, Chart, Sequence, Step};
 use super::errors::SfcError;
 use super::safety::{unsafe_edge, Edge};
-use crate::ast::Ident;
-use crate::check::{Checker, Context, Limits};
-use crate::diagnostic::Diagnostic;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
+use crate::st::ast::Ident;
+use crate::st::check::{Checker, Context, Limits};
 use linc_format::Code;
 use std::collections::HashMap;
 

@@ -1,8 +1,8 @@
 //! Errors of the sequence front end, as plain data (codes E0200–E0249,
 //! W0200–W0249).
 
-use crate::diagnostic::Diagnostic;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
 use linc_format::Code;
 
 #[derive(Clone, Debug, PartialEq)]

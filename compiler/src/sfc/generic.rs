@@ -12,8 +12,8 @@
 
 use super::ast::Sequence;
 use super::refs::references;
-use crate::diagnostic::Diagnostic;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
 use linc_format::db::tree::{self, Json};
 use linc_format::db::Alias;
 use linc_format::Code;

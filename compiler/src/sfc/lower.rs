@@ -5,10 +5,10 @@
 //! steps, then each chart action's), where `Step.X` and `Step.T` are read.
 
 use super::ast::{Action, ActionBody, Chart, Sequence};
-use crate::check::{Checker, Context, Limits};
-use crate::lower::sequence::SequenceBuilder;
-use crate::lower::{Lines, LowerError};
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::st::check::{Checker, Context, Limits};
+use crate::st::lower::sequence::SequenceBuilder;
+use crate::st::lower::{Lines, LowerError};
 use linc_format::object::{ActionRec, AssocRec, ChartRec, ObjectFile, StepRec, TransitionRec};
 use std::collections::HashMap;
 
@@ -111,7 +111,7 @@ impl Lowering<'_, '_> {
         }
         let mut transitions = Vec::with_capacity(c.transitions.len());
         for t in &c.transitions {
-            let ids = |v: &[crate::ast::Ident]| v.iter().filter_map(|n| index(&n.text)).map(|i| i as u16).collect();
+            let ids = |v: &[crate::st::ast::Ident]| v.iter().filter_map(|n| index(&n.text)).map(|i| i as u16).collect();
             let name = t.display_name();
             let cond = t.cond.as_ref().map(|e| self.checker.transition(e));
             let block = cond.map_or(0, |h| self.b.condition(&name, &h));

@@ -18,8 +18,8 @@ mod safety;
 pub(crate) mod shift;
 pub mod size;
 
-use crate::check::Context;
-use crate::diagnostic::Diagnostic;
+use crate::diag::Diagnostic;
+use crate::st::check::Context;
 use crate::Report;
 
 /// Parses and checks one sequence. The tree is always built (parts that did
@@ -71,7 +71,7 @@ fn lower_checked(
         Ok(obj) => (report.diagnostics, Some(obj)),
         Err(errors) => {
             let mut d = report.diagnostics;
-            d.extend(errors.iter().map(crate::lower::LowerError::to_diagnostic));
+            d.extend(errors.iter().map(crate::st::lower::LowerError::to_diagnostic));
             (d, None)
         }
     }

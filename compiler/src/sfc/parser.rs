@@ -12,12 +12,12 @@
 use super::ast::{Action, ActionBody, Assoc, Chart, Sequence, Step, Transition};
 use super::errors::SfcError;
 use super::shift;
-use crate::ast::{Action as StAction, Ident};
-use crate::diagnostic::{Diagnostic, MAX_ERRORS};
-use crate::errors::SyntaxError;
-use crate::lexer::{lex, Spanned, Tok};
-use crate::parser::{parse_expr, parse_file, ParseErrors};
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::{Diagnostic, MAX_ERRORS};
+use crate::st::ast::{Action as StAction, Ident};
+use crate::st::errors::SyntaxError;
+use crate::st::lexer::{lex, Spanned, Tok};
+use crate::st::parser::{parse_expr, parse_file, ParseErrors};
 use linc_format::Code;
 
 /// Parses a sequence; every diagnostic of lexing and parsing comes back,
@@ -423,7 +423,7 @@ impl Parser<'_> {
     fn ladder_action(&mut self, l: usize) -> Action {
         let name = match self.toks.get(self.pos + 1) {
             Some(&(nl, Tok::Name(n), nr)) => Ident { text: n.trim().into(), span: Span::new(nl, nr) },
-            _ => Ident { text: crate::ast::Name::default(), span: self.here() },
+            _ => Ident { text: crate::st::ast::Name::default(), span: self.here() },
         };
         let body_start = self.toks.get(self.pos + 3).map_or(l, |t| t.2);
         self.pos += 4;
@@ -453,7 +453,7 @@ impl Parser<'_> {
             Some(&(nl, Tok::Name(n), nr)) => Ident { text: n.trim().into(), span: Span::new(nl, nr) },
             _ => {
                 self.error("an action name");
-                Ident { text: crate::ast::Name::default(), span: self.here() }
+                Ident { text: crate::st::ast::Name::default(), span: self.here() }
             }
         };
         if name.text.contains('.')

@@ -1,10 +1,10 @@
 //! A compact S-expression view of a sequence tree, for snapshots and
 //! `--tree`: how the text was grouped, without spans. ST inside is shown as
-//! [`crate::pretty`] shows it.
+//! [`crate::st::pretty`] shows it.
 
 use super::ast::{ActionBody, Chart, Sequence};
-use crate::ast::SourceFile;
-use crate::render::escape;
+use crate::diag::render::escape;
+use crate::st::ast::SourceFile;
 use std::fmt::Write;
 
 pub fn sequence(s: &Sequence) -> String {
@@ -13,7 +13,7 @@ pub fn sequence(s: &Sequence) -> String {
     out.push_str(")\n");
     for a in &s.actions {
         match &a.body {
-            ActionBody::St(st) => out.push_str(&crate::pretty::file(&SourceFile { actions: vec![st.clone()] })),
+            ActionBody::St(st) => out.push_str(&crate::st::pretty::file(&SourceFile { actions: vec![st.clone()] })),
             ActionBody::Chart(c) => {
                 let _ = writeln!(out, "(action {} : CHART", escape(&a.name.text));
                 chart(&mut out, c, 1);
@@ -43,10 +43,10 @@ fn chart(out: &mut String, c: &Chart, depth: usize) {
         if let Some((p, _)) = t.priority {
             let _ = write!(out, " (priority {p})");
         }
-        let names = |v: &[crate::ast::Ident]| v.iter().map(|i| escape(&i.text)).collect::<Vec<_>>().join(" ");
+        let names = |v: &[crate::st::ast::Ident]| v.iter().map(|i| escape(&i.text)).collect::<Vec<_>>().join(" ");
         let _ = write!(out, " (from {}) (to {}) ", names(&t.from), names(&t.to));
         match &t.cond {
-            Some(e) => out.push_str(&crate::pretty::expr(e)),
+            Some(e) => out.push_str(&crate::st::pretty::expr(e)),
             None => out.push_str("(error)"),
         }
         out.push_str(")\n");

@@ -6,7 +6,7 @@
 //! comments and layout as they were.
 
 use super::ast::{ActionBody, Sequence};
-use crate::ast::{Expr, ExprKind, Stmt, Var};
+use crate::st::ast::{Expr, ExprKind, Stmt, Var};
 
 /// The references of every ST action and transition condition (nested
 /// charts included), offsets' references too, sorted by position.

@@ -3,8 +3,8 @@
 //! chart and each chart action), counted over the whole sequence.
 
 use super::ast::{ActionBody, Chart, Sequence};
-use crate::diagnostic::Diagnostic;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
 use linc_format::Code;
 
 /// Which instrument's limits: the guide gives each limit as a pair.

@@ -5,9 +5,9 @@
 //! relative to that slice; adding the slice's start makes every diagnostic
 //! and every node point into the `.sfc` file.
 
-use crate::ast::{Action, Expr, ExprKind, Ident, Stmt, Var};
-use crate::diagnostic::Diagnostic;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
+use crate::st::ast::{Action, Expr, ExprKind, Ident, Stmt, Var};
 
 fn span(s: &mut Span, by: usize) {
     s.start += by;

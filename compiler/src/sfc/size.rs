@@ -14,8 +14,8 @@
 
 use super::ast::{ActionBody, Chart, Sequence};
 use super::errors::SfcError;
-use crate::diagnostic::Diagnostic;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
 use std::collections::HashMap;
 
 /// Deepest nesting of chart actions below the root chart.

@@ -20,8 +20,8 @@ mod st;
 pub use sfc::{to_sfc, SfcTarget};
 
 use super::{Arg, Checked, Cmd, Table};
-use crate::diagnostic::Diagnostic;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
 use linc_format::Code;
 
 /// What the translation is for: the FST block that would run the table

@@ -9,7 +9,7 @@
 //! engineer names (`--exit BLOCK.FIELD`), which the transitions test.
 
 use super::{check_budget, longest, post_dominators, post_order, resumes_after, st, Emit, Graph, Node};
-use crate::diagnostic::Diagnostic;
+use crate::diag::Diagnostic;
 use crate::fst::{Arg, Checked, Cmd, Table};
 use linc_format::Code;
 use std::collections::{BTreeMap, BTreeSet};

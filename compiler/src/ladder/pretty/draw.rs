@@ -4,9 +4,9 @@
 //! branch group, coils `( x )` `(/x)` `(S x)` `(R x)`, jumps `>> L`,
 //! variable outputs `{ t := v }`. Element text is the source as written.
 
-use crate::diagnostic::Diagnostic;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
 use crate::ladder::ast::{Action, CoilKind, Cond, Output, Rung};
-use crate::span::Span;
 use linc_format::Code;
 
 /// The most characters one rung's drawing may have. A drawing is as wide as
@@ -141,9 +141,9 @@ fn output(src: &str, o: &Output, values: Values) -> Cell {
     }
 }
 
-fn stmt_span(s: &crate::ast::Stmt) -> Span {
+fn stmt_span(s: &crate::st::ast::Stmt) -> Span {
     match s {
-        crate::ast::Stmt::Assign { span, .. } => *span,
+        crate::st::ast::Stmt::Assign { span, .. } => *span,
         _ => Span::default(),
     }
 }

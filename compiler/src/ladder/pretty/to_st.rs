@@ -1,9 +1,9 @@
 //! Prints desugared ladder (or any ST syntax tree) as ST source text, for
 //! `linc ladder to-st`: the program that runs is exactly this ST.
 
-use crate::ast::{Action, BinOp, Expr, ExprKind, SourceFile, Stmt, UnOp, Var};
 use crate::ladder::desugar::depth;
-use crate::parse_support::MAX_EXPR_DEPTH;
+use crate::st::ast::{Action, BinOp, Expr, ExprKind, SourceFile, Stmt, UnOp, Var};
+use crate::st::parse_support::MAX_EXPR_DEPTH;
 use std::fmt::Write;
 
 /// The actions as ST: each with its `ACTION` header, or, for a file

@@ -1,12 +1,22 @@
-//! The one shape every error of every stage is turned into.
+//! Diagnostics: the one shape every error of every stage is turned into,
+//! the spans and source files they point into, and the one place they are
+//! rendered as text.
 //!
 //! Each stage keeps its own error enum (plain data with file-local spans);
 //! this module defines the common [`Diagnostic`] those enums convert into,
-//! which also names the file, and the renderers in [`crate::render`] are the
-//! only place that formats them.
+//! which also names the file ([`span`], [`files`]), and the renderers in
+//! [`mod@render`] are the only place that formats them. The code registry is
+//! [`codes`].
 
-use crate::span::{FileId, Span};
-use linc_format::Code;
+pub mod codes;
+pub mod files;
+pub mod render;
+pub mod span;
+
+pub use files::{decode, SourceFile, SourceFiles};
+pub use linc_format::Code;
+pub use render::{escape, escape_text, line_col, render, Format};
+pub use span::{FileId, Span};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Severity {

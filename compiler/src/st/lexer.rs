@@ -6,10 +6,10 @@
 //! one error instead of many, and turns `name[expr]` directly after a name
 //! into an offset (the guide's FOR example writes `f[PIC_004.PV]`).
 
-use crate::diagnostic::Capped;
-use crate::errors::LexError;
-use crate::span::Span;
-use crate::token::Raw;
+use crate::diag::span::Span;
+use crate::diag::Capped;
+use crate::st::errors::LexError;
+use crate::st::token::Raw;
 use logos::Logos;
 use std::collections::VecDeque;
 
@@ -78,7 +78,7 @@ pub enum Tok<'s> {
     /// Injected first token selecting what the parser reads.
     StartFile,
     StartExpr,
-    /// Placeholders from [`crate::depth_guard`] for a part over a depth
+    /// Placeholders from [`crate::st::depth_guard`] for a part over a depth
     /// limit, already reported: the inside of a bracket, a run of prefix
     /// operators, a statement.
     Skipped,
@@ -206,8 +206,8 @@ impl<'s> Lexer<'s> {
         let mut raw = Raw::lexer(src);
         // A byte order mark is not part of the text (it stays in the file,
         // so offsets are those of the file).
-        if src.starts_with(crate::files::BOM) {
-            raw.bump(crate::files::BOM.len_utf8());
+        if src.starts_with(crate::diag::files::BOM) {
+            raw.bump(crate::diag::files::BOM.len_utf8());
         }
         Lexer {
             src,

@@ -2,8 +2,8 @@
 //! expression typed. The checker builds it; the lowering to instructions
 //! reads only this, never the syntax tree.
 
-use crate::ast::{BinOp, Name};
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::st::ast::{BinOp, Name};
 use linc_format::object::Class;
 use linc_stdlib::Ty;
 

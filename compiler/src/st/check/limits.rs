@@ -5,7 +5,7 @@
 
 use super::errors::CheckError;
 use super::Checker;
-use crate::span::Span;
+use crate::diag::span::Span;
 use std::collections::HashSet;
 use std::hash::{BuildHasherDefault, Hasher};
 

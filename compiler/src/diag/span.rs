@@ -22,7 +22,7 @@ impl Span {
     }
 }
 
-/// A file of a [`crate::session::Session`] or of a [`crate::render::SourceFiles`]
+/// A file of a [`crate::session::Session`] or of a [`crate::diag::render::SourceFiles`]
 /// map: an index in the order files were added.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct FileId(pub u32);

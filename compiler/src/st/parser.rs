@@ -1,19 +1,20 @@
 //! Drives the lalrpop parser over the cooked tokens and turns its errors
 //! (recovered or fatal) into [`SyntaxError`]s.
 
-use crate::ast::{Action, Expr, Ident, SourceFile, Stmt};
-use crate::depth_guard::DepthGuard;
-use crate::diagnostic::{Capped, Omitted, MAX_ERRORS};
-use crate::errors::{LexError, SyntaxError};
-use crate::lexer::{Lexer, Spanned, Tok};
-use crate::parse_support::{Item, Never, Parsed, Recovered};
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::{Capped, Omitted, MAX_ERRORS};
+use crate::st::ast::{Action, Expr, Ident, SourceFile, Stmt};
+use crate::st::depth_guard::DepthGuard;
+use crate::st::errors::{LexError, SyntaxError};
+use crate::st::lexer::{Lexer, Spanned, Tok};
+use crate::st::parse_support::{Item, Never, Parsed, Recovered};
 use lalrpop_util::{lalrpop_mod, ParseError};
 use std::cell::Cell;
 
 lalrpop_mod!(
     #[allow(clippy::all, clippy::pedantic, unused_qualifications, unused_parens)]
-    grammar
+    grammar,
+    "/st/grammar.rs"
 );
 
 /// Everything the front end found wrong in a text, in source order per stage.
@@ -21,7 +22,7 @@ lalrpop_mod!(
 pub struct ParseErrors {
     pub lex: Vec<LexError>,
     pub syntax: Vec<SyntaxError>,
-    /// Errors over [`crate::diagnostic::MAX_ERRORS`] of one kind, not kept.
+    /// Errors over [`crate::diag::MAX_ERRORS`] of one kind, not kept.
     pub omitted: Omitted,
 }
 

@@ -12,9 +12,9 @@ pub use errors::CheckError;
 pub use limits::{FastHash, Limits, MAX_CALL_ARGS, MAX_FOR_LOOPS, MAX_REFERENCES};
 pub use resolve::Resolved;
 
-use crate::ast::{Action, Expr, ExprKind, Stmt};
-use crate::diagnostic::{Capped, Omitted};
-use crate::hir;
+use crate::diag::{Capped, Omitted};
+use crate::st::ast::{Action, Expr, ExprKind, Stmt};
+use crate::st::hir;
 use limits::ActionLimits;
 use linc_format::Database;
 use linc_stdlib::Ty;
@@ -105,7 +105,7 @@ impl<'a> Checker<'a> {
     }
 
     /// The errors found since the last call (the first
-    /// [`crate::diagnostic::MAX_ERRORS`]; the rest are counted in
+    /// [`crate::diag::MAX_ERRORS`]; the rest are counted in
     /// [`Checker::omitted`]).
     pub fn take_errors(&mut self) -> Vec<CheckError> {
         let (kept, n, first) = std::mem::take(&mut self.errors).into_parts();
@@ -145,7 +145,7 @@ impl<'a> Checker<'a> {
     /// Starts an action of block type `block_type` (`ACTION a : PID`), whose
     /// statements are then checked one by one with [`Checker::statement`];
     /// returns the block type's name as the database spells it.
-    pub fn begin_action(&mut self, block_type: Option<&crate::ast::Ident>) -> Option<String> {
+    pub fn begin_action(&mut self, block_type: Option<&crate::st::ast::Ident>) -> Option<String> {
         self.self_template = None;
         self.action_limits = ActionLimits::default();
         let t = block_type?;
@@ -202,7 +202,7 @@ impl<'a> Checker<'a> {
         }
     }
 
-    fn assign(&mut self, target: &crate::ast::Var, value: &Expr, span: crate::Span) -> hir::Stmt {
+    fn assign(&mut self, target: &crate::st::ast::Var, value: &Expr, span: crate::Span) -> hir::Stmt {
         let value = self.expr(value);
         let Some(r) = self.resolve(target) else {
             return hir::Stmt::Error { span };
@@ -244,7 +244,7 @@ impl<'a> Checker<'a> {
 
     fn for_loop(
         &mut self,
-        var: &crate::ast::Var,
+        var: &crate::st::ast::Var,
         from: &Expr,
         to: &Expr,
         by: Option<&Expr>,
@@ -330,7 +330,7 @@ impl<'a> Checker<'a> {
     }
 
     /// Checks a value stored into a resolved field; false if it can't be.
-    fn store(&mut self, r: &Resolved, value: &hir::Expr, target: &crate::ast::Var) -> bool {
+    fn store(&mut self, r: &Resolved, value: &hir::Expr, target: &crate::st::ast::Var) -> bool {
         let vt = value.ty;
         let fits = match r.ty() {
             Ty::Any => true,

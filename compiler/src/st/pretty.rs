@@ -5,8 +5,8 @@
 //! Control characters in strings and bracketed names are escaped (`\u{1b}`),
 //! as in diagnostics, so the tree is safe to print to a terminal.
 
-use crate::ast::{Action, Expr, ExprKind, SourceFile, Stmt, UnOp, Var};
-use crate::render::escape;
+use crate::diag::render::escape;
+use crate::st::ast::{Action, Expr, ExprKind, SourceFile, Stmt, UnOp, Var};
 use std::fmt::Write;
 
 pub fn file(f: &SourceFile) -> String {

@@ -5,7 +5,7 @@
 //! at `2 × slot + 1`), in the order the steps are given.
 
 use super::{Lines, LowerError, Lowerer};
-use crate::hir;
+use crate::st::hir;
 use linc_format::isa::{Kind, Op};
 use linc_format::object::{ChartRec, ObjectFile, Unit, UnitKind};
 use linc_stdlib::Ty;
@@ -27,13 +27,13 @@ impl SequenceBuilder {
     }
 
     /// The source line `span` starts on.
-    pub fn line_of(&self, span: crate::span::Span) -> u32 {
+    pub fn line_of(&self, span: crate::diag::span::Span) -> u32 {
         self.l.lines.at(span.start).0
     }
 
     /// The number the next block gets, or E0132 at `span` (once) when the
     /// unit is full: the number would not fit the 16 bits it is stored in.
-    fn next(&mut self, span: crate::span::Span) -> u16 {
+    fn next(&mut self, span: crate::diag::span::Span) -> u16 {
         match u16::try_from(self.blocks.len()) {
             Ok(n) if usize::from(n) < crate::sfc::lower::MAX_BLOCKS => n,
             _ => {
@@ -57,7 +57,7 @@ impl SequenceBuilder {
     }
 
     /// A code action: its statements, ending with `Ret`.
-    pub fn action(&mut self, name: &str, body: &[hir::Stmt], span: crate::span::Span) -> u16 {
+    pub fn action(&mut self, name: &str, body: &[hir::Stmt], span: crate::diag::span::Span) -> u16 {
         self.l.stmts(body);
         self.l.emit(Op::Ret {});
         let at = self.next(span);

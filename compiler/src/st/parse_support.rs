@@ -3,18 +3,18 @@
 //! Keeping them here keeps the grammar readable and lets the name rules
 //! (§12.8: at most 8 characters, no leading digit) live in plain Rust.
 
-use crate::ast::{Action, BinOp, Expr, ExprKind, Ident, Name, Seg, Stmt, UnOp, Var};
-use crate::diagnostic::Capped;
-use crate::errors::SyntaxError;
-use crate::lexer::Tok;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Capped;
+use crate::st::ast::{Action, BinOp, Expr, ExprKind, Ident, Name, Seg, Stmt, UnOp, Var};
+use crate::st::errors::SyntaxError;
+use crate::st::lexer::Tok;
 use lalrpop_util::ErrorRecovery;
 use std::cell::Cell;
 use std::rc::Rc;
 
 /// The errors the grammar recovered from (`!`), with a count the parser's
 /// feed of tokens can read while the grammar holds the list: reading stops
-/// once [`crate::diagnostic::MAX_ERRORS`] are reported (`parser::run`).
+/// once [`crate::diag::MAX_ERRORS`] are reported (`parser::run`).
 #[derive(Debug, Default)]
 pub struct Recovered<'s> {
     pub kept: Capped<ErrorRecovery<usize, Tok<'s>, Never>>,

@@ -1,7 +1,7 @@
 //! Errors of name resolution and type checking, as plain data.
 
-use crate::diagnostic::Diagnostic;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
 use linc_format::Code;
 
 #[derive(Clone, Debug, PartialEq)]

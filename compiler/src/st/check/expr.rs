@@ -2,8 +2,8 @@
 
 use super::errors::CheckError;
 use super::Checker;
-use crate::ast::{BinOp, Expr, ExprKind, UnOp};
-use crate::hir;
+use crate::st::ast::{BinOp, Expr, ExprKind, UnOp};
+use crate::st::hir;
 use linc_stdlib::signatures::index_of;
 use linc_stdlib::{Param, Ty, SIGNATURES};
 
@@ -29,12 +29,12 @@ impl Checker<'_> {
         hir::Expr { ty, kind, span: e.span }
     }
 
-    fn load(&mut self, v: &crate::ast::Var) -> (Ty, hir::ExprKind) {
+    fn load(&mut self, v: &crate::st::ast::Var) -> (Ty, hir::ExprKind) {
         let checked = self.offsets(v);
         self.load_checked(v, checked)
     }
 
-    fn load_checked(&mut self, v: &crate::ast::Var, checked: Vec<Option<hir::Expr>>) -> (Ty, hir::ExprKind) {
+    fn load_checked(&mut self, v: &crate::st::ast::Var, checked: Vec<Option<hir::Expr>>) -> (Ty, hir::ExprKind) {
         match self.resolve_checked(v, checked) {
             Some(r) => (r.ty(), hir::ExprKind::Load(Box::new(r.place))),
             None => (Ty::Any, hir::ExprKind::Error),

@@ -1,8 +1,8 @@
 //! Lowering of expressions: typed opcodes, conversions and constant folding.
 
 use super::Lowerer;
-use crate::ast::BinOp;
-use crate::hir::{Expr, ExprKind};
+use crate::st::ast::BinOp;
+use crate::st::hir::{Expr, ExprKind};
 use linc_format::isa::{Kind, Op};
 use linc_stdlib::{Param, Ty, SIGNATURES};
 

@@ -7,9 +7,9 @@
 use super::errors::CheckError;
 use super::limits::SymbolKey;
 use super::Checker;
-use crate::ast::{Expr, Name, Var};
-use crate::hir::{self, Place, Target};
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::st::ast::{Expr, Name, Var};
+use crate::st::hir::{self, Place, Target};
 use linc_format::object::class_of;
 use linc_format::object::Class;
 use linc_format::{FieldType, Template};

@@ -12,10 +12,10 @@
 //! around the labels; messages and file names are escaped the same way in
 //! `human` and `short`. `json` escapes through JSON itself.
 
-use crate::diagnostic::{Diagnostic, Severity};
-pub use crate::files::SourceFiles;
-use crate::files::{SourceFile, BOM, SUBSTITUTE};
-use crate::span::{FileId, Span};
+pub use super::files::SourceFiles;
+use crate::diag::files::{SourceFile, BOM, SUBSTITUTE};
+use crate::diag::span::{FileId, Span};
+use crate::diag::{Diagnostic, Severity};
 use codespan_reporting::diagnostic as cs;
 use codespan_reporting::files::{Error as FilesError, Files, Location};
 use codespan_reporting::term;

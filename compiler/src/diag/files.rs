@@ -3,7 +3,7 @@
 //! The session adds sources to it and the renderer reads it, so a diagnostic
 //! (which names its file by [`FileId`]) is always shown against its own file.
 
-use crate::span::FileId;
+use crate::diag::span::FileId;
 use std::cell::OnceCell;
 
 /// The byte order mark some editors put at the start of UTF-8 files.

@@ -2,7 +2,7 @@
 //!
 //! The raw token set deliberately includes "near misses" (a name that starts
 //! with a digit, a based integer with bad digits, a lone `.`) so that the
-//! cooking pass in [`crate::lexer`] can report them precisely instead of
+//! cooking pass in [`crate::st::lexer`] can report them precisely instead of
 //! letting the parser stumble over them.
 
 use logos::Logos;

@@ -9,9 +9,9 @@
 mod expr;
 pub mod sequence;
 
-use crate::diagnostic::Diagnostic;
-use crate::hir::{self, Place, Stmt, Target};
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
+use crate::st::hir::{self, Place, Stmt, Target};
 use linc_format::isa::Op;
 use linc_format::object::{Class, CodeBlock, LineEntry, LoopEntry, ObjectFile, Sub, Symbol, Unit as ObjUnit, UnitKind};
 use linc_format::wire::{self, Bytes};

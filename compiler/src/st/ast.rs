@@ -4,7 +4,7 @@
 //! can point at any part of a reference. Nodes that failed to parse are kept
 //! as `Error` so the checker can go on past them.
 
-use crate::span::Span;
+use crate::diag::span::Span;
 
 /// A name as the tree and the checked program hold it: inline up to 24
 /// bytes, so no allocation for any LIN name (eight characters at most).

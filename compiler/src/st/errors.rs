@@ -1,7 +1,7 @@
 //! Errors of the lexer and the parser, as plain data.
 
-use crate::diagnostic::Diagnostic;
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Diagnostic;
 use linc_format::Code;
 
 /// Lexical errors. The lexer repairs what it reports, so one mistake gives
@@ -44,7 +44,7 @@ pub enum LexError {
         span: Span,
         text: String,
     },
-    /// A time constant longer than [`crate::lexer::MAX_TIME_SECONDS`].
+    /// A time constant longer than [`crate::st::lexer::MAX_TIME_SECONDS`].
     TimeOutOfRange {
         span: Span,
         text: String,
@@ -156,17 +156,17 @@ pub enum SyntaxError {
     MissingFinalSemicolon {
         span: Span,
     },
-    /// Statements nested deeper than [`crate::parse_support::MAX_NESTING`].
+    /// Statements nested deeper than [`crate::st::parse_support::MAX_NESTING`].
     NestedTooDeep {
         span: Span,
         keyword: &'static str,
     },
-    /// An expression deeper than [`crate::parse_support::MAX_EXPR_DEPTH`].
+    /// An expression deeper than [`crate::st::parse_support::MAX_EXPR_DEPTH`].
     ExprTooDeep {
         span: Span,
     },
     /// The parser stopped reading the file at `span`, having recovered from
-    /// [`crate::diagnostic::MAX_ERRORS`] syntax errors.
+    /// [`crate::diag::MAX_ERRORS`] syntax errors.
     Stopped {
         span: Span,
     },
@@ -223,14 +223,14 @@ impl SyntaxError {
             }
             SyntaxError::NestedTooDeep { span, keyword } => Diagnostic::error(
                 Code::E0021,
-                format!("statements nested more than {} deep", crate::parse_support::MAX_NESTING),
+                format!("statements nested more than {} deep", crate::st::parse_support::MAX_NESTING),
                 *span,
             )
             .label(format!("this {keyword} goes over the limit"))
             .help("move the inner part into a separate action, or test conditions in sequence instead of nesting"),
             SyntaxError::ExprTooDeep { span } => Diagnostic::error(
                 Code::E0022,
-                format!("expression nested more than {} deep", crate::parse_support::MAX_EXPR_DEPTH),
+                format!("expression nested more than {} deep", crate::st::parse_support::MAX_EXPR_DEPTH),
                 *span,
             )
             .label("this part is too deep")
@@ -240,7 +240,7 @@ impl SyntaxError {
                     .label("reading stopped here")
                     .help(format!(
                         "linc reads on through at most {} syntax errors of a file; fix these and check again",
-                        crate::diagnostic::MAX_ERRORS
+                        crate::diag::MAX_ERRORS
                     ))
             }
         }

@@ -3,7 +3,7 @@
 //! The LR parser holds one stack entry (about 100 bytes) for every token of
 //! a construct that is still open: each unclosed bracket, each prefix
 //! operator waiting for its operand, each IF waiting for its END_IF. The
-//! depth limits of [`crate::parse_support`] are checked when a construct
+//! depth limits of [`crate::st::parse_support`] are checked when a construct
 //! closes, which is too late: 100 MB of `(` held 7.5 GB before the parser
 //! saw the end, and unclosed IFs made error recovery quadratic. This filter
 //! sits between the lexer and the parser and counts what is open. The first
@@ -17,11 +17,11 @@
 //! and statements are balanced; for unbalanced text it can only count more,
 //! so the bound holds either way.
 
-use crate::diagnostic::Capped;
-use crate::errors::SyntaxError;
-use crate::lexer::{Spanned, Tok};
-use crate::parse_support::{MAX_EXPR_DEPTH, MAX_NESTING};
-use crate::span::Span;
+use crate::diag::span::Span;
+use crate::diag::Capped;
+use crate::st::errors::SyntaxError;
+use crate::st::lexer::{Spanned, Tok};
+use crate::st::parse_support::{MAX_EXPR_DEPTH, MAX_NESTING};
 use std::collections::VecDeque;
 
 /// The filter, as an iterator over the lexer's tokens.
@@ -77,7 +77,7 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> DepthGuard<'s, I> {
             Tok::Semi => self.brackets = 0,
             Tok::If | Tok::For | Tok::While | Tok::Repeat => {
                 if self.statements.len() >= usize::from(MAX_NESTING) {
-                    let keyword = crate::lexer::keyword_text(&t.1);
+                    let keyword = crate::st::lexer::keyword_text(&t.1);
                     self.errors.push(SyntaxError::NestedTooDeep { span: Span::new(t.0, t.2), keyword });
                     self.skip_statement(t.0);
                     return None;
@@ -199,7 +199,7 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> Iterator for DepthGuard<'s, I> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lexer::Lexer;
+    use crate::st::lexer::Lexer;
 
     fn guarded(src: &str) -> (Vec<Tok<'_>>, Vec<&'static str>) {
         let mut g = DepthGuard::new(Lexer::new(src));
