@@ -1,14 +1,14 @@
 //! `linc draw`: a sequence, ladder file, FST table or trace as SVG
 //! (docs/pictures.md), to standard output or atomically to `-o FILE`.
 
+use crate::report::Reporter;
 use linc_driver::draw::Options;
-use linc_driver::Reporter;
 use std::path::{Path, PathBuf};
 
-pub fn run(o: &Options, out: Option<&Path>, r: &mut Reporter) -> u8 {
+pub fn run(o: &Options, out: Option<&Path>, r: &Reporter) -> u8 {
     let inputs: Vec<&Path> =
         [Some(o.file.as_path()), o.db.as_deref(), o.state.as_deref()].into_iter().flatten().collect();
-    crate::out::print_or_write(out, &inputs, r, |r| linc_driver::draw::picture(o, r))
+    crate::out::print_or_write(out, &inputs, r, || linc_driver::draw::picture(o).map(|p| (p.svg, p.problems)))
 }
 
 /// `linc draw`'s options.
@@ -41,8 +41,8 @@ pub struct DrawArgs {
     #[arg(long, value_name = "FILE")]
     pub state: Option<PathBuf>,
     /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
-    #[arg(long)]
-    pub now: Option<String>,
+    #[arg(long, value_name = "YYYY-MM-DDTHH:MM:SS", value_parser = crate::now)]
+    pub now: Option<i64>,
     #[arg(long)]
     pub seed: Option<u64>,
     /// A field of a trace to draw: BLOCK.FIELD (repeatable).

@@ -1,14 +1,15 @@
 //! `linc eval EXPR`: evaluate one expression and print its value.
 
-use linc_driver::Reporter;
+use crate::report::Reporter;
 use std::path::Path;
 
-pub fn run(expr: &str, db: Option<&Path>, now: Option<&str>, seed: Option<u64>, r: &mut Reporter) -> u8 {
-    match linc_driver::eval::evaluate(expr, db, now, seed, r) {
-        Ok(v) => {
+pub fn run(expr: &str, db: Option<&Path>, now: Option<i64>, seed: Option<u64>, r: &Reporter) -> u8 {
+    match linc_driver::eval::evaluate(expr, db, now, seed) {
+        Ok((v, warnings)) => {
+            let status = r.report(&warnings);
             crate::out::line(&linc_runtime::text::format_value(&v));
-            0
+            status
         }
-        Err(status) => status,
+        Err(p) => r.report(&p),
     }
 }

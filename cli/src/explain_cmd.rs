@@ -1,9 +1,10 @@
 //! `linc explain CODE`: print a code's explanation page.
 
+use crate::report::{usage, Reporter};
 use linc_compiler::diag::codes::{lookup, CODES};
-use linc_compiler::diag::render;
+use linc_compiler::diag::escape;
 
-pub fn run(code: Option<&str>, list: bool, r: &mut linc_driver::Reporter) -> u8 {
+pub fn run(code: Option<&str>, list: bool, r: &Reporter) -> u8 {
     match code {
         Some(c) if !list => match lookup(c) {
             Some(entry) => {
@@ -13,10 +14,7 @@ pub fn run(code: Option<&str>, list: bool, r: &mut linc_driver::Reporter) -> u8 
                 }
                 0
             }
-            None => crate::report::usage(
-                r,
-                format_args!("`{}` is not a linc diagnostic code (see `linc explain --list`)", render::escape(c)),
-            ),
+            None => usage(r, format!("`{}` is not a linc diagnostic code (see `linc explain --list`)", escape(c))),
         },
         _ => {
             for c in CODES {

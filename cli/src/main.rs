@@ -10,22 +10,20 @@ mod draw_cmd;
 mod eval_cmd;
 mod explain_cmd;
 mod fmt_cmd;
-mod fst_src;
+mod fst_cmd;
 mod ladder_cmd;
 mod out;
 mod report;
 mod roc_cmd;
 mod run_cmd;
-mod sequence_src;
 mod serve_cmd;
 mod sfc_cmd;
-mod strategy_cmd;
 mod test_cmd;
-mod test_report;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use linc_driver::Reporter;
+use linc_driver::plant::{PlantSpec, Program, StateFile};
 use linc_format::Code;
+use report::Reporter;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -198,7 +196,7 @@ enum Command {
         trace: Option<PathBuf>,
         /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
         #[arg(long, value_name = "YYYY-MM-DDTHH:MM:SS", value_parser = now)]
-        now: Option<String>,
+        now: Option<i64>,
         /// Seed of RANDOM, for repeatable runs.
         #[arg(long)]
         seed: Option<u64>,
@@ -218,7 +216,7 @@ enum Command {
         db: Option<PathBuf>,
         /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
         #[arg(long, value_name = "YYYY-MM-DDTHH:MM:SS", value_parser = now)]
-        now: Option<String>,
+        now: Option<i64>,
         #[arg(long)]
         seed: Option<u64>,
     },
@@ -293,7 +291,7 @@ struct RunArgs {
     cold: bool,
     /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
     #[arg(long, value_name = "YYYY-MM-DDTHH:MM:SS", value_parser = now)]
-    now: Option<String>,
+    now: Option<i64>,
     /// Seed of RANDOM, for repeatable runs.
     #[arg(long)]
     seed: Option<u64>,
@@ -416,10 +414,11 @@ fn watchdog(s: &str) -> Result<u64, String> {
     }
 }
 
-/// `--now`: a real date and time (no 29 February 2023, no 24:00:00).
-fn now(s: &str) -> Result<String, String> {
+/// `--now`: a real date and time (no 29 February 2023, no 24:00:00), in
+/// POSIX seconds.
+fn now(s: &str) -> Result<i64, String> {
     match linc_runtime::text::parse_timestamp(s) {
-        Some(_) => Ok(s.to_string()),
+        Some(t) => Ok(t),
         None => Err("not a real date and time; write YYYY-MM-DDTHH:MM:SS (UTC), such as 2024-02-29T13:45:07".into()),
     }
 }
@@ -432,8 +431,8 @@ fn format(m: MessageFormat) -> linc_compiler::diag::render::Format {
     }
 }
 
-fn sfc(command: SfcCommand, r: &mut Reporter) -> u8 {
-    use sfc_cmd::Direction;
+fn sfc(command: SfcCommand, r: &Reporter) -> u8 {
+    use linc_driver::sfc::Direction;
     match command {
         SfcCommand::Specialise { file, map, out } => sfc_cmd::rewrite(Direction::Specialise, &file, &map, &out, r),
         SfcCommand::Generalise { file, map, out } => sfc_cmd::rewrite(Direction::Generalise, &file, &map, &out, r),
@@ -475,8 +474,8 @@ fn refused_arguments(e: clap::Error) -> ExitCode {
     for line in lines {
         d = d.help(line.strip_prefix("tip: ").unwrap_or(line));
     }
-    let mut r = Reporter::new(format_in_args());
-    ExitCode::from(report::refused(&mut r, d))
+    let r = Reporter::new(format_in_args());
+    ExitCode::from(r.report(&linc_driver::Problems::refusal(d)))
 }
 
 /// See cli/Cargo.toml: frees from another thread without a lock.
@@ -489,8 +488,8 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return refused_arguments(e),
     };
-    let mut r = Reporter::new(format(cli.message_format));
-    ExitCode::from(dispatch(cli.command, &mut r))
+    let r = Reporter::new(format(cli.message_format));
+    ExitCode::from(dispatch(cli.command, &r))
 }
 
 /// A reader that stops reading (`linc explain --list | head -1`) ends
@@ -504,19 +503,17 @@ fn quiet_broken_pipe() {
     }
 }
 
-fn dispatch(command: Command, r: &mut Reporter) -> u8 {
+fn dispatch(command: Command, r: &Reporter) -> u8 {
     match command {
         Command::Compile { files, out, db, map } => compile_cmd::run(&files, &out, db.as_deref(), map.as_deref(), r),
         Command::Sfc { command } => sfc(command, r),
-        Command::Fst { command: FstCommand::List { file, db } } => fst_src::list(&file, db.as_deref(), r),
+        Command::Fst { command: FstCommand::List { file, db } } => fst_cmd::list(&file, db.as_deref(), r),
         Command::Fst { command: FstCommand::ToSt { file, db, block, out } } => {
-            fst_src::translate(&file, &db, out.as_deref(), r, |r| {
-                linc_driver::fst_translate::to_st(&file, &db, block.as_deref(), r)
-            })
+            fst_cmd::translate(&file, &db, out.as_deref(), r, || linc_driver::fst::to_st(&file, &db, block.as_deref()))
         }
         Command::Fst { command: FstCommand::ToSfc { file, db, block, exit, out } } => {
-            fst_src::translate(&file, &db, out.as_deref(), r, |r| {
-                linc_driver::fst_translate::to_sfc(&file, &db, block.as_deref(), exit.as_deref(), r)
+            fst_cmd::translate(&file, &db, out.as_deref(), r, || {
+                linc_driver::fst::to_sfc(&file, &db, block.as_deref(), exit.as_deref())
             })
         }
         Command::Ladder { command } => ladder_cmd::run(command, r),
@@ -527,21 +524,12 @@ fn dispatch(command: Command, r: &mut Reporter) -> u8 {
             draw_cmd::run(&o, out.as_deref(), r)
         }
         Command::Console { file, script, set, trace, now, seed, state, cold } => {
-            let common = run_cmd::Common {
-                set,
-                show: Vec::new(),
-                trace,
-                out: None,
-                now,
-                seed,
-                watchdog: linc_runtime::vm::DEFAULT_WATCHDOG,
-                tier: linc_runtime::vm::Tier::Auto,
-            };
-            let retain = strategy_cmd::Retain { state, cold };
-            console_cmd::run(console_cmd::Options { db: file, script, common, retain }, r)
+            let state = state.map(|path| StateFile { path, cold });
+            let spec = PlantSpec { set, now, seed, state, ..PlantSpec::strategy(file) };
+            console_cmd::run(console_cmd::Options { spec, script, trace }, r)
         }
         Command::Run(run) => run_command(*run, r),
-        Command::Eval { expr, db, now, seed } => eval_cmd::run(&expr, db.as_deref(), now.as_deref(), seed, r),
+        Command::Eval { expr, db, now, seed } => eval_cmd::run(&expr, db.as_deref(), now, seed, r),
         Command::Test {
             paths,
             jobs,
@@ -569,7 +557,7 @@ fn dispatch(command: Command, r: &mut Reporter) -> u8 {
         Command::Disasm { file } => disasm_cmd::run(&file, r),
         Command::Check { files, db, tree, transition, sequence, map, allow_unmapped, resources, instrument } => {
             check_cmd::run(
-                &check_cmd::Options {
+                &linc_driver::check::CheckRequest {
                     files,
                     db,
                     tree,
@@ -616,11 +604,10 @@ fn misuse(a: &RunArgs) -> Option<String> {
     .next()
 }
 
-fn run_command(a: RunArgs, r: &mut Reporter) -> u8 {
+fn run_command(a: RunArgs, r: &Reporter) -> u8 {
     if let Some(why) = misuse(&a) {
         return report::usage(r, why);
     }
-    let retain = strategy_cmd::Retain { state: a.state, cold: a.cold };
     let common = run_cmd::Common {
         set: a.set,
         show: a.show,
@@ -630,25 +617,24 @@ fn run_command(a: RunArgs, r: &mut Reporter) -> u8 {
         seed: a.seed,
         watchdog: a.watchdog,
         tier: a.tier.into(),
+        state: a.state.map(|path| StateFile { path, cold: a.cold }),
     };
     let file = a.file;
+    let controls = linc_driver::single::Controls { hold_steps: a.hold_step, force: a.force };
     match (a.db, a.duration) {
         (None, Some(duration)) => {
-            let o = strategy_cmd::Options { db: file, duration, common, single: None, retain, script: None };
-            strategy_cmd::run(&o, r)
+            run_cmd::run(file, run_cmd::Form::For { program: Program::Strategy, duration, controls }, common, r)
         }
         (Some(db), None) => {
-            let (action, block, cycles, period) = (a.action, a.block, a.cycles.unwrap_or(1), a.period.unwrap_or(1.0));
-            run_cmd::run(&run_cmd::Options { file, db, action, block, cycles, period, common }, r)
+            let (cycles, period) = (a.cycles.unwrap_or(1), a.period.unwrap_or(1.0));
+            let program = run_cmd::action(file, a.action, a.block);
+            run_cmd::run(db, run_cmd::Form::Cycles { program, cycles, period }, common, r)
         }
         (Some(db), Some(duration))
             if linc_driver::source::kind(&file).stands_alone() || linc_driver::source::is_object(&file) =>
         {
-            let kind = linc_driver::single::Kind::of(&file);
-            let (block, period, hold_steps, force) = (a.block, a.period, a.hold_step, a.force);
-            let single = linc_driver::single::SequenceRun { file, kind, block, period, hold_steps, force };
-            let o = strategy_cmd::Options { db, duration, common, single: Some(single), retain, script: None };
-            strategy_cmd::run(&o, r)
+            let program = Program::One { file, block: a.block, period: a.period };
+            run_cmd::run(db, run_cmd::Form::For { program, duration, controls }, common, r)
         }
         (Some(_), Some(_)) => report::usage(
             r,

@@ -4,7 +4,7 @@
 //! (from a database, an object or a source), and none may reach the
 //! terminal raw. Line ends stay line ends.
 
-use linc_compiler::diag::render::escape_text;
+use linc_compiler::diag::{escape_text, Problems};
 use std::io::Write;
 
 /// Prints `text` as it is (escaped).
@@ -21,35 +21,31 @@ pub fn line(text: &str) {
     let _ = out.write_all(b"\n");
 }
 
-/// What a command made, printed, or written atomically to `out` (`-o`),
-/// which is checked against the command's `inputs` before anything is
-/// made. `make` gives the text and the exit status, or the status alone
-/// when it failed.
+/// What a command made (`make`: the text and its problems), printed, or
+/// written atomically to `out` (`-o`), which is checked against the
+/// command's `inputs` before anything is made. The exit status.
 pub fn print_or_write(
     out: Option<&std::path::Path>,
     inputs: &[&std::path::Path],
-    r: &mut linc_driver::Reporter,
-    make: impl FnOnce(&mut linc_driver::Reporter) -> Result<(String, u8), u8>,
+    r: &crate::report::Reporter,
+    make: impl FnOnce() -> Result<(String, Problems), Problems>,
 ) -> u8 {
-    if let Some(out) = out {
-        if let Err(e) = linc_driver::files::check_output(out, inputs) {
-            return crate::report::refused(r, e.diagnostic());
-        }
-    }
-    let (text, status) = match make(r) {
+    let made = out
+        .map_or(Ok(()), |out| linc_driver::files::check_output(out, inputs).map_err(Problems::from))
+        .and_then(|()| make());
+    let (text, mut problems) = match made {
         Ok(made) => made,
-        Err(status) => return status,
+        Err(p) => return r.report(&p),
     };
     match out {
-        Some(out) => match linc_driver::files::write_atomic(out, text.as_bytes()) {
-            Ok(()) => status,
-            Err(e) => crate::report::refused(r, e.diagnostic()),
-        },
-        None => {
-            print(&text);
-            status
+        Some(out) => {
+            if let Err(e) = linc_driver::files::write_atomic(out, text.as_bytes()) {
+                problems.append(e.into());
+            }
         }
+        None => print(&text),
     }
+    r.report(&problems)
 }
 
 /// Standard output written as it is made (a listing or a drawing can be

@@ -3,10 +3,9 @@
 //! driver's, polling is linc-comms'; this prints.
 
 use crate::out;
-use crate::report::usage;
-use linc_comms::roc::host::{poll::poll, status_text, Host, TcpLink};
+use crate::report::Reporter;
 use linc_comms::roc::Address;
-use linc_driver::Reporter;
+use linc_driver::roc::PollRequest;
 use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::time::Duration;
@@ -42,68 +41,26 @@ pub struct PollArgs {
     pub unit: Address,
 }
 
-pub fn run(c: RocCommand, r: &mut Reporter) -> u8 {
+pub fn run(c: RocCommand, r: &Reporter) -> u8 {
     match c {
         RocCommand::Poll(a) => poll_cmd(a, r),
     }
 }
 
-fn duration(text: &str, what: &str) -> Result<Duration, String> {
-    linc_driver::database::duration(text).map(Duration::from_micros).map_err(|e| format!("{what}: {e}"))
-}
-
 /// Exit status: 0 when every command's last status is 0, 1 when one
 /// ended with an error, 2 for a file or argument problem.
-fn poll_cmd(a: PollArgs, r: &mut Reporter) -> u8 {
-    let (timeout, run_for) =
-        match (duration(&a.timeout, "--timeout"), a.duration.as_deref().map(|d| duration(d, "--for"))) {
-            (Ok(t), None) => (t, None),
-            (Ok(t), Some(Ok(d))) => (t, Some(d)),
-            (Err(e), _) | (_, Some(Err(e))) => return usage(r, e),
-        };
-    let list = match linc_driver::roc::commands(&a.commands, r) {
-        Ok(l) => l,
-        Err(s) => return s,
+fn poll_cmd(a: PollArgs, r: &Reporter) -> u8 {
+    let duration = |flag: &str, text: &str| linc_driver::database::duration(flag, text).map(Duration::from_micros);
+    let times = duration("--timeout", &a.timeout)
+        .and_then(|t| Ok((t, a.duration.as_deref().map(|d| duration("--for", d)).transpose()?)));
+    let (timeout, run_for) = match times {
+        Ok(t) => t,
+        Err(p) => return r.report(&p),
     };
-    let words = match linc_driver::roc::words(a.words.as_deref(), r) {
-        Ok(w) => w,
-        Err(s) => return s,
-    };
-    // `--out` may not name an input: refused before any request is sent.
-    if let Some(out) = &a.out {
-        let inputs: Vec<&std::path::Path> =
-            [Some(a.commands.as_path()), a.words.as_deref()].into_iter().flatten().collect();
-        if let Err(e) = linc_driver::files::check_output(out, &inputs) {
-            return crate::report::refused(r, e.diagnostic());
-        }
+    let req =
+        PollRequest { host: a.host, commands: a.commands, words: a.words, run_for, out: a.out, timeout, unit: a.unit };
+    match linc_driver::roc::poll(&req, &mut |line| out::line(line)) {
+        Ok(status) => u8::from(status.iter().any(|&s| s != 0)),
+        Err(p) => r.report(&p),
     }
-    let mut host = Host { me: a.unit, words };
-    let mut link = TcpLink::new(a.host, timeout);
-    let once = run_for.is_none();
-    let status = poll(&mut host, &list, &mut link, run_for, |i, code| {
-        if once || code != 0 {
-            let c = &list[i];
-            let line = format!(
-                "command {} (line {}): {} to {},{}: {}",
-                i + 1,
-                c.line,
-                c.opcode,
-                c.unit,
-                c.group,
-                if code == 0 { "done".to_string() } else { format!("error {code}: {}", status_text(code)) }
-            );
-            out::line(&line);
-        }
-    });
-    if !once {
-        for (i, code) in status.iter().enumerate().filter(|(i, _)| list[*i].enabled()) {
-            out::line(&format!("command {}: last status {code} ({})", i + 1, status_text(*code)));
-        }
-    }
-    if let Some(path) = &a.out {
-        if let Err(s) = linc_driver::roc::write_words(path, &host.words, &status, r) {
-            return s;
-        }
-    }
-    u8::from(status.iter().any(|&s| s != 0))
 }

@@ -1,157 +1,113 @@
-//! `linc run`: run an action against a database for some cycles.
+//! `linc run`: a strategy, one sequence or FST table for a simulated time,
+//! or one action for some cycles. The driver builds the plant and runs it;
+//! this chooses the program from the arguments and prints what it asks.
 
-use crate::report::usage;
-use linc_compiler::diag::render::SourceFiles;
-use linc_driver::database::load as load_db;
-use linc_driver::database::{set_and_show, start_time, write_db};
-use linc_driver::strategy::{own_block, program_object};
-use linc_driver::Reporter;
-use linc_runtime::store::Store;
-use linc_runtime::vm::{Activation, Clock, Vm};
-use linc_runtime::{Linked, Program};
-use std::path::{Path, PathBuf};
+use crate::report::Reporter;
+use linc_driver::plant::{Choice, PlantSpec, Program, StateFile};
+use linc_driver::run::RunRequest;
+use linc_runtime::vm::Tier;
+use std::io::Write;
+use std::path::PathBuf;
 
-/// What running one action and running a strategy have in common.
+/// What every form of `linc run` takes.
 pub struct Common {
     pub set: Vec<String>,
     pub show: Vec<String>,
     /// `-` prints the trace; a path collects it into that file.
     pub trace: Option<PathBuf>,
     pub out: Option<PathBuf>,
-    pub now: Option<String>,
+    pub now: Option<i64>,
     pub seed: Option<u64>,
     pub watchdog: u64,
-    /// Which tier runs the code (interpreter, compiled, or the default mix).
-    pub tier: linc_runtime::vm::Tier,
+    pub tier: Tier,
+    /// `--state FILE [--cold]`.
+    pub state: Option<StateFile>,
 }
 
-pub struct Options {
-    pub file: PathBuf,
-    pub db: PathBuf,
-    pub action: Option<String>,
-    pub block: Option<String>,
-    pub cycles: u32,
-    pub period: f64,
-    pub common: Common,
+/// What runs, and for how long.
+pub enum Form {
+    /// A strategy, or one sequence or table, for a duration.
+    For { program: Program, duration: String, controls: linc_driver::single::Controls },
+    /// One action, `cycles` times, `period` seconds apart.
+    Cycles { program: Program, cycles: u32, period: f64 },
 }
 
-pub use linc_engines::console::fields::show_value;
-
-pub fn run(o: &Options, r: &mut Reporter) -> u8 {
-    // `--out` and `--trace FILE` may not replace an input or anything but a
-    // regular file; checked before the run, so a refused run changes nothing.
-    let outputs = [("--out", &o.common.out), ("--trace", &o.common.trace)];
-    let outputs: Vec<(&str, &Path)> = outputs.iter().filter_map(|(f, p)| Some((*f, p.as_deref()?))).collect();
-    if let Err(e) = linc_driver::files::check_distinct(&outputs) {
-        return crate::report::refused(r, e.diagnostic());
-    }
-    for (_, out) in outputs.iter().filter(|(_, p)| p.as_os_str() != "-") {
-        if let Err(e) = linc_driver::files::check_output(out, &[&o.file, &o.db]) {
-            return crate::report::refused(r, e.diagnostic());
-        }
-    }
-    let mut dbfiles = SourceFiles::new();
-    let db = match load_db(Some(&o.db), &mut dbfiles, r) {
-        Ok(Some(db)) => db,
-        Ok(None) => return 2,
-        Err(status) => return status,
-    };
-    let db_text = dbfiles.get(0).map(|f| f.source().clone()).unwrap_or_default();
-    let obj = match program_object(&o.file, &db, r) {
-        Ok(obj) => obj,
-        Err(status) => return status,
-    };
-    let units = &obj.object().units;
-    let index = match &o.action {
-        Some(name) => match obj.unit_named(name) {
-            Some(i) => i,
-            None => {
-                let names: Vec<&str> = units.iter().map(|a| a.name.as_str()).collect();
-                return usage(r, format_args!("--action: no action `{name}` (the file has {})", names.join(", ")));
-            }
+pub fn run(db: PathBuf, form: Form, c: Common, r: &Reporter) -> u8 {
+    let duration = match &form {
+        Form::For { duration, .. } => match linc_driver::database::duration("--for", duration) {
+            Ok(d) => Some(d),
+            Err(p) => return r.report(&p),
         },
-        None if units.is_empty() => return usage(r, "the file has no actions"),
-        None => 0,
+        Form::Cycles { .. } => None,
     };
-    let action = &units[index];
-    let mut store = Store::new(db);
-    let own = match own_block(&store, o.block.as_deref(), &action.block_type) {
-        Ok(b) => b,
-        Err(d) => return crate::report::refused(r, *d),
+    let program = match &form {
+        Form::For { program, .. } | Form::Cycles { program, .. } => program.clone(),
     };
-    let shows = match set_and_show(&mut store, &o.common.set, &o.common.show, r) {
-        Ok(v) => v,
-        Err(status) => return status,
+    let outputs = [("--out", &c.out), ("--trace", &c.trace), ("--state", &c.state.as_ref().map(|s| s.path.clone()))];
+    let spec = PlantSpec {
+        program,
+        set: c.set,
+        now: c.now,
+        seed: c.seed,
+        watchdog: c.watchdog,
+        tier: c.tier,
+        state: c.state.clone(),
+        outputs: outputs.iter().filter_map(|(f, p)| Some((f.to_string(), (*p).clone()?))).collect(),
+        ..PlantSpec::strategy(db)
     };
-    let now = match start_time(o.common.now.as_deref()) {
-        Ok(s) => s,
-        Err(msg) => return usage(r, msg),
+    let mut plant = match linc_driver::plant::build(&spec) {
+        Ok(p) => p,
+        Err(p) => return r.report(&p),
     };
-    store.now = now as f64;
-    let linked = match obj.link(&store, &[Program { unit: index, own }]) {
-        Ok(l) => l,
-        Err(e) => {
-            r.whole_file(&o.file.display().to_string(), e.code(), e.to_string());
-            return 2;
-        }
+    let warned = r.report(&std::mem::take(&mut plant.warnings));
+    let to_stdout = c.trace.as_ref().is_some_and(|p| p.as_os_str() == "-");
+    let trace: Option<(Box<dyn Write>, String)> = match &c.trace {
+        None => None,
+        Some(_) if to_stdout => Some((stdout_trace(&form), "-".into())),
+        Some(path) => match linc_driver::run::trace_file(path) {
+            Ok(w) => Some((w, path.display().to_string())),
+            Err(p) => return r.report(&p),
+        },
     };
-    let seed = o.common.seed.unwrap_or_else(|| now as u64 ^ u64::from(std::process::id()));
-    let to_stdout = o.common.trace.as_ref().is_some_and(|p| p.as_os_str() == "-");
-    let (status, traced) = cycles(o, &linked, &mut store, (seed, to_stdout), r);
-    say_compiled(o.common.tier, linked.compiled_blocks());
-    for (path, a) in &shows {
-        crate::out::line(&format!("{path} = {}", show_value(&store, *a)));
-    }
-    if let Some(path) = o.common.trace.as_ref().filter(|_| !to_stdout) {
-        if let Err(e) = linc_driver::files::write_atomic(path, traced.as_bytes()) {
-            return crate::report::refused(r, e.diagnostic());
-        }
-    }
-    if let Some(out) = &o.common.out {
-        if let Err(e) = write_db(out, &db_text, &store) {
-            return crate::report::refused(r, e.diagnostic());
-        }
-    }
-    status
-}
-
-/// `--tier compiled` says how many of the (compiled, all) code blocks ran
-/// compiled, so a user can see what the compiling tier took.
-pub fn say_compiled(tier: linc_runtime::vm::Tier, (compiled, all): (usize, usize)) {
-    if tier == linc_runtime::vm::Tier::Compiled {
-        eprintln!("linc: {compiled} of {all} code blocks ran compiled");
-    }
-}
-
-/// Runs the action `--cycles` times, `--period` apart; returns the exit
-/// status (1 after a runtime error, which ends the run) and the trace text
-/// kept for a `--trace FILE`.
-fn cycles(
-    o: &Options,
-    linked: &Linked,
-    store: &mut Store,
-    (seed, to_stdout): (u64, bool),
-    r: &mut Reporter,
-) -> (u8, String) {
-    let mut act = Activation::new(linked, 0, 0);
-    let mut vm = Vm::new(o.common.watchdog, Clock::new(seed, 0));
-    vm.set_tier(o.common.tier);
-    let mut traced = String::new();
-    for cycle in 1..=o.cycles {
-        let mut tracer = |s: &Store, cell: u32| {
-            let line = format!("cycle {cycle}: {} = {}\n", s.describe(cell), s.show(cell));
-            if to_stdout {
-                crate::out::print(&line);
-            } else {
-                traced.push_str(&line);
+    let save_state = match &form {
+        Form::For { .. } => c.state.map(|s| s.path),
+        Form::Cycles { .. } => None,
+    };
+    let req = RunRequest { shows: c.show, trace, out: c.out, save_state, tier: c.tier };
+    let ran = match form {
+        Form::For { controls, .. } => {
+            let held = plant.block.and_then(|b| plant.strategy().and_then(|s| s.sequence_mut(b)));
+            if let Some(seq) = held {
+                if let Err(p) = linc_driver::single::monitor(seq, &controls, &[]) {
+                    return r.report(&p);
+                }
             }
-        };
-        let trace: linc_runtime::vm::Tracer = if o.common.trace.is_some() { Some(&mut tracer) } else { None };
-        if let Err(e) = vm.run(linked, &mut act, store, trace) {
-            r.runtime(&e);
-            return (1, traced);
+            linc_driver::run::strategy(&mut plant, duration.unwrap_or_default(), req)
         }
-        store.now += o.period;
+        Form::Cycles { cycles, period, .. } => linc_driver::run::actions(&mut plant, cycles, period, req),
+    };
+    match ran {
+        Ok(ran) => {
+            for (path, value) in &ran.shows {
+                crate::out::line(&format!("{path} = {value}"));
+            }
+            warned.max(r.report(&ran.problems))
+        }
+        Err(p) => r.report(&p),
     }
-    (0, traced)
+}
+
+/// `--trace -`: a strategy's JSON lines as they are (JSON escapes every
+/// control character), an action's `cycle N: …` lines escaped as all
+/// standard output is.
+fn stdout_trace(form: &Form) -> Box<dyn Write> {
+    match form {
+        Form::For { .. } => Box::new(std::io::BufWriter::new(std::io::stdout().lock())),
+        Form::Cycles { .. } => Box::new(crate::out::Stream::new()),
+    }
+}
+
+/// The action to run of `linc run FILE --db DB`.
+pub fn action(file: PathBuf, action: Option<String>, block: Option<String>) -> Program {
+    Program::Actions { file, action: action.map_or(Choice::First, Choice::Named), block }
 }

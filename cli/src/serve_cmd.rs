@@ -1,18 +1,17 @@
 //! `linc serve PLANT.json`: the strategy run in real time behind a live
-//! monitor page and a JSON API (docs/serve.md). The CLI builds the plant
-//! as `linc console` does, hands it to `linc-serve`, optionally reads
-//! console lines from standard input, and on Ctrl-C (or at `--for`) stops
-//! and saves `--state`.
+//! monitor page and a JSON API (docs/serve.md). The driver builds the plant
+//! as it builds every other; `linc-serve` serves it until Ctrl-C (or
+//! `--for`); this optionally reads console lines from standard input, then
+//! saves `--state`.
 
-use crate::console_cmd::{bounded_lines, MAX_LINE};
-use crate::run_cmd::Common;
-use crate::strategy_cmd::{self, Options as StrategyOptions, Retain};
-use linc_driver::Reporter;
-use linc_engines::console::Console;
+use crate::report::Reporter;
+use linc_compiler::diag::{Diagnostic, Problems};
+use linc_driver::console::{bounded_lines, MAX_LINE};
+use linc_driver::plant::{PlantSpec, StateFile};
+use linc_format::Code;
 use linc_serve::{Config, Reply, Speed};
 use std::net::SocketAddr;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 /// `linc serve`'s options.
@@ -43,7 +42,7 @@ pub struct ServeArgs {
     pub set: Vec<String>,
     /// Fix the clock: YYYY-MM-DDTHH:MM:SS (UTC).
     #[arg(long, value_name = "YYYY-MM-DDTHH:MM:SS", value_parser = crate::now)]
-    pub now: Option<String>,
+    pub now: Option<i64>,
     /// Seed of RANDOM, for repeatable runs.
     #[arg(long)]
     pub seed: Option<u64>,
@@ -109,72 +108,40 @@ pub fn roc_address(s: &str) -> Result<linc_comms::roc::Address, String> {
     Ok(linc_comms::roc::Address { unit, group })
 }
 
-/// Set by SIGINT (Ctrl-C): the main loop stops the server cleanly.
-static INTERRUPTED: AtomicBool = AtomicBool::new(false);
-
-#[cfg(unix)]
-fn on_interrupt() {
-    extern "C" fn handler(_: libc::c_int) {
-        INTERRUPTED.store(true, Ordering::SeqCst);
-    }
-    // SAFETY: the handler only stores to an atomic, which is async-signal-safe.
-    unsafe {
-        libc::signal(libc::SIGINT, handler as *const () as libc::sighandler_t);
-        libc::signal(libc::SIGTERM, handler as *const () as libc::sighandler_t);
-    }
-}
-
-#[cfg(not(unix))]
-fn on_interrupt() {}
-
-pub fn run(a: ServeArgs, r: &mut Reporter) -> u8 {
-    let until_us = match a.duration.as_deref().map(linc_driver::database::duration).transpose() {
-        Ok(d) => d,
-        Err(msg) => return crate::report::usage(r, msg),
+pub fn run(a: ServeArgs, r: &Reporter) -> u8 {
+    let times = a
+        .duration
+        .as_deref()
+        .map(|d| linc_driver::database::duration("--for", d))
+        .transpose()
+        .and_then(|until| Ok((until, linc_driver::database::duration("--client-timeout", &a.client_timeout)?)));
+    let (until_us, idle) = match times {
+        Ok((until, idle)) => (until, Duration::from_micros(idle)),
+        Err(p) => return r.report(&p),
     };
-    let idle = match linc_driver::database::duration(&a.client_timeout) {
-        Ok(us) => Duration::from_micros(us),
-        Err(msg) => return crate::report::usage(r, format!("--client-timeout: {msg}")),
-    };
-    let common = Common {
+    let state = a.state.clone().map(|path| StateFile { path, cold: a.cold });
+    let outputs = [("--trace", &a.trace), ("--state", &a.state)];
+    let spec = PlantSpec {
         set: a.set,
-        show: Vec::new(),
-        trace: None,
-        out: None,
         now: a.now,
         seed: a.seed,
-        watchdog: linc_runtime::vm::DEFAULT_WATCHDOG,
         tier: a.tier.into(),
+        state,
+        outputs: outputs.iter().filter_map(|(f, p)| Some((f.to_string(), (*p).clone()?))).collect(),
+        ..PlantSpec::strategy(a.file.clone())
     };
-    let retain = Retain { state: a.state.clone(), cold: a.cold };
-    let so =
-        StrategyOptions { db: a.file.clone(), duration: String::new(), common, single: None, retain, script: None };
-    let mut strategy = match strategy_cmd::load(&so, r) {
-        Ok(s) => s,
-        Err(status) => return status,
+    let mut plant = match linc_driver::plant::build(&spec) {
+        Ok(p) => p,
+        Err(p) => return r.report(&p),
     };
-    if let Some(path) = &a.state {
-        if let Err(status) = linc_driver::state::warm_start(path, a.cold, &mut strategy, r) {
-            return status;
-        }
-    }
-    let wants = linc_engines::strategy::wanted(&strategy.store);
-    let dir = a.file.parent().map(PathBuf::from).unwrap_or_default();
-    let until_us = until_us.map(|d| strategy.elapsed_us().saturating_add(d));
-    let trace = match &a.trace {
-        None => None,
-        Some(path) => {
-            let inputs: Vec<&std::path::Path> =
-                [Some(a.file.as_path()), a.state.as_deref()].into_iter().flatten().collect();
-            match linc_driver::files::check_output(path, &inputs)
-                .and_then(|_| linc_driver::files::AtomicFile::create(path))
-            {
-                Ok(f) => Some(f),
-                Err(e) => return crate::report::refused(r, e.diagnostic()),
-            }
-        }
+    r.report(&std::mem::take(&mut plant.warnings));
+    let until_us = until_us.map(|d| plant.strategy().map_or(0, |s| s.elapsed_us()).saturating_add(d));
+    let trace = match a.trace.as_deref().map(linc_driver::files::AtomicFile::create).transpose() {
+        Ok(t) => t,
+        Err(e) => return r.report(&e.into()),
     };
     let limits = linc_serve::Limits { max_clients: usize::from(a.max_clients), idle, ..Default::default() };
+    let log_to = *r;
     let cfg = Config {
         speed: a.speed.0,
         token: a.token,
@@ -185,11 +152,12 @@ pub fn run(a: ServeArgs, r: &mut Reporter) -> u8 {
         modbus: a.modbus,
         limits,
         trace,
+        log: std::sync::Arc::new(move |line| log_to.note(Code::I0004, line)),
         ..Config::new(a.http)
     };
-    let server = match linc_serve::start(Console::new(strategy), &wants, &dir, cfg) {
+    let server = match linc_serve::start(plant, cfg) {
         Ok(s) => s,
-        Err(e) => return crate::report::usage(r, e),
+        Err(p) => return r.report(&p),
     };
     let mode = if a.allow_writes { "controls on" } else { "read-only" };
     crate::out::line(&format!("serving http://{}/ ({mode}); Ctrl-C stops", server.addr()));
@@ -199,15 +167,12 @@ pub fn run(a: ServeArgs, r: &mut Reporter) -> u8 {
     if let Some(m) = server.modbus_addr() {
         crate::out::line(&format!("Modbus TCP server on {m}"));
     }
-    on_interrupt();
     if a.console {
         let handle = server.handle();
-        let mut rr = Reporter::new(r.format());
-        std::thread::spawn(move || console_lines(&handle, &mut rr));
+        let rr = *r;
+        std::thread::spawn(move || console_lines(&handle, &rr));
     }
-    while !INTERRUPTED.load(Ordering::SeqCst) && !server.finished() {
-        std::thread::sleep(Duration::from_millis(50));
-    }
+    server.wait();
     let done = server.stop();
     crate::out::line(&format!(
         "stopped at {}: {} scans, {} late",
@@ -215,28 +180,26 @@ pub fn run(a: ServeArgs, r: &mut Reporter) -> u8 {
         done.scans,
         done.late
     ));
+    let mut problems = Problems::new();
     if let Some(why) = &done.trace_error {
-        r.command(linc_format::Code::E0900, why.clone());
+        problems.append(Problems::usage(Code::E0900, why.clone()));
     }
     if let Some(path) = &a.state {
-        if let Err(status) = linc_driver::state::save(path, &done.console.strategy, r) {
-            return status;
+        if let Err(p) = linc_driver::plant::save_state(path, &done.console.strategy) {
+            problems.append(p);
         }
     }
-    if done.trace_error.is_some() {
-        return 2;
-    }
-    0
+    r.report(&problems)
 }
 
 /// `--console`: each line of standard input run on the plant, replies
 /// printed as `linc console` prints them.
-fn console_lines(handle: &linc_serve::Handle, r: &mut Reporter) {
+fn console_lines(handle: &linc_serve::Handle, r: &Reporter) {
     for line in bounded_lines(std::io::stdin().lock()) {
         let Ok(line) = line else {
             let why = format!("a console line is at most {MAX_LINE} bytes");
-            let e = linc_engines::console::ConsoleError::new(linc_format::Code::C0002, why);
-            crate::out::line(&crate::console_cmd::error_text(&e, r));
+            let refused = Problems::finding(Diagnostic::command(Code::C0002, why));
+            crate::out::line(r.text(&refused).trim_end());
             continue;
         };
         if line.trim().is_empty() {
@@ -249,7 +212,11 @@ fn console_lines(handle: &linc_serve::Handle, r: &mut Reporter) {
             }
             Some(Reply::Done { replies, failures }) => {
                 for reply in replies {
-                    crate::console_cmd::print_reply(reply, r);
+                    match reply {
+                        Ok(text) if text.is_empty() => {}
+                        Ok(text) => crate::out::line(&text),
+                        Err(e) => crate::out::line(r.text(&linc_driver::console::refused(&e)).trim_end()),
+                    }
                 }
                 for f in failures {
                     crate::out::line(&f);

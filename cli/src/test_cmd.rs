@@ -1,14 +1,15 @@
 //! `linc test [PATH…]`: runs scenario files (`*.ltest`, a directory is
-//! searched) and reports like `cargo test`. The scenario language is the
-//! compiler's (`linc_compiler::scenario`), running it the runtime's
-//! (`linc_engines::scenario`); this reads files, builds strategies, runs
-//! scenarios on all cores and prints (`docs/testing.md`).
+//! searched) and reports like `cargo test`. Reading and running scenarios
+//! is the driver's (`linc_driver::scenarios`), on all cores; this finds the
+//! files, prints the report and writes JUnit, VCD and coverage files
+//! (`docs/testing.md`).
 
-use crate::report::usage;
-use linc_compiler::scenario::{self, Target};
+use crate::report::{usage, Reporter};
+use linc_compiler::diag::Problems;
 use linc_driver::coverage::{Coverage, Format, Gate};
+use linc_driver::scenarios::file::{self as scenario, Target};
 use linc_driver::scenarios::{Outcome, Recording};
-use linc_driver::Reporter;
+use linc_format::Code;
 use std::path::{Path, PathBuf};
 
 pub struct Options {
@@ -65,37 +66,25 @@ fn walk(dir: &Path, out: &mut Vec<PathBuf>, depth: usize) -> std::io::Result<()>
 
 /// `--merge-coverage A.info B.info… -o OUT.info`: the sum as lcov, and
 /// its summary table on standard output.
-fn merge(o: &Options, r: &mut Reporter) -> u8 {
+fn merge(o: &Options, r: &Reporter) -> u8 {
     let Some(out) = &o.out else { return usage(r, "--merge-coverage needs -o OUT.info, where the sum goes") };
     let inputs: Vec<&Path> = o.merge_coverage.iter().map(PathBuf::as_path).collect();
-    if let Err(e) = linc_driver::files::check_output(out, &inputs) {
-        return crate::report::refused(r, e.diagnostic());
+    let sum = linc_driver::files::check_output(out, &inputs)
+        .map_err(Problems::from)
+        .and_then(|()| linc_driver::coverage::merge_files(&o.merge_coverage))
+        .and_then(|sum| {
+            linc_driver::files::write_atomic(out, sum.to_lcov().as_bytes()).map(|()| sum).map_err(Problems::from)
+        });
+    match sum {
+        Ok(sum) => {
+            crate::out::line(sum.summary().trim_end());
+            r.report(&linc_driver::coverage::gate_problems(&sum, &o.gate))
+        }
+        Err(p) => r.report(&p),
     }
-    let sum = match linc_driver::coverage::merge_files(&o.merge_coverage, r) {
-        Ok(c) => c,
-        Err(status) => return status,
-    };
-    if let Err(e) = linc_driver::files::write_atomic(out, sum.to_lcov().as_bytes()) {
-        return crate::report::refused(r, e.diagnostic());
-    }
-    crate::out::line(sum.summary().trim_end());
-    gate(&sum, &o.gate, r)
 }
 
-/// Reports each kind of coverage under what `--fail-under-*` asks (E0913);
-/// the exit status, 1 if any is.
-fn gate(coverage: &Coverage, gate: &Gate, r: &mut Reporter) -> u8 {
-    let short = coverage.short_of(gate);
-    for (kind, share, want) in &short {
-        r.command(
-            linc_format::Code::E0913,
-            format!("{share:.2}% of {kind} covered, under the {want}% --fail-under-{kind} asks for"),
-        );
-    }
-    u8::from(!short.is_empty())
-}
-
-pub fn run(o: &Options, r: &mut Reporter) -> u8 {
+pub fn run(o: &Options, r: &Reporter) -> u8 {
     if !o.merge_coverage.is_empty() {
         return merge(o, r);
     }
@@ -123,17 +112,31 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
         return 0;
     }
     if let Err(e) = check_outputs(o, &files) {
-        return crate::report::refused(r, e.diagnostic());
+        return r.report(&e.into());
     }
     let jobs = o.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())).max(1);
     let started = std::time::Instant::now();
     let rec = Recording { vcd: o.vcd.is_some(), coverage: o.coverage.is_some() };
     let outcomes = linc_driver::scenarios::run_all(&files, jobs, rec);
+    print_report(&outcomes);
+    let failed = outcomes.iter().any(|o| !o.passed);
+    let took = started.elapsed().as_secs_f64();
+    r.note(Code::I0003, format!("linc test: {} scenarios in {took:.2}s on {jobs} thread(s)", outcomes.len()));
+    let written = write_files(o, &outcomes);
+    match written {
+        Ok(gate) if gate.has_errors() => r.report(&gate),
+        Ok(_) => u8::from(failed),
+        Err(p) => r.report(&p),
+    }
+}
+
+/// The report, as `cargo test` prints one.
+fn print_report(outcomes: &[Outcome]) {
     crate::out::line(&format!("running {} scenario{}", outcomes.len(), if outcomes.len() == 1 { "" } else { "s" }));
-    for out in &outcomes {
+    for out in outcomes {
         crate::out::line(&format!("test {} ... {}", out.name, if out.passed { "ok" } else { "FAILED" }));
     }
-    let failed: Vec<&linc_driver::scenarios::Outcome> = outcomes.iter().filter(|o| !o.passed).collect();
+    let failed: Vec<&Outcome> = outcomes.iter().filter(|o| !o.passed).collect();
     if !failed.is_empty() {
         crate::out::line("\nfailures:\n");
         for f in &failed {
@@ -147,31 +150,30 @@ pub fn run(o: &Options, r: &mut Reporter) -> u8 {
     let passed = outcomes.len() - failed.len();
     let verdict = if failed.is_empty() { "ok" } else { "FAILED" };
     crate::out::line(&format!("\ntest result: {verdict}. {passed} passed, {} failed", failed.len()));
-    eprintln!("linc test: {} scenarios in {:.2}s on {jobs} thread(s)", outcomes.len(), started.elapsed().as_secs_f64());
+}
+
+/// `--junit`, `--vcd` and `--coverage`'s files; what `--fail-under-*`
+/// finds short (E0913).
+fn write_files(o: &Options, outcomes: &[Outcome]) -> Result<Problems, Problems> {
     if let Some(path) = &o.junit {
-        if let Err(e) = linc_driver::files::write_atomic(path, crate::test_report::junit(&outcomes).as_bytes()) {
-            return crate::report::refused(r, e.diagnostic());
-        }
+        linc_driver::files::write_atomic(path, linc_driver::reports::junit(outcomes).as_bytes())?;
     }
     if let Some(path) = &o.vcd {
-        if let Err(status) = crate::test_report::write_vcds(path, &outcomes, r) {
-            return status;
-        }
+        linc_driver::reports::write_vcds(path, outcomes)?;
     }
-    if let Some(format) = o.coverage {
-        match write_coverage(format, o.out.as_deref(), &outcomes, r) {
-            Ok(all) if gate(&all, &o.gate, r) != 0 => return 1,
-            Ok(_) => {}
-            Err(status) => return status,
+    match o.coverage {
+        Some(format) => {
+            let all = write_coverage(format, o.out.as_deref(), outcomes)?;
+            Ok(linc_driver::coverage::gate_problems(&all, &o.gate))
         }
+        None => Ok(Problems::new()),
     }
-    u8::from(!failed.is_empty())
 }
 
 /// The scenarios' coverage added up (in file order; sums do not depend on
 /// it) and written as `format`: to `out`, or a summary to standard output.
 /// The sum, for the gate.
-fn write_coverage(format: Format, out: Option<&Path>, outcomes: &[Outcome], r: &mut Reporter) -> Result<Coverage, u8> {
+fn write_coverage(format: Format, out: Option<&Path>, outcomes: &[Outcome]) -> Result<Coverage, Problems> {
     let mut all = Coverage::default();
     outcomes.iter().filter_map(|o| o.coverage.as_ref()).for_each(|c| all.merge(c));
     let text = match format {
@@ -180,8 +182,7 @@ fn write_coverage(format: Format, out: Option<&Path>, outcomes: &[Outcome], r: &
         Format::Summary => all.summary(),
     };
     match out {
-        Some(path) => linc_driver::files::write_atomic(path, text.as_bytes())
-            .map_err(|e| crate::report::refused(r, e.diagnostic()))?,
+        Some(path) => linc_driver::files::write_atomic(path, text.as_bytes())?,
         None => crate::out::line(text.trim_end()),
     }
     Ok(all)
@@ -208,7 +209,7 @@ fn check_outputs(o: &Options, files: &[PathBuf]) -> Result<(), linc_driver::file
     let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     let mut targets: Vec<PathBuf> = o.junit.iter().chain(&o.out).cloned().collect();
     if let Some(vcd) = &o.vcd {
-        targets.extend(crate::test_report::vcd_targets(vcd, files));
+        targets.extend(linc_driver::reports::vcd_targets(vcd, files));
     }
     targets.iter().try_for_each(|t| linc_driver::files::check_output(t, &inputs))
 }

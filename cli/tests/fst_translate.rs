@@ -148,7 +148,7 @@ fn every_example_table_translates_faithfully_or_is_refused_with_its_reasons() {
 
 /// The action name `linc fst to-st` gives a table.
 fn action(table: &str) -> String {
-    linc_driver::fst_translate::action_name(Path::new(table))
+    linc_driver::fst::action_name(Path::new(table))
 }
 
 #[test]

@@ -14,7 +14,6 @@ pub mod diag;
 pub mod fmt;
 pub mod fst;
 pub mod ladder;
-pub mod scenario;
 pub mod session;
 pub mod sfc;
 pub mod source_kind;
@@ -95,4 +94,47 @@ pub fn check_ladder(src: &str, stem: &str, ctx: Context) -> Report<ast::SourceFi
         _ => None,
     };
     Report { tree, program: s.take_program(id), diagnostics: c.diagnostics }
+}
+
+/// Checks `expr` (an expectation of a scenario test) as a BOOL expression in which the step variables of
+/// `steps` (slot order: `.X` at `2 × slot`, `.T` at `2 × slot + 1`) may be
+/// read, and lowers it into a one-unit object whose retained slots are those
+/// step variables. Diagnostics are located within `expr`.
+pub fn compile_expectation(
+    expr: &str,
+    db: &linc_format::Database,
+    steps: &[String],
+) -> Result<linc_format::ObjectFile, Vec<Diagnostic>> {
+    let ctx = Context { db, resolve_blocks: true, steps: Some(steps) };
+    let report = check_transition(expr, ctx);
+    let failed = report.has_errors();
+    let Some(checked) = report.program.filter(|_| !failed) else {
+        return Err(report.diagnostics);
+    };
+    st::lower::lower_expectation(&checked, &st::lower::Lines::new(expr), steps)
+        .map_err(|errors| errors.iter().map(|e| e.to_diagnostic()).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use linc_format::isa::Op;
+
+    #[test]
+    fn expectations_compile_with_step_variables() {
+        let db = linc_format::Database::from_json(r#"{"blocks": {"R": {"type": "RECIPE"}}}"#).unwrap();
+        let steps = vec!["Fill".to_string(), "Heat".to_string()];
+        let obj = compile_expectation("Heat.X AND R.A0 > 1.0", &db, &steps).expect("compiles");
+        let code = &obj.units[0].blocks[0].ops.0;
+        assert!(code.contains(&Op::LoadRet { n: 2 }), "Heat is slot 1: .X at 2");
+        assert_eq!(obj.units[0].retained, 4);
+        // Two sequences with a step `Fill`: the first one's is meant.
+        let twice = vec!["Fill".to_string(), "Heat".to_string(), "Fill".to_string()];
+        let obj = compile_expectation("Fill.X", &db, &twice).expect("compiles");
+        assert!(obj.units[0].blocks[0].ops.0.contains(&Op::LoadRet { n: 0 }), "slot 0, not 2");
+        let e = compile_expectation("R.A0 + 1.0", &db, &steps).unwrap_err();
+        assert!(!e.is_empty(), "not BOOL");
+        let e = compile_expectation("Nope.X", &db, &steps).unwrap_err();
+        assert!(!e.is_empty());
+    }
 }

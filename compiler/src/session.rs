@@ -222,6 +222,12 @@ impl<'a> Session<'a> {
         &self.files
     }
 
+    /// The files, given up when the session is done, for the problems
+    /// that point into them.
+    pub fn into_files(self) -> SourceFiles {
+        self.files
+    }
+
     /// True once any file had an error.
     pub fn has_errors(&self) -> bool {
         self.failed

@@ -7,7 +7,9 @@
 //! Everything is kept sorted and the reports carry no time or machine, so
 //! equal counts give equal bytes.
 
+use linc_compiler::diag::{Diagnostic, Problems, Span};
 use linc_format::xml::{escape, Whitespace};
+use linc_format::Code;
 use std::collections::BTreeMap;
 
 /// What `linc test --coverage` writes.
@@ -329,33 +331,37 @@ fn methods(f: &FileCoverage) -> String {
     out
 }
 
-/// Reads and adds lcov files (`linc test --merge-coverage`), reporting a
-/// file that can't be read (E0900) or is not lcov (E0912, at its line);
-/// `Err` is the exit status.
-pub fn merge_files(paths: &[std::path::PathBuf], r: &mut crate::Reporter) -> Result<Coverage, u8> {
+/// Reads and adds lcov files (`linc test --merge-coverage`); a file that
+/// can't be read (E0900) or is not lcov (E0912, at its line) is a refused
+/// request.
+pub fn merge_files(paths: &[std::path::PathBuf]) -> Result<Coverage, Problems> {
     let mut all = Coverage::default();
     for path in paths {
-        let text = crate::files::read_input_text(path).map_err(|e| {
-            r.unreadable(path, &e);
-            2u8
-        })?;
+        let text = crate::files::read_input_text(path).map_err(|e| Problems::unreadable(path, &e))?;
         match Coverage::from_lcov(&text) {
             Ok(c) => all.merge(&c),
             Err((line, why)) => {
                 let start: usize = text.split_inclusive('\n').take(line - 1).map(str::len).sum();
                 let end = start + text[start..].find('\n').unwrap_or(text.len() - start);
-                let id = r.file(path.display().to_string(), text);
-                let d = linc_compiler::Diagnostic::error(
-                    linc_format::Code::E0912,
-                    why,
-                    linc_compiler::Span::new(start, end),
-                );
-                r.emit_own(d.label("here").in_file(id));
-                return Err(2);
+                let mut p = Problems::new();
+                let id = p.add_file(path.display().to_string(), text);
+                p.push(Diagnostic::error(Code::E0912, why, Span::new(start, end)).label("here").in_file(id));
+                return Err(p.refused());
             }
         }
     }
     Ok(all)
+}
+
+/// Each kind of coverage under what `--fail-under-*` asks, as E0913
+/// errors (findings: the run happened, its coverage falls short).
+pub fn gate_problems(coverage: &Coverage, gate: &Gate) -> Problems {
+    let mut p = Problems::new();
+    for (kind, share, want) in coverage.short_of(gate) {
+        let why = format!("{share:.2}% of {kind} covered, under the {want}% --fail-under-{kind} asks for");
+        p.push(Diagnostic::command(Code::E0913, why));
+    }
+    p
 }
 
 #[cfg(test)]

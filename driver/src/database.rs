@@ -2,33 +2,52 @@
 //! changed by `--set`, read by `--show`, written back by `--out`; and the
 //! clock options every run shares (`--now`, `--for`).
 
-use crate::report::usage;
-use crate::Reporter;
-use linc_compiler::diag::render::SourceFiles;
-use linc_compiler::Diagnostic;
+use linc_compiler::diag::{Diagnostic, Problems, SourceFiles, Span};
 use linc_engines::console::fields::{address, set, Addr};
 use linc_format::Code;
 use linc_runtime::{text, Database, Store};
 use std::path::Path;
 
-/// Loads a database (`--db`, a strategy), reporting its errors located in
-/// the file. `Err` carries the exit status.
-pub fn load(path: Option<&Path>, files: &mut SourceFiles, r: &mut Reporter) -> Result<Option<Database>, u8> {
-    let Some(path) = path else { return Ok(None) };
-    let text = crate::files::read_input_text(path).map_err(|e| {
-        r.unreadable(path, &e);
-        2u8
-    })?;
+/// A database as read from its file: what it describes, and its text (to
+/// locate a problem of what it configures, and to write it back).
+#[derive(Clone, Debug)]
+pub struct DbFile {
+    pub db: Database,
+    /// The file's name as given.
+    pub name: String,
+    pub text: String,
+}
+
+impl DbFile {
+    /// Problems holding `d`, which points into this file (file 0).
+    pub fn problems(&self, d: Diagnostic) -> Problems {
+        let mut files = SourceFiles::new();
+        files.add(self.name.clone(), self.text.clone());
+        Problems::of(files, vec![d])
+    }
+}
+
+/// Loads a database (`--db`, a strategy), its errors located in the file;
+/// a database that does not load is a refused request.
+pub fn load(path: &Path) -> Result<DbFile, Problems> {
+    let text = crate::files::read_input_text(path).map_err(|e| Problems::unreadable(path, &e))?;
+    let name = path.display().to_string();
     // A byte order mark is ignored, as in sources: three spaces keep every
     // offset that of the file.
-    let loaded = Database::from_json(&without_bom(&text));
-    let id = files.add(path.display().to_string(), text);
-    loaded.map(Some).map_err(|e| {
-        let span = e.span.map(|(s, e)| linc_compiler::Span::new(s, e)).unwrap_or_default();
-        let d = Diagnostic::error(e.code, e.message, span).label("here").in_file(id);
-        r.emit(files, &d);
-        2u8
-    })
+    match Database::from_json(&without_bom(&text)) {
+        Ok(db) => Ok(DbFile { db, name, text }),
+        Err(e) => {
+            let span = e.span.map(|(s, e)| Span::new(s, e)).unwrap_or_default();
+            let d = Diagnostic::error(e.code, e.message, span).label("here");
+            let file = DbFile { db: Database::default(), name, text };
+            Err(file.problems(d).refused())
+        }
+    }
+}
+
+/// [`load`] for an optional `--db`.
+pub fn load_opt(path: Option<&Path>) -> Result<Option<DbFile>, Problems> {
+    path.map(load).transpose()
 }
 
 /// The text with a leading byte order mark replaced by three spaces (JSON
@@ -40,30 +59,32 @@ pub(crate) fn without_bom(text: &str) -> std::borrow::Cow<'_, str> {
     }
 }
 
-/// Applies every `--set` and resolves every `--show` (reporting the first
-/// problem, E0903; `Err` is the exit status).
-pub fn set_and_show(
-    store: &mut Store,
-    sets: &[String],
-    shows: &[String],
-    r: &mut Reporter,
-) -> Result<Vec<(String, Addr)>, u8> {
+/// Applies every `--set` (the first problem is a refused request, E0903).
+pub fn apply_sets(store: &mut Store, sets: &[String]) -> Result<(), Problems> {
     for s in sets {
-        set(store, s).map_err(|msg| usage(r, format_args!("--set {s}: {msg}")))?;
+        set(store, s).map_err(|msg| usage(format!("--set {s}: {msg}")))?;
     }
-    let mut out = Vec::with_capacity(shows.len());
-    for p in shows {
-        let a = address(store, p).map_err(|msg| usage(r, format_args!("--show {p}: {msg}")))?;
-        out.push((p.clone(), a));
-    }
-    Ok(out)
+    Ok(())
+}
+
+/// Resolves every `--show` (the first problem is a refused request, E0903).
+pub fn shows(store: &Store, shows: &[String]) -> Result<Vec<(String, Addr)>, Problems> {
+    shows
+        .iter()
+        .map(|p| address(store, p).map(|a| (p.clone(), a)).map_err(|m| usage(format!("--show {p}: {m}"))))
+        .collect()
+}
+
+/// A refused option (E0903).
+pub fn usage(message: impl Into<String>) -> Problems {
+    Problems::usage(Code::E0903, message)
 }
 
 /// The clock's start in POSIX seconds: `--now`, or the system time.
-pub fn start_time(now: Option<&str>) -> Result<i64, String> {
+pub fn start_time(now: Option<&str>) -> Result<i64, Problems> {
     match now {
         Some(t) => text::parse_timestamp(t)
-            .ok_or_else(|| format!("--now `{t}` is not a real date and time YYYY-MM-DDTHH:MM:SS")),
+            .ok_or_else(|| usage(format!("--now `{t}` is not a real date and time YYYY-MM-DDTHH:MM:SS"))),
         None => Ok(std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
             .map(|d| d.as_secs() as i64)
@@ -71,24 +92,24 @@ pub fn start_time(now: Option<&str>) -> Result<i64, String> {
     }
 }
 
-/// A duration as an ST time constant, with or without `T#` (`10m`, `T#1h30m`).
-pub fn duration(text: &str) -> Result<u64, String> {
+/// A duration given to the option `flag` (`--for`, `--client-timeout`), as
+/// an ST time constant with or without `T#` (`10m`, `T#1h30m`), in
+/// microseconds: at least one, at most 366 days.
+pub fn duration(flag: &str, text: &str) -> Result<u64, Problems> {
     let secs = linc_runtime::db::duration_seconds(text)
-        .map_err(|why| format!("--for `{text}` is not a duration like 10m, 1h30m or T#2.5s: {why}"))?;
+        .map_err(|why| usage(format!("{flag} `{text}` is not a duration like 10m, 1h30m or T#2.5s: {why}")))?;
     if !secs.is_finite() || !(1e-6..=366.0 * 86_400.0).contains(&secs) {
-        return Err(format!(
-            "--for `{text}`: the duration must be at least the clock's microsecond (1us) and at most 366 days"
-        ));
+        return Err(usage(format!(
+            "{flag} `{text}`: the duration must be at least the clock's microsecond (1us) and at most 366 days"
+        )));
     }
     Ok(linc_engines::strategy::micros(secs))
 }
 
 /// Writes the database with the store's values, in the input's JSON shape.
-pub fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<(), crate::files::Refused> {
-    let json_error = |e: serde_json::Error| crate::files::Refused {
-        code: Code::E0900,
-        message: format!("can't write `{}`: {e}", out.display()),
-    };
+pub fn write_db(out: &Path, original: &str, store: &Store) -> Result<(), Problems> {
+    let json_error =
+        |e: serde_json::Error| Problems::usage(Code::E0900, format!("can't write `{}`: {e}", out.display()));
     let mut root: serde_json::Value = serde_json::from_str(&without_bom(original)).map_err(json_error)?;
     let values = store.values_json();
     if let Some(blocks) = root.get_mut("blocks").and_then(|b| b.as_object_mut()) {
@@ -107,5 +128,5 @@ pub fn write_db(out: &std::path::Path, original: &str, store: &Store) -> Result<
         }
     }
     let text = serde_json::to_string_pretty(&root).map_err(json_error)? + "\n";
-    crate::files::write_atomic(out, text.as_bytes())
+    Ok(crate::files::write_atomic(out, text.as_bytes())?)
 }

@@ -1,10 +1,8 @@
 //! Evaluating one ST expression against a database (`linc eval`): checked,
 //! lowered, verified, linked and run like any program, its problems
-//! reported like any other.
+//! returned like any other.
 
-use crate::database::load as load_db;
-use crate::Reporter;
-use linc_compiler::diag::render::SourceFiles;
+use linc_compiler::diag::Problems;
 use linc_compiler::session::{CheckOptions, Input, Session};
 use linc_compiler::st::lower::{self, Lines};
 use linc_compiler::Context;
@@ -14,40 +12,37 @@ use linc_runtime::Database;
 use linc_stdlib::value::decode_dollar;
 use std::path::Path;
 
-/// The value of `expr`; `Err` is the exit status (1 after a runtime error,
-/// 2 for any other), the problem reported. A STRING comes back decoded, so
-/// that its printed constant reads back to the same text.
+/// The value of `expr` at `now` (POSIX seconds; the system's time without
+/// it), with its warnings. A STRING comes back decoded, so that its
+/// printed constant reads back to the same text. An expression that does
+/// not compile is a refused request; one that faults, an error found.
 pub fn evaluate(
     expr: &str,
     db: Option<&Path>,
-    now: Option<&str>,
+    now: Option<i64>,
     seed: Option<u64>,
-    r: &mut Reporter,
-) -> Result<linc_stdlib::Value, u8> {
-    let mut dbfiles = SourceFiles::new();
-    let db = load_db(db, &mut dbfiles, r)?;
+) -> Result<(linc_stdlib::Value, Problems), Problems> {
+    let db = crate::database::load_opt(db)?.map(|d| d.db);
     let mut session = Session::new(Context::of(db.as_ref()));
     let id = session.add("<expr>", expr.as_bytes().to_vec());
     let checked = session.check(id, CheckOptions { input: Input::Expression, tree: false });
-    r.emit_all(session.files(), &checked.diagnostics);
     let Some(program) = checked.expr else {
-        return Err(2);
+        return Err(Problems::of(session.into_files(), checked.diagnostics).refused());
     };
     let is_text = program.ty == linc_stdlib::Ty::Text;
     let obj = match lower::lower_eval(&program, &Lines::new(expr)) {
         Ok(o) => o,
         Err(errors) => {
-            for e in errors {
-                r.emit(session.files(), &e.to_diagnostic().in_file(id));
-            }
-            return Err(2);
+            let mut all = checked.diagnostics;
+            all.extend(errors.iter().map(|e| e.to_diagnostic().in_file(id)));
+            return Err(Problems::of(session.into_files(), all).refused());
         }
     };
-    let now = match crate::database::start_time(now) {
-        Ok(s) => s,
-        Err(msg) => return Err(crate::report::usage(r, msg)),
+    let warnings = Problems::of(session.into_files(), checked.diagnostics);
+    let now = match now {
+        Some(t) => t,
+        None => crate::database::start_time(None)?,
     };
-    drop(session);
     let mut store = Store::new(db.unwrap_or_else(Database::builtin));
     store.now = now as f64;
     let program = linc_runtime::Program { unit: 0, own: None };
@@ -56,19 +51,23 @@ pub fn evaluate(
         let mut act = Activation::new(&linked, 0, 0);
         vm.run(&linked, &mut act, &mut store, None).map(|_| act.result.take())
     });
+    let mut problems = warnings;
     match result {
-        Ok(Ok(Some(v))) => Ok(match v {
-            linc_stdlib::Value::Bytes(b) if is_text => linc_stdlib::Value::Bytes(decode_dollar(&b)),
-            v => v,
-        }),
-        Ok(Ok(None)) => Err(2),
+        Ok(Ok(Some(v))) => Ok((
+            match v {
+                linc_stdlib::Value::Bytes(b) if is_text => linc_stdlib::Value::Bytes(decode_dollar(&b)),
+                v => v,
+            },
+            problems,
+        )),
+        Ok(Ok(None)) => Err(problems.refused()),
         Ok(Err(e)) => {
-            r.runtime_in("<expr>", expr.to_string(), &e);
-            Err(1)
+            problems.append(crate::run::fault_in("<expr>", expr.to_string(), &e));
+            Err(problems)
         }
         Err(e) => {
-            r.whole_file("<expr>", e.code(), e.to_string());
-            Err(2)
+            problems.append(Problems::whole_file("<expr>", e.code(), e.to_string()));
+            Err(problems)
         }
     }
 }

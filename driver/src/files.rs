@@ -4,6 +4,7 @@
 //! memory), and outputs replace a regular file atomically or not at all
 //! (never a link, a device, a FIFO or one of the inputs).
 
+use linc_compiler::diag::Problems;
 use linc_format::Code;
 use std::fmt;
 use std::fs::{self, Metadata};
@@ -149,8 +150,8 @@ fn read_limited(path: &Path, limit: u64, remember: bool) -> io::Result<Vec<u8>> 
     Ok(bytes)
 }
 
-/// An output file `linc` will not write, or could not write (exit status
-/// 2); reported through [`crate::Reporter`] like any other error.
+/// An output file `linc` will not write, or could not write: a refused
+/// request, as [`Problems`] like any other.
 #[derive(Debug)]
 pub struct Refused {
     pub code: Code,
@@ -160,6 +161,12 @@ pub struct Refused {
 impl Refused {
     pub fn diagnostic(&self) -> linc_compiler::Diagnostic {
         linc_compiler::Diagnostic::command(self.code, self.message.clone())
+    }
+}
+
+impl From<Refused> for Problems {
+    fn from(r: Refused) -> Problems {
+        Problems::refusal(r.diagnostic())
     }
 }
 

@@ -3,8 +3,7 @@
 //! a file that does not parse, and finds the files of the strategies in a
 //! directory when no file is named.
 
-use crate::Reporter;
-use linc_compiler::diag::render::SourceFiles;
+use linc_compiler::diag::Problems;
 use linc_runtime::store::Store;
 use linc_runtime::Database;
 use std::path::{Path, PathBuf};
@@ -83,23 +82,18 @@ pub struct Formatted {
 }
 
 /// The file formatted: `Ok(None)` when it is already in the canonical
-/// layout, `Err(status)` when it cannot be read or does not parse (the
-/// errors printed).
-pub fn format_file(path: &Path, r: &mut Reporter) -> Result<Option<Formatted>, u8> {
-    let text = crate::files::read_input_text(path).map_err(|e| {
-        r.unreadable(path, &e);
-        2u8
-    })?;
+/// layout. A file that can't be read is a refused request; one that does
+/// not parse, errors found in it.
+pub fn format_file(path: &Path) -> Result<Option<Formatted>, Problems> {
+    let text = crate::files::read_input_text(path).map_err(|e| Problems::unreadable(path, &e))?;
     let kind = crate::source::kind(path);
     match linc_compiler::fmt::format(kind, &text) {
         Ok(formatted) if formatted == text => Ok(None),
         Ok(formatted) => Ok(Some(Formatted { original: text, formatted })),
         Err(errors) => {
-            let mut files = SourceFiles::new();
+            let mut files = linc_compiler::diag::SourceFiles::new();
             let id = files.add(path.display().to_string(), text);
-            let located: Vec<_> = errors.into_iter().map(|d| d.in_file(id)).collect();
-            r.emit_all(&files, &located);
-            Err(1)
+            Err(Problems::of(files, errors.into_iter().map(|d| d.in_file(id)).collect()))
         }
     }
 }

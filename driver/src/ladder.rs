@@ -2,63 +2,75 @@
 //! database, then evaluates each element (contact operands, coil targets)
 //! in the database as the run left it, for the drawing.
 
-use crate::database::load as load_db;
-use crate::database::set_and_show;
-use crate::strategy::own_block;
-use crate::Reporter;
-use linc_compiler::diag::render::SourceFiles;
+use crate::plant::{Choice, PlantSpec, Program, Running};
+use linc_compiler::diag::Problems;
 use linc_compiler::session::{CheckOptions, Input, Session};
 use linc_compiler::st::lower::{self, Lines};
 use linc_compiler::Context;
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
-use linc_runtime::{Database, Linked, Program, Store};
+use linc_runtime::{Database, Linked, Program as Linking, Store};
 use linc_stdlib::Value;
 use std::collections::HashMap;
 use std::path::Path;
 
-/// The truth of each element after `cycles` runs of every action, by span.
-pub fn after_run(
-    file: &Path,
-    db_path: &Path,
-    set: &[String],
-    cycles: u32,
-    r: &mut Reporter,
-) -> Result<HashMap<(usize, usize), bool>, u8> {
-    let mut files = SourceFiles::new();
-    let db = load_db(Some(db_path), &mut files, r)?.unwrap_or_default();
-    let mut store = Store::new(db.clone());
-    set_and_show(&mut store, set, &[], r)?;
-    let obj = crate::build::compile(&[file.to_path_buf()], Some(&db), r, 1).map_err(|crate::build::Failed(s)| s)?;
-    let name = file.display().to_string();
-    let verified = linc_runtime::verify::verify(obj).map_err(|e| {
-        r.whole_file(&name, e.code(), e.to_string());
-        2u8
-    })?;
-    let mut vm = Vm::new(DEFAULT_WATCHDOG, Clock::new(1, 0));
-    for unit in 0..verified.object().units.len() {
-        let own = own_block(&store, None, &verified.object().units[unit].block_type)
-            .map_err(|d| crate::report::refused(r, *d))?;
-        let linked = verified.clone().link(&store, &[Program { unit, own }]).map_err(|e| {
-            r.whole_file(&name, e.code(), e.to_string());
-            2u8
-        })?;
-        let mut act = Activation::new(&linked, 0, 0);
-        for _ in 0..cycles {
-            if let Err(e) = vm.run(&linked, &mut act, &mut store, None) {
-                r.runtime(&e);
-                break;
-            }
-        }
-    }
+/// The truth of each element of a ladder file, by the span of its operand.
+pub type Truths = HashMap<(usize, usize), bool>;
+
+/// The truth of each element after `cycles` runs of every action, by span,
+/// and the run's problems (warnings, runtime faults). The actions run
+/// through the plant builder, on the database's values with `set`, at the
+/// clock's zero with seed 1, so a picture does not depend on the day.
+pub fn after_run(file: &Path, db_path: &Path, set: &[String], cycles: u32) -> Result<(Truths, Problems), Problems> {
+    let spec = PlantSpec {
+        program: Program::Actions { file: file.to_path_buf(), action: Choice::Every, block: None },
+        set: set.to_vec(),
+        now: Some(0),
+        seed: Some(1),
+        ..PlantSpec::strategy(db_path)
+    };
+    let mut plant = crate::plant::build(&spec)?;
+    let mut problems = std::mem::take(&mut plant.warnings);
+    let ran = crate::run::actions(&mut plant, cycles, 0.0, crate::run::RunRequest::default())?;
+    problems.append(ran.problems);
+    let Running::Actions(a) = &plant.running else { return Err(problems.refused()) };
     let text = crate::files::read_input_text(file).unwrap_or_default();
-    let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("ladder");
+    let stem = crate::source::stem(file, "ladder");
     let mut known = HashMap::new();
     for span in linc_compiler::ladder::element_spans(&text, stem) {
-        if let Some(v) = text.get(span.start..span.end).and_then(|e| truth(e, &db, &store)) {
+        if let Some(v) = text.get(span.start..span.end).and_then(|e| truth(e, &a.store.db, &a.store)) {
             known.insert((span.start, span.end), v);
         }
     }
-    Ok(known)
+    Ok((known, problems))
+}
+
+/// The ST a ladder file compiles as (`linc ladder to-st`, ADR 0009),
+/// checked against `db` when given; the file's own errors are errors
+/// found in it.
+pub fn to_st(file: &Path, db: Option<&Path>) -> Result<String, Problems> {
+    let db = crate::database::load_opt(db)?;
+    let ctx = Context::of(db.as_ref().map(|d| &d.db));
+    let source = crate::source::read(file)?;
+    let stem = crate::source::stem(file, "ladder");
+    linc_compiler::ladder::to_st(&source.text, stem, ctx).map_err(|ds| source.problems(ds))
+}
+
+/// The rungs drawn in text (`linc ladder show`), handed to `write` one
+/// action at a time; `values` gives each element's state. The file's
+/// syntax errors and rungs too large to draw are errors found in it.
+pub fn show(
+    file: &Path,
+    values: linc_compiler::ladder::pretty::draw::Values,
+    write: &mut dyn FnMut(&str),
+) -> Result<(), Problems> {
+    let bytes = crate::files::read_input(file).map_err(|e| Problems::unreadable(file, &e))?;
+    let (text, _) = linc_compiler::diag::decode(bytes);
+    let stem = crate::source::stem(file, "ladder");
+    linc_compiler::ladder::draw_to(&text, stem, values, write).map_err(|ds| {
+        let mut files = linc_compiler::diag::SourceFiles::new();
+        let id = files.add(file.display().to_string(), text.clone());
+        Problems::of(files, ds.into_iter().map(|d| d.in_file(id)).collect())
+    })
 }
 
 /// An expression's value in `store`, as a truth value (`None` if it is not
@@ -73,7 +85,7 @@ fn element(expr: &str, db: &Database, store: &Store) -> Option<Linked> {
     let id = session.add("<element>", expr.as_bytes().to_vec());
     let program = session.check(id, CheckOptions { input: Input::Expression, tree: false }).expr?;
     let obj = lower::lower_eval(&program, &Lines::new(expr)).ok()?;
-    linc_runtime::verify::verify(obj).ok()?.link(store, &[Program { unit: 0, own: None }]).ok()
+    linc_runtime::verify::verify(obj).ok()?.link(store, &[Linking { unit: 0, own: None }]).ok()
 }
 
 /// Runs an element's expression (it only reads the store: an expression

@@ -1,47 +1,83 @@
-//! The files of `linc roc poll`: the command list and the word table, read
-//! with their errors located in the file, and the word table written back
-//! atomically, never over an input.
+//! `linc roc poll` as a library: the command list and the word table read
+//! with their errors located in the file, the list run against a device by
+//! linc-comms' host, and the word table written back atomically, never over
+//! an input.
 
 use crate::files::{read_input_text, write_atomic};
-use crate::Reporter;
 use linc_comms::error::FileError;
-use linc_comms::roc::host::{Command, Words};
-use linc_compiler::{Diagnostic, Span};
-use std::path::Path;
+use linc_comms::roc::host::{poll::poll as run_list, status_text, Command, Host, TcpLink, Words};
+use linc_comms::roc::Address;
+use linc_compiler::diag::{Diagnostic, Problems, Span};
+use std::net::SocketAddr;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
 
-/// Reports a comms file error at its place in the file.
-fn located(r: &mut Reporter, path: &Path, text: String, e: FileError) -> u8 {
-    let id = r.file(path.display().to_string(), text);
+/// What to poll, and how.
+pub struct PollRequest {
+    pub host: SocketAddr,
+    /// The command list (`--commands`).
+    pub commands: PathBuf,
+    /// The initial word table (`--words`); all zeros without it.
+    pub words: Option<PathBuf>,
+    /// Keep polling this long, each command by its POLL TIME; once without.
+    pub run_for: Option<Duration>,
+    /// Where the word table and each command's status go (`--out`).
+    pub out: Option<PathBuf>,
+    pub timeout: Duration,
+    /// This host's own unit and group.
+    pub unit: Address,
+}
+
+/// A comms file error at its place in the file (a refused request).
+fn located(path: &Path, text: String, e: FileError) -> Problems {
+    let mut p = Problems::new();
+    let id = p.add_file(path.display().to_string(), text);
     let span = e.span.map(|(s, t)| Span::new(s, t)).unwrap_or_default();
-    r.emit_own(Diagnostic::error(e.code, e.message, span).label("here").in_file(id));
-    2
+    p.push(Diagnostic::error(e.code, e.message, span).label("here").in_file(id));
+    p.refused()
 }
 
-/// Reads a file with `parse`; `Err` is the exit status after reporting.
-fn read<T>(path: &Path, r: &mut Reporter, parse: impl Fn(&str) -> Result<T, FileError>) -> Result<T, u8> {
-    let text = read_input_text(path).map_err(|e| {
-        r.unreadable(path, &e);
-        2u8
-    })?;
-    parse(&text).map_err(|e| located(r, path, text, e))
+/// Reads a file with `parse`.
+fn read<T>(path: &Path, parse: impl Fn(&str) -> Result<T, FileError>) -> Result<T, Problems> {
+    let text = read_input_text(path).map_err(|e| Problems::unreadable(path, &e))?;
+    parse(&text).map_err(|e| located(path, text, e))
 }
 
-/// The command list (`--commands`).
-pub fn commands(path: &Path, r: &mut Reporter) -> Result<Vec<Command>, u8> {
-    read(path, r, linc_comms::roc::host::commands::parse)
-}
-
-/// The initial word table (`--words`), or all zeros.
-pub fn words(path: Option<&Path>, r: &mut Reporter) -> Result<Words, u8> {
-    match path {
-        Some(p) => read(p, r, Words::parse),
-        None => Ok(Words::default()),
+/// Runs the command list: each status line goes to `say` as it happens
+/// (every command's once without `run_for`, errors only with it, then each
+/// command's last status). The statuses, each command's last; a list or
+/// word table that can't be read, or an output that names an input, is a
+/// refused request, before any request is sent.
+pub fn poll(req: &PollRequest, say: &mut dyn FnMut(&str)) -> Result<Vec<u16>, Problems> {
+    let list = read(&req.commands, linc_comms::roc::host::commands::parse)?;
+    let words = match &req.words {
+        Some(p) => read(p, Words::parse)?,
+        None => Words::default(),
+    };
+    if let Some(out) = &req.out {
+        let inputs: Vec<&Path> = [Some(req.commands.as_path()), req.words.as_deref()].into_iter().flatten().collect();
+        crate::files::check_output(out, &inputs)?;
     }
+    let mut host = Host { me: req.unit, words };
+    let mut link = TcpLink::new(req.host, req.timeout);
+    let once = req.run_for.is_none();
+    let status = run_list(&mut host, &list, &mut link, req.run_for, |i, code| {
+        if once || code != 0 {
+            say(&status_line(i, &list[i], code));
+        }
+    });
+    if !once {
+        for (i, code) in status.iter().enumerate().filter(|(i, _)| list[*i].enabled()) {
+            say(&format!("command {}: last status {code} ({})", i + 1, status_text(*code)));
+        }
+    }
+    if let Some(path) = &req.out {
+        write_atomic(path, host.words.to_json(Some(&status)).as_bytes())?;
+    }
+    Ok(status)
 }
 
-/// Writes the word table with each command's status (`--out`),
-/// atomically (the caller has checked that `out` is not an input before
-/// polling began).
-pub fn write_words(out: &Path, words: &Words, status: &[u16], r: &mut Reporter) -> Result<(), u8> {
-    write_atomic(out, words.to_json(Some(status)).as_bytes()).map_err(|e| crate::report::refused(r, e.diagnostic()))
+fn status_line(i: usize, c: &Command, code: u16) -> String {
+    let how = if code == 0 { "done".to_string() } else { format!("error {code}: {}", status_text(code)) };
+    format!("command {} (line {}): {} to {},{}: {how}", i + 1, c.line, c.opcode, c.unit, c.group)
 }

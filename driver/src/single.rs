@@ -3,31 +3,18 @@
 //! monitor's controls (`--hold-step`, `--force`) and step flags for
 //! `--show Step.X` / `Step.T`.
 
-use linc_compiler::Diagnostic;
+use linc_compiler::diag::Problems;
 use linc_engines::sequence::Sequence;
 use linc_engines::strategy::{Want, WantKind};
 use linc_format::Code;
 use linc_runtime::db::Task;
 use linc_runtime::Database;
-use std::path::PathBuf;
 
 /// Which program a single-program run is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
     Sequence,
     Fst,
-}
-
-/// The single-program shortcut's own options: a sequence run by an SFC_CON
-/// block, or an FST table run by an FST block.
-pub struct SequenceRun {
-    pub file: PathBuf,
-    pub kind: Kind,
-    pub block: Option<String>,
-    /// Seconds per scan: the period of the block's task for this run.
-    pub period: Option<f64>,
-    pub hold_steps: Vec<String>,
-    pub force: Vec<String>,
 }
 
 impl Kind {
@@ -52,8 +39,8 @@ impl Kind {
 
 /// The block that runs the program: an SFC_CON block for a sequence, an
 /// FST block for a table (`--block`, or the only one); E0904 otherwise.
-pub fn find_block(db: &Database, named: Option<&str>, kind: Kind) -> Result<usize, Box<Diagnostic>> {
-    let refuse = |why: String| Box::new(Diagnostic::command(Code::E0904, why));
+pub fn find_block(db: &Database, named: Option<&str>, kind: Kind) -> Result<usize, Problems> {
+    let refuse = |why: String| Problems::usage(Code::E0904, why);
     let (template, what) = match kind {
         Kind::Sequence => ("SFC_CON", "the sequence"),
         Kind::Fst => ("FST", "the table"),
@@ -82,13 +69,8 @@ pub fn set_period(db: &mut Database, block: usize, seconds: f64) {
     db.tasks.sort_by_key(|t| t.number);
 }
 
-/// The one program to run: the sequence file, by its absolute path (the
+/// The program `file` of `kind` run by `block`, by its absolute path (the
 /// strategy resolves `FileName` against the database's folder).
-pub fn want(seq: &SequenceRun, block: usize) -> Want {
-    want_for(&seq.file, seq.kind, block)
-}
-
-/// The program `file` of `kind` run by `block`, by absolute path.
 pub fn want_for(file: &std::path::Path, kind: Kind, block: usize) -> Want {
     let file = std::path::absolute(file).unwrap_or_else(|_| file.to_path_buf());
     let kind = match kind {
@@ -98,10 +80,19 @@ pub fn want_for(file: &std::path::Path, kind: Kind, block: usize) -> Want {
     Want { block, file: file.display().to_string(), action: String::new(), kind }
 }
 
+/// The monitor's controls a run of one sequence starts with.
+#[derive(Clone, Debug, Default)]
+pub struct Controls {
+    /// `--hold-step STEP`.
+    pub hold_steps: Vec<String>,
+    /// `--force NAME=hold|continue|normal`.
+    pub force: Vec<String>,
+}
+
 /// Applies `--hold-step` and `--force NAME=hold|continue|normal`, and
 /// checks that every `--show Step.X` names a step (E0903).
-pub fn monitor(seq: &mut Sequence, o: &SequenceRun, step_shows: &[String]) -> Result<(), Box<Diagnostic>> {
-    let usage = |why: String| Box::new(Diagnostic::command(Code::E0903, why));
+pub fn monitor(seq: &mut Sequence, o: &Controls, step_shows: &[String]) -> Result<(), Problems> {
+    let usage = |why: String| Problems::usage(Code::E0903, why);
     for p in step_shows {
         let step = p.split_once('.').map_or(p.as_str(), |(s, _)| s);
         if !seq.chart.has_step(step) {

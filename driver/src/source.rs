@@ -3,10 +3,8 @@
 //! byte order mark kept in the text but ignored by the renderer, each byte
 //! that is not UTF-8 reported once as a located E0017).
 
-use crate::Reporter;
-use linc_compiler::diag::render::SourceFiles;
+use linc_compiler::diag::{Diagnostic, FileId, Problems, SourceFiles};
 use linc_compiler::source_kind::SourceKind;
-use linc_compiler::FileId;
 use std::path::Path;
 
 /// The kind of source a path names, by its name (the compiler decides).
@@ -29,23 +27,47 @@ pub fn is_object(path: &Path) -> bool {
     kind(path) == SourceKind::Object
 }
 
-/// Reads `path` as a source: its text (`None` when it is not UTF-8, which
-/// is reported at the first bad byte), the file map holding it for
-/// diagnostics, and its id there. `Err` is the exit status of an
-/// unreadable file (2), already reported.
-pub fn read(path: &Path, r: &mut Reporter) -> Result<(Option<String>, SourceFiles, FileId), u8> {
-    let bytes = crate::files::read_input(path).map_err(|e| {
-        r.unreadable(path, &e);
-        2u8
-    })?;
-    let (text, invalid) = linc_compiler::diag::files::decode(bytes);
+/// A source file read and decoded.
+pub struct Source {
+    /// Its name as given.
+    pub name: String,
+    pub text: String,
+    files: SourceFiles,
+}
+
+/// The stem of a file's name, or `default`: the name of a file's only
+/// action when it has no `ACTION` header.
+pub fn stem<'a>(path: &'a Path, default: &'a str) -> &'a str {
+    path.file_stem().and_then(|s| s.to_str()).unwrap_or(default)
+}
+
+impl Source {
+    /// `ds`, which point into this source, with it.
+    pub fn problems(self, ds: Vec<Diagnostic>) -> Problems {
+        let located = ds.into_iter().map(|d| d.in_file(FileId(0))).collect();
+        Problems::of(self.files, located)
+    }
+
+    /// [`Source::problems`] without giving the source up.
+    pub fn problems_of(&self, ds: &[Diagnostic]) -> Problems {
+        let mut files = SourceFiles::new();
+        files.add(self.name.clone(), self.text.clone());
+        Problems::of(files, ds.iter().map(|d| d.clone().in_file(FileId(0))).collect())
+    }
+}
+
+/// Reads `path` as a source. An unreadable file is a refused request; a
+/// file that is not UTF-8 is an error found in it (E0017 at its first bad
+/// byte).
+pub fn read(path: &Path) -> Result<Source, Problems> {
+    let bytes = crate::files::read_input(path).map_err(|e| Problems::unreadable(path, &e))?;
+    let (text, invalid) = linc_compiler::diag::decode(bytes);
+    let name = path.display().to_string();
     let mut files = SourceFiles::new();
-    let id = files.add_decoded(path.display().to_string(), text.clone(), invalid.clone());
+    files.add_decoded(name.clone(), text.clone(), invalid.clone());
+    let source = Source { name, text, files };
     match linc_compiler::session::SessionError::not_utf8(&invalid) {
-        Some(e) => {
-            r.emit(&files, &e.to_diagnostic().in_file(id));
-            Ok((None, files, id))
-        }
-        None => Ok((Some(text), files, id)),
+        Some(e) => Err(source.problems(vec![e.to_diagnostic()])),
+        None => Ok(source),
     }
 }

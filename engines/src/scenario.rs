@@ -119,6 +119,9 @@ struct Runner {
     report: Report,
     /// The watched variables as last sampled.
     last: Vec<Option<Seen>>,
+    /// The strategy's time when the scenario started: scenario times count
+    /// from it (a warm start continues a saved clock).
+    base: u64,
 }
 
 /// Runs `steps` against the driver's strategy. `watch` names the fields to
@@ -131,13 +134,14 @@ pub fn run(driver: &mut dyn Driver, steps: Vec<Step>, watch: &[String]) -> Repor
         fresh: false,
         report: Report::default(),
         last: Vec::new(),
+        base: driver.strategy().elapsed_us(),
     };
     r.report.samples = samples(driver.strategy(), watch);
     r.sample(driver.strategy());
     for step in steps {
         match step {
             Step::At { line, at_us, command } => {
-                let now = driver.strategy().elapsed_us();
+                let now = r.now(driver.strategy());
                 if at_us < now {
                     r.fail(line, now, format!("`at` goes back in time (the scenario is at {})", time(now)), Vec::new());
                     continue;
@@ -147,7 +151,7 @@ pub fn run(driver: &mut dyn Driver, steps: Vec<Step>, watch: &[String]) -> Repor
             }
             Step::Expect { line, check, text, object } => r.expect(driver.strategy_mut(), line, check, text, object),
             Step::Run { line: _, for_us } => {
-                let to = driver.strategy().elapsed_us().saturating_add(for_us);
+                let to = r.now(driver.strategy()).saturating_add(for_us);
                 r.advance(driver, to);
             }
         }
@@ -157,7 +161,7 @@ pub fn run(driver: &mut dyn Driver, steps: Vec<Step>, watch: &[String]) -> Repor
     if let Some(to) = last {
         r.advance_while(driver, to, |r| r.pending.iter().any(|p| deadline(p).is_some()));
     }
-    r.report.end_us = driver.strategy().elapsed_us();
+    r.report.end_us = r.now(driver.strategy());
     r.report
 }
 
@@ -210,6 +214,11 @@ fn samples(s: &Strategy, watch: &[String]) -> Samples {
 }
 
 impl Runner {
+    /// Scenario time: since the scenario started.
+    fn now(&self, s: &Strategy) -> u64 {
+        s.elapsed_us().saturating_sub(self.base)
+    }
+
     fn fail(&mut self, line: u32, at_us: u64, message: String, values: Vec<(String, String)>) {
         self.report.failures.push(Failure { line, at_us, message, values });
     }
@@ -220,7 +229,7 @@ impl Runner {
     /// it runs, not only at its end.
     fn commands(&mut self, driver: &mut dyn Driver, line: u32, text: &str) {
         for command in driver.split(text) {
-            let at_us = driver.strategy().elapsed_us();
+            let at_us = self.now(driver.strategy());
             let refused = |code: &str, message: &str| format!("`{}` was refused ({code}): {message}", command.trim());
             match driver.advances(command) {
                 Some(Ok(us)) => self.advance(driver, at_us.saturating_add(us)),
@@ -246,15 +255,16 @@ impl Runner {
     /// [`Runner::advance`], stopping early once `go_on` says so.
     fn advance_while(&mut self, driver: &mut dyn Driver, to: u64, go_on: impl Fn(&Runner) -> bool) {
         loop {
+            let now = self.now(driver.strategy());
             let s = driver.strategy_mut();
-            let now = s.elapsed_us();
             if now >= to || !go_on(self) {
                 return;
             }
             let step = s.scan_us().min(to - now);
             self.fresh = false;
-            for e in s.run_for(step, None) {
-                let at = s.elapsed_us();
+            let failures = s.run_for(step, None);
+            let at = self.now(driver.strategy());
+            for e in failures {
                 let where_ = format!("{}:{}:{}", e.file, e.line, e.col);
                 self.fail(
                     0,
@@ -273,7 +283,7 @@ impl Runner {
     /// (compared as cells or raw slots, so an unchanged one costs no
     /// formatting).
     fn sample(&mut self, s: &Strategy) {
-        let now = s.elapsed_us();
+        let now = self.now(s);
         let smp = &mut self.report.samples;
         if smp.watched.is_empty() {
             return;
@@ -306,7 +316,7 @@ impl Runner {
     /// at this time already: checking them all again for each new one made
     /// setting up a scenario quadratic in its expectations).
     fn expect(&mut self, s: &mut Strategy, line: u32, check: Check, text: String, object: Verified) {
-        let now = s.elapsed_us();
+        let now = self.now(s);
         match object.link(&s.store, &[crate::Program { unit: 0, own: None }]) {
             Ok(linked) => {
                 let act = Activation::new(&linked, 0, 0);
@@ -343,7 +353,7 @@ impl Runner {
     /// is recorded with the values it read (`names`: the strategy's step
     /// names, looked up once for all the failures of a check).
     fn decide(&mut self, s: &mut Strategy, p: &mut Pending, names: &mut Option<Vec<String>>) -> bool {
-        let now = s.elapsed_us();
+        let now = self.now(s);
         let due = deadline(p).is_none_or(|d| now >= d);
         let value = evaluate(&mut self.vm, p, &self.slots, &mut s.store);
         let verdict = match (p.check, value) {

@@ -180,6 +180,7 @@ codes! {
     E0502 => "scenario time not understood",
     E0503 => "unknown scenario line",
     E0504 => "unknown kind of expectation",
+    E0505 => "scenario `state` or `set` line not understood",
     E0700 => "not a linc object file",
     E0701 => "unsupported object format version",
     E0702 => "object file checksum mismatch",
@@ -264,6 +265,10 @@ codes! {
     E0921 => "ROC command list has the wrong shape",
     E0922 => "ROC command has a value out of range",
     E0923 => "ROC command asks for what the host does not support",
+    I0001 => "how many errors and warnings a check found",
+    I0002 => "how many code blocks ran compiled",
+    I0003 => "how many scenarios ran, and how long they took",
+    I0004 => "what a wire server did with a client",
 }
 
 impl Code {
@@ -273,7 +278,13 @@ impl Code {
         Code::ALL.iter().copied().find(|c| c.as_str().eq_ignore_ascii_case(text))
     }
 
-    /// Whether this is a warning's code (`W…`); every other kind is an error.
+    /// Whether this is a note's code (`I…`): information, never a problem.
+    pub fn is_note(self) -> bool {
+        self.as_str().starts_with('I')
+    }
+
+    /// Whether this is a warning's code (`W…`); every other kind but a
+    /// note's is an error.
     pub fn is_warning(self) -> bool {
         self.as_str().starts_with('W')
     }
@@ -340,7 +351,11 @@ mod tests {
         for &c in Code::ALL {
             let page = c.explanation();
             assert!(page.starts_with(&format!("# {}: {}", c, c.title())), "{c} title line");
-            assert!(page.contains("## Wrong") && page.contains("## Right"), "{c} examples");
+            if c.is_note() {
+                assert!(page.contains("## Example"), "{c} example");
+            } else {
+                assert!(page.contains("## Wrong") && page.contains("## Right"), "{c} examples");
+            }
         }
     }
 

@@ -61,6 +61,7 @@ pub fn convert(doc: &Doc, d: &Diagnostic) -> lsp_types::Diagnostic {
         severity: Some(match d.severity {
             Severity::Error => DiagnosticSeverity::ERROR,
             Severity::Warning => DiagnosticSeverity::WARNING,
+            Severity::Note => DiagnosticSeverity::INFORMATION,
         }),
         code: Some(NumberOrString::String(d.code.as_str().to_string())),
         source: Some("linc".into()),

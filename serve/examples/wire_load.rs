@@ -8,7 +8,6 @@
 //! `cargo run --release -p linc-serve --example wire_load [CLIENTS] [REQUESTS]`
 
 use linc_comms::roc::{Address, Frame};
-use linc_engines::console::Console;
 use linc_serve::{Config, Speed};
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpListener, TcpStream};
@@ -98,8 +97,7 @@ fn main() {
     let args: Vec<usize> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
     let (clients, n) = (args.first().copied().unwrap_or(50), args.get(1).copied().unwrap_or(1000));
     let path = Path::new(ROOT).join("examples/roc/plant.json");
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::diag::render::Format::Short);
-    let (s, wants) = linc_driver::strategy::plant(&path, &Default::default(), &mut r).expect("plant");
+    let plant = linc_driver::plant::build(&linc_driver::plant::PlantSpec::strategy(path)).expect("plant");
     let cfg = Config {
         speed: Speed::Times(1.0),
         roc: Some(("127.0.0.1:0".parse().unwrap(), Address { unit: 1, group: 2 })),
@@ -107,7 +105,7 @@ fn main() {
         log: std::sync::Arc::new(|_| {}),
         ..Config::new("127.0.0.1:0".parse().unwrap())
     };
-    let server = linc_serve::start(Console::new(s), &wants, path.parent().unwrap(), cfg).expect("start");
+    let server = linc_serve::start(plant, cfg).expect("start");
     let (roc, mb) = (server.roc_addr().unwrap(), server.modbus_addr().unwrap());
     let t = Instant::now();
     let all = run(clients, n, |c| if c % 2 == 0 { (roc, true) } else { (mb, false) });

@@ -16,9 +16,11 @@ pub mod wire;
 
 pub use wire::{Limits, Log};
 
+use linc_compiler::diag::Problems;
 use linc_engines::console::{Console, ConsoleError};
 use linc_engines::strategy::trace::Trace;
 use linc_engines::strategy::Want;
+use linc_format::Code;
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -56,7 +58,8 @@ pub struct Config {
     pub modbus: Option<SocketAddr>,
     /// What the wire servers put up with.
     pub limits: wire::Limits,
-    /// Where the wire servers' log lines go.
+    /// Where the wire servers' log lines go (nowhere unless the caller
+    /// says: the command line renders them as notes, I0004).
     pub log: wire::Log,
     /// Where the trace goes (`--trace`): every change a scan, a console
     /// line or a client on the wire made, committed when the server stops.
@@ -65,8 +68,8 @@ pub struct Config {
 
 impl Config {
     /// Serving on `addr` at speed 1, read-only, with no token, no end, no
-    /// state file and no wire servers; the wire servers' log lines go to
-    /// standard error.
+    /// state file and no wire servers; the wire servers' log lines are
+    /// dropped.
     pub fn new(addr: SocketAddr) -> Config {
         Config {
             addr,
@@ -78,7 +81,7 @@ impl Config {
             roc: None,
             modbus: None,
             limits: wire::Limits::default(),
-            log: Arc::new(|line| eprintln!("{line}")),
+            log: Arc::new(|_| {}),
             trace: None,
         }
     }
@@ -212,9 +215,20 @@ impl std::fmt::Display for StartError {
     }
 }
 
+/// Starts the plant thread and the HTTP server over a plant built by the
+/// driver (its strategy, and the programs its blocks name for the live
+/// pictures); one that can't start is a refused request.
+pub fn start(plant: linc_driver::plant::Plant, cfg: Config) -> Result<Server, Problems> {
+    let (wants, dir) = (plant.wants.clone(), plant.dir.clone());
+    let Some(strategy) = plant.into_strategy() else {
+        return Err(Problems::usage(Code::E0903, "linc serve runs a strategy"));
+    };
+    start_console(Console::new(strategy), &wants, &dir, cfg).map_err(|e| Problems::usage(Code::E0903, e.to_string()))
+}
+
 /// Starts the plant thread and the HTTP server over `console`'s strategy;
 /// `wants` are the programs its blocks name, with sources relative to `dir`.
-pub fn start(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) -> Result<Server, StartError> {
+fn start_console(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) -> Result<Server, StartError> {
     if !cfg.addr.ip().is_loopback() && cfg.token.is_none() {
         return Err(StartError::NeedsToken(cfg.addr));
     }
@@ -318,6 +332,32 @@ impl Server {
         self.plant.is_finished()
     }
 
+    /// Blocks until the plant stops by itself (`--for`) or the process is
+    /// asked to stop (Ctrl-C, SIGTERM); then [`Server::stop`] ends it.
+    pub fn wait(&self) {
+        let Ok(rt) = tokio::runtime::Builder::new_current_thread().enable_all().build() else {
+            return self.wait_finished();
+        };
+        rt.block_on(async {
+            let finished = async {
+                while !self.finished() {
+                    tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+                }
+            };
+            tokio::select! {
+                () = finished => {}
+                () = interrupted() => {}
+            }
+        });
+    }
+
+    /// Waits for `--for` alone (no signals could be watched).
+    fn wait_finished(&self) {
+        while !self.finished() {
+            std::thread::sleep(std::time::Duration::from_millis(50));
+        }
+    }
+
     /// Stops the plant and the server (open event streams end) and returns
     /// what the run left.
     pub fn stop(mut self) -> Finished {
@@ -329,4 +369,20 @@ impl Server {
         let _ = self.http.join();
         finished
     }
+}
+
+/// Ctrl-C, or SIGTERM where there is one (what a service manager sends).
+async fn interrupted() {
+    #[cfg(unix)]
+    {
+        use tokio::signal::unix::{signal, SignalKind};
+        if let Ok(mut term) = signal(SignalKind::terminate()) {
+            tokio::select! {
+                _ = tokio::signal::ctrl_c() => {}
+                _ = term.recv() => {}
+            }
+            return;
+        }
+    }
+    let _ = tokio::signal::ctrl_c().await;
 }

@@ -4,22 +4,13 @@
 //! engine, 20 clients streaming events at once, and a served run that ends
 //! where `linc run` would.
 
-use linc_engines::console::Console;
+mod common;
+
+use common::{plant, serve};
 use linc_serve::{Config, Server, Speed};
 use serde_json::Value;
 use std::io::BufRead;
-use std::path::Path;
 use std::time::{Duration, Instant};
-
-const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
-
-fn plant(db: &str) -> (Console, Vec<linc_engines::strategy::Want>) {
-    let path = Path::new(ROOT).join(db);
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::diag::render::Format::Short);
-    let o = linc_driver::strategy::PlantOptions { now: Some("2026-01-05T06:00:00".into()), ..Default::default() };
-    let (s, wants) = linc_driver::strategy::plant(&path, &o, &mut r).unwrap_or_else(|_| panic!("{}", r.take()));
-    (Console::new(s), wants)
-}
 
 fn config(speed: Speed, writes: bool, token: Option<&str>) -> Config {
     Config {
@@ -28,12 +19,6 @@ fn config(speed: Speed, writes: bool, token: Option<&str>) -> Config {
         allow_writes: writes,
         ..Config::new("127.0.0.1:0".parse().unwrap())
     }
-}
-
-fn serve(db: &str, cfg: Config) -> Server {
-    let (console, wants) = plant(db);
-    let dir = Path::new(ROOT).join(db).parent().unwrap().to_path_buf();
-    linc_serve::start(console, &wants, &dir, cfg).expect("start")
 }
 
 fn agent() -> ureq::Agent {
@@ -163,10 +148,9 @@ fn a_token_is_required_when_set() {
     assert_eq!(command_as(&s, "NOW", &[("Authorization", "Bearer s3cret")]).0, 200);
     s.stop();
     // Off loopback a token is not optional.
-    let (console, wants) = plant("examples/sequences/plant.json");
     let mut cfg = config(Speed::Times(1.0), false, None);
     cfg.addr = "0.0.0.0:0".parse().unwrap();
-    let e = linc_serve::start(console, &wants, Path::new(ROOT), cfg).err().expect("refused");
+    let e = linc_serve::start(plant("examples/sequences/plant.json"), cfg).err().expect("refused");
     assert!(e.to_string().contains("--token"), "{e}");
 }
 
@@ -219,11 +203,11 @@ fn a_served_run_ends_where_linc_run_would() {
         std::thread::sleep(Duration::from_millis(20));
     }
     let served = s.stop();
-    let (mut alone, _) = plant("examples/sequences/plant.json");
-    let failures = alone.strategy.run_for(600_000_000, None);
+    let mut alone = plant("examples/sequences/plant.json").into_strategy().expect("a strategy");
+    let failures = alone.run_for(600_000_000, None);
     assert!(failures.is_empty());
     assert_eq!(served.console.strategy.elapsed_us(), 600_000_000);
-    assert_eq!(served.console.strategy.store.cells, alone.strategy.store.cells);
+    assert_eq!(served.console.strategy.store.cells, alone.store.cells);
     assert_eq!(served.late, 0);
 }
 

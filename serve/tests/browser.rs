@@ -8,8 +8,9 @@
 //! Without chromium and chromedriver the test says so and passes, unless
 //! `LINC_REQUIRE_BROWSER` is set (as `.ci/run` sets it).
 
+mod common;
+
 use base64::Engine;
-use linc_engines::console::Console;
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -149,15 +150,12 @@ fn the_monitor_page_shows_the_running_sequence_and_holds_a_step() {
         eprintln!("skipped: no {CHROMIUM} or {DRIVER} (.ci/run installs them)");
         return;
     }
-    let db = Path::new(ROOT).join("examples/sequences/plant.json");
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::diag::render::Format::Short);
-    let (s, wants) = linc_driver::strategy::plant(&db, &Default::default(), &mut r).expect("plant");
     let cfg = linc_serve::Config {
         speed: linc_serve::Speed::Times(2.0),
         allow_writes: true,
         ..linc_serve::Config::new("127.0.0.1:0".parse().unwrap())
     };
-    let server = linc_serve::start(Console::new(s), &wants, db.parent().unwrap(), cfg).expect("serve");
+    let server = common::serve("examples/sequences/plant.json", cfg);
     let profile = linc_test_support::temp_dir("chromium-profile");
     let b = Browser::start(&profile);
     call("POST", &b.url("/url"), Some(json!({"url": format!("http://{}/", server.addr())})));

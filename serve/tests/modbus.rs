@@ -6,13 +6,9 @@
 mod common;
 
 use common::{api, console_line};
-use linc_engines::console::Console;
 use linc_serve::{Config, Server, Speed};
-use std::path::Path;
 use tokio_modbus::client::{Context, Reader, Writer};
 use tokio_modbus::{ExceptionCode, Slave};
-
-const ROOT: &str = common::ROOT;
 
 fn serve(writes: bool) -> Server {
     let cfg = Config {
@@ -123,10 +119,7 @@ fn a_read_only_server_refuses_writes() {
 
 #[test]
 fn a_database_without_a_map_refuses_to_serve_modbus() {
-    let path = Path::new(ROOT).join("examples/fst/plant.json");
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::diag::render::Format::Short);
-    let (st, wants) = linc_driver::strategy::plant(&path, &Default::default(), &mut r).unwrap();
     let cfg = Config { modbus: Some("127.0.0.1:0".parse().unwrap()), ..Config::new("127.0.0.1:0".parse().unwrap()) };
-    let e = linc_serve::start(Console::new(st), &wants, path.parent().unwrap(), cfg).err().expect("refused");
+    let e = linc_serve::start(common::plant("examples/fst/plant.json"), cfg).err().expect("refused");
     assert!(e.to_string().contains("\"modbus\" register map"), "{e}");
 }

@@ -8,6 +8,8 @@
 //! `cargo test` runs a few thousand cases of each; the long run is
 //! `LINC_WIRE_FUZZ=1000000 cargo test --release -p linc-serve --test wire_fuzz`.
 
+mod common;
+
 use linc_comms::roc::frame::MAX_FRAME;
 use linc_comms::roc::{Address, Deframer, Frame};
 use linc_engines::console::Console;
@@ -15,22 +17,16 @@ use linc_serve::wire::modbus::ModbusDevice;
 use linc_serve::wire::roc::RocDevice;
 use linc_test_support::alloc::{peak_of, serial, Counting};
 use linc_test_support::Rng;
-use std::path::Path;
 
 #[global_allocator]
 static A: Counting = Counting;
-
-const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
 
 fn cases() -> usize {
     std::env::var("LINC_WIRE_FUZZ").ok().and_then(|v| v.parse().ok()).unwrap_or(3000)
 }
 
 fn console(db: &str) -> Console {
-    let path = Path::new(ROOT).join(db);
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::diag::render::Format::Short);
-    let (s, _) = linc_driver::strategy::plant(&path, &Default::default(), &mut r).unwrap();
-    Console::new(s)
+    Console::new(common::plant(db).into_strategy().expect("a strategy"))
 }
 
 /// The ROC800 example plant after three hours with a high alarm: its

@@ -173,13 +173,13 @@ fn random_scenario_texts_never_panic() {
         let mut rng = Rng::new(case);
         let n = rng.below(40);
         let text: String = (0..n).map(|_| PIECES[rng.below(PIECES.len())]).collect::<Vec<_>>().join(" ");
-        let (scenario, diagnostics) = linc_compiler::scenario::parse(&text);
+        let (scenario, diagnostics) = linc_driver::scenarios::file::parse(&text);
         for d in &diagnostics {
             assert!(d.code.as_str().starts_with("E05"), "{d:?}");
             assert!(d.span.end <= text.len() && text.is_char_boundary(d.span.start), "{d:?} in {text:?}");
         }
         for l in &scenario.lines {
-            if let linc_compiler::scenario::Action::Expect { span, .. } = &l.action {
+            if let linc_driver::scenarios::file::Action::Expect { span, .. } = &l.action {
                 assert!(span.end <= text.len() && text.is_char_boundary(span.start) && text.is_char_boundary(span.end));
             }
         }

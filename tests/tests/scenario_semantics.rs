@@ -45,7 +45,7 @@ fn strategy(action: &str) -> Strategy {
 const COUNT: &str = "ACTION Count\n    REC.N0 := REC.N0 + 1;\nEND_ACTION\n";
 
 fn expect(s: &Strategy, line: u32, check: Check, text: &str) -> Step {
-    let obj = linc_compiler::scenario::compile_expectation(text, &s.store.db, &s.step_names()).expect("compiles");
+    let obj = linc_compiler::compile_expectation(text, &s.store.db, &s.step_names()).expect("compiles");
     Step::Expect { line, check, text: text.into(), object: linc_runtime::verify::verify(obj).expect("verifies") }
 }
 

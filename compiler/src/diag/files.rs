@@ -158,6 +158,12 @@ impl SourceFiles {
     pub fn is_empty(&self) -> bool {
         self.files.is_empty()
     }
+
+    /// Takes `other`'s files after these; the file `FileId(i)` of `other`
+    /// is `FileId(self.len() + i)` here.
+    pub fn append(&mut self, other: SourceFiles) {
+        self.files.extend(other.files);
+    }
 }
 
 /// Decodes a file's bytes: valid UTF-8 is taken as it is (no copy); a byte

@@ -10,11 +10,13 @@
 
 pub mod codes;
 pub mod files;
+mod problems;
 pub mod render;
 pub mod span;
 
 pub use files::{decode, SourceFile, SourceFiles};
 pub use linc_format::Code;
+pub use problems::Problems;
 pub use render::{escape, escape_text, line_col, render, Format};
 pub use span::{FileId, Span};
 
@@ -22,6 +24,10 @@ pub use span::{FileId, Span};
 pub enum Severity {
     Error,
     Warning,
+    /// What a command says besides what it was asked for (a summary, a
+    /// server's log line): printed as its message alone, or in `json` as
+    /// an object like a diagnostic's, with its code.
+    Note,
 }
 
 /// A secondary label. `file` is `None` for the diagnostic's own file, or
@@ -77,6 +83,11 @@ impl Diagnostic {
     /// belongs to no file: printed without a location.
     pub fn command(code: Code, message: impl Into<String>) -> Diagnostic {
         Diagnostic::error(code, message, Span::default()).in_file(FileId::NONE)
+    }
+
+    /// A note about the command, which points into no file.
+    pub fn note(code: Code, message: impl Into<String>) -> Diagnostic {
+        Diagnostic { severity: Severity::Note, ..Diagnostic::command(code, message) }
     }
 
     pub fn warning(code: Code, message: impl Into<String>, span: Span) -> Diagnostic {

@@ -92,10 +92,14 @@ fn severity_word(s: Severity) -> &'static str {
     match s {
         Severity::Error => "error",
         Severity::Warning => "warning",
+        Severity::Note => "note",
     }
 }
 
 fn short(files: &SourceFiles, d: &Diagnostic) -> String {
+    if d.severity == Severity::Note {
+        return format!("{}\n", escape(&d.message));
+    }
     if d.file == FileId::NONE {
         return format!("{}[{}]: {}\n", severity_word(d.severity), d.code, escape(&d.message));
     }
@@ -143,6 +147,9 @@ fn json(files: &SourceFiles, d: &Diagnostic) -> String {
 }
 
 fn human(files: &SourceFiles, d: &Diagnostic) -> String {
+    if d.severity == Severity::Note {
+        return short(files, d);
+    }
     // A file with no text (an object file given as source) has no snippet.
     let empty = d.file == FileId::NONE || files.file(d.file).is_some_and(|f| f.text().is_empty());
     let mut labels = if empty { Vec::new() } else { vec![(d.file, d.span, d.label.as_str(), true)] };
@@ -160,6 +167,7 @@ fn human(files: &SourceFiles, d: &Diagnostic) -> String {
     let base = match d.severity {
         Severity::Error => cs::Diagnostic::error(),
         Severity::Warning => cs::Diagnostic::warning(),
+        Severity::Note => cs::Diagnostic::note(),
     };
     // Without a snippet, a note still names the file the error belongs to
     // (a diagnostic about the command itself has none).

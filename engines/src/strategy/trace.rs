@@ -8,7 +8,9 @@ use std::io::Write;
 
 /// Writes trace lines, remembering each field's last value to give the old one.
 pub struct Trace<'w> {
-    out: &'w mut dyn Write,
+    /// Where lines go: a borrowed writer, or one the trace owns (a file
+    /// committed when the trace is finished).
+    out: Box<dyn Write + 'w>,
     /// Each cell as it was last seen: a write that leaves the bits as they
     /// were is dismissed without formatting the value, which is most
     /// writes of a running strategy; the old text of a change is shown
@@ -35,8 +37,8 @@ pub fn seconds(us: u64) -> serde_json::Value {
 }
 
 impl<'w> Trace<'w> {
-    pub fn new(out: &'w mut dyn Write, store: &Store) -> Trace<'w> {
-        Trace { out, seen: store.cells.clone(), buf: Vec::new(), failed: None }
+    pub fn new(out: impl Write + 'w, store: &Store) -> Trace<'w> {
+        Trace { out: Box::new(out), seen: store.cells.clone(), buf: Vec::new(), failed: None }
     }
 
     /// The old and new text of `cell` if its value changed since it was

@@ -2,21 +2,27 @@
 //! view of a field.
 #![allow(dead_code)]
 
-use linc_engines::console::Console;
+use linc_driver::plant::{Plant, PlantSpec};
 use linc_serve::{Config, Server};
 use std::path::Path;
 
 pub const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
 
-/// Serves the plant `db` (relative to the repository, or absolute) from
-/// 2026-01-05 06:00 with `cfg`; wire log lines are dropped unless `cfg`
-/// keeps them.
-pub fn serve(db: &str, cfg: Config) -> Server {
+/// 2026-01-05 06:00 UTC, when every served test plant starts.
+pub const T0: i64 = 1_767_592_800;
+
+/// The plant `db` (relative to the repository, or absolute) as `linc
+/// serve` builds it, from [`T0`].
+pub fn plant(db: &str) -> Plant {
     let path = if Path::new(db).is_absolute() { Path::new(db).to_path_buf() } else { Path::new(ROOT).join(db) };
-    let mut r = linc_driver::Reporter::in_memory(linc_compiler::diag::render::Format::Short);
-    let o = linc_driver::strategy::PlantOptions { now: Some("2026-01-05T06:00:00".into()), ..Default::default() };
-    let (s, wants) = linc_driver::strategy::plant(&path, &o, &mut r).unwrap_or_else(|_| panic!("{}", r.take()));
-    linc_serve::start(Console::new(s), &wants, path.parent().unwrap(), cfg).expect("start")
+    let spec = PlantSpec { now: Some(T0), ..PlantSpec::strategy(path) };
+    linc_driver::plant::build(&spec).unwrap_or_else(|p| panic!("{p}"))
+}
+
+/// Serves the plant `db` with `cfg`; wire log lines are dropped unless
+/// `cfg` keeps them.
+pub fn serve(db: &str, cfg: Config) -> Server {
+    linc_serve::start(plant(db), cfg).unwrap_or_else(|p| panic!("{p}"))
 }
 
 /// A quiet configuration on loopback port 0: build on it with `..`.

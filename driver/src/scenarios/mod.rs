@@ -1,17 +1,19 @@
 //! Scenario tests (`.ltest`, docs/testing.md) as a library: each file is
-//! read, its strategy built and its expectations compiled, then run by the
-//! runtime's scenario runner; everything that goes wrong before the run is
-//! reported into the scenario's own outcome (short format), so reports are
-//! the same for any number of threads. `linc test` prints the outcomes.
+//! read ([`file`]), its plant built by [`crate::plant`] and its
+//! expectations compiled, then run by the engines' scenario runner;
+//! everything that goes wrong before the run is rendered into the
+//! scenario's own outcome (short format), so reports are the same for any
+//! number of threads. `linc test` prints the outcomes ([`crate::reports`]
+//! writes JUnit and VCD).
 
-use crate::Reporter;
-use linc_compiler::diag::render::{Format, SourceFiles};
-use linc_compiler::scenario::{self, Action, How, Target};
+pub mod file;
+
+use crate::plant::{PlantSpec, Program, StateFile};
+use file::{Action, How, Target};
+use linc_compiler::diag::{Diagnostic, FileId, Format, Problems, SourceFiles, Span};
 use linc_engines::scenario::{Check, Report, Step};
-use linc_engines::strategy::{Strategy, Want};
+use linc_engines::strategy::Strategy;
 use linc_format::Code;
-use linc_runtime::vm::{Clock, Vm};
-use linc_runtime::Store;
 use std::path::{Path, PathBuf};
 
 /// Every simulation starts at this time (2026-01-05 00:00:00 UTC, a
@@ -107,55 +109,25 @@ pub fn run_all(files: &[PathBuf], jobs: usize, rec: Recording) -> Vec<Outcome> {
     slots.into_iter().flatten().collect()
 }
 
-/// Runs one scenario file; everything it prints is in the outcome. The
-/// fields it names are sampled only for a VCD, coverage counted only when
-/// asked for (a scenario that fails before its run counts nothing).
+/// Runs one scenario file; everything it would print is in the outcome.
+/// The fields it names are sampled only for a VCD, coverage counted only
+/// when asked for (a scenario that fails before its run counts nothing).
 pub fn run_one(file: &Path, rec: Recording) -> Outcome {
     let name = file.display().to_string();
     // What goes wrong before the run is part of the scenario's report, in
     // the short format, so that reports come out in file order.
-    let mut r = Reporter::in_memory(Format::Short);
-    let fail = |r: &mut Reporter| Outcome {
+    let fail = |p: Problems| Outcome {
         name: name.clone(),
         passed: false,
-        details: r.take(),
+        details: p.render(Format::Short),
         report: Report::default(),
         coverage: rec.coverage.then(Default::default),
     };
-    let bytes = match crate::files::read_input(file) {
-        Ok(t) => t,
-        Err(e) => {
-            r.unreadable(file, &e);
-            return fail(&mut r);
-        }
+    let (mut strategy, steps, sc) = match prepare(file, &name) {
+        Ok(ready) => ready,
+        Err(p) => return fail(p),
     };
-    let mut sources = SourceFiles::new();
-    let (text, invalid) = linc_compiler::diag::files::decode(bytes);
-    let id = sources.add_decoded(name.clone(), text.clone(), invalid.clone());
-    if let Some(e) = linc_compiler::session::SessionError::not_utf8(&invalid) {
-        r.emit(&sources, &e.to_diagnostic().in_file(id));
-        return fail(&mut r);
-    }
-    let (sc, diagnostics) = scenario::parse(text.strip_prefix('\u{feff}').unwrap_or(&text));
-    if !diagnostics.is_empty() {
-        // Spans count from after a byte order mark: put them back in the file.
-        let bom = if text.starts_with('\u{feff}') { 3 } else { 0 };
-        for d in diagnostics {
-            let span = linc_compiler::Span::new(d.span.start + bom, d.span.end + bom);
-            r.emit(&sources, &linc_compiler::Diagnostic { span, ..d }.in_file(id));
-        }
-        return fail(&mut r);
-    }
-    let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
-    let Ok(mut strategy) = build(&dir, sc.target.as_ref(), &mut r) else {
-        return fail(&mut r);
-    };
-    let steps = steps(&sc, &strategy, &sources, id, &mut r);
-    if r.errors() > 0 {
-        return fail(&mut r);
-    }
     let watch = if rec.vcd { watched(&sc) } else { Vec::new() };
-    strategy.store.now = START;
     if rec.coverage {
         strategy.enable_coverage();
     }
@@ -170,6 +142,77 @@ pub fn run_one(file: &Path, rec: Recording) -> Outcome {
         cov
     });
     Outcome { name, passed: report.failures.is_empty(), details, report, coverage }
+}
+
+/// A scenario read, its plant built and its expectations compiled: the
+/// strategy, the runner's steps and the scenario as read.
+fn prepare(path: &Path, name: &str) -> Result<(Strategy, Vec<Step>, file::Scenario), Problems> {
+    let bytes = crate::files::read_input(path).map_err(|e| Problems::unreadable(path, &e))?;
+    let mut sources = SourceFiles::new();
+    let (text, invalid) = linc_compiler::diag::decode(bytes);
+    sources.add_decoded(name.to_string(), text.clone(), invalid.clone());
+    if let Some(e) = linc_compiler::session::SessionError::not_utf8(&invalid) {
+        return Err(Problems::of(sources, vec![e.to_diagnostic().in_file(FileId(0))]));
+    }
+    // Spans count from after a byte order mark: put them back in the file.
+    let bom = if text.starts_with('\u{feff}') { 3 } else { 0 };
+    let shifted = |ds: Vec<Diagnostic>| -> Vec<Diagnostic> {
+        ds.into_iter()
+            .map(|d| Diagnostic { span: Span::new(d.span.start + bom, d.span.end + bom), ..d }.in_file(FileId(0)))
+            .collect()
+    };
+    let (sc, diagnostics) = file::parse(text.strip_prefix('\u{feff}').unwrap_or(&text));
+    if !diagnostics.is_empty() {
+        return Err(Problems::of(sources, shifted(diagnostics)));
+    }
+    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let spec = spec(&dir, &sc)?;
+    if let Some(d) = bad_set(&spec.db, &sc) {
+        return Err(Problems::of(sources, shifted(vec![d])));
+    }
+    let plant = crate::plant::build(&spec)?;
+    let Some(strategy) = plant.into_strategy() else {
+        return Err(Problems::usage(Code::E0500, "the scenario runs a strategy, a sequence or an FST table"));
+    };
+    let (steps, errors) = steps(&sc, &strategy);
+    if !errors.is_empty() {
+        return Err(Problems::of(sources, shifted(errors)));
+    }
+    Ok((strategy, steps, sc))
+}
+
+/// The plant a scenario runs: its strategy or program, from the start of
+/// every scenario (2026-01-05, seed 1), its `state` and its `set`s.
+fn spec(dir: &Path, sc: &file::Scenario) -> Result<PlantSpec, Problems> {
+    let (db, program) = match &sc.target {
+        Some(Target::Strategy(db)) => (dir.join(db), Program::Strategy),
+        Some(Target::Program { file, db }) => {
+            (dir.join(db), Program::One { file: dir.join(file), block: None, period: None })
+        }
+        None => {
+            return Err(Problems::usage(Code::E0500, "the scenario names nothing to run: write `strategy PLANT.json`"))
+        }
+    };
+    Ok(PlantSpec {
+        program,
+        set: sc.sets.iter().map(|(s, _)| s.clone()).collect(),
+        now: Some(START as i64),
+        seed: Some(1),
+        state: sc.state.as_ref().map(|(f, _)| StateFile { path: dir.join(f), cold: false }),
+        ..PlantSpec::strategy(db)
+    })
+}
+
+/// The first `set` line the database refuses (E0505 at the line): a field
+/// it does not have, or a value the field does not take. A database that
+/// does not load is left to the plant builder to report.
+fn bad_set(db: &Path, sc: &file::Scenario) -> Option<Diagnostic> {
+    let loaded = crate::database::load(db).ok()?;
+    let mut store = linc_runtime::Store::new(loaded.db);
+    sc.sets.iter().find_map(|(text, span)| {
+        let why = linc_engines::console::fields::set(&mut store, text).err()?;
+        Some(Diagnostic::error(Code::E0505, format!("set {text}: {why}"), *span).label("not a field and value"))
+    })
 }
 
 /// The failures as `FILE:LINE: at TIME: message` with the values read.
@@ -187,7 +230,7 @@ fn details(name: &str, r: &Report) -> String {
 
 /// The fields, aliases and step variables a scenario names in its commands
 /// and expectations, for VCD.
-fn watched(sc: &scenario::Scenario) -> Vec<String> {
+fn watched(sc: &file::Scenario) -> Vec<String> {
     let mut out = Vec::new();
     for l in &sc.lines {
         let text = match &l.action {
@@ -210,16 +253,12 @@ fn watched(sc: &scenario::Scenario) -> Vec<String> {
 }
 
 /// The runtime steps: expectations checked and compiled against the
-/// strategy's database and its sequences' steps.
-fn steps(
-    sc: &scenario::Scenario,
-    s: &Strategy,
-    sources: &SourceFiles,
-    id: linc_compiler::FileId,
-    r: &mut Reporter,
-) -> Vec<Step> {
+/// strategy's database and its sequences' steps; the diagnostics of those
+/// that do not, located in the scenario.
+fn steps(sc: &file::Scenario, s: &Strategy) -> (Vec<Step>, Vec<Diagnostic>) {
     let names = s.step_names();
     let mut out = Vec::new();
+    let mut errors = Vec::new();
     for l in &sc.lines {
         match &l.action {
             Action::At { at_us, command } => {
@@ -227,7 +266,7 @@ fn steps(
             }
             Action::Run { for_us } => out.push(Step::Run { line: l.line, for_us: *for_us }),
             Action::Expect { how, expr, span } => {
-                let compiled = scenario::compile_expectation(expr, &s.store.db, &names)
+                let compiled = linc_compiler::compile_expectation(expr, &s.store.db, &names)
                     .and_then(|obj| linc_runtime::verify::verify(obj).map_err(|e| vec![load_error(e)]));
                 match compiled {
                     Ok(object) => {
@@ -239,57 +278,19 @@ fn steps(
                         };
                         out.push(Step::Expect { line: l.line, check, text: expr.clone(), object });
                     }
-                    Err(diagnostics) => {
-                        for d in diagnostics {
-                            let shifted = linc_compiler::Span::new(d.span.start + span.start, d.span.end + span.start);
-                            r.emit(sources, &linc_compiler::Diagnostic { span: shifted, ..d }.in_file(id));
-                        }
-                    }
+                    Err(diagnostics) => errors.extend(diagnostics.into_iter().map(|d| {
+                        let shifted = Span::new(d.span.start + span.start, d.span.end + span.start);
+                        Diagnostic { span: shifted, ..d }
+                    })),
                 }
             }
         }
     }
-    out
+    (out, errors)
 }
 
-fn load_error(e: linc_runtime::LoadError) -> linc_compiler::Diagnostic {
-    linc_compiler::Diagnostic::error(e.code(), e.to_string(), linc_compiler::Span::new(0, 0))
-}
-
-/// Builds the strategy (or the single program) a scenario names; what goes
-/// wrong is reported to `r`, the scenario's own reporter.
-fn build(dir: &Path, target: Option<&Target>, r: &mut Reporter) -> Result<Strategy, ()> {
-    let (db_path, single) = match target {
-        Some(Target::Strategy(db)) => (dir.join(db), None),
-        Some(Target::Program { file, db }) => (dir.join(db), Some(dir.join(file))),
-        None => {
-            r.command(Code::E0500, "the scenario names nothing to run: write `strategy PLANT.json`");
-            return Err(());
-        }
-    };
-    let mut files = SourceFiles::new();
-    let db = crate::database::load(Some(&db_path), &mut files, r).map_err(|_| ())?.unwrap_or_default();
-    let db_text = files.get(0).map(|f| f.source().clone()).unwrap_or_default();
-    let store = Store::new(db.clone());
-    let wants: Vec<Want> = match &single {
-        None => linc_engines::strategy::wanted(&store),
-        Some(file) => {
-            let kind = crate::single::Kind::of(file);
-            let block = crate::single::find_block(&db, None, kind).map_err(|d| r.emit_own(*d))?;
-            vec![crate::single::want_for(file, kind, block)]
-        }
-    };
-    let located = |e: &linc_engines::strategy::StrategyError| {
-        crate::strategy::strategy_diagnostic(linc_compiler::FileId(0), &db_text, e)
-    };
-    if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
-        r.emit(&files, &located(&e));
-        return Err(());
-    }
-    let db_dir = db_path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let (objects, pairs) = crate::strategy::compile_wants(&db_dir, &db, &wants, r).map_err(|_| ())?;
-    let vm = Vm::new(linc_runtime::vm::DEFAULT_WATCHDOG, Clock::new(1, 0));
-    Strategy::build(store, objects, &pairs, vm, START).map_err(|e| r.emit(&files, &located(&e)))
+fn load_error(e: linc_runtime::LoadError) -> Diagnostic {
+    Diagnostic::error(e.code(), e.to_string(), Span::new(0, 0))
 }
 
 #[cfg(test)]

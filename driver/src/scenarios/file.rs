@@ -10,14 +10,11 @@
 //! ```
 //!
 //! The file is read line by line; an expectation's expression is checked
-//! and lowered later ([`compile_expectation`]), once the strategy it runs
-//! against is known (its database and its sequences' steps).
+//! and lowered later (`linc_compiler::compile_expectation`), once the
+//! strategy it runs against is known (its database and its sequences'
+//! steps).
 
-use crate::diag::span::Span;
-use crate::diag::Diagnostic;
-use crate::st::check::Context;
-use crate::st::lower::Lines;
-use linc_format::object::ObjectFile;
+use linc_compiler::diag::{Diagnostic, Span};
 use linc_format::Code;
 
 /// What a scenario runs.
@@ -65,6 +62,10 @@ pub struct Line {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scenario {
     pub target: Option<Target>,
+    /// `state FILE`: the retentive state the run starts from (only read).
+    pub state: Option<(String, Span)>,
+    /// `set BLOCK.FIELD=VALUE`: applied after the state, as `--set` is.
+    pub sets: Vec<(String, Span)>,
     pub lines: Vec<Line>,
 }
 
@@ -125,7 +126,7 @@ fn blank_comments(text: &str) -> (String, Option<usize>) {
 /// reading, so one run reports them all. Comments are ST's `(* … *)`, and
 /// `#` starts a comment line.
 pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
-    let mut s = Scenario { target: None, lines: Vec::new() };
+    let mut s = Scenario { target: None, state: None, sets: Vec::new(), lines: Vec::new() };
     let mut diags = Vec::new();
     let (blanked, unclosed) = blank_comments(text);
     if let Some(at) = unclosed {
@@ -157,6 +158,7 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
             }
             "strategy" => set_target(&mut s, Target::Strategy(rest.to_string()), span, &mut diags),
             "db" => db = Some(rest.to_string()),
+            "state" | "set" => start_line(&mut s, keyword, (rest, rest_span), span, &mut diags),
             "program" => program = Some((rest.to_string(), span)),
             "at" => {
                 let (time, command) = word(rest);
@@ -181,7 +183,7 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
             },
             _ => diags.push(
                 error(Code::E0503, format!("`{keyword}` does not start a scenario line"), span, "unknown line")
-                    .help("a line is `strategy`, `program`, `db`, `at TIME COMMAND`, `expect …` or `run TIME`"),
+                    .help("a line is `strategy`, `program`, `db`, `state`, `set`, `at TIME COMMAND`, `expect …` or `run TIME`"),
             ),
         }
     }
@@ -201,6 +203,25 @@ pub fn parse(text: &str) -> (Scenario, Vec<Diagnostic>) {
         diags.push(d);
     }
     (s, diags)
+}
+
+/// `state FILE` (once) and `set BLOCK.FIELD=VALUE`: how the plant starts.
+fn start_line(s: &mut Scenario, keyword: &str, (rest, at): (&str, Span), span: Span, diags: &mut Vec<Diagnostic>) {
+    let refuse = |message: &str, label: &str| error(Code::E0505, message, span, label);
+    if keyword.eq_ignore_ascii_case("set") {
+        match rest.split_once('=') {
+            Some((field, value)) if field.contains('.') && !value.trim().is_empty() => {
+                s.sets.push((rest.to_string(), at));
+            }
+            _ => diags.push(refuse("`set` writes BLOCK.FIELD=VALUE", "not BLOCK.FIELD=VALUE")),
+        }
+    } else if rest.is_empty() {
+        diags.push(refuse("`state` names a state file", "no file given"));
+    } else if s.state.is_some() {
+        diags.push(refuse("a scenario starts from one state", "second state"));
+    } else {
+        s.state = Some((rest.to_string(), at));
+    }
 }
 
 fn set_target(s: &mut Scenario, t: Target, span: Span, diags: &mut Vec<Diagnostic>) {
@@ -238,29 +259,9 @@ fn expect(text: &str, rest: &str) -> Result<Action, Box<Diagnostic>> {
     Ok(Action::Expect { how, expr: expr.to_string(), span: span_of(text, expr) })
 }
 
-/// Checks `expr` as a BOOL expression in which the step variables of
-/// `steps` (slot order: `.X` at `2 × slot`, `.T` at `2 × slot + 1`) may be
-/// read, and lowers it into a one-unit object whose retained slots are those
-/// step variables. Diagnostics are located within `expr`.
-pub fn compile_expectation(
-    expr: &str,
-    db: &linc_format::Database,
-    steps: &[String],
-) -> Result<ObjectFile, Vec<Diagnostic>> {
-    let ctx = Context { db, resolve_blocks: true, steps: Some(steps) };
-    let report = crate::check_transition(expr, ctx);
-    let failed = report.has_errors();
-    let Some(checked) = report.program.filter(|_| !failed) else {
-        return Err(report.diagnostics);
-    };
-    crate::st::lower::lower_expectation(&checked, &Lines::new(expr), steps)
-        .map_err(|errors| errors.iter().map(|e| e.to_diagnostic()).collect())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use linc_format::isa::Op;
 
     #[test]
     fn the_issue_example_reads() {
@@ -302,23 +303,5 @@ mod tests {
         assert_eq!(d[0].code, "E0500", "nothing to run");
         let (_, d) = parse("program x.sfc\n");
         assert_eq!(d[0].code, "E0500", "a program needs its database");
-    }
-
-    #[test]
-    fn expectations_compile_with_step_variables() {
-        let db = linc_format::Database::from_json(r#"{"blocks": {"R": {"type": "RECIPE"}}}"#).unwrap();
-        let steps = vec!["Fill".to_string(), "Heat".to_string()];
-        let obj = compile_expectation("Heat.X AND R.A0 > 1.0", &db, &steps).expect("compiles");
-        let code = &obj.units[0].blocks[0].ops.0;
-        assert!(code.contains(&Op::LoadRet { n: 2 }), "Heat is slot 1: .X at 2");
-        assert_eq!(obj.units[0].retained, 4);
-        // Two sequences with a step `Fill`: the first one's is meant.
-        let twice = vec!["Fill".to_string(), "Heat".to_string(), "Fill".to_string()];
-        let obj = compile_expectation("Fill.X", &db, &twice).expect("compiles");
-        assert!(obj.units[0].blocks[0].ops.0.contains(&Op::LoadRet { n: 0 }), "slot 0, not 2");
-        let e = compile_expectation("R.A0 + 1.0", &db, &steps).unwrap_err();
-        assert!(!e.is_empty(), "not BOOL");
-        let e = compile_expectation("Nope.X", &db, &steps).unwrap_err();
-        assert!(!e.is_empty());
     }
 }

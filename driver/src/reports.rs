@@ -1,7 +1,8 @@
 //! `linc test`'s files: a JUnit XML report and VCD traces (GTKWave) of the
 //! fields each scenario names. Both are deterministic: no wall-clock times.
 
-use linc_driver::scenarios::Outcome;
+use crate::scenarios::Outcome;
+use linc_compiler::diag::Problems;
 use linc_format::Code;
 use std::path::{Path, PathBuf};
 
@@ -132,11 +133,9 @@ pub fn vcd_targets(path: &Path, scenarios: &[PathBuf]) -> Vec<PathBuf> {
 
 /// `--vcd PATH`: the file itself for one scenario; for several, a
 /// directory of `NAME.vcd` files (made if missing).
-pub fn write_vcds(path: &Path, outcomes: &[Outcome], r: &mut linc_driver::Reporter) -> Result<(), u8> {
-    let mut fail = |e: &dyn std::fmt::Display| {
-        r.command(Code::E0900, format!("can't write `{}`: {e}", path.display()));
-        2
-    };
+pub fn write_vcds(path: &Path, outcomes: &[Outcome]) -> Result<(), Problems> {
+    let fail =
+        |e: &dyn std::fmt::Display| Problems::usage(Code::E0900, format!("can't write `{}`: {e}", path.display()));
     if outcomes.len() > 1 {
         std::fs::create_dir_all(path).map_err(|e| fail(&e))?;
     }
@@ -144,9 +143,7 @@ pub fn write_vcds(path: &Path, outcomes: &[Outcome], r: &mut linc_driver::Report
     for (o, target) in outcomes.iter().zip(vcd_targets(path, &names)) {
         let bytes = vcd(o).map_err(|e| fail(&e))?;
         // A refused output keeps its own code (E0901, E0902).
-        if let Err(e) = linc_driver::files::write_atomic(&target, &bytes) {
-            return Err(linc_driver::report::refused(r, e.diagnostic()));
-        }
+        crate::files::write_atomic(&target, &bytes)?;
     }
     Ok(())
 }
