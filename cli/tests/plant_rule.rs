@@ -109,6 +109,9 @@ fn test(dir: &Path, expected: &[(String, String)]) -> Seen {
     Seen { values: expected.to_vec(), state: None }
 }
 
+/// A command of the table, run on the plant's folder.
+type Command = fn(&Path) -> Seen;
+
 #[test]
 fn every_command_starts_the_plant_from_the_database_then_the_state_then_set() {
     let dir = plant();
@@ -117,7 +120,7 @@ fn every_command_starts_the_plant_from_the_database_then_the_state_then_set() {
     // (ten cycles a second).
     let want = [("Count".to_string(), "800.0".to_string()), ("Step".to_string(), "5.0".to_string())];
     assert_eq!(by_run.values, want);
-    let table: [(&str, fn(&Path) -> Seen); 3] = [("console", console), ("serve", serve), ("draw", draw)];
+    let table: [(&str, Command); 3] = [("console", console), ("serve", serve), ("draw", draw)];
     for (name, command) in table {
         let seen = command(&dir);
         if !seen.values.is_empty() {
