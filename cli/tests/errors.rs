@@ -16,19 +16,96 @@ const PLANT: &str = "examples/strategy/plant.json";
 const SEQ: &str = "examples/sequences/batch.sfc";
 const SEQ_DB: &str = "examples/sequences/plant.json";
 
-/// Every line of standard error is one JSON diagnostic with a code.
+/// Every line of standard error is one JSON object with a code: errors,
+/// and any warning or note (a summary, I0003) with its own. A failing
+/// scenario's failures are in the report on standard output; its standard
+/// error holds the summary note alone.
 fn assert_json_errors(args: &[&str], o: &Output) {
     assert_ne!(o.status.code(), Some(0), "{args:?} should fail");
     let err = stderr(o);
     assert!(!err.trim().is_empty(), "{args:?}: nothing on standard error");
-    for line in err.lines().filter(|l| !l.trim().is_empty()) {
+    for line in err.lines() {
         let v: serde_json::Value =
-            serde_json::from_str(line).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {line}"));
+            serde_json::from_str(line).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {line:?}"));
         let code = v["code"].as_str().unwrap_or_default();
-        let coded = code.len() == 5 && "ECRW".contains(&code[..1]) && code[1..].chars().all(|c| c.is_ascii_digit());
+        let coded = code.len() == 5 && "ECRWI".contains(&code[..1]) && code[1..].chars().all(|c| c.is_ascii_digit());
         assert!(coded, "{args:?}: no code in {line}");
-        assert_eq!(v["severity"], "error", "{args:?}: {line}");
+        let severity = v["severity"].as_str().unwrap_or_default();
+        let fits = match &code[..1] {
+            "I" => severity == "note",
+            "W" => severity == "warning",
+            _ => severity == "error",
+        };
+        assert!(fits, "{args:?}: {severity} with {code}: {line}");
     }
+}
+
+/// Each command's error paths: a bad option, a missing file, a database
+/// that does not load, a source that does not compile, a runtime fault, a
+/// failing scenario (issue 27).
+fn every_command_s_error_paths(dir: &Path) -> Vec<Vec<&'static str>> {
+    let leak = |p: std::path::PathBuf| -> &'static str { Box::leak(p.to_string_lossy().into_owned().into_boxed_str()) };
+    let write = |name: &str, text: &str| {
+        let p = dir.join(name);
+        std::fs::write(&p, text).expect("write");
+        leak(p)
+    };
+    let bad_db = write("bad.json", "{ \"blocks\": { \"A\": { \"type\": \"NOPE\" } } }");
+    let missing = leak(dir.join("none.json"));
+    let broken_plant = write(
+        "broken.json",
+        r#"{ "blocks": { "A": { "type": "ACTION", "values": { "FileName": "broken.st", "ActName": "x" } } } }"#,
+    );
+    std::fs::copy(abs("examples/guide/broken.st"), dir.join("broken.st")).expect("copy");
+    let failing =
+        write("failing.ltest", &format!("strategy {}\nrun 1s\nexpect after 0s TANK1.Level > 1000.0\n", abs(PLANT)));
+    let lcov = write("junk.info", "not lcov\n");
+    let cmds = write("cmds.csv", "not,a,list\n");
+    let table = write("table.csv", "STEP,LABEL,CMD,ARGUMENT1,ARGUMENT2,COMMENT\n0,,NOPE,,,\n");
+    vec![
+        vec!["check", "--nope"],
+        vec!["check", "examples/guide/shift.st", "--db", bad_db],
+        vec!["compile", missing, "-o", leak(dir.join("o.sto"))],
+        vec!["compile", "examples/guide/shift.st", "--db", bad_db, "-o", leak(dir.join("o.sto"))],
+        vec!["run", missing, "--for", "1s"],
+        vec!["run", bad_db, "--for", "1s"],
+        vec!["run", broken_plant, "--for", "1s"],
+        vec!["run", PLANT, "--for", "1s", "--set", "TANK1.Level=abc"],
+        vec!["console", bad_db],
+        vec!["console", broken_plant],
+        vec!["serve", missing],
+        vec!["serve", bad_db],
+        vec!["serve", broken_plant],
+        vec!["serve", PLANT, "--client-timeout", "soon"],
+        vec!["draw", missing],
+        vec!["draw", SEQ, "--db", bad_db],
+        vec!["draw", SEQ, "--db", SEQ_DB, "--for", "0s"],
+        vec!["draw", table],
+        vec!["fst", "list", table],
+        vec!["fst", "to-st", table, "--db", "examples/fst/plant.json"],
+        vec!["fst", "to-sfc", missing, "--db", "examples/fst/plant.json"],
+        vec!["ladder", "to-st", "examples/ladder/interlock.ld", "--db", bad_db],
+        vec!["sfc", "generalise", SEQ, "--map", missing, "-o", leak(dir.join("g.sfc"))],
+        vec!["eval", "1", "--db", bad_db],
+        vec!["eval", "NOPE.X + 1", "--db", common::DB],
+        vec!["fmt", missing],
+        vec!["fmt", write("unparsed.st", "IF THEN\n")],
+        vec!["test", failing],
+        vec!["test", "--merge-coverage", lcov, "-o", leak(dir.join("sum.info"))],
+        vec!["test", failing, "--coverage", "lcov"],
+        vec!["roc", "poll", "--host", "127.0.0.1:1", "--commands", cmds],
+        vec!["roc", "poll", "--host", "127.0.0.1:1", "--commands", missing, "--timeout", "soon"],
+        vec!["disasm", missing],
+        vec!["explain", "--nope"],
+    ]
+}
+
+/// `path` (relative to the repository) made absolute.
+fn abs(path: &str) -> String {
+    std::fs::canonicalize(Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(path))
+        .expect("example")
+        .display()
+        .to_string()
 }
 
 #[test]
@@ -49,6 +126,7 @@ fn every_command_reports_its_errors_as_json() {
         vec!["compile", "examples/guide/broken.st", "--db", common::DB, "-o", "x.sto"],
         vec!["compile", f, "--db", common::DB, "-o", f],
         vec!["run", f, "--db", common::DB],
+        vec!["run", f, "--db", common::DB, "--tier", "compiled"],
         vec!["run", f, "--db", common::DB, "--set", "Counters.N1=abc"],
         vec!["run", f, "--db", common::DB, "--show", "Nope.X"],
         vec!["run", f, "--db", common::DB, "--period", "0"],
@@ -69,6 +147,7 @@ fn every_command_reports_its_errors_as_json() {
         vec!["sfc", "specialise", SEQ, "--map", m, "-o", "x.sfc"],
         vec!["run", "--no-such-option"],
     ];
+    let cases = cases.into_iter().chain(every_command_s_error_paths(&dir));
     for mut args in cases {
         args.extend(["--message-format", "json"]);
         let o = linc(&args);
@@ -77,6 +156,18 @@ fn every_command_reports_its_errors_as_json() {
     // The format may also come first, as a global option.
     let o = linc(&["--message-format", "json", "run", PLANT, "--for", "garbage"]);
     assert_json_errors(&["--message-format", "json", "run"], &o);
+    // A server whose address is in use, for HTTP and each wire protocol.
+    let taken = std::net::TcpListener::bind("127.0.0.1:0").expect("a port");
+    let addr = taken.local_addr().expect("address").to_string();
+    let port = addr.rsplit(':').next().expect("port").to_string();
+    for args in [
+        vec!["serve", PLANT, "--http", &addr],
+        vec!["serve", "examples/roc/plant.json", "--http", "127.0.0.1:0", "--roc", &port],
+        vec!["serve", "examples/roc/plant.json", "--http", "127.0.0.1:0", "--modbus", &port],
+    ] {
+        let args = [&args[..], &["--message-format", "json", "--for", "1s"]].concat();
+        assert_json_errors(&args, &linc(&args));
+    }
 }
 
 /// Exit 2 and E0903 naming `flag`.

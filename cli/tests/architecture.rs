@@ -1,0 +1,62 @@
+//! The shape of the code, checked (docs/architecture.md): only the `linc`
+//! binary prints or exits — every library returns what it made and what
+//! it ran into as data.
+
+use std::path::{Path, PathBuf};
+
+const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+
+/// Every `.rs` file under `dir`.
+fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).expect("folder").flatten() {
+        let p = entry.path();
+        if p.is_dir() {
+            sources(&p, out);
+        } else if p.extension().is_some_and(|e| e == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+/// The library crates: every member of the workspace but the binary and
+/// the test-only crates.
+const LIBRARIES: &[&str] =
+    &["stdlib", "format", "runtime", "engines", "compiler", "driver", "draw", "comms", "serve", "lsp"];
+
+/// What prints or ends the process.
+const FORBIDDEN: &[&str] = &["eprintln!", "println!", "eprint!(", "print!(", "process::exit", "dbg!("];
+
+/// The lines of a source that print or exit (1-based), with what they
+/// call; unit tests (after `#[cfg(test)]`) and comments are left out.
+fn prints(text: &str) -> Vec<(usize, &'static str)> {
+    let code = text.split("#[cfg(test)]").next().unwrap_or_default();
+    code.lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim_start().starts_with("//"))
+        .filter_map(|(i, l)| FORBIDDEN.iter().find(|f| l.contains(*f)).map(|f| (i + 1, *f)))
+        .collect()
+}
+
+#[test]
+fn nothing_below_the_command_line_prints_or_exits() {
+    let mut files = Vec::new();
+    for krate in LIBRARIES {
+        sources(&Path::new(ROOT).join(krate).join("src"), &mut files);
+    }
+    assert!(files.len() > 100, "the sources were found: {}", files.len());
+    let found: Vec<String> = files
+        .iter()
+        .flat_map(|path| {
+            let text = std::fs::read_to_string(path).expect("source");
+            prints(&text).into_iter().map(|(line, f)| format!("{}:{line}: {f}", path.display())).collect::<Vec<_>>()
+        })
+        .collect();
+    assert!(found.is_empty(), "libraries that print or exit:\n{}", found.join("\n"));
+}
+
+#[test]
+fn the_scan_finds_prints_and_exits_but_not_in_comments_or_unit_tests() {
+    let text = "fn a() {\n    // println!(\"no\")\n    eprintln!(\"{x}\");\n    std::process::exit(2);\n}\n\
+                #[cfg(test)]\nmod tests { fn t() { println!(\"ok\"); } }\n";
+    assert_eq!(prints(text), [(3, "eprintln!"), (4, "process::exit")]);
+}
