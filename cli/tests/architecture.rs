@@ -60,3 +60,26 @@ fn the_scan_finds_prints_and_exits_but_not_in_comments_or_unit_tests() {
                 #[cfg(test)]\nmod tests { fn t() { println!(\"ok\"); } }\n";
     assert_eq!(prints(text), [(3, "eprintln!"), (4, "process::exit")]);
 }
+
+/// `cargo tree` of a package's normal dependencies, one crate a line.
+fn tree(package: &str, depth: Option<u32>) -> Vec<String> {
+    let mut cmd = std::process::Command::new(env!("CARGO"));
+    cmd.args(["tree", "--offline", "-p", package, "-e", "normal", "--prefix", "none"]).current_dir(ROOT);
+    if let Some(d) = depth {
+        cmd.args(["--depth", &d.to_string()]);
+    }
+    let o = cmd.output().expect("cargo tree");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    String::from_utf8_lossy(&o.stdout).lines().map(|l| l.split_whitespace().next().unwrap_or("").to_string()).collect()
+}
+
+#[test]
+fn the_language_server_links_no_runtime_engines_or_compiling_tier() {
+    let all = tree("linc-lsp", None);
+    assert!(all.iter().any(|c| c == "linc-compiler"), "{all:?}");
+    let runs: Vec<&String> =
+        all.iter().filter(|c| c.starts_with("cranelift") || *c == "linc-runtime" || *c == "linc-engines").collect();
+    assert!(runs.is_empty(), "linc-lsp links {runs:?}");
+    let linc: Vec<String> = tree("linc-lsp", Some(1)).into_iter().filter(|c| c.starts_with("linc-")).collect();
+    assert_eq!(linc, ["linc-lsp", "linc-compiler", "linc-format"], "its own crates are the compiler and the format");
+}

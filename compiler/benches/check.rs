@@ -52,7 +52,7 @@ fn bench(c: &mut Criterion) {
     let _ = std::fs::create_dir_all("../target");
     let _ = std::fs::write("../target/check-bench.st", &src);
     let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide database");
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let clean = linc_compiler::check_source(&src, "bench", ctx);
     assert!(clean.diagnostics.is_empty(), "generated input must check clean: {:?}", clean.diagnostics.first());
 
@@ -81,7 +81,7 @@ fn session_check(ctx: Context, src: &str) -> usize {
 
 fn bench_actions(c: &mut Criterion) {
     let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide database");
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let mut g = c.benchmark_group("check actions");
     g.sample_size(10);
     for (name, bytes) in [("1.25M", 5 * 1024 * 1024 / 4), ("5M", 5 * 1024 * 1024)] {

@@ -6,7 +6,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let src = std::fs::read_to_string(&args[1]).expect("file");
     let db = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("db");
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let n: usize = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(5);
     let mut best = f64::MAX;
     if std::env::var("PARSE_ONLY").is_ok() {

@@ -12,6 +12,14 @@
 
 pub mod diag;
 pub mod fmt;
+pub mod names;
+
+/// The function library (§12.6) the checker types calls against, for the
+/// surfaces that describe functions (a language server's hover and
+/// completion).
+pub mod functions {
+    pub use linc_stdlib::{lookup, Signature, SIGNATURES};
+}
 pub mod fst;
 pub mod ladder;
 pub mod session;
@@ -105,7 +113,7 @@ pub fn compile_expectation(
     db: &linc_format::Database,
     steps: &[String],
 ) -> Result<linc_format::ObjectFile, Vec<Diagnostic>> {
-    let ctx = Context { db, resolve_blocks: true, steps: Some(steps) };
+    let ctx = Context::of(Some(db)).with_steps(steps);
     let report = check_transition(expr, ctx);
     let failed = report.has_errors();
     let Some(checked) = report.program.filter(|_| !failed) else {

@@ -18,7 +18,7 @@ fn codes(src: String) -> Vec<&'static str> {
         .stack_size(2 << 20)
         .spawn(move || {
             let db = db();
-            let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+            let ctx = Context::of(Some(&db));
             let r = linc_compiler::check_source(&src, "deep", ctx);
             if let Some(t) = &r.tree {
                 let _ = linc_compiler::st::pretty::file(t);
@@ -93,7 +93,7 @@ fn brackets_alone_add_no_depth() {
 /// Code, line and column of each diagnostic of `src`.
 fn located(src: &str) -> Vec<(&'static str, usize)> {
     let db = db();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let r = linc_compiler::check_source(src, "deep", ctx);
     r.diagnostics.iter().map(|d| (d.code.as_str(), d.span.start)).collect()
 }

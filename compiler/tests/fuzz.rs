@@ -158,7 +158,7 @@ fn random_tokens(rng: &mut Rng) -> String {
 /// each in its own session against `db`; every diagnostic is rendered in
 /// every format on the way.
 fn check_and_compile(db: &Database, bytes: &[u8]) -> (Vec<&'static str>, Vec<&'static str>) {
-    let ctx = Context { db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(db));
     let mut codes = Vec::new();
     for compiling in [false, true] {
         let mut s = if compiling { Session::compiling(ctx) } else { Session::new(ctx) };
@@ -184,9 +184,7 @@ fn exercise(db: &Database, bytes: &[u8]) {
     assert_eq!(checked, compiled, "check and compile disagree on {bytes:?}");
     let src = String::from_utf8_lossy(bytes);
     let steps: &[String] = &[];
-    for ctx in
-        [Context { db, resolve_blocks: true, steps: None }, Context { db, resolve_blocks: false, steps: Some(steps) }]
-    {
+    for ctx in [Context::of(Some(db)), Context::of(Some(db)).unresolved().with_steps(steps)] {
         let report = linc_compiler::check_source(&src, "fuzz", ctx);
         let expr = linc_compiler::check_transition(&src, ctx);
         let mut files = SourceFiles::new();

@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 
 fn check(db: &Database, src: &str) -> Duration {
     let start = Instant::now();
-    let mut s = Session::new(Context { db, resolve_blocks: true, steps: None });
+    let mut s = Session::new(Context::of(Some(db)));
     let id = s.add("workload.st", src.as_bytes().to_vec());
     let c = s.check(id, CheckOptions::default());
     assert!(c.diagnostics.is_empty(), "the workload checks clean: {:?}", c.diagnostics.first());
@@ -51,7 +51,7 @@ fn check_time_is_linear_in_size() {
 /// The time to check `src`, which has errors.
 fn check_bad(db: &Database, src: &str) -> Duration {
     let start = Instant::now();
-    let mut s = Session::new(Context { db, resolve_blocks: true, steps: None });
+    let mut s = Session::new(Context::of(Some(db)));
     let id = s.add("bad.st", src.as_bytes().to_vec());
     let c = s.check(id, CheckOptions::default());
     assert_eq!(c.diagnostics[0].code, "E0021");

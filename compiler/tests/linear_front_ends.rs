@@ -104,7 +104,7 @@ fn fst_errors_over_the_cap_cost_no_search() {
 }
 
 fn ctx(db: &Database) -> Context<'_> {
-    Context { db, resolve_blocks: true, steps: None }
+    Context::of(Some(db))
 }
 
 /// A sequence of `n` steps in a ring, each with an action and a timed

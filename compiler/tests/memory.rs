@@ -20,7 +20,7 @@ fn junk_and_many_errors_need_little_memory() {
     for src in ["@".repeat(1 << 20), "xx := 1; ".repeat(120_000)] {
         let size = src.len();
         let peak = peak_of(|| {
-            let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
+            let mut s = Session::new(Context::of(Some(&db)));
             let id = s.add("junk.st", src.into_bytes());
             let c = s.check(id, CheckOptions::default());
             assert!(c.diagnostics.len() <= 1_001 + 1, "{}", c.diagnostics.len());
@@ -37,7 +37,7 @@ fn checking_needs_less_than_twice_the_size_of_the_file() {
     let peak = peak_of(|| {
         let src = workload::actions(2 << 20).into_bytes();
         size = src.len();
-        let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
+        let mut s = Session::new(Context::of(Some(&db)));
         let id = s.add("workload.st", src);
         let checked = s.check(id, CheckOptions::default());
         assert!(checked.diagnostics.is_empty(), "{:?}", checked.diagnostics.first());
@@ -56,7 +56,7 @@ fn compiling_lowers_as_it_checks_and_keeps_no_checked_program() {
     let peak = peak_of(|| {
         let src = workload::actions(2 << 20).into_bytes();
         size = src.len();
-        let mut s = Session::compiling(Context { db: &db, resolve_blocks: true, steps: None });
+        let mut s = Session::compiling(Context::of(Some(&db)));
         let id = s.add("workload.st", src);
         let checked = s.check(id, CheckOptions::default());
         assert!(checked.diagnostics.is_empty(), "{:?}", checked.diagnostics.first());
@@ -95,7 +95,7 @@ fn deep_nesting_needs_little_memory() {
         let head = src[..16].to_string();
         let mut codes = Vec::new();
         let peak = peak_of(|| {
-            let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
+            let mut s = Session::new(Context::of(Some(&db)));
             let id = s.add("deep.st", src.into_bytes());
             let c = s.check(id, CheckOptions::default());
             codes = c.diagnostics.iter().map(|d| d.code.as_str()).collect();
@@ -111,7 +111,7 @@ fn ladder_peak(src: String) -> (usize, Vec<&'static str>) {
     let db = Database::from_json(include_str!("../../examples/ladder/plant.json")).expect("ladder db");
     let mut codes = Vec::new();
     let peak = peak_of(|| {
-        let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
+        let mut s = Session::new(Context::of(Some(&db)));
         let id = s.add("big.ld", src.into_bytes());
         codes = s.check(id, CheckOptions::default()).diagnostics.iter().map(|d| d.code.as_str()).collect();
     });

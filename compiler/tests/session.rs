@@ -34,7 +34,7 @@ fn short(s: &Session, d: &[Diagnostic]) -> Vec<String> {
 fn lowering_errors_are_shown_against_their_own_file() {
     // Without a database, compiling needs the types: E0130 in the second file.
     let db = Database::builtin();
-    let ctx = Context { db: &db, resolve_blocks: false, steps: None };
+    let ctx = Context::of(Some(&db)).unresolved();
     let files = [("a.st", "ACTION a : PID\n  PV := 1.0;\nEND_ACTION\n"), ("b.st", "\n\nX.Y := 1;\n")];
     let (s, d) = run(ctx, &files, true);
     assert_eq!(short(&s, &d), ["b.st:3:1: error[E0130]: the type of `X.Y` is unknown"]);
@@ -44,7 +44,7 @@ fn lowering_errors_are_shown_against_their_own_file() {
 #[test]
 fn an_action_defined_in_two_files_points_at_both() {
     let db = guide();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let files = [
         ("a.st", "ACTION Fill\n  Recipe.N0 := 1;\nEND_ACTION\n"),
         ("b.st", "\nACTION FILL\n  Recipe.N0 := 2;\nEND_ACTION\n"),
@@ -61,7 +61,7 @@ fn an_action_defined_in_two_files_points_at_both() {
 #[test]
 fn two_files_with_the_same_stem_name_the_same_action() {
     let db = guide();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let files = [("one/fill.st", "Recipe.N0 := 1;\n"), ("two/fill.st", "Recipe.N0 := 2;\n")];
     for compile in [false, true] {
         let (s, d) = run(ctx, &files, compile);
@@ -73,7 +73,7 @@ fn two_files_with_the_same_stem_name_the_same_action() {
 fn names_are_compared_with_one_lookup_each() {
     // 20,000 actions in two files: every name is new but the last.
     let db = guide();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let many = |from: usize| -> String {
         (from..from + 10_000).map(|i| format!("ACTION A{i} Recipe.N0 := 1; END_ACTION\n")).collect()
     };
@@ -85,7 +85,7 @@ fn names_are_compared_with_one_lookup_each() {
 #[test]
 fn a_file_that_is_not_utf8_is_located_at_its_first_bad_byte() {
     let db = guide();
-    let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
+    let mut s = Session::new(Context::of(Some(&db)));
     let id = s.add("lat.st", b"PIC_004.PV := 1; (* 85 \xB0C *)\nPIC_004.PV := 2; \xE9\n".to_vec());
     let d = s.check(id, CheckOptions::default()).diagnostics;
     assert_eq!(short(&s, &d), ["lat.st:1:24: error[E0017]: byte 0xB0 is not UTF-8"]);
@@ -97,7 +97,7 @@ fn a_file_that_is_not_utf8_is_located_at_its_first_bad_byte() {
 #[test]
 fn a_byte_order_mark_is_not_part_of_the_text() {
     let db = guide();
-    let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
+    let mut s = Session::new(Context::of(Some(&db)));
     let id = s.add("bom.st", "\u{FEFF}PIC_004.PV := 'x';\n".as_bytes().to_vec());
     let d = s.check(id, CheckOptions::default()).diagnostics;
     assert_eq!(short(&s, &d), ["bom.st:1:15: error[E0103]: can't store a STRING value in a REAL field"]);
@@ -109,7 +109,7 @@ fn a_byte_order_mark_is_not_part_of_the_text() {
 #[test]
 fn an_object_file_is_not_read_as_source() {
     let db = guide();
-    let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
+    let mut s = Session::new(Context::of(Some(&db)));
     let mut bytes = linc_runtime::object::MAGIC.to_vec();
     bytes.extend_from_slice(&[1, 0, 0, 0, 0xFF, 0xFE]);
     let id = s.add("x.sto", bytes);
@@ -121,7 +121,7 @@ fn an_object_file_is_not_read_as_source() {
 #[test]
 fn control_characters_never_reach_the_output_raw() {
     let db = guide();
-    let mut s = Session::new(Context { db: &db, resolve_blocks: true, steps: None });
+    let mut s = Session::new(Context::of(Some(&db)));
     let id = s.add("esc.st", "PIC_004.PV := '\u{1b}[31m'; (* \u{1b}[2J *) \u{1b}\u{7}\n".as_bytes().to_vec());
     let d = s.check(id, CheckOptions { tree: true, ..Default::default() });
     let codes: Vec<&str> = d.diagnostics.iter().map(|d| d.code.as_str()).collect();
@@ -143,7 +143,7 @@ fn control_characters_never_reach_the_output_raw() {
 #[test]
 fn a_misspelt_block_is_an_unknown_name_not_a_step() {
     let db = guide();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let (s, d) = run(ctx, &[("m.st", "PIC_04.T := 1;\nPIC_04.PV := 1;\nSTEP1.X := 1;\n")], false);
     assert_eq!(
         short(&s, &d),
@@ -163,7 +163,7 @@ fn a_misspelt_block_is_an_unknown_name_not_a_step() {
 fn one_session_checks_and_compiles_every_kind_of_source() {
     use linc_compiler::source_kind::SourceKind;
     let db = Database::from_json(include_str!("../../examples/sequences/plant.json")).expect("db");
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let seq = "INITIAL_STEP S0: Count(N); END_STEP\nACTION Count\n    R1.Batches := R1.Batches + 1;\nEND_ACTION\n";
     let mut s = Session::compiling(ctx);
     let id = s.add("batch.sfc", seq.as_bytes().to_vec());

@@ -91,7 +91,7 @@ fn compile_mapped(files: &[PathBuf], db: Option<&Database>, map: &Path) -> Resul
     if problems.has_errors() {
         return Err(problems);
     }
-    let ctx = Context { db: &bound.db, resolve_blocks, steps: None };
+    let ctx = Context { db: &bound.db, ..plain };
     let extra = crate::sfc::Extra { map: Some(&bound), lower: true, ..Default::default() };
     let c = crate::sfc::check(file, ctx, &extra)?;
     problems.append(c.problems);

@@ -81,7 +81,7 @@ pub fn check(req: &CheckRequest) -> Result<Checked, Problems> {
     for path in &req.files {
         if sequence_options && crate::source::is_sequence(path) {
             let seq_db = bound.as_ref().map_or(db, |b| &b.db);
-            let ctx = Context { db: seq_db, resolve_blocks, steps: None };
+            let ctx = Context { db: seq_db, ..plain };
             match crate::sfc::check(path, ctx, &extra) {
                 Ok(c) => {
                     shown.extend(c.tree.map(Shown::Tree));

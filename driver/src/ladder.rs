@@ -81,7 +81,7 @@ fn truth(expr: &str, db: &Database, store: &Store) -> Option<bool> {
 
 /// An element's expression compiled and linked to `store`.
 fn element(expr: &str, db: &Database, store: &Store) -> Option<Linked> {
-    let mut session = Session::new(Context { db, resolve_blocks: true, steps: None });
+    let mut session = Session::new(Context::of(Some(db)));
     let id = session.add("<element>", expr.as_bytes().to_vec());
     let program = session.check(id, CheckOptions { input: Input::Expression, tree: false }).expr?;
     let obj = lower::lower_eval(&program, &Lines::new(expr)).ok()?;

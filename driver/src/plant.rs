@@ -227,7 +227,7 @@ fn plant(spec: &PlantSpec, mut db: DbFile, dir: PathBuf, now: i64) -> Result<Pla
         .chain(wants.iter().map(|w| dir.join(&w.file)))
         .collect();
     check_outputs(&outputs, &inputs)?;
-    if let Some(e) = wants.iter().find_map(|w| w.complete(&store).err()) {
+    if let Some(e) = wants.iter().find_map(|w| strategy::complete(w, &store).err()) {
         return Err(located(&db, &e));
     }
     let (objects, pairs, warnings) = compile_wants(&dir, &store.db, &wants)?;

@@ -6,7 +6,7 @@ use crate::resolve::{Ctx, Sym};
 use crate::server::{Lang, Server};
 use crate::text::{cells, piece_at, Kind};
 use linc_compiler::fst::commands::Cmd;
-use linc_runtime::{Database, FieldType};
+use linc_format::{Database, FieldType};
 use lsp_types::{CompletionItem, CompletionItemKind, CompletionParams, CompletionResponse, InsertTextFormat, TextEdit};
 
 pub fn complete(server: &Server, p: &CompletionParams) -> Option<CompletionResponse> {
@@ -122,7 +122,7 @@ fn names(ctx: &Ctx, offset: usize) -> Vec<CompletionItem> {
             out.extend(fields(db, t));
         }
     }
-    for sig in linc_stdlib::SIGNATURES {
+    for sig in linc_compiler::functions::SIGNATURES {
         let args: Vec<String> = sig.params[..sig.required.max(1).min(sig.params.len())]
             .iter()
             .enumerate()

@@ -6,7 +6,7 @@ use crate::server::{Lang, Server};
 use linc_compiler::fst::commands::Cmd;
 use linc_compiler::fst::tlp;
 use linc_format::db::InitValue;
-use linc_runtime::{Database, FieldType};
+use linc_format::{Database, FieldType};
 use lsp_types::{Hover, HoverContents, HoverParams, MarkupContent, MarkupKind};
 
 /// The functions page, for each function's one-line description.
@@ -56,7 +56,7 @@ fn is_keyword(w: &str) -> bool {
 
 /// The Markdown shown for a symbol.
 pub fn describe(ctx: &Ctx, sym: &Sym) -> String {
-    let Some(db) = ctx.db() else { return local(ctx, sym) };
+    let db = ctx.names_db();
     match sym {
         Sym::Block(b) => block(db, *b),
         Sym::Alias(i) => {

@@ -2,7 +2,7 @@
 
 use crate::resolve::{Ctx, Sym};
 use crate::server::{Lang, Server};
-use crate::text::{cells, parts, pieces, Kind, LineIndex};
+use crate::text::{cells, pieces, Kind, LineIndex};
 use linc_format::db::tree::{self, Member, Node};
 use lsp_types::{
     GotoDefinitionParams, GotoDefinitionResponse, Location, PrepareRenameResponse, ReferenceParams, RenameParams,
@@ -141,7 +141,8 @@ fn fst_definition(ctx: &Ctx, offset: usize) -> Option<Location> {
 }
 
 /// Every use of a block or field (and of a step, action or label in its
-/// file) across the workspace's source files.
+/// file) across the workspace's source files, as the checker resolves each
+/// file's names (against the database that names it).
 pub fn references(server: &Server, p: &ReferenceParams) -> Option<Vec<Location>> {
     let pos = &p.text_document_position;
     let doc = server.doc(&pos.text_document.uri)?;
@@ -155,12 +156,28 @@ pub fn references(server: &Server, p: &ReferenceParams) -> Option<Vec<Location>>
             let db = db?;
             (db.blocks[*b].name.clone(), Some(db.templates[*template].fields[*field].name.clone()))
         }
-        Sym::Step(n) | Sym::Action(n) | Sym::Label(n) => {
-            let locs = occurrences(&doc.text, n).into_iter();
+        Sym::Step(_) | Sym::Action(_) | Sym::Label(_) => {
+            let locs = same_names(&ctx, &sym).into_iter();
             return Some(locs.map(|(s, e)| Location::new(doc.uri.clone(), doc.index.range(&doc.text, s, e))).collect());
         }
         _ => return None,
     };
+    let mut out = Vec::new();
+    for (uri, path) in workspace_sources(server) {
+        let Some(text) = read(server, &uri, &path) else { continue };
+        let index = LineIndex::new(&text);
+        let found = uses(server, &path, &text, (&block, field.as_deref()));
+        out.extend(found.into_iter().map(|(start, end)| Location::new(uri.clone(), index.range(&text, start, end))));
+    }
+    if p.context.include_declaration {
+        out.extend(sym_location(&ctx, &sym));
+    }
+    Some(out)
+}
+
+/// The open documents and the files the databases name, in URI order
+/// (sources only).
+fn workspace_sources(server: &Server) -> Vec<(Url, std::path::PathBuf)> {
     let mut files: Vec<(Url, std::path::PathBuf)> =
         server.docs.values().map(|d| (d.uri.clone(), d.path.clone())).collect();
     for f in server.ws.source_files() {
@@ -170,42 +187,41 @@ pub fn references(server: &Server, p: &ReferenceParams) -> Option<Vec<Location>>
             }
         }
     }
+    files.retain(|(_, p)| !matches!(Lang::of(p, ""), Lang::Json | Lang::Other | Lang::Fst));
     files.sort_by(|a, b| a.0.as_str().cmp(b.0.as_str()));
-    let mut out = Vec::new();
-    for (uri, path) in files {
-        if Lang::of(&path, "") == Lang::Json || Lang::of(&path, "") == Lang::Other {
-            continue;
-        }
-        let Some(text) = read(server, &uri, &path) else { continue };
-        let index = LineIndex::new(&text);
-        for w in pieces(&text).into_iter().filter(|p| p.kind == Kind::Word) {
-            let (ps, _) = parts(&text, w, w.start);
-            let first = &text[ps[0].0..ps[0].1];
-            let second = ps.get(1).map(|p| &text[p.0..p.1]);
-            let hit = first.eq_ignore_ascii_case(&block)
-                && field.as_ref().is_none_or(|f| second.is_some_and(|s| s.eq_ignore_ascii_case(f)));
-            if hit {
-                let end = if field.is_some() { ps[1].1 } else { ps[0].1 };
-                out.push(Location::new(uri.clone(), index.range(&text, w.start, end)));
-            }
-        }
-    }
-    if p.context.include_declaration {
-        out.extend(sym_location(&ctx, &sym));
-    }
-    Some(out)
+    files
 }
 
-/// The first parts of words equal to `name` (a step, action or label).
-fn occurrences(text: &str, name: &str) -> Vec<(usize, usize)> {
-    pieces(text)
-        .into_iter()
-        .filter(|p| p.kind == Kind::Word)
-        .filter_map(|w| {
-            let (ps, _) = parts(text, w, w.start);
-            text[ps[0].0..ps[0].1].eq_ignore_ascii_case(name).then_some(ps[0])
-        })
-        .collect()
+/// Where `text` (the file `path`) names `block` (or its `field`), as the
+/// checker resolves the file's names against its database: a field's use
+/// spans `BLOCK.FIELD` as written.
+fn uses(server: &Server, path: &Path, text: &str, (block, field): (&str, Option<&str>)) -> Vec<(usize, usize)> {
+    let Some(db) = server.ws.db_for(path).and_then(|d| d.database()) else { return Vec::new() };
+    let file_name = Lang::of(path, "").file_name(path);
+    let names = linc_compiler::names::of_source(text, &file_name, linc_compiler::Context::of(Some(db)));
+    let is_block = |b: usize| db.blocks[b].name.eq_ignore_ascii_case(block);
+    let mut out = Vec::new();
+    let mut last_block: Option<(usize, usize)> = None;
+    for n in names.iter() {
+        match (&n.meaning, field) {
+            (Sym::Block(b), None) if is_block(*b) => out.push((n.span.start, n.span.end)),
+            (Sym::Field { block: Some(b), template, field: f, sub: None }, Some(want))
+                if is_block(*b) && db.templates[*template].fields[*f].name.eq_ignore_ascii_case(want) =>
+            {
+                let dotted = last_block.filter(|(_, e)| text.get(*e..n.span.start).is_some_and(|g| g.trim() == "."));
+                out.push((dotted.map_or(n.span.start, |(s, _)| s), n.span.end));
+            }
+            _ => {}
+        }
+        last_block = matches!(n.meaning, Sym::Block(_)).then_some((n.span.start, n.span.end));
+    }
+    out
+}
+
+/// Where the file names the step, action or label `sym` (declarations
+/// included), as the checker resolves its names.
+fn same_names(ctx: &Ctx, sym: &Sym) -> Vec<(usize, usize)> {
+    ctx.resolved().iter().filter(|n| n.meaning == *sym).map(|n| (n.span.start, n.span.end)).collect()
 }
 
 pub fn prepare_rename(server: &Server, p: &TextDocumentPositionParams) -> Option<PrepareRenameResponse> {
@@ -226,8 +242,8 @@ pub fn rename(server: &Server, p: &RenameParams) -> Result<Option<WorkspaceEdit>
     let Some(doc) = server.doc(&pos.text_document.uri) else { return Ok(None) };
     let offset = doc.index.offset(&doc.text, pos.position);
     let ctx = Ctx::new(server, doc);
-    let name = match ctx.symbol_at(offset) {
-        Some((Sym::Step(n) | Sym::Action(n), _, _)) => n,
+    let sym = match ctx.symbol_at(offset) {
+        Some((sym @ (Sym::Step(_) | Sym::Action(_)), _, _)) => sym,
         _ => return Ok(None),
     };
     let new = &p.new_name;
@@ -242,17 +258,11 @@ pub fn rename(server: &Server, p: &RenameParams) -> Result<Option<WorkspaceEdit>
     if crate::symbols::KEYWORDS.iter().any(|k| k.eq_ignore_ascii_case(new)) {
         return Err(format!("`{new}` is a keyword"));
     }
-    // Only where the name means this step or action: `Fill.PV` is a block's
-    // field even in a sequence with a step Fill.
-    // (Asked inside the word: at its first character a cursor also touches
-    // the `(` before it.)
-    let same = |(s, e): (usize, usize)| match ctx.symbol_at((s + e) / 2) {
-        Some((Sym::Step(n) | Sym::Action(n), ..)) => n.eq_ignore_ascii_case(&name),
-        _ => false,
-    };
-    let edits: Vec<TextEdit> = occurrences(&doc.text, &name)
+    // Only where the name means this step or action, as the checker
+    // resolves it: `Fill.PV` is a block's field even in a sequence with a
+    // step Fill.
+    let edits: Vec<TextEdit> = same_names(&ctx, &sym)
         .into_iter()
-        .filter(|&occurrence| same(occurrence))
         .map(|(s, e)| TextEdit::new(doc.index.range(&doc.text, s, e), new.clone()))
         .collect();
     Ok(Some(WorkspaceEdit { changes: Some(HashMap::from([(doc.uri.clone(), edits)])), ..WorkspaceEdit::default() }))

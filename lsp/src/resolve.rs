@@ -1,50 +1,58 @@
-//! What the name under the cursor is: a block, a field (of a named block,
-//! an alias, or the action's own block), a function, a step, an action or
-//! a label. Resolution reads the database and a light scan of the text, so
-//! it works in code the parser could not read to the end.
+//! What the name under the cursor is: the compiler's own resolution
+//! (`linc_compiler::names`), the one `linc check` uses — a block, an alias,
+//! a field (of a named block, an alias, or the action's own block), a
+//! function, a step, an action or a label. Where the parser gave up (a
+//! statement being typed), the dotted name under the cursor is resolved by
+//! the same function on its own.
 
 use crate::server::{Doc, Lang, Server};
 use crate::text::{parts, piece_at, pieces, Kind, Piece};
 use crate::workspace::DbFile;
-use linc_runtime::Database;
-use linc_stdlib::Signature;
+use linc_compiler::names::{self, Names};
+use linc_compiler::Context;
+use linc_format::Database;
 
-/// A name's meaning.
-#[derive(Clone, Debug)]
-pub enum Sym {
-    Block(usize),
-    /// A field of a block (`sub`: a bit, an alarm, `Suppress` after it).
-    Field {
-        block: Option<usize>,
-        template: usize,
-        field: usize,
-        sub: Option<String>,
-    },
-    Alias(usize),
-    Function(&'static Signature),
-    Step(String),
-    Action(String),
-    Label(String),
-}
+/// A name's meaning: the compiler's.
+pub use linc_compiler::names::Meaning as Sym;
 
 /// One request's view of a document and its database.
 pub struct Ctx<'a> {
     pub doc: &'a Doc,
     pub file: Option<&'a DbFile>,
     pub pieces: Vec<Piece>,
-    /// The file's own names, read once per request however often asked.
+    /// The file's own declarations, read once per request however often asked.
     names: std::cell::OnceCell<LocalNames>,
+    /// Every name of the file as the checker resolves it, likewise.
+    resolved: std::cell::OnceCell<Names>,
 }
 
 impl<'a> Ctx<'a> {
     pub fn new(server: &'a Server, doc: &'a Doc) -> Ctx<'a> {
         let file = server.ws.db_for(&doc.path);
         let pieces = if doc.lang == Lang::Fst || doc.lang == Lang::Json { Vec::new() } else { pieces(&doc.text) };
-        Ctx { doc, file, pieces, names: std::cell::OnceCell::new() }
+        Ctx { doc, file, pieces, names: std::cell::OnceCell::new(), resolved: std::cell::OnceCell::new() }
     }
 
     pub fn db(&self) -> Option<&'a Database> {
         self.file.and_then(DbFile::database)
+    }
+
+    /// What names are checked against: the database, or without one the
+    /// built-in block types with block names unresolved (as `linc check`).
+    pub fn context(&self) -> Context<'a> {
+        Context::of(self.db())
+    }
+
+    /// The database the file's names resolve in (the built-in one without
+    /// a database), for what they denote.
+    pub fn names_db(&self) -> &'a Database {
+        self.context().db
+    }
+
+    /// Every name of the file as `linc check` resolves it.
+    pub fn resolved(&self) -> &Names {
+        self.resolved
+            .get_or_init(|| names::of_source(&self.doc.text, &self.doc.lang.file_name(&self.doc.path), self.context()))
     }
 
     pub fn text(&self, p: (usize, usize)) -> &'a str {
@@ -63,7 +71,8 @@ impl<'a> Ctx<'a> {
         self.doc.text[at..].chars().find(|c| !c.is_whitespace())
     }
 
-    /// The block type of the `ACTION name : TYPE` the offset is in, if any.
+    /// The block type of the `ACTION name : TYPE` the offset is in, if any
+    /// (a scan of the text: completion asks where nothing parses yet).
     pub fn own_type(&self, offset: usize) -> Option<usize> {
         let i = self.pieces.partition_point(|p| p.start < offset);
         let words: Vec<&Piece> = self.pieces[..i].iter().filter(|p| p.kind != Kind::Comment).collect();
@@ -77,7 +86,7 @@ impl<'a> Ctx<'a> {
             if header {
                 let colon = words.get(k + 2).filter(|c| &self.doc.text[c.start..c.end] == ":");
                 let ty = colon.and(words.get(k + 3))?;
-                return self.db()?.template(&self.doc.text[ty.start..ty.end]);
+                return self.names_db().template(&self.doc.text[ty.start..ty.end]);
             }
         }
         None
@@ -114,73 +123,37 @@ impl<'a> Ctx<'a> {
         names
     }
 
-    /// The meaning of the part of the word at `offset`, with its byte range.
+    /// The meaning of the name at `offset`, with its byte range: as the
+    /// checker resolved it, or where the parser gave up, the dotted name
+    /// under the cursor resolved on its own by the same function.
     pub fn symbol_at(&self, offset: usize) -> Option<(Sym, usize, usize)> {
-        let (word, parts, at) = self.word_at(offset)?;
-        let text = |i: usize| self.text(parts[i]);
-        let (s, e) = parts[at];
-        let local = self.local_names();
-        if at == 0 {
-            let name = text(0);
-            let call = self.next_char(word.end) == Some('(');
-            let is = |list: &[(String, usize, usize)]| list.iter().any(|n| n.0.eq_ignore_ascii_case(name));
-            if is(&local.actions) && (call || parts.len() == 1) {
-                return Some((Sym::Action(name.to_string()), s, e));
-            }
-            // A step is named alone (declarations, transitions) or with `.X`
-            // or `.T`; a block of the same name wins, as in the checker.
-            let step_use = parts.len() == 1
-                || (parts.len() == 2
-                    && ["X", "T"].iter().any(|v| text(1).eq_ignore_ascii_case(v))
-                    && self.db().is_none_or(|db| db.block(name).is_none()));
-            if step_use && is(&local.steps) {
-                return Some((Sym::Step(name.to_string()), s, e));
-            }
-            if is(&local.labels) {
-                return Some((Sym::Label(name.to_string()), s, e));
-            }
-            if call {
-                if let Some(sig) = linc_stdlib::lookup(name) {
-                    return Some((Sym::Function(sig), s, e));
-                }
-            }
+        if let Some(n) = self.resolved().at(offset) {
+            return Some((n.meaning.clone(), n.span.start, n.span.end));
         }
-        let db = self.db()?;
-        let first = text(0);
-        let (block, template, field_part) = if let Some(b) = db.block(first) {
-            if at == 0 {
-                return Some((Sym::Block(b), s, e));
-            }
-            (Some(b), db.blocks[b].template, 1)
-        } else if let Some(a) = db.alias(first) {
-            let i = db.aliases.iter().position(|x| std::ptr::eq(x, a))?;
-            if at == 0 {
-                return Some((Sym::Alias(i), s, e));
-            }
-            let b = db.block(a.target.first()?)?;
-            return self.alias_field(db, b, &a.target, &parts[1..], at - 1).map(|sym| (sym, s, e));
-        } else {
-            let t = self.own_type(word.start)?;
-            (None, t, 0)
-        };
-        let field = db.templates[template].field(text(field_part))?;
-        let sub = (at > field_part).then(|| text(at).to_string());
-        Some((Sym::Field { block, template, field, sub }, s, e))
+        let (word, parts, at) = self.word_at(offset)?;
+        if self.covered(word) {
+            return None;
+        }
+        let (s, e) = parts[at];
+        if at == 0 && parts.len() == 1 && self.next_char(word.end) == Some('(') {
+            let sig = linc_compiler::functions::lookup(self.text((s, e)))?;
+            return Some((Sym::Function(sig), s, e));
+        }
+        let reference = &self.doc.text[parts[0].0..e];
+        let own = self.own_type(word.start).map(|t| self.names_db().templates[t].name.clone());
+        Some((self.reference(reference, own.as_deref())?, s, e))
     }
 
-    fn alias_field(
-        &self,
-        db: &Database,
-        b: usize,
-        target: &[String],
-        rest: &[(usize, usize)],
-        at: usize,
-    ) -> Option<Sym> {
-        let template = db.blocks[b].template;
-        let field_name = target.get(1).map(String::as_str).or_else(|| rest.first().map(|p| self.text(*p)))?;
-        let field = db.templates[template].field(field_name)?;
-        let sub = rest.get(at).map(|p| self.text(*p).to_string()).filter(|_| target.len() > 1 || at > 0);
-        Some(Sym::Field { block: Some(b), template, field, sub })
+    /// Whether the checker saw the word (a name in it resolved): then what
+    /// it did not resolve is unknown, not to be guessed.
+    fn covered(&self, word: Piece) -> bool {
+        self.resolved().iter().any(|n| word.start <= n.span.start && n.span.end <= word.end)
+    }
+
+    /// What `reference` (a dotted name) denotes, as the checker would
+    /// resolve it in an action of block type `own`.
+    pub fn reference(&self, reference: &str, own: Option<&str>) -> Option<Sym> {
+        names::of_reference(reference, self.context(), own)
     }
 }
 

@@ -231,7 +231,8 @@ pub fn semantic(server: &Server, p: &SemanticTokensParams) -> Option<SemanticTok
                         T::Action
                     } else if has(&names.labels, first) {
                         T::Label
-                    } else if ctx.next_char(piece.end) == Some('(') && linc_stdlib::lookup(first).is_some() {
+                    } else if ctx.next_char(piece.end) == Some('(') && linc_compiler::functions::lookup(first).is_some()
+                    {
                         T::Function
                     } else {
                         T::Variable

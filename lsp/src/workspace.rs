@@ -6,8 +6,7 @@
 //! or the client's initialization options (`{"database": "…"}`). A file no
 //! database names is checked without one, as `linc check` does.
 
-use linc_runtime::store::Store;
-use linc_runtime::{Database, DbError};
+use linc_format::{Database, DbError};
 use std::path::{Path, PathBuf};
 
 /// How deep the search for databases goes below a workspace folder.
@@ -55,8 +54,7 @@ impl DbFile {
 
 fn named_files(db_path: &Path, db: &Database) -> Vec<Named> {
     let dir = db_path.parent().unwrap_or(Path::new("."));
-    let store = Store::new(db.clone());
-    linc_engines::strategy::wanted(&store)
+    db.programs()
         .into_iter()
         .filter(|w| !w.file.is_empty())
         .map(|w| {

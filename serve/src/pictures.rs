@@ -42,7 +42,7 @@ fn picture(dir: &Path, w: &Want, s: &Strategy) -> Option<Picture> {
     let db = &s.store.db;
     let (kind, live) = match w.kind {
         WantKind::Sequence => {
-            let tree = sfc::check_sequence(&text, Context { db, resolve_blocks: true, steps: None }).tree?;
+            let tree = sfc::check_sequence(&text, Context::of(Some(db))).tree?;
             ("sfc", Live::Sequence { text, tree })
         }
         WantKind::Action if lower.ends_with(".ld") => {

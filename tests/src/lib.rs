@@ -43,7 +43,7 @@ pub struct Outcome {
 /// the guide database: each in its own session, as the CLI runs them.
 pub fn check_and_compile(src: &str) -> (Vec<&'static str>, Vec<&'static str>) {
     use linc_compiler::session::{CheckOptions, Session};
-    let ctx = Context { db: guide_db(), resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(guide_db()));
     let errors = |d: &[Diagnostic]| d.iter().filter(|d| d.is_error()).map(|d| d.code.as_str()).collect::<Vec<_>>();
     let mut check = Session::new(ctx);
     let id = check.add("case.st", src.as_bytes().to_vec());
@@ -84,7 +84,7 @@ pub fn assert_format_preserves(src: &str, name: &str, db: &Database) {
 /// The object `src` compiles to, without source positions, or its error codes.
 pub fn compiled(src: &str, name: &str, db: &Database) -> Result<Vec<u8>, Vec<&'static str>> {
     use linc_compiler::session::{CheckOptions, Session};
-    let mut s = Session::compiling(Context { db, resolve_blocks: true, steps: None });
+    let mut s = Session::compiling(Context::of(Some(db)));
     let id = s.add(name, src.as_bytes().to_vec());
     let mut codes: Vec<&'static str> = s
         .check(id, CheckOptions::default())
@@ -118,7 +118,7 @@ pub fn run(section: &str, src: &str, mode: Mode) -> Outcome {
     };
     let steps: &[String] = &[];
     let steps = matches!(mode, Mode::Sequence | Mode::Transition).then_some(steps);
-    let ctx = Context { db, resolve_blocks, steps };
+    let ctx = Context { db, resolve_blocks, steps, record: None };
     let (tree, diagnostics): (Option<String>, Vec<Diagnostic>) = if mode == Mode::Transition {
         let r = linc_compiler::check_transition(src, ctx);
         (r.tree.map(|e| pretty::expr(&e) + "\n"), r.diagnostics)
@@ -180,7 +180,7 @@ pub mod exec {
     /// Compiles `src` against `db` into object bytes; panics with the
     /// diagnostics if it does not compile (a test bug, not a finding).
     pub fn compile(src: &str, db: &Database) -> Vec<u8> {
-        let ctx = Context { db, resolve_blocks: true, steps: None };
+        let ctx = Context::of(Some(db));
         let r = linc_compiler::check_source(src, "test", ctx);
         let program = r.program.unwrap_or_else(|| panic!("does not compile: {:?}", r.diagnostics));
         let obj =

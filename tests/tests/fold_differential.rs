@@ -87,7 +87,7 @@ type Outcome = (Vec<String>, Option<(&'static str, u32)>);
 /// The outcome of compiling and running `src`; `None` if it does not compile.
 fn outcome(src: &str) -> Option<Outcome> {
     let db = guide_db();
-    let ctx = Context { db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(db));
     let checked = linc_compiler::check_source(src, "fold", ctx);
     let program = checked.program?;
     let obj = lower::lower_program(&program, "fold.st", &Lines::new(src)).ok()?;

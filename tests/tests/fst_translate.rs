@@ -246,7 +246,7 @@ fn compile_translation(text: &str, db: &Database, mode: Mode) -> Result<Vec<u8>,
     match mode {
         Mode::St => linc_conformance::compiled(text, "t.st", db),
         Mode::Sfc => {
-            let ctx = linc_compiler::Context { db, resolve_blocks: true, steps: None };
+            let ctx = linc_compiler::Context::of(Some(db));
             let (diagnostics, object) = linc_compiler::sfc::compile_sequence(text, "t", "t.sfc", ctx);
             object.map(|o| o.to_bytes()).ok_or_else(|| diagnostics.iter().map(|d| d.code.as_str()).collect())
         }

@@ -37,7 +37,7 @@ fn codes(src: &str) -> Vec<(&'static str, String)> {
     let (db, errors) = bind(&map, guide_db(), true);
     assert!(errors.is_empty(), "{errors:?}");
     let named = Named { map, file: "kiln.map.json".into() };
-    let report = check_generic(src, Context { db: &db, resolve_blocks: true, steps: None }, &named, false);
+    let report = check_generic(src, Context::of(Some(&db)), &named, false);
     report.diagnostics.iter().map(|d| (d.code.as_str(), src[d.span.start..d.span.end].to_string())).collect()
 }
 

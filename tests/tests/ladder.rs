@@ -22,7 +22,7 @@ const INTERLOCK: &str = include_str!("../../examples/ladder/interlock.ld");
 
 /// Checks `src` as `case.ld`; returns the codes and the snapshot text.
 fn case(section: &str, src: &str) -> (Vec<&'static str>, String) {
-    let ctx = Context { db: db(), resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(db()));
     let r = linc_compiler::check_ladder(src, "case", ctx);
     let mut files = SourceFiles::new();
     let id = files.add("case.ld".to_string(), src.to_string());
@@ -166,7 +166,7 @@ invalid!(
 
 /// A compiled ladder action, ready to run against fresh copies of `db`.
 fn compile(src: &str) -> Vec<u8> {
-    let ctx = Context { db: db(), resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(db()));
     let r = linc_compiler::check_ladder(src, "case", ctx);
     let program = r.program.unwrap_or_else(|| panic!("does not compile: {:?}", r.diagnostics));
     lower::lower_program(&program, "case.ld", &Lines::new(src)).expect("lowers").to_bytes()
@@ -175,7 +175,7 @@ fn compile(src: &str) -> Vec<u8> {
 /// The ladder and the ST `linc ladder to-st` prints for it run to the same
 /// database, for 32 settings of the digital inputs (each action in turn).
 fn runs_as_its_st(src: &str) {
-    let ctx = Context { db: db(), resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(db()));
     let r = linc_compiler::check_ladder(src, "case", ctx);
     let st = to_st::file(r.tree.as_ref().expect("tree"));
     let st_r = linc_compiler::check_source(&st, "case", ctx);

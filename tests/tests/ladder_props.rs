@@ -141,7 +141,7 @@ fn model(p: &[Rung], s: &mut [bool]) {
 #[test]
 fn random_rungs_run_as_their_boolean_evaluation() {
     let db = db();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let mut r = Rng(0x1AD_DE12_5EED);
     for _ in 0..300 {
         let p = gen_program(&mut r);
@@ -220,7 +220,7 @@ fn no_text_makes_the_ladder_front_end_panic() {
         "Ana_7a.PV > 1.0",
     ];
     let db = db();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let mut r = Rng(7);
     for _ in 0..20_000 {
         let n = 1 + r.below(40);
@@ -236,7 +236,7 @@ fn no_text_makes_the_ladder_front_end_panic() {
 #[test]
 fn deep_branches_and_crossing_jumps_are_bounded() {
     let db = db();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let deep = format!("{}[Dig_1a.In]{} -> (Dig_1b.Out);\n", "(".repeat(100_000), ")".repeat(100_000));
     let rep = linc_compiler::check_ladder(&deep, "case", ctx);
     assert_eq!(rep.diagnostics.iter().map(|d| d.code.as_str()).collect::<Vec<_>>(), ["E0300"]);

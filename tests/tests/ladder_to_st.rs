@@ -195,7 +195,7 @@ fn file(f: &SourceFile) -> String {
 #[test]
 fn the_st_of_any_valid_ladder_checks_clean_and_means_the_same() {
     let db = db();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let mut clean = 0;
     for case in 0..200 {
         let mut r = Rng::new(case);
@@ -220,7 +220,7 @@ fn the_st_of_any_valid_ladder_checks_clean_and_means_the_same() {
 #[test]
 fn the_st_of_each_found_case_reads_back() {
     let db = db();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let cases = [
         // A series longer than an expression may be deep, written flat.
         format!("{}-> (Dig_1b.Out);\n", "[Dig_1a.In] ".repeat(300)),
@@ -240,7 +240,7 @@ fn the_st_of_each_found_case_reads_back() {
     }
     // A bracketed name with an offset: the offset went inside the brackets.
     let guide = Database::from_json(include_str!("../../examples/guide/plant.db.json")).expect("guide db");
-    let gctx = Context { db: &guide, resolve_blocks: true, steps: None };
+    let gctx = Context::of(Some(&guide));
     let src = "[[Block_5.Val1]{2} > 1.0] -> (Dig_A.Out.Bit0);\n";
     let rep = linc_compiler::check_ladder(src, "case", gctx);
     assert!(!rep.has_errors(), "{src}: {:?}", rep.diagnostics);

@@ -65,7 +65,7 @@ fn references(n: usize, per_action: usize) -> String {
 /// Error codes (with their lines) of checking `files` in one session,
 /// then of lowering them when `compile` is set.
 fn session_codes(db: &Database, files: &[&str], compile: bool) -> Vec<(&'static str, usize)> {
-    let ctx = Context { db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(db));
     let mut s = if compile { Session::compiling(ctx) } else { Session::new(ctx) };
     let mut out = Vec::new();
     for (i, src) in files.iter().enumerate() {

@@ -63,7 +63,7 @@ fn doubled(n: usize) -> String {
 /// reports the same: it lowers only what checked clean.
 fn errors(src: &str) -> Vec<(&'static str, String)> {
     let db = db();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let at = |d: &linc_compiler::Diagnostic| (d.code.as_str(), src[d.span.start..d.span.end].to_string());
     sfc::check_sequence(src, ctx).diagnostics.iter().filter(|d| d.is_error()).map(at).collect()
 }
@@ -71,7 +71,7 @@ fn errors(src: &str) -> Vec<(&'static str, String)> {
 /// Compiles `src` (which must check clean) and loads its object.
 fn loads(src: &str) -> Result<(), String> {
     let db = db();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let (d, object) = sfc::compile_sequence(src, "s", "s.sfc", ctx);
     let object = object.unwrap_or_else(|| panic!("compiles: {:?}", d.first()));
     linc_runtime::load(&object.to_bytes()).map(drop).map_err(|e| format!("{} {e}", e.code()))
@@ -80,7 +80,7 @@ fn loads(src: &str) -> Result<(), String> {
 #[test]
 fn a_sequence_has_at_most_32767_steps() {
     let db = db();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let src = ring(MAX_STEPS, 1);
     let (d, object) = sfc::compile_sequence(&src, "ring", "ring.sfc", ctx);
     let object = object.unwrap_or_else(|| panic!("the most steps compile: {:?}", d.first()));
@@ -99,7 +99,7 @@ fn a_sequence_has_at_most_65535_code_blocks() {
     // unit; transition 65,535 (the third leaving S21844) is over.
     let src = ring(MAX_BLOCKS / 3 + 1, 3);
     let db = db();
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let d = sfc::check_sequence(&src, ctx).diagnostics;
     let d: Vec<_> = d.iter().filter(|d| d.is_error()).collect();
     assert_eq!(d.iter().map(|d| d.code.as_str()).collect::<Vec<_>>(), ["E0215"]);

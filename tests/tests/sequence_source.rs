@@ -44,7 +44,7 @@ END_ACTION
 #[test]
 fn a_sequence_compiles_and_runs_in_an_sfc_con_block() {
     let db = Database::from_json(DB).expect("db");
-    let ctx = Context { db: &db, resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(&db));
     let (diagnostics, obj) = compile_sequence(BATCH, "batch", "batch.sfc", ctx);
     assert!(diagnostics.is_empty(), "{diagnostics:?}");
     let obj = obj.expect("an object");

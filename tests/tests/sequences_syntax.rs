@@ -27,8 +27,8 @@ struct Outcome {
 fn run(section: &str, src: &str, db: Db) -> Outcome {
     let builtin = Database::builtin();
     let ctx = match db {
-        Db::Guide => Context { db: guide_db(), resolve_blocks: true, steps: None },
-        Db::None => Context { db: &builtin, resolve_blocks: false, steps: None },
+        Db::Guide => Context::of(Some(guide_db())),
+        Db::None => Context::of(Some(&builtin)).unresolved(),
     };
     let r = linc_compiler::check_sequence(src, ctx);
     let mut files = SourceFiles::new();
@@ -368,7 +368,7 @@ TRANSITION FROM B TO A := TRUE; END_TRANSITION
 #[test]
 fn damaged_sequences_never_panic() {
     let builtin = Database::builtin();
-    let ctx = Context { db: &builtin, resolve_blocks: false, steps: None };
+    let ctx = Context::of(Some(&builtin)).unresolved();
     let mut ends: Vec<usize> = BATCH.char_indices().map(|(i, _)| i).collect();
     ends.push(BATCH.len());
     let mut errors = 0;
@@ -433,7 +433,7 @@ fn long_sequence_checks_clean() {
     let n = 20_000;
     let src = ring(n, |_| "X.Y > 1".into());
     let builtin = Database::builtin();
-    let ctx = Context { db: &builtin, resolve_blocks: false, steps: None };
+    let ctx = Context::of(Some(&builtin)).unresolved();
     let started = std::time::Instant::now();
     let r = linc_compiler::check_sequence(&src, ctx);
     eprintln!("{n} steps checked in {:?}", started.elapsed());
@@ -489,7 +489,7 @@ END_ACTION
 fn ring_with_step_variables(n: usize) -> std::time::Duration {
     let src = ring(n, |i| format!("S{i}.T > 1.0 AND S{i}.X"));
     let builtin = Database::builtin();
-    let ctx = Context { db: &builtin, resolve_blocks: false, steps: None };
+    let ctx = Context::of(Some(&builtin)).unresolved();
     (0..3)
         .map(|_| {
             let started = std::time::Instant::now();

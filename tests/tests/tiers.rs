@@ -15,7 +15,7 @@ use linc_runtime::{Linked, Program, RuntimeError};
 
 /// Compiles `src` against the guide database, or `None` if it does not.
 fn compile(src: &str) -> Option<Vec<u8>> {
-    let ctx = Context { db: guide_db(), resolve_blocks: true, steps: None };
+    let ctx = Context::of(Some(guide_db()));
     let r = linc_compiler::check_source(src, "case", ctx);
     let program = r.program?;
     let obj = lower::lower_program(&program, "case.st", &Lines::new(src)).ok()?;

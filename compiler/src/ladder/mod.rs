@@ -151,3 +151,24 @@ pub fn desugar_condition(cond: &str) -> (Option<crate::st::ast::Expr>, Vec<Diagn
     });
     (expr, diagnostics)
 }
+
+/// Records the rung labels a ladder file declares and the jumps to them,
+/// for [`crate::names`].
+pub fn declared(src: &str, stem: &str, r: &crate::names::Recorder) {
+    use crate::names::Meaning;
+    let (file, _) = parser::parse(src, stem);
+    for a in &file.actions {
+        let label =
+            |name: &str| a.rungs.iter().filter_map(|g| g.label.as_ref()).find(|l| l.text.eq_ignore_ascii_case(name));
+        for rung in &a.rungs {
+            if let Some(l) = &rung.label {
+                r.push(l.span, Meaning::Label(l.text.to_string()));
+            }
+            if let ast::Output::Jump { label: to, .. } = &rung.output {
+                if let Some(l) = label(&to.text) {
+                    r.push(to.span, Meaning::Label(l.text.to_string()));
+                }
+            }
+        }
+    }
+}

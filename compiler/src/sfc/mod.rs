@@ -111,3 +111,35 @@ pub fn compile_generic(
 ) -> (Vec<Diagnostic>, Option<linc_format::ObjectFile>) {
     lower_checked(check_generic(src, ctx, map, false), src, (name, file), ctx)
 }
+
+/// Records the names a sequence declares and names in its structure: its
+/// steps (declared, and in transitions) and its actions (declared, and in
+/// associations), for [`crate::names`].
+pub fn declared(seq: &ast::Sequence, r: &crate::names::Recorder) {
+    use crate::names::Meaning;
+    let mut charts = vec![&seq.chart];
+    charts.extend(seq.actions.iter().filter_map(|a| match &a.body {
+        ast::ActionBody::Chart(c) => Some(c),
+        ast::ActionBody::St(_) => None,
+    }));
+    let step = |name: &str| charts.iter().flat_map(|c| &c.steps).find(|s| s.name.text.eq_ignore_ascii_case(name));
+    let action = |name: &str| seq.actions.iter().find(|a| a.name.text.eq_ignore_ascii_case(name));
+    for c in &charts {
+        for s in &c.steps {
+            r.push(s.name.span, Meaning::Step(s.name.text.to_string()));
+            for a in s.assocs.iter().filter_map(|a| action(&a.action.text).map(|d| (a, d))) {
+                r.push(a.0.action.span, Meaning::Action(a.1.name.text.to_string()));
+            }
+        }
+        for t in &c.transitions {
+            for name in t.from.iter().chain(&t.to) {
+                if let Some(s) = step(&name.text) {
+                    r.push(name.span, Meaning::Step(s.name.text.to_string()));
+                }
+            }
+        }
+    }
+    for a in &seq.actions {
+        r.push(a.name.span, Meaning::Action(a.name.text.to_string()));
+    }
+}

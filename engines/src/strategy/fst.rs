@@ -31,8 +31,7 @@ pub const MAX_WAIT: f64 = 999_999.0;
 /// Whether a block is an FST point (a template with the FST registers and
 /// a `FileName`).
 pub(super) fn is_fst(store: &Store, block: usize) -> bool {
-    let t = store.db.block_template(block);
-    ["FileName", "RR", "CMPFLG", "RUNFLG", "IP", "BRK"].iter().all(|f| t.field(f).is_some())
+    linc_format::db::programs::is_fst(store.db.block_template(block))
 }
 
 /// The FST unit of an FST block's file: its first table.

@@ -31,51 +31,14 @@ use crate::vm::{Activation, Vm};
 use qualifier::{QualState, Qualifier};
 use trace::Trace;
 
-/// A block of the strategy that runs a program, and the program it names.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Want {
-    pub block: usize,
-    /// `FileName`, as written (relative to the database file).
-    pub file: String,
-    /// `ActName`; empty for a sequence or an FST table.
-    pub action: String,
-    pub kind: WantKind,
-}
+pub use linc_format::db::programs::{Want, WantKind};
 
-/// What kind of program a block runs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum WantKind {
-    /// An action-type block: the action `ActName` of its file.
-    Action,
-    /// An SFC_CON block: the sequence its file holds.
-    Sequence,
-    /// A ROC FST block: the table its file holds.
-    Fst,
-}
-
-impl WantKind {
-    /// How the console and the monitor name it.
-    pub fn name(self) -> &'static str {
-        match self {
-            WantKind::Action => "action",
-            WantKind::Sequence => "sequence",
-            WantKind::Fst => "fst",
-        }
-    }
-}
-
-impl Want {
-    /// A block must name both its file and (unless it runs a sequence) its
-    /// action (E0830).
-    pub fn complete(&self, store: &Store) -> Result<(), StrategyError> {
-        let missing = match (self.file.is_empty(), self.action.is_empty() && self.kind == WantKind::Action) {
-            (true, _) => "FileName",
-            (_, true) => "ActName",
-            _ => return Ok(()),
-        };
-        let block = store.db.blocks[self.block].name.clone();
-        Err(StrategyError::new(Code::E0830, block, format!("the block names no action: its {missing} is empty")))
-    }
+/// A block must name both its file and (unless it runs a sequence) its
+/// action (E0830).
+pub fn complete(w: &Want, store: &Store) -> Result<(), StrategyError> {
+    let Some(missing) = w.missing() else { return Ok(()) };
+    let block = store.db.blocks[w.block].name.clone();
+    Err(StrategyError::new(Code::E0830, block, format!("the block names no action: its {missing} is empty")))
 }
 
 /// Text of a string field of a block, if the block's template has it.
@@ -86,26 +49,11 @@ fn text_field(store: &Store, block: usize, field: &str) -> Option<String> {
     }
 }
 
-/// The action-type blocks of a store that name an action, in database
-/// order. A block with neither `FileName` nor `ActName` has no action and
-/// runs nothing; one with only one of them is refused when building (E0830).
+/// The blocks of a store that name a program, by its live values, in
+/// database order (the rule is the database's:
+/// `linc_format::db::programs`).
 pub fn wanted(store: &Store) -> Vec<Want> {
-    (0..store.db.blocks.len())
-        .filter_map(|b| {
-            let file = text_field(store, b, "FileName")?;
-            let whole =
-                |kind| (!file.is_empty()).then(|| Want { block: b, file: file.clone(), action: String::new(), kind });
-            if sequences::is_sfc_con(store, b) {
-                return whole(WantKind::Sequence);
-            }
-            if fst::is_fst(store, b) {
-                return whole(WantKind::Fst);
-            }
-            let action = text_field(store, b, "ActName")?;
-            let named = !file.is_empty() || !action.is_empty();
-            named.then_some(Want { block: b, file, action, kind: WantKind::Action })
-        })
-        .collect()
+    linc_format::db::programs::wanted(&store.db, &|b, field| text_field(store, b, field))
 }
 
 /// The cells through which the engine drives and shows a block.

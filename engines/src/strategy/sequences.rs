@@ -13,14 +13,6 @@ use crate::store::{Cell, Store};
 use crate::verify::Verified;
 use linc_format::Code;
 
-/// Whether a block is a sequence control block (an SFC_CON, or any
-/// template with SFC_CON's command fields and no `ActName`).
-pub(super) fn is_sfc_con(store: &Store, block: usize) -> bool {
-    let t = store.db.block_template(block);
-    ["FileName", "Run", "Hold", "Stop", "Reset", "Status"].iter().all(|f| t.field(f).is_some())
-        && t.field("ActName").is_none()
-}
-
 /// The sequence unit of an SFC_CON block's file: its first sequence.
 pub(super) fn unit_of(v: &Verified, w: &Want, block_name: &dyn Fn(usize) -> String) -> Result<usize, StrategyError> {
     v.object()

@@ -10,6 +10,7 @@ mod json;
 pub mod modbus;
 mod names;
 mod period;
+pub mod programs;
 mod roc;
 mod schema;
 pub mod tree;

@@ -102,7 +102,7 @@ const TABLE: &str = "STEP,LABEL,CMD,ARGUMENT1,ARGUMENT2
 ";
 
 pub fn corpus() -> Vec<Seed> {
-    let ctx = linc_compiler::Context { db: guide_db(), resolve_blocks: true, steps: None };
+    let ctx = linc_compiler::Context::of(Some(guide_db()));
     let (diagnostics, table) = linc_compiler::fst::compile(TABLE, "table", "table.csv", Some(fuzz_db()));
     let table = table.unwrap_or_else(|| panic!("the corpus table compiles: {diagnostics:?}")).to_bytes();
     let (diagnostics, seq) = linc_compiler::sfc::compile_sequence(SEQUENCE, "seq", "seq.sfc", ctx);

@@ -181,6 +181,7 @@ impl Checker<'_> {
             return (Ty::Any, hir::ExprKind::Error);
         };
         let sig = &SIGNATURES[index];
+        self.ctx.note(name_span, || crate::names::Meaning::Function(sig));
         if !sig.arity_ok(args.len()) {
             self.errors.push(CheckError::WrongArity {
                 span: whole.span,

@@ -13,6 +13,7 @@ pub use limits::{FastHash, Limits, MAX_CALL_ARGS, MAX_FOR_LOOPS, MAX_REFERENCES}
 pub use resolve::Resolved;
 
 use crate::diag::{Capped, Omitted};
+use crate::names::{Meaning, Recorder};
 use crate::st::ast::{Action, Expr, ExprKind, Stmt};
 use crate::st::hir;
 use limits::ActionLimits;
@@ -31,6 +32,9 @@ pub struct Context<'a> {
     /// `Some` in sequence actions and transitions, where `step.X` and
     /// `step.T` exist. An empty list accepts any step name.
     pub steps: Option<&'a [String]>,
+    /// Where to record what each name resolves to (a language server's
+    /// question, `crate::names`); `None` for a plain check.
+    pub record: Option<&'a Recorder>,
 }
 
 impl<'a> Context<'a> {
@@ -39,8 +43,32 @@ impl<'a> Context<'a> {
     /// run time), as `linc check` without `--db` does.
     pub fn of(db: Option<&'a Database>) -> Context<'a> {
         match db {
-            Some(db) => Context { db, resolve_blocks: true, steps: None },
-            None => Context { db: Database::builtin_shared(), resolve_blocks: false, steps: None },
+            Some(db) => Context { db, resolve_blocks: true, steps: None, record: None },
+            None => Context { db: Database::builtin_shared(), resolve_blocks: false, steps: None, record: None },
+        }
+    }
+
+    /// The same context, in sequence actions and transitions with `steps`
+    /// (an empty list accepts any step name).
+    pub fn with_steps(self, steps: &'a [String]) -> Context<'a> {
+        Context { steps: Some(steps), ..self }
+    }
+
+    /// The same context, with block names taken on trust (checked when the
+    /// program runs, as without `--db`).
+    pub fn unresolved(self) -> Context<'a> {
+        Context { resolve_blocks: false, ..self }
+    }
+
+    /// The same context, recording each name it resolves into `r`.
+    pub fn recording(self, r: &'a Recorder) -> Context<'a> {
+        Context { record: Some(r), ..self }
+    }
+
+    /// Records that `span` names `meaning`, when recording.
+    pub(crate) fn note(&self, span: crate::diag::Span, meaning: impl FnOnce() -> Meaning) {
+        if let Some(r) = self.record {
+            r.push(span, meaning());
         }
     }
 }
@@ -60,9 +88,10 @@ pub struct Checker<'a> {
     suggestions: HashMap<String, Option<String>>,
     /// Whether the checked program is kept (for compiling).
     keep: bool,
-    /// The sequence's step names in upper case, made on first use, so a
-    /// step variable is one hashed look-up however many steps there are.
-    step_index: Option<std::collections::HashSet<String>>,
+    /// The sequence's step names in upper case with the index of the first
+    /// of each, made on first use, so a step variable is one hashed look-up
+    /// however many steps there are.
+    step_index: Option<HashMap<String, usize>>,
 }
 
 /// Checks a transition: an expression that must be a truth value (§12.11).

@@ -8,6 +8,7 @@ use super::errors::CheckError;
 use super::limits::SymbolKey;
 use super::Checker;
 use crate::diag::span::Span;
+use crate::names::Meaning;
 use crate::st::ast::{Expr, Name, Var};
 use crate::st::hir::{self, Place, Target};
 use linc_format::object::class_of;
@@ -66,6 +67,8 @@ struct Part<'a> {
     span: Span,
     offset: Option<&'a Expr>,
     checked: Option<hir::Expr>,
+    /// Part of an alias's target: the name written is the alias's.
+    from_alias: bool,
 }
 
 impl Checker<'_> {
@@ -124,24 +127,32 @@ impl Checker<'_> {
         // On the stack: a reference has rarely more than four parts.
         let mut parts: SmallVec<[Part; 4]> = SmallVec::new();
         if let Some(alias) = db.alias(&first.name.text) {
+            self.ctx.note(first.name.span, || {
+                Meaning::Alias(db.aliases.iter().position(|a| std::ptr::eq(a, alias)).unwrap_or_default())
+            });
             let n = alias.target.len();
             let mut first_checked = Some(first_checked);
             for (i, t) in alias.target.iter().enumerate() {
                 let last = i + 1 == n;
                 let offset = if last { first.offset.as_deref() } else { None };
                 let checked = if last { first_checked.take().flatten() } else { None };
-                parts.push(Part { name: t, span: first.name.span, offset, checked });
+                parts.push(Part { name: t, span: first.name.span, offset, checked, from_alias: true });
             }
         } else {
             let offset = first.offset.as_deref();
-            parts.push(Part { name: &first.name.text, span: first.name.span, offset, checked: first_checked });
+            let checked = first_checked;
+            parts.push(Part { name: &first.name.text, span: first.name.span, offset, checked, from_alias: false });
         }
         for s in &v.segs[1..] {
             let checked = checked.next().flatten();
-            parts.push(Part { name: &s.name.text, span: s.name.span, offset: s.offset.as_deref(), checked });
+            let offset = s.offset.as_deref();
+            parts.push(Part { name: &s.name.text, span: s.name.span, offset, checked, from_alias: false });
         }
 
         if let Some(b) = db.block(parts[0].name) {
+            if !parts[0].from_alias {
+                self.ctx.note(parts[0].span, || Meaning::Block(b));
+            }
             if parts[0].offset.is_some() {
                 self.errors.push(CheckError::BadOffsetBase {
                     span: parts[0].span,
@@ -207,10 +218,16 @@ impl Checker<'_> {
             self.errors.push(CheckError::StepOutsideSequence { span: v.span, name: v.path() });
             return None;
         };
-        let index = self.step_index.get_or_insert_with(|| steps.iter().map(|s| s.to_ascii_uppercase()).collect());
-        if !steps.is_empty() && !index.contains(&parts[0].name.to_ascii_uppercase()) {
+        let index = self
+            .step_index
+            .get_or_insert_with(|| steps.iter().enumerate().rev().map(|(i, s)| (s.to_ascii_uppercase(), i)).collect());
+        let declared = index.get(&parts[0].name.to_ascii_uppercase()).copied();
+        if !steps.is_empty() && declared.is_none() {
             self.errors.push(CheckError::UnknownStep { span: parts[0].span, name: parts[0].name.to_string() });
             return None;
+        }
+        if let Some(i) = declared {
+            self.ctx.note(parts[0].span, || Meaning::Step(steps[i].clone()));
         }
         let x = parts[1].name.eq_ignore_ascii_case("X");
         let ty = if x { Ty::Bool } else { Ty::Real };
@@ -238,6 +255,19 @@ impl Checker<'_> {
         };
         if let Some(o) = fpart.offset {
             self.check_field_offset(tpl, fi, o, fpart)?;
+        }
+        let template =
+            if block_id == 0 { self.self_template } else { Some(self.ctx.db.blocks[block_id as usize - 1].template) };
+        let owner = (block_id != 0).then(|| block_id as usize - 1);
+        let note = |part: &Part, sub: Option<&str>| {
+            if let (Some(template), false) = (template, part.from_alias) {
+                let sub = sub.map(str::to_string);
+                self.ctx.note(part.span, || Meaning::Field { block: owner, template, field: fi, sub });
+            }
+        };
+        note(fpart, None);
+        for p in &parts[1..] {
+            note(p, Some(p.name));
         }
         let base_name = Name::from(tpl.fields[fi].name.as_str());
         // A constant offset names its field exactly: `PV{1}` is as writable as
@@ -317,13 +347,13 @@ impl Checker<'_> {
                     }
                     [s] if s.name.eq_ignore_ascii_case("Suppress") => Some(suppress(Some(alarm), 3 + 2 * ai as u32)),
                     [s, ..] => {
-                        let s = Part { name: s.name, span: s.span, offset: None, checked: None };
+                        let s = Part { name: s.name, span: s.span, offset: None, checked: None, from_alias: false };
                         self.no_sub(&s, &alarm, &FieldType::Bool)
                     }
                 }
             }
             (_, [sub, ..]) => {
-                let sub = Part { name: sub.name, span: sub.span, offset: None, checked: None };
+                let sub = Part { name: sub.name, span: sub.span, offset: None, checked: None, from_alias: false };
                 let owner_ty = field.ty.clone();
                 let name = field.name.clone();
                 self.no_sub(&sub, &name, &owner_ty)
