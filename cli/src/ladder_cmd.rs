@@ -6,7 +6,6 @@
 use crate::report::{usage, Reporter};
 use clap::Subcommand;
 use linc_compiler::diag::Problems;
-use linc_compiler::ladder;
 use std::path::{Path, PathBuf};
 
 #[derive(Subcommand)]
@@ -61,7 +60,7 @@ pub fn run(command: LadderCommand, r: &Reporter) -> u8 {
 
 /// Prints the diagram after what the run found (`ran`), or the file's
 /// syntax errors (exit 1).
-fn show(file: &Path, values: ladder::pretty::draw::Values, ran: Problems, r: &Reporter) -> u8 {
+fn show(file: &Path, values: linc_driver::ladder::Values, ran: Problems, r: &Reporter) -> u8 {
     let status = r.report(&ran);
     let mut out = crate::out::Stream::new();
     let drawn = linc_driver::ladder::show(file, values, &mut |s| out.text(s));

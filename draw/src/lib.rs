@@ -9,6 +9,7 @@
 pub mod fst;
 pub mod geom;
 pub mod ladder;
+pub mod ladder_text;
 pub mod sfc;
 pub mod svg;
 pub mod trend;

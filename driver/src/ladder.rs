@@ -7,6 +7,7 @@ use linc_compiler::diag::Problems;
 use linc_compiler::session::{CheckOptions, Input, Session};
 use linc_compiler::st::lower::{self, Lines};
 use linc_compiler::Context;
+pub use linc_draw::ladder_text::Values;
 use linc_runtime::vm::{Activation, Clock, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{Database, Linked, Program as Linking, Store};
 use linc_stdlib::Value;
@@ -36,7 +37,7 @@ pub fn after_run(file: &Path, db_path: &Path, set: &[String], cycles: u32) -> Re
     let text = crate::files::read_input_text(file).unwrap_or_default();
     let stem = crate::source::stem(file, "ladder");
     let mut known = HashMap::new();
-    for span in linc_compiler::ladder::element_spans(&text, stem) {
+    for span in linc_draw::ladder_text::element_spans(&text, stem) {
         if let Some(v) = text.get(span.start..span.end).and_then(|e| truth(e, &a.store.db, &a.store)) {
             known.insert((span.start, span.end), v);
         }
@@ -58,15 +59,11 @@ pub fn to_st(file: &Path, db: Option<&Path>) -> Result<String, Problems> {
 /// The rungs drawn in text (`linc ladder show`), handed to `write` one
 /// action at a time; `values` gives each element's state. The file's
 /// syntax errors and rungs too large to draw are errors found in it.
-pub fn show(
-    file: &Path,
-    values: linc_compiler::ladder::pretty::draw::Values,
-    write: &mut dyn FnMut(&str),
-) -> Result<(), Problems> {
+pub fn show(file: &Path, values: Values, write: &mut dyn FnMut(&str)) -> Result<(), Problems> {
     let bytes = crate::files::read_input(file).map_err(|e| Problems::unreadable(file, &e))?;
     let (text, _) = linc_compiler::diag::decode(bytes);
     let stem = crate::source::stem(file, "ladder");
-    linc_compiler::ladder::draw_to(&text, stem, values, write).map_err(|ds| {
+    linc_draw::ladder_text::draw_to(&text, stem, values, write).map_err(|ds| {
         let mut files = linc_compiler::diag::SourceFiles::new();
         let id = files.add(file.display().to_string(), text.clone());
         Problems::of(files, ds.into_iter().map(|d| d.in_file(id)).collect())
@@ -109,7 +106,7 @@ pub struct LiveElements {
 
 impl LiveElements {
     pub fn new(text: &str, stem: &str, store: &Store) -> LiveElements {
-        let items = linc_compiler::ladder::element_spans(text, stem)
+        let items = linc_draw::ladder_text::element_spans(text, stem)
             .into_iter()
             .filter_map(|span| {
                 let linked = element(text.get(span.start..span.end)?, &store.db, store)?;

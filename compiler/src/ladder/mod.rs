@@ -12,7 +12,6 @@ pub mod check;
 pub mod desugar;
 pub mod parser;
 pub mod pretty {
-    pub mod draw;
     pub mod to_st;
 }
 
@@ -60,55 +59,6 @@ pub fn to_st(src: &str, stem: &str, ctx: Context) -> Result<String, Vec<Diagnost
         return Err(diagnostics);
     }
     Ok(out)
-}
-
-/// The diagram of a ladder file (`linc ladder show`), or its syntax errors
-/// and the rungs too large to draw; `values` gives the state of each
-/// element (contact operands and coil targets, by span), for `--values`.
-pub fn draw(src: &str, stem: &str, values: pretty::draw::Values) -> Result<String, Vec<Diagnostic>> {
-    let mut out = String::new();
-    draw_to(src, stem, values, &mut |s| out.push_str(s))?;
-    Ok(out)
-}
-
-/// [`draw`], handing the drawing to `write` one action at a time. The file
-/// is read twice, for the errors and then for the drawing, so that only one
-/// action is held and nothing is drawn when there are errors.
-pub fn draw_to(
-    src: &str,
-    stem: &str,
-    values: pretty::draw::Values,
-    write: &mut dyn FnMut(&str),
-) -> Result<(), Vec<Diagnostic>> {
-    let mut too_large = Vec::new();
-    let mut diagnostics = parser::parse_each(src, stem, &mut |a| too_large.extend(pretty::draw::too_large(src, &a)));
-    diagnostics.extend(too_large);
-    if diagnostics.iter().any(Diagnostic::is_error) {
-        diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
-        return Err(diagnostics);
-    }
-    let mut first = true;
-    parser::parse_each(src, stem, &mut |a| {
-        let mut out = String::new();
-        if !std::mem::take(&mut first) {
-            out.push('\n');
-        }
-        if let Err(e) = pretty::draw::action(src, &a, values, &mut out) {
-            diagnostics.extend(e);
-        }
-        write(&out);
-    });
-    if diagnostics.iter().any(Diagnostic::is_error) {
-        return Err(diagnostics);
-    }
-    Ok(())
-}
-
-/// The spans of the elements `--values` shows, for the caller to evaluate.
-pub fn element_spans(src: &str, stem: &str) -> Vec<crate::diag::span::Span> {
-    let mut out = Vec::new();
-    parser::parse_each(src, stem, &mut |a| pretty::draw::element_spans(&a, &mut out));
-    out
 }
 
 /// The rungs of a sequence's `ACTION name : LADDER` as one ST action named

@@ -1,12 +1,13 @@
-//! `linc ladder show`: each rung drawn as a diagram between two rails, as
-//! the LINtools ladder editor shows it. Contacts `--[ x ]--` / `--[/x]--`,
+//! `linc ladder show`: each rung drawn in text as a diagram between two
+//! rails, as the LINtools ladder editor shows it (its SVG twin is
+//! [`crate::ladder`]; both lay rungs out from the compiler's ladder tree). Contacts `--[ x ]--` / `--[/x]--`,
 //! parallel branches joined by `+` and `|`, function boxes as a labelled
 //! branch group, coils `( x )` `(/x)` `(S x)` `(R x)`, jumps `>> L`,
 //! variable outputs `{ t := v }`. Element text is the source as written.
 
-use crate::diag::span::Span;
-use crate::diag::Diagnostic;
-use crate::ladder::ast::{Action, CoilKind, Cond, Output, Rung};
+use linc_compiler::diag::{Diagnostic, Span};
+use linc_compiler::ladder::ast::{Action, CoilKind, Cond, Output, Rung};
+use linc_compiler::ladder::parser;
 use linc_format::Code;
 
 /// The most characters one rung's drawing may have. A drawing is as wide as
@@ -141,9 +142,9 @@ fn output(src: &str, o: &Output, values: Values) -> Cell {
     }
 }
 
-fn stmt_span(s: &crate::st::ast::Stmt) -> Span {
+fn stmt_span(s: &linc_compiler::st::ast::Stmt) -> Span {
     match s {
-        crate::st::ast::Stmt::Assign { span, .. } => *span,
+        linc_compiler::st::ast::Stmt::Assign { span, .. } => *span,
         _ => Span::default(),
     }
 }
@@ -200,7 +201,7 @@ fn rung(src: &str, r: &Rung, width: usize, values: Values, out: &mut String) {
 }
 
 /// The rungs of `a` too large to draw (E0314), each located at its rung.
-pub fn too_large(src: &str, a: &Action) -> Vec<Diagnostic> {
+fn too_large(src: &str, a: &Action) -> Vec<Diagnostic> {
     let mut errors = Vec::new();
     for r in &a.rungs {
         let (w, h) = rung_size(src, r);
@@ -219,7 +220,7 @@ pub fn too_large(src: &str, a: &Action) -> Vec<Diagnostic> {
 
 /// Draws one action, elements in the state `values` gives them; `Err` with
 /// the rungs too large to draw, and nothing drawn, if it has any.
-pub fn action(src: &str, a: &Action, values: Values, out: &mut String) -> Result<(), Vec<Diagnostic>> {
+fn action(src: &str, a: &Action, values: Values, out: &mut String) -> Result<(), Vec<Diagnostic>> {
     let errors = too_large(src, a);
     if !errors.is_empty() {
         return Err(errors);
@@ -244,7 +245,7 @@ pub fn action(src: &str, a: &Action, values: Values, out: &mut String) -> Result
 
 /// Adds every span of `a` whose value `--values` shows to `out`: contacts'
 /// operands and coils' targets.
-pub fn element_spans(a: &Action, out: &mut Vec<Span>) {
+fn element_spans_of(a: &Action, out: &mut Vec<Span>) {
     fn walk(c: &Cond, out: &mut Vec<Span>) {
         match c {
             Cond::Contact { expr, .. } => out.push(expr.span),
@@ -259,4 +260,48 @@ pub fn element_spans(a: &Action, out: &mut Vec<Span>) {
             out.push(target.span);
         }
     }
+}
+
+/// The diagram of a ladder file (`linc ladder show`), or its syntax errors
+/// and the rungs too large to draw; `values` gives the state of each
+/// element (contact operands and coil targets, by span), for `--values`.
+pub fn draw(src: &str, stem: &str, values: Values) -> Result<String, Vec<Diagnostic>> {
+    let mut out = String::new();
+    draw_to(src, stem, values, &mut |s| out.push_str(s))?;
+    Ok(out)
+}
+
+/// [`draw`], handing the drawing to `write` one action at a time. The file
+/// is read twice, for the errors and then for the drawing, so that only one
+/// action is held and nothing is drawn when there are errors.
+pub fn draw_to(src: &str, stem: &str, values: Values, write: &mut dyn FnMut(&str)) -> Result<(), Vec<Diagnostic>> {
+    let mut oversized = Vec::new();
+    let mut diagnostics = parser::parse_each(src, stem, &mut |a| oversized.extend(too_large(src, &a)));
+    diagnostics.extend(oversized);
+    if diagnostics.iter().any(Diagnostic::is_error) {
+        diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+        return Err(diagnostics);
+    }
+    let mut first = true;
+    parser::parse_each(src, stem, &mut |a| {
+        let mut out = String::new();
+        if !std::mem::take(&mut first) {
+            out.push('\n');
+        }
+        if let Err(e) = action(src, &a, values, &mut out) {
+            diagnostics.extend(e);
+        }
+        write(&out);
+    });
+    if diagnostics.iter().any(Diagnostic::is_error) {
+        return Err(diagnostics);
+    }
+    Ok(())
+}
+
+/// The spans of the elements `--values` shows, for the caller to evaluate.
+pub fn element_spans(src: &str, stem: &str) -> Vec<Span> {
+    let mut out = Vec::new();
+    parser::parse_each(src, stem, &mut |a| element_spans_of(&a, &mut out));
+    out
 }
