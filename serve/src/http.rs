@@ -68,29 +68,17 @@ pub fn serve(listener: std::net::TcpListener, state: AppState, wires: Wires, clo
     let app = router(state);
     rt.block_on(async move {
         let Ok(listener) = tokio::net::TcpListener::from_std(listener) else { return };
+        let plant = (wires.asks.clone(), wires.limits, wires.log.clone());
         if let Some((l, me)) = wires.roc {
             if let Ok(l) = tokio::net::TcpListener::from_std(l) {
-                let (asks, limits, log) = (wires.asks.clone(), wires.limits, wires.log.clone());
-                let serve_one = move |stream, peer| {
-                    crate::wire::roc_server::client(stream, peer, me, asks.clone(), limits, log.clone())
-                };
-                tokio::spawn(crate::wire::net::accept("roc", l, limits, wires.log.clone(), closing.clone(), serve_one));
+                let wire = move || crate::wire::roc_server::Roc::new(me);
+                tokio::spawn(crate::wire::net::accept(l, plant.clone(), closing.clone(), wire));
             }
         }
         if let Some((l, unit)) = wires.modbus {
             if let Ok(l) = tokio::net::TcpListener::from_std(l) {
-                let (asks, limits, log) = (wires.asks.clone(), wires.limits, wires.log.clone());
-                let serve_one = move |stream, peer| {
-                    crate::wire::modbus_server::client(stream, peer, unit, asks.clone(), limits, log.clone())
-                };
-                tokio::spawn(crate::wire::net::accept(
-                    "modbus",
-                    l,
-                    limits,
-                    wires.log.clone(),
-                    closing.clone(),
-                    serve_one,
-                ));
+                let wire = move || crate::wire::modbus_server::Modbus::new(unit);
+                tokio::spawn(crate::wire::net::accept(l, plant.clone(), closing.clone(), wire));
             }
         }
         let shutdown = async move {

@@ -1,17 +1,22 @@
-//! What both wire servers share: the connection cap, the timeouts that
-//! drop idle and slow clients, and the log lines that say why.
+//! The one connection loop of both wire servers: the connection cap, the
+//! timeouts that drop idle and slow clients, the log lines that say why,
+//! and each client's requests in turn to the plant. A protocol plugs in
+//! what differs ([`Wire`]: how requests come off the stream, what the
+//! plant is asked, how its answer goes back), in `roc_server.rs` and
+//! `modbus_server.rs`.
 //!
 //! Each connection is a task on the server's runtime with at most one
 //! request at the plant at a time, so however hostile the traffic, the
 //! plant thread sees at most one question per client between two scans.
 
+use crate::Ask;
 use std::net::SocketAddr;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use tokio::io::{AsyncRead, AsyncReadExt};
 use tokio::net::{TcpListener, TcpStream};
-use tokio::sync::{watch, Semaphore};
+use tokio::sync::{oneshot, watch, Semaphore};
 
 /// How much a server puts up with.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -54,19 +59,50 @@ impl Refusals {
     }
 }
 
-/// Accepts clients until `closing` turns true, each served by `serve` in a
-/// task of its own while fewer than the cap are connected.
-pub async fn accept<F, Fut>(
-    what: &'static str,
+/// What a protocol plugs into the connection loop.
+pub(crate) trait Wire: Send + 'static {
+    /// The plant's answer to one request.
+    type Answer: Send + 'static;
+    /// How log lines name the protocol (`roc`, `modbus`).
+    const NAME: &'static str;
+    /// Takes the bytes read.
+    fn push(&mut self, bytes: &[u8]);
+    /// Bytes waiting for the rest of their request.
+    fn pending(&self) -> usize;
+    /// The next whole request, if any, and what to do with it.
+    fn next(&mut self, peer: SocketAddr) -> Option<Next<Self::Answer>>;
+    /// The bytes to send back for the plant's answer (none: no reply), and
+    /// the log lines it brought.
+    fn answered(&mut self, answer: Self::Answer) -> (Option<Vec<u8>>, Vec<String>);
+    /// A last log line when the connection ends (bytes thrown away).
+    fn farewell(&self, _peer: SocketAddr) -> Option<String> {
+        None
+    }
+}
+
+/// What a protocol makes of a request off the stream.
+pub(crate) enum Next<A> {
+    /// A question for the plant, and where its answer comes.
+    Ask(Ask, oneshot::Receiver<A>),
+    /// Answered without the plant (a request that does not decode).
+    Reply(Vec<u8>),
+    /// Not for this device: no reply.
+    Skip,
+    /// A stream that can't go on: closed, and logged with why.
+    Close(String),
+}
+
+/// Accepts clients of protocol `W` until `closing` turns true, each served
+/// by the connection loop in a task of its own while fewer than the cap
+/// are connected; `wire` makes each connection's protocol state.
+pub(crate) async fn accept<W: Wire>(
     listener: TcpListener,
-    limits: Limits,
-    log: Log,
+    plant: (std::sync::mpsc::Sender<Ask>, Limits, Log),
     mut closing: watch::Receiver<bool>,
-    serve: F,
-) where
-    F: Fn(TcpStream, SocketAddr) -> Fut,
-    Fut: std::future::Future<Output = ()> + Send + 'static,
-{
+    wire: impl Fn() -> W,
+) {
+    let (asks, limits, log) = plant;
+    let what = W::NAME;
     let permits = Arc::new(Semaphore::new(limits.max_clients));
     let refusals = Refusals::default();
     loop {
@@ -78,7 +114,7 @@ pub async fn accept<F, Fut>(
         match permits.clone().try_acquire_owned() {
             Ok(permit) => {
                 let _ = stream.set_nodelay(true);
-                let task = serve(stream, peer);
+                let task = client(stream, peer, wire(), (asks.clone(), limits, log.clone()));
                 tokio::spawn(async move {
                     task.await;
                     drop(permit);
@@ -89,8 +125,59 @@ pub async fn accept<F, Fut>(
     }
 }
 
+/// Serves one client: each request the protocol takes off the stream is
+/// answered in turn (through the plant, or by the protocol itself) until
+/// the client leaves, is idle or slow too long, or sends what can't go on.
+async fn client<W: Wire>(
+    mut stream: TcpStream,
+    peer: SocketAddr,
+    mut wire: W,
+    (asks, limits, log): (std::sync::mpsc::Sender<Ask>, Limits, Log),
+) {
+    let mut buf = [0u8; 4096];
+    let mut begun: Option<Instant> = None;
+    let stop = 'conn: loop {
+        let n = match read_some(&mut stream, &mut buf, &limits, begun).await {
+            Ok(n) => n,
+            Err(stop) => break stop,
+        };
+        wire.push(&buf[..n]);
+        while let Some(next) = wire.next(peer) {
+            let bytes = match next {
+                Next::Skip => continue,
+                Next::Close(why) => {
+                    log(format!("{} {peer}: dropped: {why}", W::NAME));
+                    return;
+                }
+                Next::Reply(bytes) => Some(bytes),
+                Next::Ask(ask, answer) => {
+                    if asks.send(ask).is_err() {
+                        return;
+                    }
+                    let Ok(answer) = answer.await else { return };
+                    let (bytes, lines) = wire.answered(answer);
+                    lines.into_iter().for_each(|line| log(line));
+                    bytes
+                }
+            };
+            if let Some(bytes) = bytes {
+                if let Err(stop) = reply(&mut stream, &bytes, &limits).await {
+                    break 'conn stop;
+                }
+            }
+        }
+        begun = waiting_since(wire.pending(), begun);
+    };
+    if let Some(line) = wire.farewell(peer) {
+        log(line);
+    }
+    if let Some(why) = stop.why(&limits) {
+        log(format!("{} {peer}: dropped: {why}", W::NAME));
+    }
+}
+
 /// Why a read gave nothing.
-pub enum Stop {
+enum Stop {
     /// The client closed the connection or it failed.
     Closed,
     /// Nothing for [`Limits::idle`].
@@ -101,7 +188,7 @@ pub enum Stop {
 
 impl Stop {
     /// The log line for a dropped client, `None` for one that left.
-    pub fn why(&self, limits: &Limits) -> Option<String> {
+    fn why(&self, limits: &Limits) -> Option<String> {
         match self {
             Stop::Closed => None,
             Stop::Idle => Some(format!("idle for {} s", limits.idle.as_secs())),
@@ -112,7 +199,7 @@ impl Stop {
 
 /// Reads what arrives, with the deadline that applies: the request's if
 /// `begun` (bytes of an unfinished request wait), else the idle one.
-pub async fn read_some<R: AsyncRead + Unpin>(
+async fn read_some<R: AsyncRead + Unpin>(
     stream: &mut R,
     buf: &mut [u8],
     limits: &Limits,
@@ -131,7 +218,7 @@ pub async fn read_some<R: AsyncRead + Unpin>(
 
 /// Writes a reply, giving a client that does not read it [`Limits::idle`]
 /// before the connection is dropped; `Err` ends the connection.
-pub async fn reply(stream: &mut tokio::net::TcpStream, bytes: &[u8], limits: &Limits) -> Result<(), Stop> {
+async fn reply(stream: &mut tokio::net::TcpStream, bytes: &[u8], limits: &Limits) -> Result<(), Stop> {
     use tokio::io::AsyncWriteExt;
     match tokio::time::timeout(limits.idle, stream.write_all(bytes)).await {
         Ok(Ok(())) => Ok(()),
@@ -141,7 +228,7 @@ pub async fn reply(stream: &mut tokio::net::TcpStream, bytes: &[u8], limits: &Li
 
 /// When the bytes waiting for the rest of their request began to wait:
 /// `None` when nothing waits, else `begun` or now.
-pub fn waiting_since(pending: usize, begun: Option<Instant>) -> Option<Instant> {
+fn waiting_since(pending: usize, begun: Option<Instant>) -> Option<Instant> {
     if pending == 0 {
         None
     } else {

@@ -1,61 +1,57 @@
-//! The ROC Plus server: frames off TCP, answered by the plant thread.
+//! The ROC Plus server: frames off TCP for this device's address go to the
+//! plant thread; the connection loop is the one both servers share.
 
-use super::net::{self, Limits, Log};
+use super::net::{Next, Wire};
 use super::roc::Answer;
 use crate::Ask;
 use linc_comms::roc::{Address, Deframer};
 use std::net::SocketAddr;
-use std::sync::mpsc::Sender;
-use std::time::Instant;
-use tokio::net::TcpStream;
 use tokio::sync::oneshot;
 
-/// Serves one client: each whole frame for `me` goes to the plant and its
-/// reply back; frames for other addresses and bytes that make no frame
-/// (a bad CRC) get no reply.
-pub(crate) async fn client(
-    mut stream: TcpStream,
-    peer: SocketAddr,
+/// One client's ROC Plus state: its frames, and the operator logged in on
+/// the connection (the access level).
+pub(crate) struct Roc {
     me: Address,
-    asks: Sender<Ask>,
-    limits: Limits,
-    log: Log,
-) {
-    let mut frames = Deframer::default();
-    let mut buf = [0u8; 4096];
-    let mut begun: Option<Instant> = None;
-    // The operator logged in on this connection (its access level).
-    let mut session: Option<u8> = None;
-    let stop = 'conn: loop {
-        let n = match net::read_some(&mut stream, &mut buf, &limits, begun).await {
-            Ok(n) => n,
-            Err(stop) => break stop,
-        };
-        frames.push(&buf[..n]);
-        while let Some(frame) = frames.next_frame() {
-            if frame.dst != me {
-                continue;
-            }
-            let (reply, answer) = oneshot::channel();
-            if asks.send(Ask::Roc { frame, peer: peer.to_string(), session, reply }).is_err() {
-                return;
-            }
-            let Ok(Answer { reply, log: lines, session: after }) = answer.await else { return };
-            session = after;
-            for line in lines {
-                log(line);
-            }
-            let Some(bytes) = reply.encode() else { continue };
-            if let Err(stop) = net::reply(&mut stream, &bytes, &limits).await {
-                break 'conn stop;
-            }
-        }
-        begun = net::waiting_since(frames.pending(), begun);
-    };
-    if frames.dropped > 0 {
-        log(format!("roc {peer}: {} bytes made no frame (bad CRC or noise) and were dropped", frames.dropped));
+    frames: Deframer,
+    session: Option<u8>,
+}
+
+impl Roc {
+    pub(crate) fn new(me: Address) -> Roc {
+        Roc { me, frames: Deframer::default(), session: None }
     }
-    if let Some(why) = stop.why(&limits) {
-        log(format!("roc {peer}: dropped: {why}"));
+}
+
+impl Wire for Roc {
+    type Answer = Answer;
+    const NAME: &'static str = "roc";
+
+    fn push(&mut self, bytes: &[u8]) {
+        self.frames.push(bytes);
+    }
+
+    fn pending(&self) -> usize {
+        self.frames.pending()
+    }
+
+    /// A whole frame for this device goes to the plant; frames for other
+    /// addresses and bytes that make no frame (a bad CRC) get no reply.
+    fn next(&mut self, peer: SocketAddr) -> Option<Next<Answer>> {
+        let frame = self.frames.next_frame()?;
+        if frame.dst != self.me {
+            return Some(Next::Skip);
+        }
+        let (reply, answer) = oneshot::channel();
+        Some(Next::Ask(Ask::Roc { frame, peer: peer.to_string(), session: self.session, reply }, answer))
+    }
+
+    fn answered(&mut self, answer: Answer) -> (Option<Vec<u8>>, Vec<String>) {
+        self.session = answer.session;
+        (answer.reply.encode(), answer.log)
+    }
+
+    fn farewell(&self, peer: SocketAddr) -> Option<String> {
+        let dropped = self.frames.dropped;
+        (dropped > 0).then(|| format!("roc {peer}: {dropped} bytes made no frame (bad CRC or noise) and were dropped"))
     }
 }
