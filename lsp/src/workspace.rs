@@ -160,13 +160,27 @@ fn has_blocks(text: &str) -> bool {
             .unwrap_or(false)
 }
 
-/// `database = "…"` in `root/linc.toml`, relative to the root.
+/// What linc reads of a workspace's `linc.toml`.
+#[derive(serde::Deserialize)]
+struct LincToml {
+    /// The database every file is checked against, relative to the root.
+    database: Option<String>,
+}
+
+/// The most bytes of a `linc.toml` read (it holds a line or two).
+const MAX_TOML: u64 = 64 << 10;
+
+/// `database = "…"` in `root/linc.toml`, relative to the root; a file
+/// that is not a regular file of at most 64 KiB, or not TOML, names none.
 fn linc_toml(root: &Path) -> Option<PathBuf> {
-    let text = std::fs::read_to_string(root.join("linc.toml")).ok()?;
-    text.lines().find_map(|l| {
-        let (key, value) = l.split_once('=')?;
-        (key.trim() == "database").then(|| root.join(value.trim().trim_matches('"')))
-    })
+    let path = root.join("linc.toml");
+    let meta = std::fs::metadata(&path).ok()?;
+    if !meta.is_file() || meta.len() > MAX_TOML {
+        return None;
+    }
+    let text = std::fs::read_to_string(path).ok()?;
+    let toml: LincToml = toml::from_str(&text).ok()?;
+    toml.database.map(|d| root.join(d))
 }
 
 fn search(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) {
@@ -186,5 +200,24 @@ fn search(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) {
         } else if meta.is_file() && name.ends_with(".json") && meta.len() < 64 << 20 {
             found.push(p);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn linc_toml_is_read_as_toml() {
+        let root = linc_test_support::fresh_dir("lsp-linc-toml");
+        let toml = "# the plant of this folder\ndatabase = 'plant.db.json' # as the guide's\n\n[editor]\nx = 1\n";
+        std::fs::write(root.join("linc.toml"), toml).unwrap();
+        assert_eq!(linc_toml(&root), Some(root.join("plant.db.json")));
+        std::fs::write(root.join("linc.toml"), "database = \"a\\u0062.json\"\n").unwrap();
+        assert_eq!(linc_toml(&root), Some(root.join("ab.json")), "escapes are TOML's");
+        std::fs::write(root.join("linc.toml"), "database = \n").unwrap();
+        assert_eq!(linc_toml(&root), None, "not TOML");
+        std::fs::write(root.join("linc.toml"), "x".repeat(MAX_TOML as usize + 1)).unwrap();
+        assert_eq!(linc_toml(&root), None, "too large");
     }
 }

@@ -4,14 +4,19 @@
 
 use crate::{Ask, Event, Reply};
 use axum::body::Bytes;
-use axum::extract::{Path, Request, State};
+use axum::extract::rejection::QueryRejection;
+use axum::extract::{Path, Query, Request, State};
 use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
 use axum::middleware::Next;
 use axum::response::sse::{Event as SseEvent, KeepAlive, Sse};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{Json, Router};
+use axum_extra::headers::authorization::{Authorization, Bearer};
+use axum_extra::typed_header::TypedHeaderRejection;
+use axum_extra::TypedHeader;
 use serde_json::{json, Value};
+use std::collections::HashMap;
 use std::convert::Infallible;
 use std::sync::mpsc::Sender;
 use std::sync::{Arc, Mutex};
@@ -115,18 +120,22 @@ fn refuse(status: StatusCode, why: &str) -> Response {
     (status, Json(json!({ "error": why }))).into_response()
 }
 
-/// The token, when one is set: `Authorization: Bearer TOKEN` or (for the
-/// page and its event stream, which can't set headers) `?token=TOKEN`.
-/// And no request from another origin: a page elsewhere must not drive
-/// the plant through the engineer's browser.
-async fn guard(State(s): State<AppState>, req: Request, next: Next) -> Response {
+/// The token, when one is set: `Authorization: Bearer TOKEN` (the scheme
+/// in any case) or, for the page and its event stream, which can't set
+/// headers, `?token=TOKEN` (percent-decoded), both as axum's extractors
+/// read them. And no request from another origin: a page elsewhere must
+/// not drive the plant through the engineer's browser.
+async fn guard(
+    State(s): State<AppState>,
+    bearer: Result<TypedHeader<Authorization<Bearer>>, TypedHeaderRejection>,
+    query: Result<Query<HashMap<String, String>>, QueryRejection>,
+    req: Request,
+    next: Next,
+) -> Response {
     if let Some(token) = &s.token {
-        let bearer = req
-            .headers()
-            .get(header::AUTHORIZATION)
-            .and_then(|v| v.to_str().ok())
-            .and_then(|v| v.strip_prefix("Bearer "));
-        let query = req.uri().query().unwrap_or("").split('&').find_map(|kv| kv.strip_prefix("token="));
+        // A header or query that does not parse carries no token.
+        let bearer = bearer.as_ref().ok().map(|TypedHeader(Authorization(b))| b.token());
+        let query = query.as_ref().ok().and_then(|Query(q)| q.get("token")).map(String::as_str);
         let given = bearer.or(query);
         if !given.is_some_and(|g| same(g.as_bytes(), token.as_bytes())) {
             let why = if given.is_none() { "this server needs its token" } else { "wrong token" };

@@ -144,6 +144,11 @@ fn a_token_is_required_when_set() {
     assert_eq!(get(&s, "/", &[]).0, 401, "the page too");
     assert_eq!(get(&s, "/api/programs", &[("Authorization", "Bearer s3cret")]).0, 200);
     assert_eq!(get(&s, "/api/programs?token=s3cret", &[]).0, 200);
+    // As the specifications read them: the query percent-decoded, the
+    // scheme in any case.
+    assert_eq!(get(&s, "/api/programs?token=s%33cr%65t", &[]).0, 200);
+    assert_eq!(get(&s, "/api/programs", &[("Authorization", "bearer s3cret")]).0, 200);
+    assert_eq!(get(&s, "/api/programs?token=s3cre", &[]).0, 401);
     assert_eq!(command_as(&s, "NOW", &[]).0, 401);
     assert_eq!(command_as(&s, "NOW", &[("Authorization", "Bearer s3cret")]).0, 200);
     s.stop();
