@@ -7,7 +7,7 @@ pub fn run(expr: &str, db: Option<&Path>, now: Option<i64>, seed: Option<u64>, r
     match linc_driver::eval::evaluate(expr, db, now, seed) {
         Ok((v, warnings)) => {
             let status = r.report(&warnings);
-            crate::out::line(&linc_runtime::text::format_value(&v));
+            crate::out::line(&linc_driver::eval::text(&v));
             status
         }
         Err(p) => r.report(&p),

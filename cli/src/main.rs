@@ -48,7 +48,7 @@ enum TierArg {
     Interpreter,
 }
 
-impl From<TierArg> for linc_runtime::vm::Tier {
+impl From<TierArg> for linc_driver::plant::Tier {
     fn from(t: TierArg) -> Self {
         match t {
             TierArg::Auto => Self::Auto,
@@ -298,7 +298,7 @@ struct RunArgs {
     /// Instruction budget of one run before the watchdog stops it (at least 1).
     #[arg(
         long,
-        default_value_t = linc_runtime::vm::DEFAULT_WATCHDOG,
+        default_value_t = linc_driver::plant::DEFAULT_WATCHDOG,
         value_name = "N",
         allow_negative_numbers = true,
         value_parser = watchdog
@@ -417,7 +417,7 @@ fn watchdog(s: &str) -> Result<u64, String> {
 /// `--now`: a real date and time (no 29 February 2023, no 24:00:00), in
 /// POSIX seconds.
 fn now(s: &str) -> Result<i64, String> {
-    match linc_runtime::text::parse_timestamp(s) {
+    match linc_driver::database::timestamp(s) {
         Some(t) => Ok(t),
         None => Err("not a real date and time; write YYYY-MM-DDTHH:MM:SS (UTC), such as 2024-02-29T13:45:07".into()),
     }

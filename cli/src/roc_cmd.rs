@@ -4,7 +4,7 @@
 
 use crate::out;
 use crate::report::Reporter;
-use linc_comms::roc::Address;
+use linc_driver::roc::Address;
 use linc_driver::roc::PollRequest;
 use std::net::SocketAddr;
 use std::path::PathBuf;

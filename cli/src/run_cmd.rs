@@ -3,9 +3,9 @@
 //! this chooses the program from the arguments and prints what it asks.
 
 use crate::report::Reporter;
+use linc_driver::plant::Tier;
 use linc_driver::plant::{Choice, PlantSpec, Program, StateFile};
 use linc_driver::run::RunRequest;
-use linc_runtime::vm::Tier;
 use std::io::Write;
 use std::path::PathBuf;
 

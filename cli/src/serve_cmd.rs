@@ -64,7 +64,7 @@ pub struct ServeArgs {
     pub modbus: Option<SocketAddr>,
     /// The ROC unit and group the device answers to.
     #[arg(long, value_name = "UNIT,GROUP", default_value = "1,2", value_parser = roc_address, requires = "roc")]
-    pub roc_address: linc_comms::roc::Address,
+    pub roc_address: linc_driver::roc::Address,
     /// Most clients connected to each wire server at once; more are refused and logged.
     #[arg(long, value_name = "N", default_value_t = 64, value_parser = clap::value_parser!(u16).range(1..=4096))]
     pub max_clients: u16,
@@ -100,12 +100,12 @@ fn wire_addr(s: &str) -> Result<SocketAddr, String> {
 }
 
 /// `UNIT,GROUP`, each 0 to 255.
-pub fn roc_address(s: &str) -> Result<linc_comms::roc::Address, String> {
+pub fn roc_address(s: &str) -> Result<linc_driver::roc::Address, String> {
     let bad = || format!("`{s}` is not UNIT,GROUP (two numbers from 0 to 255, like 1,2)");
     let (u, g) = s.split_once(',').ok_or_else(bad)?;
     let unit = u.trim().parse().map_err(|_| bad())?;
     let group = g.trim().parse().map_err(|_| bad())?;
-    Ok(linc_comms::roc::Address { unit, group })
+    Ok(linc_driver::roc::Address { unit, group })
 }
 
 pub fn run(a: ServeArgs, r: &Reporter) -> u8 {

@@ -124,17 +124,6 @@ fn a_share_under_its_threshold_fails_the_run() {
     assert!(std::path::Path::new(&sum).exists(), "the sum is written");
 }
 
-/// Whether a tool is on the machine; when it is not, the test is skipped
-/// unless `LINC_REQUIRE_COVERAGE_TOOLS` is set (as `.ci/run` does).
-fn tool(name: &str) -> bool {
-    let found = std::process::Command::new(name).arg("--version").output().is_ok();
-    if !found {
-        assert!(std::env::var_os("LINC_REQUIRE_COVERAGE_TOOLS").is_none(), "{name} is required but not installed");
-        eprintln!("skipped: {name} is not installed");
-    }
-    found
-}
-
 /// The examples' report in `format`, written as `name` in a fresh
 /// directory `tag`: the directory and the report.
 fn examples_report(tag: &str, format: &str, name: &str) -> (PathBuf, PathBuf) {
@@ -147,7 +136,7 @@ fn examples_report(tag: &str, format: &str, name: &str) -> (PathBuf, PathBuf) {
 
 #[test]
 fn the_cobertura_report_validates_against_its_dtd() {
-    if !tool("xmllint") {
+    if !common::tool("xmllint") {
         return;
     }
     let (dir, xml) = examples_report("coverage-cobertura", "cobertura", "coverage.xml");
@@ -167,7 +156,7 @@ fn the_cobertura_report_validates_against_its_dtd() {
 
 #[test]
 fn genhtml_renders_the_lcov_report() {
-    if !tool("genhtml") {
+    if !common::tool("genhtml") {
         return;
     }
     let (dir, info) = examples_report("coverage-genhtml", "lcov", "coverage.info");

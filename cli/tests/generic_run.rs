@@ -56,7 +56,7 @@ fn both_specialised_reactors_run_for_an_hour() {
     let bytes = std::fs::read(&trace).expect("trace");
     let lines = bytes.iter().filter(|&&b| b == b'\n').count();
     assert_eq!(
-        (lines, linc_runtime::object::crc32(&bytes)),
+        (lines, linc_format::object::crc32(&bytes)),
         (33_093, 0xcc32_4944),
         "the hour's trace, pinned (a chart action left deactivates its steps)"
     );

@@ -65,17 +65,23 @@ fn the_junit_report_is_valid_against_the_schema() {
     let o = linc(&["test", dir.to_str().unwrap(), "--junit", junit.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let xml = std::fs::read_to_string(&junit).expect("written");
-    let xsd = std::fs::read_to_string(root().join("docs/junit.xsd")).expect("schema");
-    let schema = xmlschema::parse_schema(&xsd).expect("the schema parses");
-    let doc = oxml::parse(&xml).expect("well-formed XML");
-    let report = xmlschema::validate(&doc, &schema);
-    assert!(report.is_valid(), "{:?}\n{xml}", report.violations);
     assert!(xml.contains("tests=\"2\" failures=\"1\""), "{xml}");
     assert!(xml.contains("bad &amp; &lt;broken&gt;.ltest"), "{xml}");
-    // The validator does reject what the schema forbids.
-    let bad = xml.replacen("<testcase name=", "<testcase nom=", 1);
-    let doc = oxml::parse(&bad).expect("well-formed");
-    assert!(!xmlschema::validate(&doc, &schema).is_valid(), "a test case without a name is invalid");
+    if !common::tool("xmllint") {
+        return;
+    }
+    // Validated by an independent tool, as the Cobertura report is.
+    let xsd = root().join("docs/junit.xsd");
+    let check = |file: &std::path::Path| {
+        let args = ["--noout", "--nonet", "--schema", xsd.to_str().unwrap()];
+        std::process::Command::new("xmllint").args(args).arg(file).output().expect("xmllint runs")
+    };
+    let v = check(&junit);
+    assert!(v.status.success(), "{}\n{xml}", String::from_utf8_lossy(&v.stderr));
+    // The validation is real: a test case without a name is refused.
+    let bad = dir.join("bad.xml");
+    std::fs::write(&bad, xml.replacen("<testcase name=", "<testcase nom=", 1)).unwrap();
+    assert!(!check(&bad).status.success(), "a test case without a name is invalid");
 }
 
 #[test]

@@ -55,7 +55,7 @@ fn the_example_plant_runs_its_sequence_and_is_pinned() {
     // the first two minutes are pinned line by line above.
     let bytes = std::fs::read(&hour).expect("trace");
     assert_eq!((bytes.len(), bytes.iter().filter(|&&b| b == b'\n').count()), (1_206_807, 16_774));
-    assert_eq!(linc_runtime::object::crc32(&bytes), 0x72e5_da29);
+    assert_eq!(linc_format::object::crc32(&bytes), 0x72e5_da29);
 }
 
 #[test]

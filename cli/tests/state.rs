@@ -225,7 +225,7 @@ fn a_resealed_state_with_any_value_changed_never_panics() {
         *at(&mut d, path) = values[n % values.len()].clone();
         let body = serde_json::to_vec(&d).expect("json");
         let header =
-            serde_json::json!({"linc-state": 1, "crc32": linc_runtime::object::crc32(&body), "length": body.len()});
+            serde_json::json!({"linc-state": 1, "crc32": linc_format::object::crc32(&body), "length": body.len()});
         std::fs::write(&bad, [header.to_string().as_bytes(), b"\n", &body].concat()).expect("write");
         let o = run(SEQ_PLANT, "1s", &["--state", &bad]);
         assert!(matches!(o.status.code(), Some(0 | 2)), "{path:?}: {}", stderr(&o));
@@ -277,7 +277,7 @@ fn a_resume_point_where_the_code_cannot_stop_is_refused() {
             d["members"][m]["resume"] = at.into();
             let body = serde_json::to_vec(&d).expect("json");
             let header =
-                serde_json::json!({"linc-state": 1, "crc32": linc_runtime::object::crc32(&body), "length": body.len()});
+                serde_json::json!({"linc-state": 1, "crc32": linc_format::object::crc32(&body), "length": body.len()});
             std::fs::write(&bad, [header.to_string().as_bytes(), b"\n", &body].concat()).expect("write");
             let o = run(plant, "1s", &["--state", &bad]);
             assert_eq!(o.status.code(), Some(2), "{plant} member {m} at {at}: {}", stderr(&o));

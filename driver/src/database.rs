@@ -80,6 +80,12 @@ pub fn usage(message: impl Into<String>) -> Problems {
     Problems::usage(Code::E0903, message)
 }
 
+/// `YYYY-MM-DDTHH:MM:SS` (UTC) in POSIX seconds, if it is a real date and
+/// time (no 29 February 2023, no 24:00:00).
+pub fn timestamp(text: &str) -> Option<i64> {
+    text::parse_timestamp(text)
+}
+
 /// The clock's start in POSIX seconds: `--now`, or the system time.
 pub fn start_time(now: Option<&str>) -> Result<i64, Problems> {
     match now {

@@ -12,6 +12,11 @@ use linc_runtime::Database;
 use linc_stdlib::value::decode_dollar;
 use std::path::Path;
 
+/// A value as `linc eval` prints it: its ST constant.
+pub fn text(v: &linc_stdlib::Value) -> String {
+    linc_runtime::text::format_value(v)
+}
+
 /// The value of `expr` at `now` (POSIX seconds; the system's time without
 /// it), with its warnings. A STRING comes back decoded, so that its
 /// printed constant reads back to the same text. An expression that does

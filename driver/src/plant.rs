@@ -12,7 +12,9 @@ use crate::single::{self, Kind};
 use linc_compiler::diag::{Diagnostic, Problems, Span};
 use linc_engines::strategy::{self, Strategy, StrategyError, Want};
 use linc_format::Code;
-use linc_runtime::vm::{Activation, Clock, Tier, Vm, DEFAULT_WATCHDOG};
+use linc_runtime::vm::{Activation, Clock, Vm};
+/// Which tier runs the code (ADR 0011), and the watchdog's default budget.
+pub use linc_runtime::vm::{Tier, DEFAULT_WATCHDOG};
 use linc_runtime::{Database, Linked, Program as Linking, Store, Verified};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

@@ -6,7 +6,7 @@
 use crate::files::{read_input_text, write_atomic};
 use linc_comms::error::FileError;
 use linc_comms::roc::host::{poll::poll as run_list, status_text, Command, Host, TcpLink, Words};
-use linc_comms::roc::Address;
+pub use linc_comms::roc::Address;
 use linc_compiler::diag::{Diagnostic, Problems, Span};
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};

@@ -56,3 +56,15 @@ pub fn spawn(args: &[&str]) -> std::process::Child {
         .spawn()
         .expect("run linc")
 }
+
+/// Whether the independent tool `name` (xmllint, genhtml) is installed; a
+/// test that needs one is skipped without it, unless `.ci/run` asks for
+/// the tools (`LINC_REQUIRE_COVERAGE_TOOLS`), where it fails.
+pub fn tool(name: &str) -> bool {
+    let found = std::process::Command::new(name).arg("--version").output().is_ok();
+    if !found {
+        assert!(std::env::var_os("LINC_REQUIRE_COVERAGE_TOOLS").is_none(), "{name} is required but not installed");
+        eprintln!("skipped: {name} is not installed");
+    }
+    found
+}
