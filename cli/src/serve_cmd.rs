@@ -159,6 +159,9 @@ pub fn run(a: ServeArgs, r: &Reporter) -> u8 {
         Ok(s) => s,
         Err(p) => return r.report(&p),
     };
+    // Watched before the first line says it serves: a Ctrl-C from then on
+    // stops it cleanly.
+    let signals = linc_serve::Signals::watch();
     let mode = if a.allow_writes { "controls on" } else { "read-only" };
     crate::out::line(&format!("serving http://{}/ ({mode}); Ctrl-C stops", server.addr()));
     if let Some(roc) = server.roc_addr() {
@@ -172,7 +175,10 @@ pub fn run(a: ServeArgs, r: &Reporter) -> u8 {
         let rr = *r;
         std::thread::spawn(move || console_lines(&handle, &rr));
     }
-    server.wait();
+    match signals {
+        Some(s) => s.wait(&server),
+        None => server.wait_finished(),
+    }
     let done = server.stop();
     crate::out::line(&format!(
         "stopped at {}: {} scans, {} late",

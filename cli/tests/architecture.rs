@@ -1,22 +1,11 @@
 //! The shape of the code, checked (docs/architecture.md): only the `linc`
 //! binary prints or exits — every library returns what it made and what
-//! it ran into as data.
+//! it ran into as data — and the language server links no runtime.
+mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
-
-/// Every `.rs` file under `dir`.
-fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in std::fs::read_dir(dir).expect("folder").flatten() {
-        let p = entry.path();
-        if p.is_dir() {
-            sources(&p, out);
-        } else if p.extension().is_some_and(|e| e == "rs") {
-            out.push(p);
-        }
-    }
-}
 
 /// The library crates: every member of the workspace but the binary and
 /// the test-only crates.
@@ -41,7 +30,7 @@ fn prints(text: &str) -> Vec<(usize, &'static str)> {
 fn nothing_below_the_command_line_prints_or_exits() {
     let mut files = Vec::new();
     for krate in LIBRARIES {
-        sources(&Path::new(ROOT).join(krate).join("src"), &mut files);
+        common::rust_sources(&Path::new(ROOT).join(krate).join("src"), &mut files);
     }
     assert!(files.len() > 100, "the sources were found: {}", files.len());
     let found: Vec<String> = files

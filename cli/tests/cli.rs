@@ -1,31 +1,13 @@
 //! The `linc` command line: exit statuses, output formats, explain.
+mod common;
 
-use std::process::{Command, Output};
-
-fn linc(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_linc"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .output()
-        .expect("run linc")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
+use common::{linc, stderr, stdout};
 
 const DB: &str = "examples/guide/plant.db.json";
 
 /// Writes `text` to a fresh temporary file named `name` and returns its path.
 fn temp_file(name: &str, text: &str) -> String {
-    let dir = linc_test_support::temp_dir(&format!("cli-{name}"));
-    let path = dir.join(name);
-    std::fs::write(&path, text).expect("write temp file");
-    path.to_string_lossy().into_owned()
+    common::temp_file(&format!("cli-{name}"), name, text)
 }
 
 #[test]

@@ -307,24 +307,12 @@ fn scenario_problems_are_located_and_coded() {
     assert_eq!(stdout(&o).matches("error[").count(), 1, "{}", stdout(&o));
 }
 
-/// Every source file under `dir`.
-fn sources(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
-    for entry in std::fs::read_dir(dir).expect("list").flatten() {
-        let p = entry.path();
-        if p.is_dir() {
-            sources(&p, out);
-        } else if p.extension().is_some_and(|e| e == "rs") {
-            out.push(p);
-        }
-    }
-}
-
 #[test]
 fn no_source_writes_an_error_by_hand() {
     let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
     let mut files = Vec::new();
     for krate in ["cli/src", "driver/src", "compiler/src", "format/src", "runtime/src", "engines/src", "stdlib/src"] {
-        sources(&root.join(krate), &mut files);
+        common::rust_sources(&root.join(krate), &mut files);
     }
     let hand: Vec<String> = files
         .iter()

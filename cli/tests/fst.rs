@@ -9,7 +9,7 @@ const PLANT: &str = "examples/fst/plant.json";
 const START: &str = "2026-01-05T06:00:00";
 
 fn temp(name: &str) -> String {
-    temp_dir("fst").join(name).to_string_lossy().into_owned()
+    common::temp_path("fst", name)
 }
 
 #[test]

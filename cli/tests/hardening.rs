@@ -3,7 +3,9 @@
 //! option values out of range (impossible dates, a zero period) and a
 //! `--block` of the wrong type.
 #![cfg(unix)]
+mod common;
 
+use common::stderr;
 use std::fs;
 use std::io::Read;
 use std::os::unix::fs::{FileTypeExt, MetadataExt, PermissionsExt};
@@ -52,10 +54,6 @@ fn linc_within(secs: u64, args: &[&str]) -> Output {
 
 fn linc(args: &[&str]) -> Output {
     linc_within(120, args)
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 /// The exit status and standard error, for one assertion with context.

@@ -2,15 +2,13 @@
 //! and `linc ladder to-st`, on the guide's eight rungs.
 
 mod common;
-use common::{linc, stderr, stdout, temp_dir};
+use common::{linc, stderr, stdout};
 
 const LD: &str = "examples/ladder/interlock.ld";
 const DB: &str = "examples/ladder/plant.json";
 
 fn temp_file(name: &str, text: &str) -> String {
-    let path = temp_dir(&format!("ladder-{name}")).join(name);
-    std::fs::write(&path, text).expect("write temp file");
-    path.to_string_lossy().into_owned()
+    common::temp_file(&format!("ladder-{name}"), name, text)
 }
 
 #[test]

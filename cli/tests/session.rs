@@ -8,10 +8,7 @@ use common::{linc, stderr, DB};
 /// Writes `bytes` to `dir/name` in a fresh temporary directory of this test
 /// run and returns its path.
 fn temp(dir: &str, name: &str, bytes: &[u8]) -> String {
-    let dir = linc_test_support::temp_dir(&format!("session-{dir}"));
-    let path = dir.join(name);
-    std::fs::write(&path, bytes).expect("write temp file");
-    path.to_string_lossy().into_owned()
+    common::temp_file(&format!("session-{dir}"), name, bytes)
 }
 
 /// Runs `check` and `compile` on the same files and database; returns the

@@ -8,7 +8,7 @@ const FST_PLANT: &str = "examples/fst/plant.json";
 const NOW: &str = "2026-01-05T06:00:00";
 
 fn temp(tag: &str, name: &str) -> String {
-    temp_dir(tag).join(name).to_string_lossy().into_owned()
+    common::temp_path(tag, name)
 }
 
 /// Runs a strategy for `d` with fixed clock and seed, and `more` arguments.

@@ -3,7 +3,7 @@ mod common;
 use common::{linc, temp_dir};
 
 fn temp(name: &str) -> String {
-    temp_dir("strategy").join(name).to_string_lossy().into_owned()
+    common::temp_path("strategy", name)
 }
 
 /// Runs the example for ten simulated minutes; returns (out, trace, stdout).

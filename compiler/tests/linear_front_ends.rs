@@ -1,32 +1,22 @@
 //! The front ends other than `linc check` of ST take time linear in the size
 //! of their input: FST tables, map files, sequences compiled, and the
-//! parser's error recovery. Each is timed at a size and at four times it;
-//! the bound (a ratio under 8) is generous for a shared machine and a debug
+//! parser's error recovery. Each is measured at a size and at four times it,
+//! in processor time (`linc_test_support::work`: how busy the machine is
+//! does not count); the bound (a ratio under 8) is generous for a debug
 //! build, and a quadratic step gives a ratio near 16.
 
 use linc_compiler::diag::MAX_ERRORS;
 use linc_compiler::Context;
 use linc_runtime::Database;
-use std::time::{Duration, Instant};
+use linc_test_support::alloc::serial;
+use linc_test_support::work::{cpu, growth};
 
-/// The best of three times of `f`.
-fn best(mut f: impl FnMut()) -> Duration {
-    (0..3)
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed()
-        })
-        .min()
-        .unwrap_or_default()
-}
-
-/// How much longer `f(4n)` takes than `f(n)`.
+/// How much more work `f(4n)` takes than `f(n)` (processor time, the least
+/// of three each). Every test of this binary holds [`serial`], so that none
+/// runs beside another's measurement.
 fn ratio<T>(n: usize, make: impl Fn(usize) -> T, mut f: impl FnMut(&T)) -> f64 {
     let (small, large) = (make(n), make(4 * n));
-    let t1 = best(|| f(&small));
-    let t4 = best(|| f(&large));
-    t4.as_secs_f64() / t1.as_secs_f64().max(1e-9)
+    growth(|big| cpu(|| f(if big { &large } else { &small })).1)
 }
 
 /// A table of `rows` steps over the FST example's points, with labels and
@@ -53,6 +43,7 @@ fn fst_check(text: &str, db: &Database) {
 
 #[test]
 fn fst_tables_check_in_linear_time() {
+    let _one = serial();
     let db = Database::from_json(include_str!("../../examples/fst/plant.json")).expect("fst example db");
     let r = ratio(2_400, fst_table, |t| fst_check(t, &db));
     assert!(r < 7.0, "4x the rows took {r:.1}x the time");
@@ -74,6 +65,7 @@ fn points_and_table(n: usize) -> (Database, String) {
 
 #[test]
 fn fst_points_are_found_in_constant_time() {
+    let _one = serial();
     let r = ratio(1_000, points_and_table, |(db, t)| fst_check(t, db));
     assert!(r < 8.0, "4x the points and rows took {r:.1}x the time");
 }
@@ -94,6 +86,7 @@ fn unknown_labels(rows: usize) -> String {
 
 #[test]
 fn fst_errors_over_the_cap_cost_no_search() {
+    let _one = serial();
     let db = Database::from_json(include_str!("../../examples/fst/plant.json")).expect("fst example db");
     let r = ratio(1_000, unknown_labels, |t| {
         let (table, _) = linc_compiler::fst::reader::read(t);
@@ -124,6 +117,7 @@ fn ring(n: usize) -> String {
 
 #[test]
 fn sequences_compile_in_linear_time() {
+    let _one = serial();
     let db = Database::from_json(include_str!("../../examples/sequences/plant.json")).expect("sequence example db");
     let r = ratio(800, ring, |src| {
         let (d, object) = linc_compiler::sfc::compile_sequence(src, "ring", "ring.sfc", ctx(&db));
@@ -144,6 +138,7 @@ fn map_and_sequence(n: usize) -> (String, String) {
 
 #[test]
 fn generic_sequences_check_with_a_map_in_linear_time() {
+    let _one = serial();
     use linc_compiler::sfc::generic;
     let db = Database::from_json(include_str!("../../examples/sequences/plant.json")).expect("sequence example db");
     let r = ratio(1_000, map_and_sequence, |(map, seq)| {
@@ -172,14 +167,17 @@ fn syntax_errors(src: &str) -> Vec<&'static str> {
 
 #[test]
 fn tokens_after_a_syntax_error_are_skipped_in_linear_time() {
+    let _one = serial();
     let r = ratio(20_000, junk_after_an_error, |src| assert!(!syntax_errors(src).is_empty()));
     assert!(r < 7.0, "4x the tokens took {r:.1}x the time");
-    let t = best(|| drop(syntax_errors(&junk_after_an_error(100_000))));
-    assert!(t < Duration::from_secs(2), "0.2 MB of tokens after one error took {t:?}");
+    let junk = junk_after_an_error(100_000);
+    let t = cpu(|| drop(syntax_errors(&junk))).1;
+    assert!(t < std::time::Duration::from_secs(2), "0.2 MB of tokens after one error took {t:?} of work");
 }
 
 #[test]
 fn reading_stops_after_the_errors_that_are_shown() {
+    let _one = serial();
     // A file of `;`: every one an error. Reading stops after the errors
     // that are shown (E0023 where it stopped), so a file four times as
     // long costs no more.

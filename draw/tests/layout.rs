@@ -14,6 +14,11 @@ mod support;
 use long_chart::long_chart;
 
 use linc_compiler::{fst, ladder, sfc};
+use linc_test_support::alloc::{allocations_in, Counting};
+use linc_test_support::work::{growth, thread_cpu};
+
+#[global_allocator]
+static A: Counting = Counting;
 use linc_test_support::rng::Rng;
 use std::fmt::Write;
 
@@ -192,23 +197,29 @@ fn random_tables_lay_out_cleanly() {
     }
 }
 
+/// Drawing is linear in the chart, in counted work: the allocations a
+/// drawing makes (every box, label and wire is built once) grow as the
+/// steps do, whatever the machine is doing. Its processor time
+/// (`linc_test_support::work`) is bounded too, and printed.
 #[test]
 fn a_thousand_step_chart_draws_quickly_and_linearly() {
-    let time = |n: usize| {
-        let src = long_chart(n);
-        let (seq, d) = sfc::parser::parse(&src);
+    let charts: Vec<(String, usize)> = [1000, 4000].iter().map(|&n| (long_chart(n), n)).collect();
+    let work = |(src, n): &(String, usize)| {
+        let (seq, d) = sfc::parser::parse(src);
         assert!(d.is_empty());
-        let t = std::time::Instant::now();
-        let (svg, geo) = linc_draw::sfc::sequence(&src, &seq, None);
-        let took = t.elapsed();
+        let (((svg, geo), took), allocations) =
+            allocations_in(|| thread_cpu(|| linc_draw::sfc::sequence(src, &seq, None)));
         assert!(geo.broken_link().is_none());
-        assert_eq!(svg.matches("class=\"step\"").count(), n);
+        assert_eq!(svg.matches("class=\"step\"").count(), *n);
         // The loop back is longer than a lane: a connector named S0.
         assert!(geo.connectors.iter().any(|c| c.1 == "S0"));
-        took
+        (took, allocations)
     };
-    let (small, large) = (time(1000), time(4000));
+    let (small, large) = (work(&charts[0]), work(&charts[1]));
+    let counted = large.1 as f64 / small.1 as f64;
+    assert!(counted < 5.0, "4x the steps made {counted:.2}x the allocations ({} then {})", small.1, large.1);
     // Debug builds are several times slower than the release figure in the README.
-    assert!(small.as_millis() < 2000, "1,000 steps took {small:?}");
-    assert!(large.as_secs_f64() < small.as_secs_f64() * 4.0 * 3.0 + 0.05, "not linear: {small:?} then {large:?}");
+    assert!(small.0.as_millis() < 2000, "1,000 steps took {:?} of work", small.0);
+    let r = growth(|big| work(&charts[usize::from(big)]).0);
+    eprintln!("1,000 → 4,000 steps: {counted:.2}x the allocations, {r:.1}x the processor time");
 }

@@ -146,6 +146,9 @@ pub struct Finished {
     pub console: Console,
     pub scans: u64,
     pub late: u64,
+    /// The most requests (HTTP, ROC, Modbus) that were waiting when a scan
+    /// ended: at most one per connection.
+    pub busiest: usize,
     /// Why the trace could not be written, if it could not.
     pub trace_error: Option<String>,
 }
@@ -332,29 +335,10 @@ impl Server {
         self.plant.is_finished()
     }
 
-    /// Blocks until the plant stops by itself (`--for`) or the process is
-    /// asked to stop (Ctrl-C, SIGTERM); then [`Server::stop`] ends it.
-    pub fn wait(&self) {
-        let Ok(rt) = tokio::runtime::Builder::new_current_thread().enable_all().build() else {
-            return self.wait_finished();
-        };
-        rt.block_on(async {
-            let finished = async {
-                while !self.finished() {
-                    tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-                }
-            };
-            tokio::select! {
-                () = finished => {}
-                () = interrupted() => {}
-            }
-        });
-    }
-
-    /// Waits for `--for` alone (no signals could be watched).
-    fn wait_finished(&self) {
+    /// Blocks until the plant stops by itself (`--for`).
+    pub fn wait_finished(&self) {
         while !self.finished() {
-            std::thread::sleep(std::time::Duration::from_millis(50));
+            std::thread::sleep(std::time::Duration::from_millis(20));
         }
     }
 
@@ -371,18 +355,55 @@ impl Server {
     }
 }
 
-/// Ctrl-C, or SIGTERM where there is one (what a service manager sends).
-async fn interrupted() {
+/// Ctrl-C and SIGTERM (what a service manager sends), watched from when
+/// this is made: a signal that arrives before [`Signals::wait`] is kept, so
+/// a command makes one before it says it is serving.
+pub struct Signals {
+    rt: tokio::runtime::Runtime,
     #[cfg(unix)]
-    {
-        use tokio::signal::unix::{signal, SignalKind};
-        if let Ok(mut term) = signal(SignalKind::terminate()) {
-            tokio::select! {
-                _ = tokio::signal::ctrl_c() => {}
-                _ = term.recv() => {}
-            }
-            return;
+    watched: Option<(tokio::signal::unix::Signal, tokio::signal::unix::Signal)>,
+}
+
+impl Signals {
+    /// Starts watching; `None` where no signal can be watched (then only
+    /// `--for` ends a run).
+    pub fn watch() -> Option<Signals> {
+        let rt = tokio::runtime::Builder::new_current_thread().enable_all().build().ok()?;
+        #[cfg(unix)]
+        {
+            use tokio::signal::unix::{signal, SignalKind};
+            let watched = rt.block_on(async {
+                Some((signal(SignalKind::interrupt()).ok()?, signal(SignalKind::terminate()).ok()?))
+            });
+            Some(Signals { rt, watched })
         }
+        #[cfg(not(unix))]
+        Some(Signals { rt })
     }
-    let _ = tokio::signal::ctrl_c().await;
+
+    /// Blocks until `server`'s plant stops by itself (`--for`) or a signal
+    /// asks the process to stop.
+    pub fn wait(mut self, server: &Server) {
+        let finished = async {
+            while !server.finished() {
+                tokio::time::sleep(std::time::Duration::from_millis(20)).await;
+            }
+        };
+        #[cfg(unix)]
+        if let Some((int, term)) = self.watched.as_mut() {
+            return self.rt.block_on(async {
+                tokio::select! {
+                    () = finished => {}
+                    _ = int.recv() => {}
+                    _ = term.recv() => {}
+                }
+            });
+        }
+        self.rt.block_on(async {
+            tokio::select! {
+                () = finished => {}
+                _ = tokio::signal::ctrl_c() => {}
+            }
+        });
+    }
 }

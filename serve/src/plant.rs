@@ -67,6 +67,11 @@ pub struct Plant {
     tolerance: Duration,
     pub late: u64,
     pub scans: u64,
+    /// The most requests that were waiting when a scan ended (answered
+    /// before the plant goes on): the work clients can queue ahead of the
+    /// next scan, which the isolation rules bound to one request per
+    /// connection.
+    busiest: usize,
     until: Option<u64>,
     last: Vec<Cell>,
     history: crate::history::History,
@@ -103,6 +108,7 @@ impl Plant {
             tolerance,
             late: 0,
             scans: 0,
+            busiest: 0,
             until,
             last,
             history: Default::default(),
@@ -169,9 +175,14 @@ impl Plant {
     /// Answers what is waiting without blocking; `false` when every asker
     /// is gone.
     fn answer_waiting(&mut self, asks: &Receiver<Ask>, mut trace: Option<&mut Trace>) -> bool {
+        let mut waiting = 0;
         loop {
             match asks.try_recv() {
-                Ok(a) => self.answer(a, trace.as_deref_mut()),
+                Ok(a) => {
+                    waiting += 1;
+                    self.busiest = self.busiest.max(waiting);
+                    self.answer(a, trace.as_deref_mut());
+                }
                 Err(std::sync::mpsc::TryRecvError::Empty) => return true,
                 Err(std::sync::mpsc::TryRecvError::Disconnected) => return false,
             }
@@ -246,7 +257,8 @@ impl Plant {
 
     /// What the run leaves, once it has stopped.
     pub fn finish(self) -> crate::Finished {
-        crate::Finished { console: self.console, scans: self.scans, late: self.late, trace_error: None }
+        let (scans, late, busiest) = (self.scans, self.late, self.busiest);
+        crate::Finished { console: self.console, scans, late, busiest, trace_error: None }
     }
 
     /// Publishes the status, the values and the pictures that changed.

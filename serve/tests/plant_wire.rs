@@ -9,7 +9,7 @@ mod common;
 use linc_comms::roc::host::{commands, Host, TcpLink, Words};
 use linc_comms::roc::Address;
 use linc_serve::{Config, Speed};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 use tokio_modbus::client::Reader;
 
 #[test]
@@ -29,7 +29,6 @@ fn a_roc_host_sets_the_point_the_fst_acts_on_and_a_modbus_client_reads_the_resul
         f32::from_bits(u32::from(r1[0]) << 16 | u32::from(r1[1]))
     };
     // The tank is at 50 % and the setpoint 80 %: the drain stays shut.
-    std::thread::sleep(Duration::from_millis(300));
     assert_eq!(valve(&mut mb), 0.0, "FST 1.R1: the valve is shut");
     // The host writes a setpoint of 40 % to SFP 1,DATA1 (17,0,2 on an
     // FB107) as a float from words 100-101, low word first.
@@ -44,12 +43,8 @@ fn a_roc_host_sets_the_point_the_fst_acts_on_and_a_modbus_client_reads_the_resul
     assert_eq!(host.run(&list[0], &mut link), 0, "the write was acknowledged");
     // Within a few cycles of the table, it opens the drain and says so in
     // R1, which the Modbus client reads; the valve's discrete input too.
-    let t = Instant::now();
-    while valve(&mut mb) != 1.0 {
-        assert!(t.elapsed() < Duration::from_secs(5), "the table did not act on the new setpoint");
-        std::thread::sleep(Duration::from_millis(50));
-    }
+    common::eventually("the table's answer to the new setpoint", || valve(&mut mb) == 1.0);
     assert_eq!(rt.block_on(mb.read_discrete_inputs(0, 1)).unwrap().unwrap(), vec![true]);
     let done = server.stop();
-    assert_eq!(done.late, 0, "no scan started late while serving");
+    assert!(done.busiest <= 2, "{} requests of two clients waited for a scan", done.busiest);
 }

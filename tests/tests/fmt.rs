@@ -244,15 +244,14 @@ fn formatting_is_linear_in_the_input() {
         (SourceKind::Actions, &comments as &dyn Fn(usize) -> String),
         (SourceKind::Sequence, &steps as &dyn Fn(usize) -> String),
     ] {
-        let time = |n: usize| {
-            let src = make(n);
-            let t = std::time::Instant::now();
-            let out = format(kind, &src).expect("formats");
+        let (small, large) = (make(5_000), make(20_000));
+        // Processor time on this thread: how busy the machine is does not count.
+        let work = |src: &str| {
+            let (out, took) = linc_test_support::work::thread_cpu(|| format(kind, src).expect("formats"));
             assert!(out.len() >= src.len() / 2);
-            t.elapsed().as_secs_f64()
+            took
         };
-        time(2_000);
-        let (small, large) = (time(5_000).max(1e-4), time(20_000));
-        assert!(large < small * 8.0, "{kind:?}: 5,000 in {small:.4} s, 20,000 in {large:.4} s");
+        let r = linc_test_support::work::growth(|big| work(if big { &large } else { &small }));
+        assert!(r < 8.0, "{kind:?}: 4x the input took {r:.1}x the work");
     }
 }

@@ -68,3 +68,44 @@ pub fn tool(name: &str) -> bool {
     }
     found
 }
+
+/// Waits for `child` to exit. Not a timing assertion: the minute only ends
+/// a test that would otherwise hang, far beyond any load on the machine.
+pub fn exited(child: &mut std::process::Child) -> std::process::ExitStatus {
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    loop {
+        if let Some(status) = child.try_wait().expect("wait for linc") {
+            return status;
+        }
+        if std::time::Instant::now() > deadline {
+            let _ = child.kill();
+            panic!("linc did not exit within a minute");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+}
+
+/// Every Rust source file under `dir`.
+pub fn rust_sources(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+    for entry in std::fs::read_dir(dir).expect("list").flatten() {
+        let p = entry.path();
+        if p.is_dir() {
+            rust_sources(&p, out);
+        } else if p.extension().is_some_and(|e| e == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+/// A fresh file `name` in the scratch directory `tag`, holding `bytes`; its
+/// path as text, for the command line.
+pub fn temp_file(tag: &str, name: &str, bytes: impl AsRef<[u8]>) -> String {
+    let path = temp_dir(tag).join(name);
+    std::fs::write(&path, bytes).expect("write temp file");
+    path.to_string_lossy().into_owned()
+}
+
+/// The path of `name` in the scratch directory `tag` (not made), as text.
+pub fn temp_path(tag: &str, name: &str) -> String {
+    temp_dir(tag).join(name).to_string_lossy().into_owned()
+}

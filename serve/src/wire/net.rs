@@ -13,10 +13,13 @@ use crate::Ask;
 use std::net::SocketAddr;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
-use tokio::io::{AsyncRead, AsyncReadExt};
-use tokio::net::{TcpListener, TcpStream};
+use std::time::Duration;
+use tokio::io::{AsyncRead, AsyncReadExt, AsyncWrite, AsyncWriteExt};
+use tokio::net::TcpListener;
 use tokio::sync::{oneshot, watch, Semaphore};
+// The runtime's clock, not the system's: the timeouts and the once-a-second
+// log follow tokio's time, which a test can pause and move on.
+use tokio::time::Instant;
 
 /// How much a server puts up with.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -128,8 +131,8 @@ pub(crate) async fn accept<W: Wire>(
 /// Serves one client: each request the protocol takes off the stream is
 /// answered in turn (through the plant, or by the protocol itself) until
 /// the client leaves, is idle or slow too long, or sends what can't go on.
-async fn client<W: Wire>(
-    mut stream: TcpStream,
+pub(crate) async fn client<W: Wire, S: AsyncRead + AsyncWrite + Unpin>(
+    mut stream: S,
     peer: SocketAddr,
     mut wire: W,
     (asks, limits, log): (std::sync::mpsc::Sender<Ask>, Limits, Log),
@@ -209,7 +212,7 @@ async fn read_some<R: AsyncRead + Unpin>(
         Some(t) => (t + limits.request, Stop::Slow),
         None => (Instant::now() + limits.idle, Stop::Idle),
     };
-    match tokio::time::timeout_at(deadline.into(), stream.read(buf)).await {
+    match tokio::time::timeout_at(deadline, stream.read(buf)).await {
         Err(_) => Err(why),
         Ok(Ok(0)) | Ok(Err(_)) => Err(Stop::Closed),
         Ok(Ok(n)) => Ok(n),
@@ -218,8 +221,7 @@ async fn read_some<R: AsyncRead + Unpin>(
 
 /// Writes a reply, giving a client that does not read it [`Limits::idle`]
 /// before the connection is dropped; `Err` ends the connection.
-async fn reply(stream: &mut tokio::net::TcpStream, bytes: &[u8], limits: &Limits) -> Result<(), Stop> {
-    use tokio::io::AsyncWriteExt;
+async fn reply<S: AsyncWrite + Unpin>(stream: &mut S, bytes: &[u8], limits: &Limits) -> Result<(), Stop> {
     match tokio::time::timeout(limits.idle, stream.write_all(bytes)).await {
         Ok(Ok(())) => Ok(()),
         _ => Err(Stop::Closed),
@@ -233,5 +235,115 @@ fn waiting_since(pending: usize, begun: Option<Instant>) -> Option<Instant> {
         None
     } else {
         begun.or(Some(Instant::now()))
+    }
+}
+
+/// The connection loop in tokio's paused time: timeouts fire at exactly
+/// the simulated instant they are due, however busy the machine is.
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::wire::roc::Answer;
+    use crate::wire::roc_server::Roc;
+    use linc_comms::roc::{Address, Frame};
+    use std::sync::Mutex;
+    use tokio::io::{duplex, DuplexStream};
+
+    const ME: Address = Address { unit: 1, group: 2 };
+
+    fn limits() -> Limits {
+        Limits { max_clients: 4, idle: Duration::from_secs(2), request: Duration::from_secs(1) }
+    }
+
+    /// A ROC connection served by the loop, the client's end of it, what
+    /// the loop logs, and where its questions to the plant go.
+    fn connection() -> (DuplexStream, Arc<Mutex<Vec<String>>>, std::sync::mpsc::Receiver<Ask>) {
+        let (server, client_end) = duplex(4096);
+        let lines = Arc::new(Mutex::new(Vec::new()));
+        let kept = lines.clone();
+        let log: Log = Arc::new(move |l| kept.lock().unwrap().push(l));
+        let (asks, asked) = std::sync::mpsc::channel();
+        let peer: SocketAddr = "127.0.0.1:5000".parse().unwrap();
+        tokio::spawn(client(server, peer, Roc::new(ME), (asks, limits(), log)));
+        (client_end, lines, asked)
+    }
+
+    /// Reads until the loop closes the connection; the simulated time it took.
+    async fn closed(mut c: DuplexStream) -> Duration {
+        let start = Instant::now();
+        let mut buf = [0u8; 64];
+        while c.read(&mut buf).await.is_ok_and(|n| n > 0) {}
+        start.elapsed()
+    }
+
+    fn read_frame(opcode: u8) -> Vec<u8> {
+        Frame { dst: ME, src: Address { unit: 3, group: 1 }, opcode, data: vec![1, 17, 0, 2] }.encode().unwrap()
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn an_idle_client_is_dropped_at_the_idle_limit() {
+        let (c, log, _) = connection();
+        assert_eq!(closed(c).await, Duration::from_secs(2));
+        assert_eq!(*log.lock().unwrap(), ["roc 127.0.0.1:5000: dropped: idle for 2 s"]);
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn a_request_that_trickles_in_is_dropped_at_the_request_limit() {
+        let (mut c, log, _) = connection();
+        let start = Instant::now();
+        let frame = read_frame(180);
+        // A byte every 600 ms: the second second of the request is never reached.
+        for b in &frame[..3] {
+            if c.write_all(std::slice::from_ref(b)).await.is_err() {
+                break;
+            }
+            tokio::time::sleep(Duration::from_millis(600)).await;
+        }
+        let took = start.elapsed() + closed(c).await;
+        assert_eq!(took, Duration::from_millis(1200), "dropped when the third byte was due, after 1 s of waiting");
+        assert_eq!(*log.lock().unwrap(), ["roc 127.0.0.1:5000: dropped: a request took more than 1 s to arrive"]);
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn a_whole_request_is_asked_and_answered_and_noise_is_logged() {
+        let (mut c, log, asked) = connection();
+        // The plant: answers each question with an echo of its opcode.
+        std::thread::spawn(move || {
+            while let Ok(Ask::Roc { frame, reply, .. }) = asked.recv() {
+                let echo = Frame { dst: frame.src, src: frame.dst, opcode: frame.opcode, data: vec![] };
+                let _ = reply.send(Answer { reply: echo, log: vec!["answered".into()], session: None });
+            }
+        });
+        let mut noisy = vec![0x55, 0xAA];
+        noisy.extend(read_frame(180));
+        c.write_all(&noisy).await.unwrap();
+        let mut reply = [0u8; 8];
+        c.read_exact(&mut reply).await.unwrap();
+        assert_eq!((reply[4], reply[5]), (180, 0), "{reply:?}");
+        drop(c);
+        tokio::time::sleep(Duration::from_millis(10)).await;
+        let log = log.lock().unwrap().join("\n");
+        assert_eq!(log, "answered\nroc 127.0.0.1:5000: 2 bytes made no frame (bad CRC or noise) and were dropped");
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn refusals_over_the_cap_are_logged_at_most_once_a_second() {
+        let lines = Arc::new(Mutex::new(Vec::new()));
+        let kept = lines.clone();
+        let log: Log = Arc::new(move |l| kept.lock().unwrap().push(l));
+        let r = Refusals::default();
+        let peer: SocketAddr = "127.0.0.1:6000".parse().unwrap();
+        for _ in 0..100 {
+            r.note("roc", peer, 4, &log);
+            tokio::time::sleep(Duration::from_millis(15)).await;
+        }
+        // 1.5 s of refusals: the first logged at once, the rest a second later.
+        assert_eq!(
+            *lines.lock().unwrap(),
+            [
+                "roc: refused 127.0.0.1:6000 and 0 more: 4 clients is the limit",
+                "roc: refused 127.0.0.1:6000 and 66 more: 4 clients is the limit"
+            ]
+        );
     }
 }

@@ -45,3 +45,14 @@ pub fn console_line(s: &Server, line: &str) {
     let body = serde_json::json!({ "command": line }).to_string();
     ureq::post(&url).header("Content-Type", "application/json").send(body).expect("command");
 }
+
+/// Waits until `cond` holds (polled every 20 ms). Not a timing assertion:
+/// the minute is only there to end a test that would otherwise hang, far
+/// beyond what any load on the machine explains.
+pub fn eventually(what: &str, mut cond: impl FnMut() -> bool) {
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while !cond() {
+        assert!(std::time::Instant::now() < deadline, "{what} never happened");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+}
