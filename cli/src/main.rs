@@ -620,7 +620,7 @@ fn run_command(a: RunArgs, r: &Reporter) -> u8 {
         state: a.state.map(|path| StateFile { path, cold: a.cold }),
     };
     let file = a.file;
-    let controls = linc_driver::single::Controls { hold_steps: a.hold_step, force: a.force };
+    let controls = linc_driver::run::Controls { hold_steps: a.hold_step, force: a.force };
     match (a.db, a.duration) {
         (None, Some(duration)) => {
             run_cmd::run(file, run_cmd::Form::For { program: Program::Strategy, duration, controls }, common, r)

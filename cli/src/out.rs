@@ -49,7 +49,7 @@ pub fn print_or_write(
 }
 
 /// Standard output written as it is made (a listing or a drawing can be
-/// many times its input), escaped like [`print`] and buffered.
+/// many times its input), escaped like [`fn@print`] and buffered.
 pub struct Stream {
     out: std::io::BufWriter<std::io::StdoutLock<'static>>,
 }

@@ -27,7 +27,7 @@ pub struct Common {
 /// What runs, and for how long.
 pub enum Form {
     /// A strategy, or one sequence or table, for a duration.
-    For { program: Program, duration: String, controls: linc_driver::single::Controls },
+    For { program: Program, duration: String, controls: linc_driver::run::Controls },
     /// One action, `cycles` times, `period` seconds apart.
     Cycles { program: Program, cycles: u32, period: f64 },
 }
@@ -73,15 +73,10 @@ pub fn run(db: PathBuf, form: Form, c: Common, r: &Reporter) -> u8 {
         Form::For { .. } => c.state.map(|s| s.path),
         Form::Cycles { .. } => None,
     };
-    let req = RunRequest { shows: c.show, trace, out: c.out, save_state, tier: c.tier };
+    let mut req = RunRequest { shows: c.show, trace, out: c.out, save_state, tier: c.tier, ..Default::default() };
     let ran = match form {
         Form::For { controls, .. } => {
-            let held = plant.block.and_then(|b| plant.strategy().and_then(|s| s.sequence_mut(b)));
-            if let Some(seq) = held {
-                if let Err(p) = linc_driver::single::monitor(seq, &controls, &[]) {
-                    return r.report(&p);
-                }
-            }
+            req.controls = controls;
             linc_driver::run::strategy(&mut plant, duration.unwrap_or_default(), req)
         }
         Form::Cycles { cycles, period, .. } => linc_driver::run::actions(&mut plant, cycles, period, req),

@@ -6,6 +6,9 @@
 //! uses a plain blocking socket because a poll table runs one command at a
 //! time.
 
+/// A comms file's error, located in the file.
 pub mod error;
+/// Modbus TCP framing and PDUs (ADR 0019).
 pub mod modbus;
+/// ROC Plus frames, opcodes and values, and the ROC host.
 pub mod roc;

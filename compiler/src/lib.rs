@@ -10,9 +10,24 @@
 //! one run. Every stage reports plain-data errors that become
 //! [`Diagnostic`]s, rendered in one place ([`diag`]).
 
+/// Diagnostics, spans, source files, problems and their rendering.
 pub mod diag;
+/// The one canonical layout of every language (`linc fmt`, ADR 0017).
 pub mod fmt;
+/// FST tables: CSV reader, TLPs, checks, lowering, listing, translation.
+pub mod fst;
+/// Ladder files: parser, checks, desugaring to ST (ADR 0009).
+pub mod ladder;
+/// What each name denotes, as the checker resolves it (language servers).
 pub mod names;
+/// One compile session over the files of one run (ADR 0007).
+pub mod session;
+/// Sequences: parser, chart checks, generic names, resources, lowering.
+pub mod sfc;
+/// What kind of source a file is, decided in one place.
+pub mod source_kind;
+/// Structured Text: lexer, LALR grammar, tree, checks, lowering.
+pub mod st;
 
 /// The function library (§12.6) the checker types calls against, for the
 /// surfaces that describe functions (a language server's hover and
@@ -20,12 +35,6 @@ pub mod names;
 pub mod functions {
     pub use linc_stdlib::{lookup, Signature, SIGNATURES};
 }
-pub mod fst;
-pub mod ladder;
-pub mod session;
-pub mod sfc;
-pub mod source_kind;
-pub mod st;
 
 pub use diag::{Diagnostic, FileId, Severity, Span};
 pub use st::check::Context;

@@ -4,13 +4,12 @@
 use crate::geom::{Rect, P};
 use std::fmt::Write;
 
-/// Text size in px, and the width a character is taken to have: the style
-/// sets a monospace font, so this is what the layout can count on.
-pub const FONT: f64 = 12.0;
+/// The width a character is taken to have at the style's 12 px monospace
+/// font, so this is what the layout can count on, and a line's height.
 pub const CHAR_W: f64 = 7.2;
 pub const LINE_H: f64 = 16.0;
 
-/// The width `text` takes at [`FONT`].
+/// The width `text` takes in the style's font.
 pub fn text_width(text: &str) -> f64 {
     text.chars().count() as f64 * CHAR_W
 }

@@ -28,7 +28,12 @@ pub struct RunRequest<'a> {
     /// The tier the plant was built with (`--tier compiled` notes how much
     /// ran compiled, I0002).
     pub tier: Tier,
+    /// The monitor's controls a sequence run alone starts with
+    /// (`--hold-step`, `--force`).
+    pub controls: Controls,
 }
+
+pub use crate::single::Controls;
 
 /// What a run gave.
 pub struct Ran {
@@ -50,7 +55,7 @@ pub fn strategy(plant: &mut Plant, duration_us: u64, req: RunRequest) -> Result<
     let field_shows: Vec<String> = req.shows.iter().filter(|p| !step_shows.contains(p)).cloned().collect();
     let fields = crate::database::shows(&s.store, &field_shows)?;
     if let Some(seq) = seq_block.and_then(|b| s.sequence_mut(b)) {
-        crate::single::monitor(seq, &Default::default(), &step_shows)?;
+        crate::single::monitor(seq, &req.controls, &step_shows)?;
     }
     let (writer, trace_name) = req.trace.map(|(w, n)| (Some(w), n)).unwrap_or((None, String::new()));
     let mut trace = writer.map(|w| Trace::new(w, &s.store));

@@ -4,9 +4,13 @@
 //! runtime's VM over its store scan by scan; the VM, the verifier and the
 //! linker know nothing of them.
 
+/// The console: a PLC kernel's command interpreter over a strategy.
 pub mod console;
+/// Scenario tests: console commands and expectations on simulated time.
 pub mod scenario;
+/// The sequence engine: SFC charts scan by scan.
 pub mod sequence;
+/// The strategy scheduler: tasks, qualifiers, error status, retentive state, FST tables.
 pub mod strategy;
 
 // The runtime's modules under their own names, so that the engines read

@@ -5,13 +5,21 @@
 //! writes objects against a database with these and never needs the VM,
 //! the verifier or the engines (ADR 0013).
 
+/// The registry of diagnostic codes, each with its page.
 pub mod code;
+/// The function-block database: templates, blocks, aliases, tasks, the JSON loader.
 pub mod db;
+/// Why an object file is refused.
 pub mod errors;
+/// The instruction set, declared once (ADR 0004).
 pub mod isa;
+/// The `.sto` object format and its CRC-32.
 pub mod object;
+/// The text form of values (constants, timestamps).
 pub mod text;
+/// The object format's encoding of each table.
 pub mod wire;
+/// Escaping text for the XML reports.
 pub mod xml;
 
 pub use code::Code;

@@ -7,7 +7,7 @@
 mod workload;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use linc_lsp::server::Server;
+use linc_lsp::Server;
 use lsp_server::{Notification, Request, RequestId};
 use serde_json::json;
 use std::hint::black_box;

@@ -4,16 +4,16 @@
 //! diagnostics are exactly `linc check`'s, hover and completion read the
 //! database and the function table, formatting is `linc fmt`.
 
-pub mod actions;
-pub mod analysis;
-pub mod complete;
-pub mod hover;
-pub mod nav;
-pub mod resolve;
-pub mod server;
-pub mod symbols;
-pub mod text;
-pub mod workspace;
+mod actions;
+mod analysis;
+mod complete;
+mod hover;
+mod nav;
+mod resolve;
+mod server;
+mod symbols;
+mod text;
+mod workspace;
 
 use lsp_server::Connection;
 use lsp_types::{
@@ -21,7 +21,8 @@ use lsp_types::{
     SemanticTokensFullOptions, SemanticTokensOptions, SemanticTokensServerCapabilities, ServerCapabilities, ServerInfo,
     TextDocumentSyncCapability, TextDocumentSyncKind, WorkDoneProgressOptions,
 };
-use server::{Server, DEBOUNCE};
+pub use server::Server;
+use server::DEBOUNCE;
 use std::path::PathBuf;
 use std::time::Duration;
 

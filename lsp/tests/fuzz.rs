@@ -8,7 +8,7 @@
 mod common;
 
 use common::{example, workspace};
-use linc_lsp::server::Server;
+use linc_lsp::Server;
 use linc_test_support::Rng;
 use lsp_server::{ErrorCode, Notification, Request, RequestId};
 use serde_json::{json, Value};

@@ -11,14 +11,22 @@
 //! [`vm::Activation`] that the caller owns. [`load`] does the first two.
 
 pub use linc_format::{db, isa, object, records, text, wire};
+/// Coverage counts of a run (ADR 0020).
 pub mod cover;
+/// Load errors and runtime faults, as data.
 pub mod errors;
+/// The compiling tier (Cranelift, feature `jit`; ADR 0011).
 pub mod jit;
+/// Linking a verified object to a store: [`Linked`].
 pub mod link;
+/// The ROC device's state FST tables use: logs, history archives, its clock.
 pub mod roc;
+/// The live store of a database's values.
 pub mod store;
+/// The verifier: [`Verified`] objects only.
 pub mod verify;
 mod verify_chart;
+/// The VM that runs an activation of linked code.
 pub mod vm;
 
 pub use db::{Database, DbError, FieldDef, FieldType, Template};

@@ -5,10 +5,15 @@
 //! function in the guide's function table ([`signatures`]), run-time values
 //! ([`Value`]) and the implementations the runtime calls ([`call`]).
 
+/// Calling a function of the library on run-time values.
 pub mod call;
+/// The functions' implementations, by family (strings, numbers, bits, dates …).
 pub mod functions;
+/// Every function's signature: what the checker types calls against.
 pub mod signatures;
+/// The static types of checked expressions.
 pub mod types;
+/// Run-time values and their conversions.
 pub mod value;
 
 pub use call::{call, power, Env, FnError};

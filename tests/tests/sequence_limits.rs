@@ -7,7 +7,7 @@
 //! 100,000 steps used to compile into an object whose slot numbers had
 //! wrapped round.)
 
-use linc_compiler::sfc::{self, lower::MAX_BLOCKS, lower::MAX_STEPS};
+use linc_compiler::sfc::{self, MAX_BLOCKS, MAX_STEPS};
 use linc_compiler::Context;
 use linc_runtime::Database;
 

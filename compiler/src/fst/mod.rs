@@ -3,13 +3,13 @@
 //!
 //! Data flows one way: CSV text → [`reader::read`] → [`Table`] (cells with
 //! spans) → [`check::check`] against a database → [`Checked`] (every
-//! argument resolved) → [`lower::lower`] → one FST unit of an object.
+//! argument resolved) → `lower::lower` → one FST unit of an object.
 
 pub mod check;
 pub mod commands;
-pub mod errors;
+pub(crate) mod errors;
 pub mod list;
-pub mod lower;
+pub(crate) mod lower;
 pub mod reader;
 pub mod tlp;
 pub mod translate;

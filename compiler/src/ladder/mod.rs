@@ -2,14 +2,14 @@
 //! chapter 11 and §20.8).
 //!
 //! [`parser`] reads rungs by hand and hands the ST inside them (contacts,
-//! coil targets, variable outputs) to the ST parser; [`check`] checks labels,
-//! jumps, contacts and coils; [`desugar`] turns each rung into ST
+//! coil targets, variable outputs) to the ST parser; `check` checks labels,
+//! jumps, contacts and coils; `desugar` turns each rung into ST
 //! statements, which the ST checker and lowering then compile (ADR 0009):
 //! types, names and most errors of a ladder action are those of its ST.
 
 pub mod ast;
-pub mod check;
-pub mod desugar;
+pub(crate) mod check;
+pub(crate) mod desugar;
 pub mod parser;
 pub mod pretty {
     pub mod to_st;

@@ -2,21 +2,24 @@
 //! Structured Text inside and LIN's action qualifiers.
 //!
 //! [`parser`] reads the chart structure and hands the ST inside to the ST
-//! parser; [`check`] checks the charts, the associations and, with the ST
+//! parser; `check` checks the charts, the associations and, with the ST
 //! checker, the actions and transition conditions. Lowering is elsewhere.
 
 pub mod ast;
-pub mod check;
-pub mod errors;
+pub(crate) mod check;
+pub(crate) mod errors;
 pub mod generic;
-pub mod lower;
+pub(crate) mod lower;
 pub mod parser;
 pub mod pretty;
 mod refs;
 pub mod resources;
 mod safety;
 pub(crate) mod shift;
-pub mod size;
+pub(crate) mod size;
+
+/// How many steps and code blocks one sequence may have (the object format's limits).
+pub use lower::{MAX_BLOCKS, MAX_STEPS};
 
 use crate::diag::Diagnostic;
 use crate::st::check::Context;

@@ -1,5 +1,5 @@
 //! Scenario tests (`.ltest`, docs/testing.md) as a library: each file is
-//! read ([`file`]), its plant built by [`crate::plant`] and its
+//! read ([`mod@file`]), its plant built by [`crate::plant`] and its
 //! expectations compiled, then run by the engines' scenario runner;
 //! everything that goes wrong before the run is rendered into the
 //! scenario's own outcome (short format), so reports are the same for any

@@ -4,11 +4,11 @@
 //! a scan never waits for a client and a client never sees a half-scan.
 
 pub mod modbus;
-pub mod modbus_server;
-pub mod net;
+pub(crate) mod modbus_server;
+pub(crate) mod net;
 pub mod roc;
-pub mod roc_logs;
-pub mod roc_server;
+mod roc_logs;
+pub(crate) mod roc_server;
 
 pub use net::{Limits, Log};
 

@@ -54,13 +54,6 @@ pub struct Limits {
     symbols: HashSet<SymbolKey, FastHash>,
 }
 
-impl Limits {
-    /// How many different database references have been counted.
-    pub fn references(&self) -> usize {
-        self.symbols.len()
-    }
-}
-
 /// Which limits one action has already reported.
 #[derive(Debug, Default)]
 pub(super) struct ActionLimits {

@@ -9,7 +9,7 @@ mod limits;
 mod resolve;
 
 pub use errors::CheckError;
-pub use limits::{FastHash, Limits, MAX_CALL_ARGS, MAX_FOR_LOOPS, MAX_REFERENCES};
+pub use limits::{FastHash, Limits, MAX_CALL_ARGS};
 pub use resolve::Resolved;
 
 use crate::diag::{Capped, Omitted};
@@ -92,20 +92,6 @@ pub struct Checker<'a> {
     /// of each, made on first use, so a step variable is one hashed look-up
     /// however many steps there are.
     step_index: Option<HashMap<String, usize>>,
-}
-
-/// Checks a transition: an expression that must be a truth value (§12.11).
-pub fn check_transition(e: &Expr, ctx: Context) -> (Vec<CheckError>, hir::Expr) {
-    let mut c = Checker::new(ctx, Limits::default());
-    let h = c.transition(e);
-    (c.take_errors(), h)
-}
-
-/// Checks a value expression of any type (for `linc eval`).
-pub fn check_expression(e: &Expr, ctx: Context) -> (Vec<CheckError>, hir::Expr) {
-    let mut c = Checker::new(ctx, Limits::default());
-    let h = c.expression(e);
-    (c.take_errors(), h)
 }
 
 impl<'a> Checker<'a> {
