@@ -9,7 +9,7 @@ use linc_compiler::diag::{Diagnostic, Problems};
 use linc_driver::console::{bounded_lines, MAX_LINE};
 use linc_driver::plant::{PlantSpec, StateFile};
 use linc_format::Code;
-use linc_serve::{Config, Reply, Speed};
+use linc_serve::{Config, Reply, Server, Speed};
 use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::time::Duration;
@@ -109,55 +109,9 @@ pub fn roc_address(s: &str) -> Result<linc_driver::roc::Address, String> {
 }
 
 pub fn run(a: ServeArgs, r: &Reporter) -> u8 {
-    let times = a
-        .duration
-        .as_deref()
-        .map(|d| linc_driver::database::duration("--for", d))
-        .transpose()
-        .and_then(|until| Ok((until, linc_driver::database::duration("--client-timeout", &a.client_timeout)?)));
-    let (until_us, idle) = match times {
-        Ok((until, idle)) => (until, Duration::from_micros(idle)),
-        Err(p) => return r.report(&p),
-    };
-    let state = a.state.clone().map(|path| StateFile { path, cold: a.cold });
-    let outputs = [("--trace", &a.trace), ("--state", &a.state)];
-    let spec = PlantSpec {
-        set: a.set,
-        now: a.now,
-        seed: a.seed,
-        tier: a.tier.into(),
-        state,
-        outputs: outputs.iter().filter_map(|(f, p)| Some((f.to_string(), (*p).clone()?))).collect(),
-        ..PlantSpec::strategy(a.file.clone())
-    };
-    let mut plant = match linc_driver::plant::build(&spec) {
-        Ok(p) => p,
-        Err(p) => return r.report(&p),
-    };
-    r.report(&std::mem::take(&mut plant.warnings));
-    let until_us = until_us.map(|d| plant.strategy().map_or(0, |s| s.elapsed_us()).saturating_add(d));
-    let trace = match a.trace.as_deref().map(linc_driver::files::AtomicFile::create).transpose() {
-        Ok(t) => t,
-        Err(e) => return r.report(&e.into()),
-    };
-    let limits = linc_serve::Limits { max_clients: usize::from(a.max_clients), idle, ..Default::default() };
-    let log_to = *r;
-    let cfg = Config {
-        speed: a.speed.0,
-        token: a.token,
-        allow_writes: a.allow_writes,
-        until_us,
-        state: a.state.clone(),
-        roc: a.roc.map(|addr| (addr, a.roc_address)),
-        modbus: a.modbus,
-        limits,
-        trace,
-        log: std::sync::Arc::new(move |line| log_to.note(Code::I0004, line)),
-        ..Config::new(a.http)
-    };
-    let server = match linc_serve::start(plant, cfg) {
+    let server = match start(&a, r) {
         Ok(s) => s,
-        Err(p) => return r.report(&p),
+        Err(status) => return status,
     };
     // Watched before the first line says it serves: a Ctrl-C from then on
     // stops it cleanly.
@@ -179,6 +133,57 @@ pub fn run(a: ServeArgs, r: &Reporter) -> u8 {
         Some(s) => s.wait(&server),
         None => server.wait_finished(),
     }
+    stop(server, a.state.as_deref(), r)
+}
+
+/// The plant built by the driver and served; the exit status of what
+/// stopped it before it served.
+fn start(a: &ServeArgs, r: &Reporter) -> Result<Server, u8> {
+    let duration = |flag: &str, text: &str| linc_driver::database::duration(flag, text);
+    let times = a
+        .duration
+        .as_deref()
+        .map(|d| duration("--for", d))
+        .transpose()
+        .and_then(|until| Ok((until, duration("--client-timeout", &a.client_timeout)?)));
+    let (until_us, idle) = times.map_err(|p| r.report(&p))?;
+    let state = a.state.clone().map(|path| StateFile { path, cold: a.cold });
+    let outputs = [("--trace", &a.trace), ("--state", &a.state)];
+    let spec = PlantSpec {
+        set: a.set.clone(),
+        now: a.now,
+        seed: a.seed,
+        tier: a.tier.into(),
+        state,
+        outputs: outputs.iter().filter_map(|(f, p)| Some((f.to_string(), (*p).clone()?))).collect(),
+        ..PlantSpec::strategy(a.file.clone())
+    };
+    let mut plant = linc_driver::plant::build(&spec).map_err(|p| r.report(&p))?;
+    r.report(&std::mem::take(&mut plant.warnings));
+    let until_us = until_us.map(|d| plant.strategy().map_or(0, |s| s.elapsed_us()).saturating_add(d));
+    let trace = a.trace.as_deref().map(linc_driver::files::AtomicFile::create).transpose();
+    let trace = trace.map_err(|e| r.report(&e.into()))?;
+    let max_clients = usize::from(a.max_clients);
+    let limits = linc_serve::Limits { max_clients, idle: Duration::from_micros(idle), ..Default::default() };
+    let log_to = *r;
+    let cfg = Config {
+        speed: a.speed.0,
+        token: a.token.clone(),
+        allow_writes: a.allow_writes,
+        until_us,
+        state: a.state.clone(),
+        roc: a.roc.map(|addr| (addr, a.roc_address)),
+        modbus: a.modbus,
+        limits,
+        trace,
+        log: std::sync::Arc::new(move |line| log_to.note(Code::I0004, line)),
+        ..Config::new(a.http)
+    };
+    linc_serve::start(plant, cfg).map_err(|p| r.report(&p))
+}
+
+/// Stops the server, says where it stopped, and saves the state.
+fn stop(server: Server, state: Option<&std::path::Path>, r: &Reporter) -> u8 {
     let done = server.stop();
     crate::out::line(&format!(
         "stopped at {}: {} scans, {} late",
@@ -190,7 +195,7 @@ pub fn run(a: ServeArgs, r: &Reporter) -> u8 {
     if let Some(why) = &done.trace_error {
         problems.append(Problems::usage(Code::E0900, why.clone()));
     }
-    if let Some(path) = &a.state {
+    if let Some(path) = state {
         if let Err(p) = linc_driver::plant::save_state(path, &done.console.strategy) {
             problems.append(p);
         }
