@@ -70,6 +70,13 @@ valid!(
     "ACTION shift : AN_CONN\n  PV1{3} := PV5{3};\nEND_ACTION\n"
 );
 invalid!(s12_12_last_bit_cannot_be_base, "§12.12", Action, "Dig_A.Out.Bit7{0} := 1;\n", ["E0109"]);
+invalid!(
+    s12_12_constant_bit_offset_beyond_last_bit,
+    "§12.12",
+    Action,
+    "Dig_A.Out.Bit5{3} := 1;\nDig_A.Out.Bit5{-1} := 1;\nDig_A.Out.Bit5{2} := 1;\n",
+    ["E0109", "E0109"]
+);
 invalid!(s12_12_base_must_start_a_run, "§12.12", Action, "TIC_100.Mode{1} := 1;\n", ["E0109"]);
 invalid!(
     s12_12_constant_offset_out_of_run,

@@ -241,34 +241,12 @@ impl Checker<'_> {
         let (block, block_id) = block;
         let fpart = &parts[0];
         let Some(fi) = tpl.field(fpart.name) else {
-            let known =
-                if tpl.fields.len() <= 16 { tpl.fields.iter().map(|f| f.name.clone()).collect() } else { Vec::new() };
-            let owner = if block.is_empty() { "this action's block".to_string() } else { block.to_string() };
-            self.errors.push(CheckError::UnknownField {
-                span: fpart.span,
-                field: fpart.name.to_string(),
-                owner,
-                template: tpl.name.clone(),
-                known,
-            });
-            return None;
+            return self.unknown_field(tpl, block, fpart);
         };
         if let Some(o) = fpart.offset {
             self.check_field_offset(tpl, fi, o, fpart)?;
         }
-        let template =
-            if block_id == 0 { self.self_template } else { Some(self.ctx.db.blocks[block_id as usize - 1].template) };
-        let owner = (block_id != 0).then(|| block_id as usize - 1);
-        let note = |part: &Part, sub: Option<&str>| {
-            if let (Some(template), false) = (template, part.from_alias) {
-                let sub = sub.map(str::to_string);
-                self.ctx.note(part.span, || Meaning::Field { block: owner, template, field: fi, sub });
-            }
-        };
-        note(fpart, None);
-        for p in &parts[1..] {
-            note(p, Some(p.name));
-        }
+        self.note_field(block_id, fi, parts);
         let base_name = Name::from(tpl.fields[fi].name.as_str());
         // A constant offset names its field exactly: `PV{1}` is as writable as
         // the field it lands on. Variable offsets are checked at run time.
@@ -307,21 +285,7 @@ impl Checker<'_> {
                 let Some(n) = field.ty.bit_index(bit.name) else {
                     return self.no_sub(bit, &field.name, &field.ty);
                 };
-                if let Some(o) = bit.offset {
-                    let span = bit.span.to(o.span);
-                    if n + 1 >= *width {
-                        let why = format!("Bit{n} is the last bit of a {}-bit field", width);
-                        self.errors.push(CheckError::BadOffsetBase { span, base: bit.name.to_string(), why });
-                        return None;
-                    }
-                    if let Some(k) = o.int_value() {
-                        if k < 0 || i64::from(n) + i64::from(k) >= i64::from(*width) {
-                            let why = format!("Bit{n}{{{k}}} is beyond the last bit, Bit{}", width - 1);
-                            self.errors.push(CheckError::BadOffsetBase { span, base: bit.name.to_string(), why });
-                            return None;
-                        }
-                    }
-                }
+                self.check_bit_offset(bit, n, *width)?;
                 let bit_offset = bit.checked.take().map(Box::new);
                 let target = Target::Bit { block: b, field: f, offset, bit: n, bit_offset };
                 let r = Resolved::new(v, Ty::Bool, target).stored(class, (block_id, fi, 0));
@@ -359,6 +323,53 @@ impl Checker<'_> {
                 self.no_sub(&sub, &name, &owner_ty)
             }
         }
+    }
+
+    fn unknown_field(&mut self, tpl: &Template, block: &str, part: &Part) -> Option<Resolved> {
+        let known =
+            if tpl.fields.len() <= 16 { tpl.fields.iter().map(|f| f.name.clone()).collect() } else { Vec::new() };
+        let owner = if block.is_empty() { "this action's block".to_string() } else { block.to_string() };
+        self.errors.push(CheckError::UnknownField {
+            span: part.span,
+            field: part.name.to_string(),
+            owner,
+            template: tpl.name.clone(),
+            known,
+        });
+        None
+    }
+
+    /// Records what each written part of a field path names, for the
+    /// language server; parts an alias supplied have no place in the text.
+    fn note_field(&self, block_id: u32, fi: usize, parts: &[Part]) {
+        let template =
+            if block_id == 0 { self.self_template } else { Some(self.ctx.db.blocks[block_id as usize - 1].template) };
+        let Some(template) = template else { return };
+        let owner = (block_id != 0).then(|| block_id as usize - 1);
+        for (i, part) in parts.iter().enumerate().filter(|(_, p)| !p.from_alias) {
+            let sub = (i > 0).then(|| part.name.to_string());
+            self.ctx.note(part.span, || Meaning::Field { block: owner, template, field: fi, sub });
+        }
+    }
+
+    /// A bit with an offset must leave room for it: `Bit3{k}` stays inside
+    /// the field when k is a constant, and is checked at run time otherwise.
+    fn check_bit_offset(&mut self, bit: &Part, n: u8, width: u8) -> Option<()> {
+        let Some(o) = bit.offset else { return Some(()) };
+        let span = bit.span.to(o.span);
+        let why = if n + 1 >= width {
+            format!("Bit{n} is the last bit of a {width}-bit field")
+        } else {
+            match o.int_value() {
+                Some(k) if k < 0 => format!("Bit{n}{{{k}}} counts back from its base; offsets count forward"),
+                Some(k) if i64::from(n) + i64::from(k) >= i64::from(width) => {
+                    format!("Bit{n}{{{k}}} is beyond the last bit, Bit{}", width - 1)
+                }
+                _ => return Some(()),
+            }
+        };
+        self.errors.push(CheckError::BadOffsetBase { span, base: bit.name.to_string(), why });
+        None
     }
 
     fn no_sub(&mut self, part: &Part, field: &str, ty: &FieldType) -> Option<Resolved> {
