@@ -72,6 +72,8 @@ pub struct Plant {
     /// next scan, which the isolation rules bound to one request per
     /// connection.
     busiest: usize,
+    /// The requests of one drain, kept to reuse its capacity.
+    batch: Vec<Ask>,
     until: Option<u64>,
     last: Vec<Cell>,
     history: crate::history::History,
@@ -109,6 +111,7 @@ impl Plant {
             late: 0,
             scans: 0,
             busiest: 0,
+            batch: Vec::new(),
             until,
             last,
             history: Default::default(),
@@ -173,20 +176,33 @@ impl Plant {
     }
 
     /// Answers what is waiting without blocking; `false` when every asker
-    /// is gone.
+    /// is gone. The queue is taken in batches — everything that arrived
+    /// while the plant was busy, then answered — so `busiest` counts the
+    /// requests that waited together, not the ones a fast client sends
+    /// while the earlier ones are being answered.
     fn answer_waiting(&mut self, asks: &Receiver<Ask>, mut trace: Option<&mut Trace>) -> bool {
-        let mut waiting = 0;
-        loop {
-            match asks.try_recv() {
-                Ok(a) => {
-                    waiting += 1;
-                    self.busiest = self.busiest.max(waiting);
-                    self.answer(a, trace.as_deref_mut());
+        let mut batch = std::mem::take(&mut self.batch);
+        let open = loop {
+            let open = loop {
+                match asks.try_recv() {
+                    Ok(a) => batch.push(a),
+                    Err(std::sync::mpsc::TryRecvError::Empty) => break true,
+                    Err(std::sync::mpsc::TryRecvError::Disconnected) => break false,
                 }
-                Err(std::sync::mpsc::TryRecvError::Empty) => return true,
-                Err(std::sync::mpsc::TryRecvError::Disconnected) => return false,
+            };
+            if batch.is_empty() {
+                break open;
             }
-        }
+            self.busiest = self.busiest.max(batch.len());
+            for a in batch.drain(..) {
+                self.answer(a, trace.as_deref_mut());
+            }
+            if !open {
+                break false;
+            }
+        };
+        self.batch = batch;
+        open
     }
 
     fn answer(&mut self, a: Ask, trace: Option<&mut Trace>) {
