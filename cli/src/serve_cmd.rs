@@ -34,6 +34,11 @@ pub struct ServeArgs {
     /// Every request must carry this token (`Authorization: Bearer TOKEN` or `?token=TOKEN`).
     #[arg(long, value_name = "TOKEN")]
     pub token: Option<String>,
+    /// Also answer requests that reach the server by this DNS name (repeatable). Loopback names
+    /// and the listening address always do; any other name in a request's Host is refused
+    /// (what stops DNS rebinding).
+    #[arg(long, value_name = "NAME", value_parser = host_name)]
+    pub allow_host: Vec<String>,
     /// Also read console commands from standard input while serving.
     #[arg(long)]
     pub console: bool,
@@ -65,10 +70,10 @@ pub struct ServeArgs {
     /// The ROC unit and group the device answers to.
     #[arg(long, value_name = "UNIT,GROUP", default_value = "1,2", value_parser = roc_address, requires = "roc")]
     pub roc_address: linc_driver::roc::Address,
-    /// Most clients connected to each wire server at once; more are refused and logged.
+    /// Most clients connected to each server (HTTP, ROC, Modbus) at once; more are refused and logged.
     #[arg(long, value_name = "N", default_value_t = 64, value_parser = clap::value_parser!(u16).range(1..=4096))]
     pub max_clients: u16,
-    /// Drop a wire client that sends nothing for this long.
+    /// Drop a client that sends nothing (a wire client) or reads nothing (HTTP) for this long.
     #[arg(long, value_name = "DURATION", default_value = "60s")]
     pub client_timeout: String,
     /// Which tier runs the code; `compiled` translates every block at the start rather than
@@ -97,6 +102,17 @@ fn wire_addr(s: &str) -> Result<SocketAddr, String> {
         return Ok(SocketAddr::from(([127, 0, 0, 1], port)));
     }
     s.parse().map_err(|_| format!("`{s}` is not a port or ADDR:PORT (127.0.0.1:4000)"))
+}
+
+/// A DNS name: letters, digits, `-` and `.`, without a port (the server's
+/// own port is the only one it answers on).
+fn host_name(s: &str) -> Result<String, String> {
+    let ok = !s.is_empty() && s.len() <= 253 && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '.');
+    if ok {
+        Ok(s.to_ascii_lowercase())
+    } else {
+        Err(format!("`{s}` is not a DNS name (like plant.example.com, without a port)"))
+    }
 }
 
 /// `UNIT,GROUP`, each 0 to 255.
@@ -169,6 +185,7 @@ fn start(a: &ServeArgs, r: &Reporter) -> Result<Server, u8> {
     let cfg = Config {
         speed: a.speed.0,
         token: a.token.clone(),
+        allow_hosts: a.allow_host.clone(),
         allow_writes: a.allow_writes,
         until_us,
         state: a.state.clone(),

@@ -188,6 +188,10 @@ fn option_values_that_mean_nothing_are_refused() {
     assert_option_refused(&["run", PLANT, "--for", "1s", "--set", "X=abc"], "--set");
     assert_option_refused(&["run", PLANT, "--for", "1s", "--set", "TANK1.Level=abc"], "--set");
     assert_option_refused(&["run", PLANT, "--for", "1s", "--cold"], "--cold");
+    // An empty token (an unset variable) is no secret; a host is a name.
+    assert_option_refused(&["serve", PLANT, "--for", "1s", "--token", ""], "--token");
+    assert_option_refused(&["serve", PLANT, "--for", "1s", "--token", "  "], "--token");
+    assert_option_refused(&["serve", PLANT, "--for", "1s", "--allow-host", "evil.example:80"], "--allow-host");
     // Options of another form of `run` are refused, not ignored.
     assert_option_refused(&["run", PLANT, "--for", "1s", "--cycles", "3"], "--cycles");
     assert_option_refused(&["run", PLANT, "--for", "1s", "--action", "Fill"], "--action");

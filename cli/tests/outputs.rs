@@ -130,6 +130,13 @@ fn two_outputs_of_a_strategy_run_may_not_name_one_file() {
     // An output over the strategy's action file is refused too.
     assert_refused(&linc(&["run", s(&db), "--for", "1m", "--trace", s(&dir.join("actions.stx"))]));
     assert_eq!(snapshot(&dir), before);
+    // And by the server, before it serves: the trace would be lost under
+    // the state it saves when it stops.
+    let o = linc(&["serve", s(&db), "--http", "127.0.0.1:0", "--for", "1s", "--state", s(&x), "--trace", &dotted]);
+    assert_refused(&o);
+    assert!(stderr(&o).contains("writes the same file"), "{}", stderr(&o));
+    assert!(!x.exists());
+    assert_eq!(snapshot(&dir), before);
 }
 
 #[test]

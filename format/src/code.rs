@@ -219,6 +219,7 @@ codes! {
     C0010 => "console: not a runtime error code",
     C0011 => "console: the error status already holds an error",
     C0012 => "console: SAVE without a state file",
+    C0013 => "console: ADVANCE beyond the server's limit",
     E0800 => "database file is not valid JSON",
     E0801 => "database file has the wrong shape",
     E0802 => "unknown field type in a template",

@@ -2,8 +2,10 @@
 //! offline), the JSON API and the event stream. Handlers ask the plant
 //! thread and wait for its answer; they never touch the strategy.
 
+use crate::http_guard::{foreign_origin, host_of, is_json, json_errors, refuse, Hosts};
+use crate::wire::Limits;
 use crate::{Ask, Event, Reply};
-use axum::body::Bytes;
+use axum::body::Body;
 use axum::extract::rejection::QueryRejection;
 use axum::extract::{Path, Query, Request, State};
 use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
@@ -25,12 +27,23 @@ use tokio::sync::{broadcast, oneshot, watch};
 /// The longest console line the API takes (as the console's own).
 const MAX_LINE: usize = 4096;
 
+/// The largest body `POST /api/command` reads: a line of [`MAX_LINE`]
+/// bytes, every one escaped in JSON, with room to spare.
+const MAX_BODY: usize = 8 * MAX_LINE;
+
+/// What a client over the connection cap is sent before it is closed.
+const BUSY: &[u8] = b"HTTP/1.1 503 Service Unavailable\r\nContent-Type: application/json\r\nContent-Length: 56\r\nConnection: close\r\n\r\n{\"error\":\"too many connections: try again in a moment\"}";
+
 #[derive(Clone)]
 pub struct AppState {
     asks: Sender<Ask>,
     events: broadcast::Sender<Arc<Event>>,
     status: Arc<Mutex<Value>>,
     token: Option<Arc<str>>,
+    /// The names a request may address the server by.
+    hosts: Arc<Hosts>,
+    /// How long a request's body may take to arrive.
+    request_time: std::time::Duration,
     /// Tells open event streams to end when the server stops.
     closing: watch::Receiver<bool>,
     close: Arc<watch::Sender<bool>>,
@@ -41,10 +54,20 @@ impl AppState {
         asks: Sender<Ask>,
         events: broadcast::Sender<Arc<Event>>,
         status: Arc<Mutex<Value>>,
-        token: Option<String>,
+        access: (Option<String>, Hosts, Limits),
     ) -> AppState {
+        let (token, hosts, limits) = access;
         let (close, closing) = watch::channel(false);
-        AppState { asks, events, status, token: token.map(Arc::from), closing, close: Arc::new(close) }
+        AppState {
+            asks,
+            events,
+            status,
+            token: token.map(Arc::from),
+            hosts: Arc::new(hosts),
+            request_time: limits.request,
+            closing,
+            close: Arc::new(close),
+        }
     }
 
     /// Asks the plant thread; `None` when it has stopped.
@@ -77,20 +100,32 @@ pub fn serve(listener: std::net::TcpListener, state: AppState, wires: Wires, clo
         if let Some((l, me)) = wires.roc {
             if let Ok(l) = tokio::net::TcpListener::from_std(l) {
                 let wire = move || crate::wire::roc_server::Roc::new(me);
-                tokio::spawn(crate::wire::net::accept(l, plant.clone(), closing.clone(), wire));
+                tokio::spawn(crate::wire::net::accept_wire(l, plant.clone(), closing.clone(), wire));
             }
         }
         if let Some((l, unit)) = wires.modbus {
             if let Ok(l) = tokio::net::TcpListener::from_std(l) {
                 let wire = move || crate::wire::modbus_server::Modbus::new(unit);
-                tokio::spawn(crate::wire::net::accept(l, plant.clone(), closing.clone(), wire));
+                tokio::spawn(crate::wire::net::accept_wire(l, plant.clone(), closing.clone(), wire));
             }
         }
+        let how = crate::wire::net::Listen {
+            what: "http",
+            busy: BUSY,
+            drain: true,
+            limits: wires.limits,
+            log: wires.log.clone(),
+        };
+        let (limits, conns) = (wires.limits, closing.clone());
+        let http = crate::wire::net::accept(listener, how, closing, move |stream, _| {
+            let _ = stream.set_nodelay(true);
+            crate::http_conn::connection(stream, app.clone(), limits, conns.clone())
+        });
         let shutdown = async move {
             let _ = closed.await;
             let _ = close.send(true);
         };
-        let _ = axum::serve(listener, app).with_graceful_shutdown(shutdown).await;
+        tokio::join!(http, shutdown);
     });
     rt.shutdown_timeout(std::time::Duration::from_secs(1));
 }
@@ -108,7 +143,9 @@ fn router(state: AppState) -> Router {
         .route("/api/trend/{path}", get(trend))
         .route("/api/events", get(events))
         .route("/api/command", post(command))
+        .fallback(|| async { refuse(StatusCode::NOT_FOUND, "no such page or API (docs/serve.md lists them)") })
         .layer(axum::middleware::from_fn_with_state(state.clone(), guard))
+        .layer(axum::middleware::map_response(json_errors))
         .with_state(state)
 }
 
@@ -116,15 +153,13 @@ fn asset(kind: &'static str, body: &'static str) -> Response {
     ([(header::CONTENT_TYPE, kind), (header::CACHE_CONTROL, "no-cache")], body).into_response()
 }
 
-fn refuse(status: StatusCode, why: &str) -> Response {
-    (status, Json(json!({ "error": why }))).into_response()
-}
-
-/// The token, when one is set: `Authorization: Bearer TOKEN` (the scheme
-/// in any case) or, for the page and its event stream, which can't set
-/// headers, `?token=TOKEN` (percent-decoded), both as axum's extractors
-/// read them. And no request from another origin: a page elsewhere must
-/// not drive the plant through the engineer's browser.
+/// Who may ask (http_guard.rs): a request must name this server in its
+/// `Host` (what stops DNS rebinding), come from no other origin (a page
+/// elsewhere must not drive the plant through the engineer's browser), and
+/// carry the token when one is set: `Authorization: Bearer TOKEN` (the
+/// scheme in any case) or, for the page and its event stream, which can't
+/// set headers, `?token=TOKEN` (percent-decoded), as axum's extractors
+/// read them.
 async fn guard(
     State(s): State<AppState>,
     bearer: Result<TypedHeader<Authorization<Bearer>>, TypedHeaderRejection>,
@@ -132,6 +167,16 @@ async fn guard(
     req: Request,
     next: Next,
 ) -> Response {
+    let host = host_of(req.headers(), req.uri()).unwrap_or_default();
+    if !s.hosts.allows(&host) {
+        let why = format!(
+            "this server does not answer to the name `{host}`: use its address, or start it with --allow-host NAME"
+        );
+        return refuse(StatusCode::MISDIRECTED_REQUEST, &why);
+    }
+    if foreign_origin(req.headers(), &host) {
+        return refuse(StatusCode::FORBIDDEN, "requests from another origin are refused");
+    }
     if let Some(token) = &s.token {
         // A header or query that does not parse carries no token.
         let bearer = bearer.as_ref().ok().map(|TypedHeader(Authorization(b))| b.token());
@@ -144,23 +189,12 @@ async fn guard(
             return r;
         }
     }
-    if foreign_origin(req.headers()) {
-        return refuse(StatusCode::FORBIDDEN, "requests from another origin are refused");
-    }
     next.run(req).await
 }
 
 /// Compares in time independent of where the two differ.
 fn same(a: &[u8], b: &[u8]) -> bool {
     a.len() == b.len() && a.iter().zip(b).fold(0u8, |d, (x, y)| d | (x ^ y)) == 0
-}
-
-/// An `Origin` header naming another host than the one asked.
-fn foreign_origin(h: &HeaderMap) -> bool {
-    let Some(origin) = h.get(header::ORIGIN).and_then(|v| v.to_str().ok()) else { return false };
-    let host = h.get(header::HOST).and_then(|v| v.to_str().ok()).unwrap_or("");
-    let origin_host = origin.split_once("://").map_or(origin, |(_, rest)| rest);
-    origin_host != host
 }
 
 async fn programs(State(s): State<AppState>) -> Response {
@@ -203,14 +237,15 @@ async fn trend(State(s): State<AppState>, Path(path): Path<String>) -> Response 
 
 /// `POST /api/command`: `{"command": "M TANK1.Level=50"}` (JSON only: a
 /// form on another site can't send it without asking first).
-async fn command(State(s): State<AppState>, headers: HeaderMap, body: Bytes) -> Response {
-    let json_body = headers
-        .get(header::CONTENT_TYPE)
-        .and_then(|v| v.to_str().ok())
-        .is_some_and(|t| t.trim_start().to_ascii_lowercase().starts_with("application/json"));
-    if !json_body {
+async fn command(State(s): State<AppState>, headers: HeaderMap, body: Body) -> Response {
+    if !is_json(&headers) {
         return refuse(StatusCode::UNSUPPORTED_MEDIA_TYPE, "send {\"command\": \"…\"} as application/json");
     }
+    let body = match tokio::time::timeout(s.request_time, axum::body::to_bytes(body, MAX_BODY)).await {
+        Ok(Ok(b)) => b,
+        Ok(Err(_)) => return refuse(StatusCode::PAYLOAD_TOO_LARGE, "a command body is at most 32 KiB"),
+        Err(_) => return refuse(StatusCode::REQUEST_TIMEOUT, "the request's body took too long to arrive"),
+    };
     let line = match serde_json::from_slice::<Value>(&body).ok().and_then(|v| v["command"].as_str().map(String::from)) {
         Some(l) => l,
         None => return refuse(StatusCode::BAD_REQUEST, "expected {\"command\": \"a console command line\"}"),

@@ -9,6 +9,8 @@
 
 mod history;
 mod http;
+mod http_conn;
+mod http_guard;
 mod json;
 mod pictures;
 mod plant;
@@ -31,6 +33,10 @@ use tokio::sync::{broadcast, oneshot};
 
 pub use plant::PUBLISH_EVERY;
 
+/// The most scans one console line may run on a served plant (C0013):
+/// the line runs on the plant's thread, and every client waits for it.
+pub const MAX_SCANS_PER_LINE: u64 = 100_000;
+
 /// How fast simulated time goes: a multiple of the wall clock, or as fast
 /// as the machine runs it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,8 +49,12 @@ pub enum Speed {
 pub struct Config {
     pub addr: SocketAddr,
     pub speed: Speed,
-    /// Every request must carry it (required off loopback).
+    /// Every request must carry it (required off loopback; an empty or
+    /// blank one is refused at the start).
     pub token: Option<String>,
+    /// Names besides the loopback ones and the bound address that a
+    /// request's `Host` may give (`--allow-host`).
+    pub allow_hosts: Vec<String>,
     pub allow_writes: bool,
     /// Stop when simulated time reaches this (`--for`).
     pub until_us: Option<u64>,
@@ -75,6 +85,7 @@ impl Config {
             addr,
             speed: Speed::Times(1.0),
             token: None,
+            allow_hosts: Vec::new(),
             allow_writes: false,
             until_us: None,
             state: None,
@@ -187,6 +198,9 @@ impl Handle {
 pub enum StartError {
     /// Off loopback without a token.
     NeedsToken(SocketAddr),
+    /// `--token ''` (or blanks): what an unset variable gives, and a
+    /// token anyone can send.
+    BlankToken,
     Bind(SocketAddr, std::io::Error),
     /// `--modbus` over a database with no `"modbus"` map.
     NoModbusMap,
@@ -210,6 +224,10 @@ impl std::fmt::Display for StartError {
                     "{a} is not a loopback address: serving it needs --token TOKEN, which every request must carry"
                 )
             }
+            StartError::BlankToken => write!(
+                f,
+                "--token is empty or blank, which any client can send: give a secret (is the variable it came from unset?)"
+            ),
             StartError::Bind(a, e) => write!(f, "can't listen on {a}: {e}"),
             StartError::NoModbusMap => {
                 write!(f, "--modbus needs a \"modbus\" register map in the database (docs/modbus.md)")
@@ -232,6 +250,9 @@ pub fn start(plant: linc_driver::plant::Plant, cfg: Config) -> Result<Server, Pr
 /// Starts the plant thread and the HTTP server over `console`'s strategy;
 /// `wants` are the programs its blocks name, with sources relative to `dir`.
 fn start_console(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) -> Result<Server, StartError> {
+    if cfg.token.as_deref().is_some_and(|t| t.trim().is_empty()) {
+        return Err(StartError::BlankToken);
+    }
     if !cfg.addr.ip().is_loopback() && cfg.token.is_none() {
         return Err(StartError::NeedsToken(cfg.addr));
     }
@@ -246,6 +267,7 @@ fn start_console(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) 
     let modbus = cfg.modbus.map(bind).transpose()?;
     let modbus_addr = modbus.as_ref().map(|m| m.1);
     console.can_save = cfg.state.is_some();
+    console.max_scans = Some(MAX_SCANS_PER_LINE);
     let pictures = pictures::load(dir, wants, &console.strategy);
     let (events, _) = broadcast::channel(256);
     let status = Arc::new(Mutex::new(serde_json::Value::Null));
@@ -293,7 +315,8 @@ fn start_console(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) 
         })
         .map_err(|e| StartError::Bind(addr, e))?;
     let (closing, closed) = oneshot::channel();
-    let state = http::AppState::new(asks.clone(), events, status, cfg.token);
+    let hosts = http_guard::Hosts::new(addr, &cfg.allow_hosts);
+    let state = http::AppState::new(asks.clone(), events, status, (cfg.token, hosts, cfg.limits));
     let wires = http::Wires {
         roc: roc.map(|(l, _, me)| (l, me)),
         modbus: modbus.zip(unit).map(|((l, _), u)| (l, u)),

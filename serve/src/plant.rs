@@ -66,7 +66,9 @@ pub struct Plant {
     /// A scan is late when it starts this much after its instant.
     tolerance: Duration,
     pub late: u64,
-    pub scans: u64,
+    /// The strategy's instant count when serving began: scans are counted
+    /// from it, whoever ran them (the clock, or an `ADVANCE`).
+    first_instant: u64,
     /// The most requests that were waiting when a scan ended (answered
     /// before the plant goes on): the work clients can queue ahead of the
     /// next scan, which the isolation rules bound to one request per
@@ -103,13 +105,14 @@ impl Plant {
             Speed::Max => Duration::MAX,
         };
         let last = console.strategy.store.cells.clone();
+        let first_instant = console.strategy.instants();
         let mut p = Plant {
             console,
             pictures,
             clock: RealTime { speed, wall: Instant::now(), sim },
             tolerance,
             late: 0,
-            scans: 0,
+            first_instant,
             busiest: 0,
             batch: Vec::new(),
             until,
@@ -142,7 +145,6 @@ impl Plant {
                         self.late += 1;
                     }
                     let failures = s.run_due(trace.as_deref_mut());
-                    self.scans += 1;
                     drop(failures); // they are in the error status the page shows
                     if !self.answer_waiting(asks, trace.as_deref_mut()) {
                         return;
@@ -271,9 +273,14 @@ impl Plant {
         Reply::Done { replies, failures }
     }
 
+    /// Scans run while serving: by the clock and by `ADVANCE`/`SCAN` lines.
+    fn scans(&self) -> u64 {
+        self.console.strategy.instants() - self.first_instant
+    }
+
     /// What the run leaves, once it has stopped.
     pub fn finish(self) -> crate::Finished {
-        let (scans, late, busiest) = (self.scans, self.late, self.busiest);
+        let (scans, late, busiest) = (self.scans(), self.late, self.busiest);
         crate::Finished { console: self.console, scans, late, busiest, trace_error: None }
     }
 
@@ -376,7 +383,7 @@ impl Plant {
             Speed::Times(k) => json!(k),
         };
         json!({"now": s.now_text(), "elapsed": s.elapsed_us() as f64 / 1e6, "speed": speed,
-               "scans": self.scans, "late_scans": self.late, "halted": s.halted(),
+               "scans": self.scans(), "late_scans": self.late, "halted": s.halted(),
                "writes": self.allow_writes, "error": error, "programs": programs})
     }
 }

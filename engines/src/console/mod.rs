@@ -63,6 +63,10 @@ pub struct Console {
     pub can_save: bool,
     /// The state `SAVE` asked for, until the caller writes it.
     saved: Option<Vec<u8>>,
+    /// The most scans one `ADVANCE` may run, where the caller bounds it
+    /// (`linc serve`: a line runs on the plant's thread, and every client
+    /// waits for it).
+    pub max_scans: Option<u64>,
 }
 
 fn not_found(why: String) -> ConsoleError {
@@ -71,7 +75,7 @@ fn not_found(why: String) -> ConsoleError {
 
 impl Console {
     pub fn new(strategy: Strategy) -> Console {
-        Console { strategy, failures: Vec::new(), can_save: false, saved: None }
+        Console { strategy, failures: Vec::new(), can_save: false, saved: None, max_scans: None }
     }
 
     /// The retentive state the last `SAVE` took, for the caller to write
@@ -129,6 +133,21 @@ impl Console {
         }
     }
 
+    /// Refuses an `ADVANCE` that would run more scans of the fastest task
+    /// than [`Console::max_scans`] (counted before anything runs).
+    fn within_limit(&self, us: u64) -> Result<(), ConsoleError> {
+        let (Some(max), Some(period)) = (self.max_scans, self.strategy.fastest_period_us()) else { return Ok(()) };
+        let scans = us / period.max(1);
+        if scans <= max {
+            return Ok(());
+        }
+        let most = max.saturating_mul(period) as f64 / 1e6;
+        Err(ConsoleError::new(
+            Code::C0013,
+            format!("this would run {scans} scans; a served plant runs at most {max} a line (ADVANCE {most}s here): advance in steps, or use linc run"),
+        ))
+    }
+
     fn scan_us(&self) -> Result<u64, ConsoleError> {
         self.strategy.fastest_period_us().ok_or_else(|| {
             ConsoleError::new(Code::C0006, "the strategy has no task to scan: use ADVANCE to move the clock")
@@ -146,7 +165,10 @@ impl Console {
             Command::Sequence { block, control } => self.sequence(&block, control),
             Command::HoldStep { block, step, hold } => self.hold_step(&block, &step, hold),
             Command::ForceTrans { block, transition, force } => self.force_trans(&block, &transition, force),
-            Command::Advance(us) => Ok(self.advance(us, trace)),
+            Command::Advance(us) => {
+                self.within_limit(us)?;
+                Ok(self.advance(us, trace))
+            }
             Command::Scan => {
                 let us = self.scan_us()?;
                 Ok(self.advance(us, trace))

@@ -140,6 +140,9 @@ pub struct Strategy {
     /// Runtime errors of this `run_for`, in order (entered or not).
     failures: Vec<crate::RuntimeError>,
     now_us: u64,
+    /// Instants run since the strategy was built (each runs every task
+    /// due then): what `linc serve` counts as scans, whoever ran them.
+    instants: u64,
     start: f64,
     /// The ROC device's clockwork (TDO outputs, history logger).
     device: fst::Device,
@@ -236,6 +239,7 @@ impl Strategy {
             halted: false,
             failures: Vec::new(),
             now_us: 0,
+            instants: 0,
             start,
             device,
         };
@@ -322,7 +326,14 @@ impl Strategy {
         std::mem::take(&mut self.failures)
     }
 
+    /// How many instants have run since the strategy was built (each one
+    /// runs every task due then), by `run_for` and `run_due` alike.
+    pub fn instants(&self) -> u64 {
+        self.instants
+    }
+
     fn run_instant(&mut self, next: u64, mut trace: Option<&mut Trace>) {
+        self.instants += 1;
         self.set_time(next);
         self.device_tick(trace.as_deref_mut());
         self.trace_ignored(usize::MAX, 0, trace.as_deref_mut());

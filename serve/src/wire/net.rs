@@ -11,7 +11,6 @@
 
 use crate::Ask;
 use std::net::SocketAddr;
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 use tokio::io::{AsyncRead, AsyncReadExt, AsyncWrite, AsyncWriteExt};
@@ -43,23 +42,134 @@ impl Default for Limits {
 pub type Log = Arc<dyn Fn(String) + Send + Sync>;
 
 /// Refusals over the cap are logged at most once a second, with a count,
-/// so a flood of connections can't flood the log.
+/// so a flood of connections can't flood the log; the ones not yet logged
+/// when a burst ends are logged a second after the last line, so no count
+/// is lost. Owned by one accept loop.
 #[derive(Default)]
 struct Refusals {
-    count: AtomicU64,
-    last: std::sync::Mutex<Option<Instant>>,
+    /// Refused and not yet logged, and the latest of them.
+    pending: u64,
+    peer: Option<SocketAddr>,
+    /// When the last line was logged.
+    logged: Option<Instant>,
 }
 
 impl Refusals {
-    fn note(&self, what: &str, peer: SocketAddr, cap: usize, log: &Log) {
-        let n = self.count.fetch_add(1, Ordering::Relaxed) + 1;
-        let Ok(mut last) = self.last.lock() else { return };
-        if last.is_none_or(|t| t.elapsed() >= Duration::from_secs(1)) {
-            *last = Some(Instant::now());
-            self.count.store(0, Ordering::Relaxed);
-            log(format!("{what}: refused {peer} and {} more: {cap} clients is the limit", n - 1));
+    fn note(&mut self, peer: SocketAddr, how: &Listen) {
+        self.pending += 1;
+        self.peer = Some(peer);
+        if self.logged.is_none_or(|t| t.elapsed() >= Duration::from_secs(1)) {
+            self.flush(how);
         }
     }
+
+    /// When the refusals not yet logged are due to be.
+    fn due(&self) -> Option<Instant> {
+        let logged = self.logged?;
+        (self.pending > 0).then(|| logged + Duration::from_secs(1))
+    }
+
+    fn flush(&mut self, how: &Listen) {
+        let Some(peer) = self.peer.filter(|_| self.pending > 0) else { return };
+        let (what, cap) = (how.what, how.limits.max_clients);
+        (how.log)(format!("{what}: refused {peer} and {} more: {cap} clients is the limit", self.pending - 1));
+        self.pending = 0;
+        self.logged = Some(Instant::now());
+    }
+}
+
+/// How one server listens: its name in the log, what a client over the
+/// cap is sent before it is closed, its limits and its log.
+#[derive(Clone)]
+pub(crate) struct Listen {
+    pub what: &'static str,
+    pub busy: &'static [u8],
+    /// Whether closing waits (up to [`Limits::request`]) for the clients
+    /// to finish what they are in: HTTP connections finish their request
+    /// and end; a wire client is simply dropped.
+    pub drain: bool,
+    pub limits: Limits,
+    pub log: Log,
+}
+
+/// The accept loop every server shares (ROC, Modbus, HTTP): clients are
+/// served by `serve`, each in a task of its own, while fewer than the cap
+/// are connected; one over the cap is sent `busy` (if the socket takes it
+/// at once), closed and counted. Returns when `closing` turns true (and,
+/// with [`Listen::drain`], the clients have finished).
+pub(crate) async fn accept<F, Fut>(listener: TcpListener, how: Listen, mut closing: watch::Receiver<bool>, serve: F)
+where
+    F: Fn(tokio::net::TcpStream, SocketAddr) -> Fut,
+    Fut: std::future::Future<Output = ()> + Send + 'static,
+{
+    let permits = Arc::new(Semaphore::new(how.limits.max_clients));
+    let mut refusals = Refusals::default();
+    loop {
+        let due = refusals.due();
+        let accepted = tokio::select! {
+            a = listener.accept() => a,
+            () = sleep_until(due), if due.is_some() => {
+                refusals.flush(&how);
+                continue;
+            }
+            () = until_closed(&mut closing) => {
+                refusals.flush(&how);
+                if how.drain {
+                    let all = permits.acquire_many(how.limits.max_clients as u32);
+                    let _ = tokio::time::timeout(how.limits.request, all).await;
+                }
+                return;
+            }
+        };
+        let Ok((stream, peer)) = accepted else { continue };
+        match permits.clone().try_acquire_owned() {
+            Ok(permit) => {
+                let task = serve(stream, peer);
+                tokio::spawn(async move {
+                    task.await;
+                    drop(permit);
+                });
+            }
+            Err(_) => {
+                if !how.busy.is_empty() {
+                    let _ = stream.try_write(how.busy);
+                }
+                refusals.note(peer, &how);
+            }
+        }
+    }
+}
+
+/// Returns when `closing` is true (or its sender is gone).
+pub(crate) async fn until_closed(closing: &mut watch::Receiver<bool>) {
+    while !*closing.borrow_and_update() {
+        if closing.changed().await.is_err() {
+            return;
+        }
+    }
+}
+
+async fn sleep_until(due: Option<Instant>) {
+    if let Some(t) = due {
+        tokio::time::sleep_until(t).await;
+    }
+}
+
+/// Accepts clients of protocol `W`, each served by the connection loop;
+/// `wire` makes each connection's protocol state.
+pub(crate) async fn accept_wire<W: Wire>(
+    listener: TcpListener,
+    plant: (std::sync::mpsc::Sender<Ask>, Limits, Log),
+    closing: watch::Receiver<bool>,
+    wire: impl Fn() -> W,
+) {
+    let (asks, limits, log) = plant;
+    let how = Listen { what: W::NAME, busy: b"", drain: false, limits, log: log.clone() };
+    accept(listener, how, closing, move |stream, peer| {
+        let _ = stream.set_nodelay(true);
+        client(stream, peer, wire(), (asks.clone(), limits, log.clone()))
+    })
+    .await
 }
 
 /// What a protocol plugs into the connection loop.
@@ -93,39 +203,6 @@ pub(crate) enum Next<A> {
     Skip,
     /// A stream that can't go on: closed, and logged with why.
     Close(String),
-}
-
-/// Accepts clients of protocol `W` until `closing` turns true, each served
-/// by the connection loop in a task of its own while fewer than the cap
-/// are connected; `wire` makes each connection's protocol state.
-pub(crate) async fn accept<W: Wire>(
-    listener: TcpListener,
-    plant: (std::sync::mpsc::Sender<Ask>, Limits, Log),
-    mut closing: watch::Receiver<bool>,
-    wire: impl Fn() -> W,
-) {
-    let (asks, limits, log) = plant;
-    let what = W::NAME;
-    let permits = Arc::new(Semaphore::new(limits.max_clients));
-    let refusals = Refusals::default();
-    loop {
-        let accepted = tokio::select! {
-            a = listener.accept() => a,
-            _ = closing.changed() => return,
-        };
-        let Ok((stream, peer)) = accepted else { continue };
-        match permits.clone().try_acquire_owned() {
-            Ok(permit) => {
-                let _ = stream.set_nodelay(true);
-                let task = client(stream, peer, wire(), (asks.clone(), limits, log.clone()));
-                tokio::spawn(async move {
-                    task.await;
-                    drop(permit);
-                });
-            }
-            Err(_) => refusals.note(what, peer, limits.max_clients, &log),
-        }
-    }
 }
 
 /// Serves one client: each request the protocol takes off the stream is
@@ -327,22 +404,36 @@ mod tests {
     }
 
     #[tokio::test(start_paused = true)]
-    async fn refusals_over_the_cap_are_logged_at_most_once_a_second() {
+    async fn refusals_over_the_cap_are_logged_at_most_once_a_second_and_none_is_lost() {
         let lines = Arc::new(Mutex::new(Vec::new()));
         let kept = lines.clone();
-        let log: Log = Arc::new(move |l| kept.lock().unwrap().push(l));
-        let r = Refusals::default();
+        let how = Listen {
+            what: "roc",
+            busy: b"",
+            drain: false,
+            limits: limits(),
+            log: Arc::new(move |l| kept.lock().unwrap().push(l)),
+        };
+        let mut r = Refusals::default();
         let peer: SocketAddr = "127.0.0.1:6000".parse().unwrap();
         for _ in 0..100 {
-            r.note("roc", peer, 4, &log);
+            r.note(peer, &how);
             tokio::time::sleep(Duration::from_millis(15)).await;
         }
-        // 1.5 s of refusals: the first logged at once, the rest a second later.
+        // 1.5 s of refusals: the first logged at once, 67 more a second
+        // later, and the 32 of the burst's last half second when their
+        // second has passed.
+        let due = r.due().expect("refusals wait to be logged");
+        assert_eq!(due, Instant::now() + Duration::from_millis(505), "a second after the line at 1,005 ms");
+        tokio::time::sleep_until(due).await;
+        r.flush(&how);
+        assert_eq!(r.due(), None);
         assert_eq!(
             *lines.lock().unwrap(),
             [
                 "roc: refused 127.0.0.1:6000 and 0 more: 4 clients is the limit",
-                "roc: refused 127.0.0.1:6000 and 66 more: 4 clients is the limit"
+                "roc: refused 127.0.0.1:6000 and 66 more: 4 clients is the limit",
+                "roc: refused 127.0.0.1:6000 and 31 more: 4 clients is the limit"
             ]
         );
     }
