@@ -188,3 +188,24 @@ fn a_block_whose_state_an_action_cannot_reproduce_is_refused() {
         assert!(err.contains(&format!("plant.json:{line}:{column}")), "at {line}:{column}:\n{err}");
     }
 }
+
+#[test]
+fn an_exit_field_that_cannot_hold_the_way_out_is_refused() {
+    let path = "examples/fst/branching.csv";
+    for (field, why) in [("FST 1.IP", "read-only"), ("FST 1.MSG1", "not a number"), ("NOPE 1.X", "no block")] {
+        let o = common::linc(&[
+            "fst",
+            "to-sfc",
+            path,
+            "--db",
+            "examples/fst/plant.json",
+            "--block",
+            "FST 2",
+            "--exit",
+            field,
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{field}: {}", common::stdout(&o));
+        let err = common::stderr(&o);
+        assert!(err.contains("error[E0434]") && err.contains("--exit") && err.contains(why), "{field}: {err}");
+    }
+}

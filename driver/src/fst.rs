@@ -117,7 +117,14 @@ pub fn to_st(path: &Path, db: &Path, block: Option<&str>) -> Result<String, Prob
 /// its way in.
 pub fn to_sfc(path: &Path, db: &Path, block: Option<&str>, exit: Option<&str>) -> Result<String, Problems> {
     let p = prepare(path, db, block)?;
-    let exit = exit.map(|f| format!("[{f}]"));
-    let target = fst::translate::SfcTarget { block: &p.block, steps_per_cycle: p.steps, exit: exit.as_deref() };
+    let exit = match exit {
+        None => None,
+        Some(f) => {
+            let db = crate::database::load(db)?;
+            let field = fst::check::field_param(&db.db, f.trim_matches(|c| c == '[' || c == ']'));
+            Some(field.map_err(|why| Problems::usage(Code::E0434, format!("--exit {f}: {why}")))?)
+        }
+    };
+    let target = fst::translate::SfcTarget { block: &p.block, steps_per_cycle: p.steps, exit: exit.as_ref() };
     fst::translate::to_sfc(&p.table, &p.checked, &target).map_err(|ds| p.source.problems(ds))
 }

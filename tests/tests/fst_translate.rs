@@ -217,7 +217,8 @@ fn translated(table: &str, db: &Database, mode: Mode) -> Result<(String, Vec<u8>
             fst::translate::to_st(&read, &checked, &target)
         }
         Mode::Sfc => {
-            let target = fst::translate::SfcTarget { block: "FST 1", steps_per_cycle: 20, exit: Some("[SFP 9.DATA9]") };
+            let exit = fst::check::field_param(db, "SFP 9.DATA9").expect("a free numeric field");
+            let target = fst::translate::SfcTarget { block: "FST 1", steps_per_cycle: 20, exit: Some(&exit) };
             fst::translate::to_sfc(&read, &checked, &target)
         }
     };
@@ -412,7 +413,8 @@ fn as_sequence(rows: &[&str], exit: Option<&str>) -> Result<String, Vec<&'static
     let db = Database::from_json(&database(&mut Rng::new(0), None)).expect("database");
     let (read, _) = fst::reader::read(&table);
     let (checked, _) = fst::check::check(&read, Some(&db));
-    let target = fst::translate::SfcTarget { block: "FST 1", steps_per_cycle: 20, exit };
+    let exit = exit.map(|f| fst::check::field_param(&db, f.trim_matches(|c| c == '[' || c == ']')).expect("a field"));
+    let target = fst::translate::SfcTarget { block: "FST 1", steps_per_cycle: 20, exit: exit.as_ref() };
     fst::translate::to_sfc(&read, &checked.expect("checked"), &target)
         .map_err(|ds| ds.iter().map(|d| d.code.as_str()).collect())
 }
@@ -426,6 +428,28 @@ fn a_sequence_has_a_step_where_each_cycle_can_start() {
     insta::assert_snapshot!("fst_to_sfc_wait", sfc);
     // A WT whose time is a parameter has no transition to test it.
     assert_eq!(as_sequence(&[",WT,\"FST 1,R1\",", ",END,,"], None), Err(vec!["E0430"]));
+}
+
+#[test]
+fn a_table_that_stops_itself_has_no_sequence() {
+    // SAV 0 to its own RUNFLG stops the table; a sequence would run on.
+    let rows = [",VAL,\"SFP 1,DATA1\",", ",>,50,STOP", ",END,,", "STOP,VAL,0,", ",SAV,\"FST 1,RUNFLG\",", ",WT,1,"];
+    assert_eq!(as_sequence(&rows, Some("[SFP 1.DATA9]")), Err(vec!["E0430"]));
+    // Its other fields are ordinary ones.
+    assert!(as_sequence(&[",VAL,0,", ",SAV,\"FST 1,R5\",", ",END,,"], None).is_ok());
+}
+
+#[test]
+fn the_exit_field_is_writable_numeric_and_not_the_table_s() {
+    let rows = [",VAL,\"SFP 1,DATA9\",", ",>,50,HIGH", ",END,,", "HIGH,WT,2.5,", ",WT,1,"];
+    assert_eq!(as_sequence(&rows, Some("[SFP 1.DATA9]")), Err(vec!["E0434"]), "the table reads it");
+    assert!(as_sequence(&rows, Some("[SFP 1.DATA8]")).is_ok());
+    let db = Database::from_json(&database(&mut Rng::new(0), None)).expect("database");
+    let refused = |f: &str| fst::check::field_param(&db, f).expect_err(f);
+    assert!(refused("FST 1.IP").contains("read-only"));
+    assert!(refused("FST 1.MSG1").contains("text, not a number"));
+    assert!(refused("SFP 1.NOPE").contains("no field"));
+    assert!(refused("SFP 1.DATA1.Bit0").contains("bit") || refused("SFP 1.DATA1.Bit0").contains("no bit"));
 }
 
 /// The differential can fail: translations changed by one token each — a

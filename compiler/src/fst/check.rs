@@ -380,6 +380,25 @@ impl Checker<'_> {
     }
 }
 
+/// The field `BLOCK.FIELD` (or an alias of one) names, as the table's
+/// checker would see it, for a field given on the command line
+/// (`linc fst to-sfc --exit`); `Err` says what is wrong with it: no such
+/// field, a bit, a field that is read-only or not numeric.
+pub fn field_param(db: &Database, path: &str) -> Result<Param, String> {
+    let (block, field, bit) = db.field_path(path)?;
+    if bit.is_some() {
+        return Err(format!("`{path}` is a bit; name a whole numeric field"));
+    }
+    let p = param(db, block, field, path);
+    if !matches!(p.class, Class::Real | Class::Int | Class::Bits8 | Class::Bits16) {
+        return Err(format!("`{path}` is {}, not a number", class_name(p.class)));
+    }
+    if p.readonly {
+        return Err(format!("`{path}` is read-only"));
+    }
+    Ok(p)
+}
+
 fn param(db: &Database, block: usize, field: usize, written: &str) -> Param {
     let template = db.block_template(block);
     let (name, class, readonly) = match template.fields.get(field) {
@@ -446,6 +465,7 @@ fn class_name(class: Class) -> &'static str {
         Class::Time => "a time",
         Class::Bseq => "a byte sequence",
         Class::Alarms => "alarms",
+        Class::Bool => "a BOOL",
         _ => "a number",
     }
 }

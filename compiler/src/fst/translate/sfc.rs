@@ -10,16 +10,18 @@
 
 use super::{check_budget, longest, post_dominators, post_order, resumes_after, st, Emit, Graph, Node};
 use crate::diag::Diagnostic;
-use crate::fst::{Arg, Checked, Cmd, Table};
+use crate::fst::commands::Kind;
+use crate::fst::{Arg, Checked, Cmd, Param, Step, Table};
 use linc_format::Code;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// What the translation is for (see [`super::Target`]), and the field a
-/// step that leaves in several ways records its way in.
+/// step that leaves in several ways records its way in (resolved in the
+/// database: [`crate::fst::check::field_param`]).
 pub struct SfcTarget<'a> {
     pub block: &'a str,
     pub steps_per_cycle: u32,
-    pub exit: Option<&'a str>,
+    pub exit: Option<&'a Param>,
 }
 
 /// One place a cycle starts from: the steps it can run (successors
@@ -84,10 +86,15 @@ fn regions(
 pub fn to_sfc(table: &Table, checked: &Checked, target: &SfcTarget) -> Result<String, Vec<Diagnostic>> {
     let g = Graph::of(checked, true);
     let regions = regions(&g, table, checked, target.steps_per_cycle)?;
+    stops_itself(table, checked, &regions, target.block)?;
     let several = regions.iter().find(|(_, r)| r.exits.len() > 1).map(|(&start, _)| start);
+    let exit_text = target.exit.map(|p| format!("[{}.{}]", p.block, p.field));
     let exit = match (several, target.exit) {
         (Some(start), None) => return Err(vec![needs_exit_field(table, start)]),
-        (Some(_), Some(f)) => Some(f),
+        (Some(_), Some(f)) => {
+            exit_usable(table, checked, f)?;
+            exit_text.as_deref()
+        }
         (None, _) => None,
     };
     let mut out = header(target, checked.steps.len());
@@ -121,6 +128,77 @@ pub fn to_sfc(table: &Table, checked: &Checked, target: &SfcTarget) -> Result<St
         out.push_str(&w.finish());
     }
     Ok(out)
+}
+
+/// The parameters a step writes: SAV's target, a history index the
+/// command advances, an output point.
+fn written(step: &Step) -> impl Iterator<Item = &Param> {
+    let (k1, k2) = step.cmd.args();
+    let writes = |k: Kind| matches!(k, Kind::Out | Kind::Index | Kind::AoPoint | Kind::DoPoint);
+    fn param(a: &Arg) -> Option<&Param> {
+        if let Arg::Param(p) = a {
+            Some(p)
+        } else {
+            None
+        }
+    }
+    let first = param(&step.arg1).filter(|_| writes(k1));
+    let second = param(&step.arg2).filter(|_| writes(k2));
+    first.into_iter().chain(second)
+}
+
+fn names(p: &Param, block: &str, field: &str) -> bool {
+    p.block.eq_ignore_ascii_case(block) && p.field.eq_ignore_ascii_case(field)
+}
+
+/// E0430 at each step that writes the table's own RUNFLG: the table stops
+/// itself there, and a sequence does not consult RUNFLG (it runs until its
+/// SFC_CON block stops it), so the translation would go on running.
+fn stops_itself(
+    table: &Table,
+    checked: &Checked,
+    regions: &BTreeMap<usize, Region>,
+    block: &str,
+) -> Result<(), Vec<Diagnostic>> {
+    let reached: BTreeSet<usize> = regions.values().flat_map(|r| r.order.iter().copied()).collect();
+    let refused: Vec<Diagnostic> = reached
+        .into_iter()
+        .filter(|&n| checked.steps.get(n).is_some_and(|s| written(s).any(|p| names(p, block, "RUNFLG"))))
+        .map(|n| {
+            let cmd = checked.steps[n].cmd.text();
+            Diagnostic::error(Code::E0430, format!("step {n} (`{cmd}`) has no faithful sequence translation"), super::at(table, n))
+                .label("the table stops itself here by writing RUNFLG; a sequence does not consult RUNFLG")
+                .help("stop the sequence from outside (its SFC_CON block), or translate with `linc fst to-st`, whose action runs only while RUNFLG is 1")
+        })
+        .collect();
+    if refused.is_empty() {
+        Ok(())
+    } else {
+        Err(refused)
+    }
+}
+
+/// E0434 when the `--exit` field is one the table itself reads or writes:
+/// the sequence's records of where it goes on would change what the table
+/// does, or the table would overwrite them.
+fn exit_usable(table: &Table, checked: &Checked, exit: &Param) -> Result<(), Vec<Diagnostic>> {
+    let uses = |s: &Step| {
+        [&s.arg1, &s.arg2].into_iter().any(|a| matches!(a, Arg::Param(p) if names(p, &exit.block, &exit.field)))
+    };
+    let used: Vec<Diagnostic> = (checked.steps.iter().enumerate())
+        .filter(|(_, s)| uses(s))
+        .map(|(n, _)| {
+            let msg = format!("the exit field {}.{} is used by the table", exit.block, exit.field);
+            Diagnostic::error(Code::E0434, msg, super::at(table, n))
+                .label("the table uses it here; the sequence would write where the table reads and writes")
+                .help("name a numeric field that nothing else uses with --exit BLOCK.FIELD")
+        })
+        .collect();
+    if used.is_empty() {
+        Ok(())
+    } else {
+        Err(used)
+    }
 }
 
 fn needs_exit_field(table: &Table, start: usize) -> Diagnostic {
