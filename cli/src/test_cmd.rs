@@ -73,7 +73,8 @@ fn merge(o: &Options, r: &Reporter) -> u8 {
         .map_err(Problems::from)
         .and_then(|()| linc_driver::coverage::merge_files(&o.merge_coverage))
         .and_then(|sum| {
-            linc_driver::files::write_atomic(out, sum.to_lcov().as_bytes()).map(|()| sum).map_err(Problems::from)
+            let text = sum.to_lcov()?;
+            linc_driver::files::write_atomic(out, text.as_bytes()).map(|()| sum).map_err(Problems::from)
         });
     match sum {
         Ok(sum) => {
@@ -177,7 +178,7 @@ fn write_coverage(format: Format, out: Option<&Path>, outcomes: &[Outcome]) -> R
     let mut all = Coverage::default();
     outcomes.iter().filter_map(|o| o.coverage.as_ref()).for_each(|c| all.merge(c));
     let text = match format {
-        Format::Lcov => all.to_lcov(),
+        Format::Lcov => all.to_lcov()?,
         Format::Cobertura => all.to_cobertura(),
         Format::Summary => all.summary(),
     };

@@ -107,6 +107,12 @@ fn merged_coverage_files_add_up_to_the_same_bytes_in_any_order() {
         common::linc(&["test", "--merge-coverage", &p("bad.info"), "-o", &p("out.info"), "--message-format", "short"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(common::stderr(&o).contains("bad.info:3:1: error[E0912]"), "{}", common::stderr(&o));
+    // A line number past 32 bits is refused, not cut into line 6's count.
+    std::fs::write(dir.join("wide.info"), "SF:plant/sim.stx\nDA:4294967302,9\nend_of_record\n").unwrap();
+    let o = common::linc(&["test", "--merge-coverage", &p("a.info"), &p("wide.info"), "-o", &p("w.info")]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(common::stderr(&o).contains("error[E0912]") && common::stderr(&o).contains("line number"));
+    assert!(!dir.join("w.info").exists());
     // Never over an input.
     let o = common::linc(&["test", "--merge-coverage", &p("a.info"), "-o", &p("a.info")]);
     assert_eq!(o.status.code(), Some(2));

@@ -81,8 +81,15 @@ impl Coverage {
         }
     }
 
-    /// The lcov tracefile.
-    pub fn to_lcov(&self) -> String {
+    /// The lcov tracefile; E0912 for a source or function name lcov can't
+    /// hold (a line break in one would start a forged record).
+    pub fn to_lcov(&self) -> Result<String, Problems> {
+        let names = self.files.iter().flat_map(|(path, f)| std::iter::once(path).chain(f.functions.keys()));
+        if let Some(bad) = names.into_iter().find(|n| n.chars().any(char::is_control)) {
+            let why =
+                format!("{bad:?} holds a line break or another control character, which an lcov record can't hold");
+            return Err(Problems::finding(Diagnostic::command(Code::E0912, why)));
+        }
         let mut out = String::new();
         for (path, f) in &self.files {
             out.push_str(&format!("TN:\nSF:{path}\n"));
@@ -106,7 +113,7 @@ impl Coverage {
             let lh = f.lines.values().filter(|h| **h > 0).count();
             out.push_str(&format!("LF:{}\nLH:{lh}\nend_of_record\n", f.lines.len()));
         }
-        out
+        Ok(out)
     }
 
     /// Reads an lcov tracefile (one linc wrote, or any with the same
@@ -119,17 +126,25 @@ impl Coverage {
             let bad = |why: &str| (i + 1, format!("{why}: `{line}`"));
             let (tag, rest) = line.split_once(':').unwrap_or((line, ""));
             let num = |s: &str| s.trim().parse::<u64>().map_err(|_| bad("not a number"));
+            // Lines count from 1; blocks and branches from 0; each fits
+            // the 32 bits linc keeps (never cut into another line's).
+            let line_no = |s: &str| match s.trim().parse::<u32>() {
+                Ok(n) if n > 0 => Ok(n),
+                _ => Err(bad("not a line number from 1 to 4294967295")),
+            };
+            let index = |s: &str| s.trim().parse::<u32>().map_err(|_| bad("not a number from 0 to 4294967295"));
             let file = |cov: &mut Coverage, current: &Option<String>| -> Result<FileCoverage, (usize, String)> {
                 let path = current.as_ref().ok_or_else(|| bad("a record before SF"))?;
                 Ok(cov.files.remove(path).unwrap_or_default())
             };
             match tag {
                 "TN" | "FNF" | "FNH" | "BRF" | "BRH" | "LF" | "LH" | "" => {}
+                "SF" if rest.is_empty() => return Err(bad("SF needs the source's name")),
                 "SF" => current = Some(rest.to_string()),
                 "end_of_record" => current = None,
                 "FN" => {
                     let (l, name) = rest.split_once(',').ok_or_else(|| bad("FN needs line,name"))?;
-                    fn_lines.insert(name.to_string(), num(l)? as u32);
+                    fn_lines.insert(name.to_string(), line_no(l)?);
                 }
                 "FNDA" | "DA" | "BRDA" => {
                     let mut f = file(&mut cov, &current)?;
@@ -141,11 +156,11 @@ impl Coverage {
                             e.1 = e.1.saturating_add(num(h)?);
                         }
                         ("DA", [l, h, ..]) => {
-                            let e = f.lines.entry(num(l)? as u32).or_default();
+                            let e = f.lines.entry(line_no(l)?).or_default();
                             *e = e.saturating_add(num(h)?);
                         }
                         ("BRDA", [l, b, br, t]) => {
-                            let key = (num(l)? as u32, num(b)? as u32, num(br)? as u32);
+                            let key = (line_no(l)?, index(b)?, index(br)?);
                             let t = if *t == "-" { None } else { Some(num(t)?) };
                             let e = f.branches.entry(key).or_insert(None);
                             *e = add_opt(*e, t);
@@ -380,7 +395,7 @@ mod tests {
 
     #[test]
     fn lcov_is_read_back_by_an_independent_parser_and_by_ours() {
-        let text = sample().to_lcov();
+        let text = sample().to_lcov().expect("lcov");
         let report = lcov::Report::from_reader(lcov::Reader::new(text.as_bytes())).expect("an lcov parser reads it");
         let (key, file) = report.sections.iter().next().expect("one section");
         assert_eq!(key.source_file, std::path::PathBuf::from("plant/sim.stx"));
@@ -400,10 +415,36 @@ mod tests {
         ab.merge(&b);
         let mut ba = b.clone();
         ba.merge(&a);
-        assert_eq!(ab.to_lcov(), ba.to_lcov());
+        assert_eq!(ab.to_lcov().expect("lcov"), ba.to_lcov().expect("lcov"));
         let f = &ab.files["plant/sim.stx"];
         assert_eq!((f.lines[&1], f.branches[&(4, 0, 0)], f.branches[&(4, 0, 1)]), (6, Some(5), None));
         assert_eq!(f.functions["Tank"], (1, 6));
+    }
+
+    #[test]
+    fn numbers_that_do_not_fit_are_refused_not_cut_into_other_lines() {
+        // 2^32 + 1 would be line 1 cut to 32 bits.
+        for bad in ["DA:4294967297,5", "DA:0,1", "DA:-1,1", "BRDA:1,4294967296,0,1", "FN:4294967297,Tank"] {
+            let text = format!("SF:a.st\n{bad}\nend_of_record\n");
+            let (line, why) = Coverage::from_lcov(&text).expect_err(bad);
+            assert_eq!(line, 2, "{bad}: {why}");
+        }
+        let max = Coverage::from_lcov("SF:a.st\nDA:4294967295,7\nend_of_record\n").expect("the largest line");
+        assert_eq!(max.files["a.st"].lines[&u32::MAX], 7);
+        assert!(Coverage::from_lcov("SF:\nDA:1,1\n").is_err(), "a nameless source");
+    }
+
+    #[test]
+    fn a_name_that_would_forge_a_record_is_not_written() {
+        let mut c = sample();
+        let f = c.files.remove("plant/sim.stx").unwrap();
+        c.files.insert("evil.st\nSF:forged.st\nDA:1,999".into(), f);
+        let p = c.to_lcov().expect_err("refused");
+        assert_eq!(p.diagnostics()[0].code, Code::E0912);
+        let mut c = sample();
+        let f = c.files.get_mut("plant/sim.stx").unwrap();
+        f.functions.insert("T\rX".into(), (1, 1));
+        assert!(c.to_lcov().is_err(), "a function's name too");
     }
 
     #[test]

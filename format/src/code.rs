@@ -260,7 +260,7 @@ codes! {
     E0904 => "--block names a block of another type",
     E0910 => "trace line is not a trace record",
     E0911 => "trend field the trace never writes",
-    E0912 => "coverage file is not an lcov tracefile",
+    E0912 => "coverage file is not an lcov tracefile, or a name lcov cannot hold",
     E0913 => "coverage is under the share asked for",
     E0920 => "ROC host word file is invalid",
     E0921 => "ROC command list has the wrong shape",
