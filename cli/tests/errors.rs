@@ -188,6 +188,11 @@ fn option_values_that_mean_nothing_are_refused() {
     assert_option_refused(&["run", PLANT, "--for", "1s", "--set", "X=abc"], "--set");
     assert_option_refused(&["run", PLANT, "--for", "1s", "--set", "TANK1.Level=abc"], "--set");
     assert_option_refused(&["run", PLANT, "--for", "1s", "--cold"], "--cold");
+    // Each command's duration names its own option.
+    let poll = ["roc", "poll", "--host", "127.0.0.1:1", "--commands", "nope.csv", "--timeout"];
+    assert_option_refused(&[&poll[..], &["soon"]].concat(), "--timeout `soon`");
+    assert_option_refused(&[&poll[..], &["0s"]].concat(), "--timeout `0s`");
+    assert_option_refused(&["serve", PLANT, "--client-timeout", "0s"], "--client-timeout `0s`");
     // An empty token (an unset variable) is no secret; a host is a name.
     assert_option_refused(&["serve", PLANT, "--for", "1s", "--token", ""], "--token");
     assert_option_refused(&["serve", PLANT, "--for", "1s", "--token", "  "], "--token");

@@ -106,7 +106,7 @@ pub fn duration(flag: &str, text: &str) -> Result<u64, Problems> {
         .map_err(|why| usage(format!("{flag} `{text}` is not a duration like 10m, 1h30m or T#2.5s: {why}")))?;
     if !secs.is_finite() || !(1e-6..=366.0 * 86_400.0).contains(&secs) {
         return Err(usage(format!(
-            "{flag} `{text}`: the duration must be at least the clock's microsecond (1us) and at most 366 days"
+            "{flag} `{text}`: the duration must be at least the clock's microsecond (0.000001s) and at most 366 days"
         )));
     }
     Ok(linc_engines::strategy::micros(secs))

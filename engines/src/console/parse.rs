@@ -99,6 +99,12 @@ fn assignment(args: &str, form: &str) -> Result<(String, String), ConsoleError> 
     if p.is_empty() || v.is_empty() {
         return Err(usage(form));
     }
+    if let Some(q) = v.chars().next().filter(|c| matches!(c, '\'' | '"')) {
+        if v.len() < 2 || !v.ends_with(q) {
+            let why = format!("the text {v} has no closing {q}: a quoted value ends with the quote it starts with");
+            return Err(ConsoleError::new(Code::C0002, why));
+        }
+    }
     Ok((p.to_string(), v.to_string()))
 }
 
@@ -179,7 +185,12 @@ pub fn parse(text: &str, duration: &dyn Fn(&str) -> Result<u64, String>) -> Resu
             }
             Ok(Command::ErrorRaise { code, block: (!rest.is_empty()).then(|| rest.to_string()) })
         }
-        "F?" | "FORCES" | "P?" | "PROGRAMS" | "SCAN" | "NOW" | "SAVE" | "ERR?" | "ERROR" | "ERRCLR" | "CLEARERROR" => {
+        "QUIT" | "EXIT" if args.is_empty() => Err(ConsoleError::new(
+            Code::C0001,
+            format!("`{v}` ends an interactive `linc console`; it is not a command of a served plant or a scenario"),
+        )),
+        "F?" | "FORCES" | "P?" | "PROGRAMS" | "SCAN" | "NOW" | "SAVE" | "ERR?" | "ERROR" | "ERRCLR" | "CLEARERROR"
+        | "QUIT" | "EXIT" => {
             Err(ConsoleError::new(Code::C0002, format!("`{v}` takes no arguments")))
         }
         _ => Err(ConsoleError::new(Code::C0001, format!("unknown command `{v}`"))),
@@ -217,6 +228,21 @@ mod tests {
         assert_eq!(p("P?"), p("programs"));
         assert_eq!(p("ERR?"), Ok(Command::ErrorShow));
         assert_eq!(p("clearerror"), Ok(Command::ErrorClear));
+    }
+
+    #[test]
+    fn quit_with_words_after_it_and_unclosed_quotes_are_written_wrongly() {
+        let code = |t: &str| p(t).map_err(|e| (e.code, e.message)).unwrap_err();
+        let (c, m) = code("QUIT now");
+        assert_eq!((c, m.as_str()), (Code::C0002, "`QUIT` takes no arguments"));
+        assert_eq!(code("exit 1").0, Code::C0002);
+        assert!(code("QUIT").1.contains("interactive"), "QUIT alone, where it does not end anything");
+        for t in ["M X.S='unterminated", "M X.S=\"open", "M X.S='", "F X.S='a\""] {
+            let (c, m) = code(t);
+            assert_eq!(c, Code::C0002, "{t}");
+            assert!(m.contains("no closing"), "{t}: {m}");
+        }
+        assert_eq!(p("M X.S='a;b'"), Ok(Command::Modify { path: "X.S".into(), value: "'a;b'".into() }));
     }
 
     #[test]
