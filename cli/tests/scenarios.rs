@@ -54,6 +54,12 @@ fn bad_scenario_lines_are_reported_at_their_place() {
     let o = linc(&["test", &file]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stdout(&o).contains(&format!("{file}:3:1: error[E0503]")), "{}", stdout(&o));
+    // A name that is neither a block nor a step is told as both.
+    std::fs::write(dir.join("nope.ltest"), "strategy plant.json\nrun 1s\nexpect always NOPE.X\n").unwrap();
+    let file = dir.join("nope.ltest").display().to_string();
+    let o = linc(&["test", &file]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stdout(&o).contains(&format!("{file}:3:15: error[E0120]: no block or step `NOPE`")), "{}", stdout(&o));
 }
 
 #[test]

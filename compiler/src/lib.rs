@@ -122,7 +122,7 @@ pub fn compile_expectation(
     db: &linc_format::Database,
     steps: &[String],
 ) -> Result<linc_format::ObjectFile, Vec<Diagnostic>> {
-    let ctx = Context::of(Some(db)).with_steps(steps);
+    let ctx = Context::of(Some(db)).with_all_steps(steps);
     let report = check_transition(expr, ctx);
     let failed = report.has_errors();
     let Some(checked) = report.program.filter(|_| !failed) else {

@@ -263,8 +263,10 @@ impl CheckError {
                     .help("compare it with something, e.g. `X.PV > 0.5`")
             }
             CheckError::UnknownStep { span, name } => {
-                Diagnostic::error(Code::E0120, format!("the sequence has no step `{name}`"), *span)
-                    .label("unknown step")
+                // `Name.X` reads as a step variable only because no block
+                // is called `Name`: the engineer may have meant either.
+                Diagnostic::error(Code::E0120, format!("no block or step `{name}`"), *span)
+                    .label("neither a block of the database nor a step")
             }
         }
     }

@@ -32,6 +32,10 @@ pub struct Context<'a> {
     /// `Some` in sequence actions and transitions, where `step.X` and
     /// `step.T` exist. An empty list accepts any step name.
     pub steps: Option<&'a [String]>,
+    /// Whether `steps` is every step there is even when it is empty (a
+    /// scenario's expectations over a strategy without sequences), so an
+    /// empty list accepts none.
+    pub steps_known: bool,
     /// Where to record what each name resolves to (a language server's
     /// question, `crate::names`); `None` for a plain check.
     pub record: Option<&'a Recorder>,
@@ -43,8 +47,14 @@ impl<'a> Context<'a> {
     /// run time), as `linc check` without `--db` does.
     pub fn of(db: Option<&'a Database>) -> Context<'a> {
         match db {
-            Some(db) => Context { db, resolve_blocks: true, steps: None, record: None },
-            None => Context { db: Database::builtin_shared(), resolve_blocks: false, steps: None, record: None },
+            Some(db) => Context { db, resolve_blocks: true, steps: None, steps_known: false, record: None },
+            None => Context {
+                db: Database::builtin_shared(),
+                resolve_blocks: false,
+                steps: None,
+                steps_known: false,
+                record: None,
+            },
         }
     }
 
@@ -52,6 +62,12 @@ impl<'a> Context<'a> {
     /// (an empty list accepts any step name).
     pub fn with_steps(self, steps: &'a [String]) -> Context<'a> {
         Context { steps: Some(steps), ..self }
+    }
+
+    /// The same context with every step there is: a name that is not one
+    /// of `steps` is unknown, even when there are none.
+    pub fn with_all_steps(self, steps: &'a [String]) -> Context<'a> {
+        Context { steps: Some(steps), steps_known: true, ..self }
     }
 
     /// The same context, with block names taken on trust (checked when the

@@ -222,7 +222,7 @@ impl Checker<'_> {
             .step_index
             .get_or_insert_with(|| steps.iter().enumerate().rev().map(|(i, s)| (s.to_ascii_uppercase(), i)).collect());
         let declared = index.get(&parts[0].name.to_ascii_uppercase()).copied();
-        if !steps.is_empty() && declared.is_none() {
+        if (self.ctx.steps_known || !steps.is_empty()) && declared.is_none() {
             self.errors.push(CheckError::UnknownStep { span: parts[0].span, name: parts[0].name.to_string() });
             return None;
         }
