@@ -11,7 +11,12 @@ use tokio_modbus::client::{Context, Reader, Writer};
 use tokio_modbus::{ExceptionCode, Slave};
 
 fn serve(writes: bool) -> Server {
+    serve_logged(writes, std::sync::Arc::new(|_| {}))
+}
+
+fn serve_logged(writes: bool, log: linc_serve::Log) -> Server {
     let cfg = Config {
+        log,
         // A scan every 100 s of wall time: values hold still while compared.
         speed: Speed::Times(0.001),
         allow_writes: writes,
@@ -69,7 +74,9 @@ fn reads_agree_with_the_monitor() {
 
 #[test]
 fn writes_are_all_or_none_with_the_protocols_exceptions() {
-    let s = serve(true);
+    let lines = std::sync::Arc::new(std::sync::Mutex::new(Vec::<String>::new()));
+    let kept = lines.clone();
+    let s = serve_logged(true, std::sync::Arc::new(move |l| kept.lock().unwrap().push(l)));
     rt().block_on(async {
         let mut c = client(&s, 1).await;
         let [a, b] = words(72.5);
@@ -103,6 +110,15 @@ fn writes_are_all_or_none_with_the_protocols_exceptions() {
         assert_eq!(api(&s, "SFP 1", "DATA1"), "60.0");
     });
     s.stop();
+    // Every refusal left a line, those for the value too.
+    let log = lines.lock().unwrap().join("\n");
+    for needle in [
+        "write refused: FST 1.MISC1 can't hold the register value 300",
+        "write refused: SFP 1.DATA1 can't hold half a REAL",
+        "write refused: SFP 1.DATA1 is forced",
+    ] {
+        assert!(log.contains(needle), "the log lacks `{needle}`:\n{log}");
+    }
 }
 
 #[test]

@@ -226,6 +226,10 @@ fn the_trace_records_each_write_and_refusal_with_the_clients_address() {
     let mut w = vec![1, 17, 0, 3];
     w.extend_from_slice(&9.0f32.to_le_bytes());
     assert_eq!(h.ask(181, &w).0, 255);
+    // A value the field can't hold (not a number) is refused and traced too.
+    let mut w = vec![1, 17, 0, 3];
+    w.extend_from_slice(&f32::NAN.to_le_bytes());
+    assert_eq!(h.ask(181, &w).0, 255);
     let done = s.stop();
     assert_eq!(done.trace_error, None);
     let text = std::fs::read_to_string(&path).expect("the trace was written at the stop");
@@ -235,6 +239,8 @@ fn the_trace_records_each_write_and_refusal_with_the_clients_address() {
         lines.iter().find(|l| l["client"] == client.as_str() && l["field"] == "SFP 1.DATA1").expect("the write");
     assert_eq!((wrote["old"].as_str(), wrote["new"].as_str()), (Some("80.0"), Some("65.5")));
     let refused = lines.iter().find(|l| l["refused"] == "forced").expect("the refused write");
+    assert_eq!((refused["client"].as_str(), refused["field"].as_str()), (Some(client.as_str()), Some("SFP 1.DATA2")));
+    let refused = lines.iter().find(|l| l["refused"] == "value").expect("the write refused for its value");
     assert_eq!((refused["client"].as_str(), refused["field"].as_str()), (Some(client.as_str()), Some("SFP 1.DATA2")));
 }
 
@@ -286,6 +292,36 @@ fn the_logs_and_archives_the_fsts_wrote_are_collected() {
     assert_eq!(u32::from_le_bytes(d[6..10].try_into().unwrap()), start + 3600);
     assert_eq!(f32::from_le_bytes(d[10..14].try_into().unwrap()), levels[0]);
     assert_eq!(h.ask(135, &[0, 77, 1, 0, 0, 1]), (255, vec![30, 7]), "no history point 77");
+    s.stop();
+}
+
+/// Opcode 135's timestamps of history point 3 from index 0, and the
+/// current index.
+fn stamps(h: &mut Host, count: u8) -> (Vec<u32>, u16) {
+    let (op, d) = h.ask(135, &[0, 3, 3, 0, 0, count]);
+    assert_eq!(op, 135, "{d:?}");
+    (d[5..].chunks(4).map(|c| u32::from_le_bytes(c.try_into().unwrap())).collect(), u16::from_le_bytes([d[2], d[3]]))
+}
+
+#[test]
+fn setting_the_clock_ahead_fills_the_history_it_jumped_and_back_logs_nothing() {
+    let s = serve("examples/fst/plant.json", true);
+    let start = 1_767_592_800u32; // 2026-01-05 06:00
+    console_line(&s, "ADVANCE 1h");
+    let mut h = Host::connect(&s);
+    // 07:00:00 to 10:00:00 the same day: 08:00, 09:00 and 10:00 are filled
+    // at the next instant a task runs.
+    assert_eq!(h.ask(8, &[0, 0, 10, 5, 1, 0xEA, 0x07]), (8, vec![]));
+    console_line(&s, "ADVANCE 1s");
+    let hour = |n: u32| start + n * 3600;
+    assert_eq!(stamps(&mut h, 4), (vec![hour(1), hour(2), hour(3), hour(4)], 4));
+    // Back to 08:30: nothing is logged until 09:00 comes round again,
+    // which is logged at the next index.
+    assert_eq!(h.ask(8, &[0, 30, 8, 5, 1, 0xEA, 0x07]), (8, vec![]));
+    console_line(&s, "ADVANCE 20m");
+    assert_eq!(stamps(&mut h, 4).1, 4, "nothing logged going back");
+    console_line(&s, "ADVANCE 20m");
+    assert_eq!(stamps(&mut h, 5), (vec![hour(1), hour(2), hour(3), hour(4), hour(3)], 5));
     s.stop();
 }
 

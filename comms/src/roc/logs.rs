@@ -100,6 +100,9 @@ mod tests {
         assert_eq!((e[0], e[5]), (3, 1));
         assert_eq!(&e[6..10], &1.0f32.to_le_bytes());
         assert_eq!(&e[10..20], b"HIGH LEVEL");
+        // Twenty bytes of fields, then two zeros: every event record is 22
+        // (docs/roc-protocol.md lists them so).
+        assert_eq!((e.len(), &e[20..]), (22, &[0u8, 0][..]));
         let out = reply(LogRequest { count: 1, start: 7 }, 9, &[a.to_vec()]);
         assert_eq!(&out[..5], &[1, 7, 0, 9, 0]);
         assert_eq!(out.len(), 5 + ALARM_RECORD);

@@ -57,6 +57,24 @@ pub(crate) fn commit(
     Ok(())
 }
 
+/// A write refused for its value (the field can't hold what the client
+/// sent: out of range, not finite, half a REAL), logged and traced like
+/// the refusals [`commit`] makes, so every refused write leaves a line.
+pub(crate) fn refuse_value(
+    console: &Console,
+    client: &str,
+    cell: u32,
+    sent: &str,
+    log: &mut Vec<String>,
+    trace: Option<&mut Trace>,
+) {
+    let store = &console.strategy.store;
+    log.push(format!("{client}: write refused: {} can't hold {sent}", store.describe(cell)));
+    if let Some(t) = trace {
+        t.client_refused(store, console.strategy.elapsed_us(), client, cell, "value");
+    }
+}
+
 /// The cell a whole number off the wire makes for a field of `ty`: an INT
 /// within 32 bits, a BOOL 0 or 1, a BITS field within its width, an ENUM
 /// one of its indices; `None` when the field can't hold it.

@@ -171,22 +171,27 @@ impl ModbusDevice {
             let cell = cell_of(store, e);
             let ty = &store.db.block_template(e.block).fields[e.field].ty;
             let new = match e.ty {
+                MbType::Real if off != 0 || i + 1 >= entries.len() => Err("half a REAL".to_string()),
                 MbType::Real => {
-                    if off != 0 || i + 1 >= entries.len() {
-                        return Err(ExceptionCode::IllegalDataValue);
-                    }
                     let (first, second) = (u32::from(values[i]), u32::from(values[i + 1]));
                     let bits = if e.low_first { second << 16 | first } else { first << 16 | second };
                     i += 1;
                     let x = f32::from_bits(bits);
-                    if !x.is_finite() {
-                        return Err(ExceptionCode::IllegalDataValue);
+                    if x.is_finite() {
+                        Ok(Cell::Real(x))
+                    } else {
+                        Err(format!("{x}"))
                     }
-                    Cell::Real(x)
                 }
-                _ => int_cell(ty, values[i]).ok_or(ExceptionCode::IllegalDataValue)?,
+                _ => int_cell(ty, values[i]).ok_or_else(|| format!("the register value {}", values[i])),
             };
-            cells.push((Addr { cell, bit: None }, new));
+            match new {
+                Ok(new) => cells.push((Addr { cell, bit: None }, new)),
+                Err(sent) => {
+                    super::refuse_value(console, &format!("modbus {peer}"), cell, &sent, log, trace);
+                    return Err(ExceptionCode::IllegalDataValue);
+                }
+            }
             i += 1;
         }
         self.commit(console, cells, peer, log, trace)

@@ -149,9 +149,12 @@ impl RocDevice {
         }
         let mut cells = Vec::with_capacity(writes.len());
         for Write { at, tlp, value } in &writes {
-            let range = || vec![RocError::at_data(code::PARAMETER_RANGE, at + 2)];
             let p = resolve(store, *tlp).map_err(|f| vec![ops::tlp_error(f, *at)])?;
-            let new = value::decode(p.wire, value).and_then(|v| field_value(p.ty, v)).ok_or_else(range)?;
+            let Some(new) = value::decode(p.wire, value).and_then(|v| field_value(p.ty, v)) else {
+                let sent = format!("the bytes {value:02X?}");
+                super::refuse_value(console, &format!("roc {peer}"), p.cell, &sent, log, trace);
+                return Err(vec![RocError::at_data(code::PARAMETER_RANGE, at + 2)]);
+            };
             cells.push((Addr { cell: p.cell, bit: None }, new));
         }
         if let Err((i, why)) = super::commit(console, &cells, &format!("roc {peer}"), log, trace) {
