@@ -576,7 +576,7 @@ fn dispatch(command: Command, r: &Reporter) -> u8 {
         Command::Explain { code, list } => explain_cmd::run(code.as_deref(), list, r),
         Command::Fmt { files, check } => fmt_cmd::run(&files, check, r),
         Command::Lsp => match linc_lsp::run_stdio() {
-            Ok(()) => 0,
+            Ok(ending) => ending.status(),
             Err(e) => report::usage(r, format!("the language server stopped: {e}")),
         },
     }

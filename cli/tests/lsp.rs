@@ -2,7 +2,8 @@
 //! by a client written here (framing and JSON by hand, independent of the
 //! server's crates): initialize, open a file with an error and receive the
 //! diagnostic, fix it and receive an empty list, hover, complete, go to
-//! definition, shut down and exit.
+//! definition, shut down and exit. And the same binary fed hostile bytes:
+//! it answers each with an error and keeps its open documents.
 
 mod common;
 
@@ -51,8 +52,22 @@ fn reader(out: impl Read + Send + 'static) -> Receiver<Value> {
 impl Peer {
     fn send(&mut self, v: Value) {
         let body = v.to_string();
-        write!(self.input, "Content-Length: {}\r\n\r\n{body}", body.len()).expect("write");
+        self.send_raw(format!("Content-Length: {}\r\n\r\n{body}", body.len()).as_bytes());
+    }
+
+    fn send_raw(&mut self, bytes: &[u8]) {
+        self.input.write_all(bytes).expect("write");
         self.input.flush().expect("flush");
+    }
+
+    /// The next answer (not a notification).
+    fn next_answer(&mut self) -> Value {
+        loop {
+            let m = self.next_message();
+            if m.get("method").is_none() {
+                return m;
+            }
+        }
     }
 
     fn next_message(&mut self) -> Value {
@@ -151,4 +166,59 @@ fn an_editor_session_over_stdio() {
     drop(peer);
     let status = child.wait().expect("exit");
     assert_eq!(status.code(), Some(0));
+}
+
+/// The findings of a hostile test round (issue 28): a 32-byte header
+/// claiming 100 GB (it used to abort the server on a failed allocation), a
+/// malformed header, a body that is not JSON and JSON that is no message
+/// each get an error answer, in order; the document opened before them is
+/// still there for the hover after them; `exit` without `shutdown` gives
+/// exit status 1, as the protocol says.
+#[test]
+fn hostile_bytes_are_answered_and_the_session_survives() {
+    let root = common::temp_dir("lsp-hostile");
+    let examples = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/strategy/");
+    for f in ["plant.json", "actions.stx", "modbus.stx"] {
+        std::fs::copy(format!("{examples}{f}"), root.join(f)).expect("copy");
+    }
+    let text = std::fs::read_to_string(root.join("actions.stx")).expect("actions");
+    let mut child = common::spawn(&["lsp"]);
+    let messages = reader(child.stdout.take().expect("stdout"));
+    let mut peer = Peer { input: child.stdin.take().expect("stdin"), messages, next: 0 };
+    peer.request("initialize", json!({ "processId": null, "rootUri": file_uri(&root), "capabilities": {} }));
+    peer.notify("initialized", json!({}));
+    let uri = file_uri(&root.join("actions.stx"));
+    peer.notify(
+        "textDocument/didOpen",
+        json!({ "textDocument": { "uri": uri, "languageId": "lin-st", "version": 1, "text": text } }),
+    );
+
+    let huge = b"Content-Length: 100000000000\r\n\r\n";
+    assert_eq!(huge.len(), 32);
+    peer.send_raw(huge);
+    peer.send_raw(b"Content-Length: twelve\r\n\r\n");
+    peer.send_raw(b"Content-Length: 9\r\n\r\n{\"id\": 1,");
+    peer.send_raw(b"Content-Length: 22\r\n\r\n{\"id\": 5, \"params\": 1}");
+    let answers: Vec<(Value, Value)> =
+        (0..4).map(|_| peer.next_answer()).map(|m| (m["id"].clone(), m["error"]["code"].clone())).collect();
+    assert_eq!(
+        answers,
+        [
+            (Value::Null, json!(-32600)),
+            (Value::Null, json!(-32700)),
+            (Value::Null, json!(-32700)),
+            (json!(5), json!(-32600)),
+        ]
+    );
+
+    let line = text.lines().position(|l| l.contains("TANK1.Level := TANK1.Level + TANK1.Inflow")).expect("line");
+    let at = json!({ "textDocument": { "uri": uri }, "position": { "line": line, "character": 16 } });
+    let hover = peer.request("textDocument/hover", at);
+    let hover = hover["contents"]["value"].as_str().expect("hover text");
+    assert!(hover.starts_with("**TANK1.Level** : `REAL`"), "the open document survived: {hover}");
+
+    peer.notify("exit", Value::Null);
+    drop(peer);
+    let status = child.wait().expect("exit");
+    assert_eq!(status.code(), Some(1), "exit without shutdown");
 }

@@ -32,9 +32,9 @@ impl DbFile {
 pub fn load(path: &Path) -> Result<DbFile, Problems> {
     let text = crate::files::read_input_text(path).map_err(|e| Problems::unreadable(path, &e))?;
     let name = path.display().to_string();
-    // A byte order mark is ignored, as in sources: three spaces keep every
-    // offset that of the file.
-    match Database::from_json(&without_bom(&text)) {
+    // A byte order mark is ignored, as in sources (the language server
+    // loads a database by the same function).
+    match Database::from_file_text(&text) {
         Ok(db) => Ok(DbFile { db, name, text }),
         Err(e) => {
             let span = e.span.map(|(s, e)| Span::new(s, e)).unwrap_or_default();
@@ -50,14 +50,7 @@ pub fn load_opt(path: Option<&Path>) -> Result<Option<DbFile>, Problems> {
     path.map(load).transpose()
 }
 
-/// The text with a leading byte order mark replaced by three spaces (JSON
-/// white space of the same length, so offsets stay those of the file).
-pub(crate) fn without_bom(text: &str) -> std::borrow::Cow<'_, str> {
-    match text.strip_prefix('\u{feff}') {
-        Some(rest) => format!("   {rest}").into(),
-        None => text.into(),
-    }
-}
+pub(crate) use linc_format::db::without_bom;
 
 /// Applies every `--set` (the first problem is a refused request, E0903).
 pub fn apply_sets(store: &mut Store, sets: &[String]) -> Result<(), Problems> {

@@ -8,53 +8,14 @@ use linc_compiler::diag::Problems;
 use linc_format::Code;
 use std::fmt;
 use std::fs::{self, Metadata};
-use std::io::{self, Read, Write};
+use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
-/// The largest input file `linc` reads: far above any real action file or
-/// database (the guide's largest are kilobytes; 50 MB of generated source
-/// is accepted), far below what would exhaust a build machine's memory.
-pub const MAX_INPUT_BYTES: u64 = 256 << 20;
-
-/// What a file is, in words, when it is not a regular file.
-fn kind(meta: &Metadata) -> Option<&'static str> {
-    let t = meta.file_type();
-    if t.is_file() {
-        return None;
-    }
-    if t.is_symlink() {
-        return Some("a symbolic link");
-    }
-    if t.is_dir() {
-        return Some("a directory");
-    }
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::FileTypeExt;
-        if t.is_char_device() {
-            return Some("a character device");
-        }
-        if t.is_block_device() {
-            return Some("a block device");
-        }
-        if t.is_fifo() {
-            return Some("a FIFO (named pipe)");
-        }
-        if t.is_socket() {
-            return Some("a socket");
-        }
-    }
-    Some("not a regular file")
-}
-
-fn not_regular(what: &str) -> io::Error {
-    io::Error::new(io::ErrorKind::InvalidInput, format!("it is {what}, not a regular file"))
-}
-
-fn too_large(limit: u64) -> io::Error {
-    io::Error::new(io::ErrorKind::InvalidInput, format!("the file is larger than the {} MiB input limit", limit >> 20))
-}
+/// The largest input file `linc` reads (the rules are `linc_format::input`'s,
+/// which the language server shares).
+pub use linc_format::input::MAX_INPUT_BYTES;
+use linc_format::input::{kind, read_file};
 
 /// Every file this process has read as an input, by identity, with the
 /// name it was read by. No output may replace one of them, whichever
@@ -119,33 +80,13 @@ pub fn read_in_out(path: &Path) -> io::Result<Vec<u8>> {
 
 /// [`read_input`] for text: the bytes must be UTF-8.
 pub fn read_input_text(path: &Path) -> io::Result<String> {
-    String::from_utf8(read_input(path)?)
-        .map_err(|_| io::Error::new(io::ErrorKind::InvalidData, "stream did not contain valid UTF-8"))
+    linc_format::input::utf8(read_input(path)?)
 }
 
 fn read_limited(path: &Path, limit: u64, remember: bool) -> io::Result<Vec<u8>> {
-    // Checked before opening: opening a FIFO would block until a writer came.
-    if let Some(what) = kind(&fs::metadata(path)?) {
-        return Err(not_regular(what));
-    }
-    let file = fs::File::open(path)?;
-    // Checked again on the open file, in case the name changed in between.
-    let meta = file.metadata()?;
-    if let Some(what) = kind(&meta) {
-        return Err(not_regular(what));
-    }
-    if meta.len() > limit {
-        return Err(too_large(limit));
-    }
+    let (bytes, meta) = read_file(path, limit)?;
     if remember {
         remember_input(path, &meta);
-    }
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
-    // The length can grow while reading (or lie, as in /proc): read one
-    // byte more than the limit to notice.
-    file.take(limit + 1).read_to_end(&mut bytes)?;
-    if bytes.len() as u64 > limit {
-        return Err(too_large(limit));
     }
     Ok(bytes)
 }
@@ -389,18 +330,6 @@ mod tests {
 
     fn scratch(name: &str) -> std::path::PathBuf {
         linc_test_support::fresh_dir(&format!("files-{name}"))
-    }
-
-    #[test]
-    fn inputs_up_to_the_limit_are_read_and_larger_ones_refused() {
-        let dir = scratch("limit");
-        let p = dir.join("f");
-        fs::write(&p, [7u8; 100]).expect("write");
-        assert_eq!(read_limited(&p, 100, false).expect("at the limit").len(), 100);
-        let e = read_limited(&p, 99, false).expect_err("over the limit");
-        assert_eq!(e.kind(), io::ErrorKind::InvalidInput);
-        assert_eq!(MAX_INPUT_BYTES, 256 * 1024 * 1024);
-        assert!(too_large(MAX_INPUT_BYTES).to_string().contains("256 MiB"));
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! What the compiler and the runtime share, beneath both: the instruction
 //! set ([`isa`]), the `.sto` object format ([`object`], [`wire`]) and why
 //! one is refused ([`errors`]), the function-block database schema and its
-//! JSON ([`db`]), and the text form of values ([`text`]). The compiler
+//! JSON ([`db`]), the text form of values ([`text`]) and the
+//! rules every input file is read by ([`input`]). The compiler
 //! writes objects against a database with these and never needs the VM,
 //! the verifier or the engines (ADR 0013).
 
@@ -11,6 +12,8 @@ pub mod code;
 pub mod db;
 /// Why an object file is refused.
 pub mod errors;
+/// Reading an input file with bounds: a regular file, of limited size.
+pub mod input;
 /// The instruction set, declared once (ADR 0004).
 pub mod isa;
 /// The `.sto` object format and its CRC-32.

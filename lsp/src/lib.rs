@@ -13,6 +13,7 @@ mod resolve;
 mod server;
 mod symbols;
 mod text;
+mod transport;
 mod workspace;
 
 use lsp_server::Connection;
@@ -25,6 +26,7 @@ pub use server::Server;
 use server::DEBOUNCE;
 use std::path::PathBuf;
 use std::time::Duration;
+pub use transport::MAX_MESSAGE;
 
 /// The client's initialization options linc reads.
 #[derive(Default, serde::Deserialize)]
@@ -66,16 +68,48 @@ pub fn capabilities() -> ServerCapabilities {
     }
 }
 
-/// Serves one client over standard input and output.
-pub fn run_stdio() -> Result<(), String> {
-    let (conn, io) = Connection::stdio();
-    serve(&conn)?;
+/// How a session ended, which the command turns into its exit status: the
+/// protocol asks for 0 when `exit` follows `shutdown`, 1 when it does not
+/// (the client may have crashed, or stopped the server in a hurry).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ending {
+    /// `shutdown` was received before `exit` (or the end of the input).
+    Shutdown,
+    /// `exit`, or the end of the input, came without `shutdown`.
+    NoShutdown,
+}
+
+impl Ending {
+    /// The process exit status the protocol gives this ending.
+    pub fn status(self) -> u8 {
+        match self {
+            Ending::Shutdown => 0,
+            Ending::NoShutdown => 1,
+        }
+    }
+}
+
+/// Serves one client over standard input and output, through the bounded
+/// framing of [`transport`] (not lsp-server's, which trusts its input).
+pub fn run_stdio() -> Result<Ending, String> {
+    serve_io(std::io::stdin(), std::io::stdout())
+}
+
+/// Serves one client over any byte streams, as [`run_stdio`] does over
+/// standard input and output.
+pub fn serve_io(
+    input: impl std::io::Read + Send + 'static,
+    output: impl std::io::Write + Send + 'static,
+) -> Result<Ending, String> {
+    let (conn, io) = transport::connect(input, output);
+    let ending = serve(&conn);
     drop(conn);
-    io.join().map_err(|e| e.to_string())
+    io.join().map_err(|e| e.to_string())?;
+    ending
 }
 
 /// Initializes with the client, then serves it until `exit`.
-pub fn serve(conn: &Connection) -> Result<(), String> {
+pub fn serve(conn: &Connection) -> Result<Ending, String> {
     let (id, params) = conn.initialize_start().map_err(|e| e.to_string())?;
     let params: InitializeParams = serde_json::from_value(params).map_err(|e| e.to_string())?;
     let result = lsp_types::InitializeResult {
@@ -86,7 +120,7 @@ pub fn serve(conn: &Connection) -> Result<(), String> {
     conn.initialize_finish(id, result).map_err(|e| e.to_string())?;
     let mut server = server_for(&params);
     server.run(conn);
-    Ok(())
+    Ok(if server.shutting_down { Ending::Shutdown } else { Ending::NoShutdown })
 }
 
 /// The server a client's initialization asks for.

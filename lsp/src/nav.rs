@@ -116,7 +116,7 @@ fn find_action(text: &str, action: &str) -> Option<(usize, usize)> {
 fn read(server: &Server, uri: &Url, path: &Path) -> Option<String> {
     match server.doc(uri) {
         Some(d) => Some(d.text.to_string()),
-        None => std::fs::read_to_string(path).ok(),
+        None => crate::workspace::read(path),
     }
 }
 

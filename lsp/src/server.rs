@@ -243,7 +243,7 @@ impl Server {
 
     /// Reads a database JSON from disk again (changed or deleted there).
     fn reload(&mut self, path: &Path) {
-        let text = std::fs::read_to_string(path).unwrap_or_default();
+        let text = crate::workspace::read(path).unwrap_or_default();
         if self.ws.update(path, &text) {
             self.recheck_all(Instant::now());
         }

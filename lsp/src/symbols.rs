@@ -177,7 +177,7 @@ pub fn workspace(server: &Server, p: &WorkspaceSymbolParams) -> Option<Vec<Symbo
     for f in server.ws.source_files() {
         if let Ok(uri) = Url::from_file_path(&f) {
             if !uris.contains(&uri) {
-                if let Ok(text) = std::fs::read_to_string(&f) {
+                if let Some(text) = crate::workspace::read(&f) {
                     disk.push(Doc::new(uri.clone(), text, 0, ""));
                     uris.push(uri);
                 }

@@ -6,8 +6,18 @@
 //! or the client's initialization options (`{"database": "…"}`). A file no
 //! database names is checked without one, as `linc check` does.
 
+use linc_format::input::{read_text, MAX_INPUT_BYTES};
 use linc_format::{Database, DbError};
 use std::path::{Path, PathBuf};
+
+/// The text of a file on disk, read by the same rules as the commands'
+/// inputs (`linc_format::input`): a regular file of at most 256 MiB, read
+/// with that bound, so a name that leads to `/dev/zero`, a FIFO or a file
+/// that keeps growing costs nothing and hangs nothing. Whatever is refused
+/// or unreadable reads as no file.
+pub fn read(path: &Path) -> Option<String> {
+    read_text(path, MAX_INPUT_BYTES).ok()
+}
 
 /// How deep the search for databases goes below a workspace folder.
 const MAX_DEPTH: usize = 6;
@@ -37,7 +47,7 @@ pub struct Named {
 
 impl DbFile {
     pub fn load(path: PathBuf, text: String) -> DbFile {
-        let db = Database::from_json(&text);
+        let db = Database::from_file_text(&text);
         let named = db.as_ref().map(|db| named_files(&path, db)).unwrap_or_default();
         DbFile { key: key(&path), path, text, db, named }
     }
@@ -95,7 +105,7 @@ impl Workspace {
             }
         }
         for path in found {
-            if let Ok(text) = std::fs::read_to_string(&path) {
+            if let Some(text) = read(&path) {
                 if has_blocks(&text) || ws.chosen.as_ref().is_some_and(|c| key(c) == key(&path)) {
                     ws.dbs.push(DbFile::load(path, text));
                 }
@@ -151,13 +161,14 @@ impl Workspace {
     }
 }
 
-/// A JSON object with a `blocks` member at the top: a strategy database.
+/// A strategy database: a JSON object with a `blocks` member at the top;
+/// or a text that names `"blocks"` but is not JSON a database can be (a
+/// key twice in an object, a syntax error): a database that does not load,
+/// which the editor shows with the error `linc check --db` gives it.
 fn has_blocks(text: &str) -> bool {
     text.contains("\"blocks\"")
-        && linc_format::db::tree::parse(text)
-            .ok()
-            .and_then(|n| n.as_object().map(|m| m.iter().any(|m| m.key == "blocks")))
-            .unwrap_or(false)
+        && linc_format::db::tree::parse(&linc_format::db::without_bom(text))
+            .map_or(true, |n| n.as_object().is_some_and(|m| m.iter().any(|m| m.key == "blocks")))
 }
 
 /// What linc reads of a workspace's `linc.toml`.
@@ -173,12 +184,7 @@ const MAX_TOML: u64 = 64 << 10;
 /// `database = "…"` in `root/linc.toml`, relative to the root; a file
 /// that is not a regular file of at most 64 KiB, or not TOML, names none.
 fn linc_toml(root: &Path) -> Option<PathBuf> {
-    let path = root.join("linc.toml");
-    let meta = std::fs::metadata(&path).ok()?;
-    if !meta.is_file() || meta.len() > MAX_TOML {
-        return None;
-    }
-    let text = std::fs::read_to_string(path).ok()?;
+    let text = read_text(&root.join("linc.toml"), MAX_TOML).ok()?;
     let toml: LincToml = toml::from_str(&text).ok()?;
     toml.database.map(|d| root.join(d))
 }

@@ -16,7 +16,7 @@ mod schema;
 pub mod tree;
 pub mod users;
 
-pub use json::{DbError, MAX_CELLS};
+pub use json::{without_bom, DbError, MAX_CELLS};
 pub use period::{duration_seconds, time_constant, MAX_PERIOD, MIN_PERIOD};
 pub use roc::{same_point, Device, RocType, Tlp, TlpFault};
 pub use schema::{Alias, Block, Database, FieldDef, FieldType, InitValue, Task, Template};
