@@ -190,9 +190,7 @@ pub fn parse(text: &str, duration: &dyn Fn(&str) -> Result<u64, String>) -> Resu
             format!("`{v}` ends an interactive `linc console`; it is not a command of a served plant or a scenario"),
         )),
         "F?" | "FORCES" | "P?" | "PROGRAMS" | "SCAN" | "NOW" | "SAVE" | "ERR?" | "ERROR" | "ERRCLR" | "CLEARERROR"
-        | "QUIT" | "EXIT" => {
-            Err(ConsoleError::new(Code::C0002, format!("`{v}` takes no arguments")))
-        }
+        | "QUIT" | "EXIT" => Err(ConsoleError::new(Code::C0002, format!("`{v}` takes no arguments"))),
         _ => Err(ConsoleError::new(Code::C0001, format!("unknown command `{v}`"))),
     }
 }
