@@ -222,3 +222,22 @@ fn hostile_bytes_are_answered_and_the_session_survives() {
     let status = child.wait().expect("exit");
     assert_eq!(status.code(), Some(1), "exit without shutdown");
 }
+
+/// Before `initialize`, a request is answered "not initialized" (-32002),
+/// an `initialize` whose parameters don't read "invalid params" (-32602),
+/// and the session goes on; `exit` then ends it with status 1.
+#[test]
+fn before_initialize_requests_are_refused_and_exit_gives_status_1() {
+    let mut child = common::spawn(&["lsp"]);
+    let messages = reader(child.stdout.take().expect("stdout"));
+    let mut peer = Peer { input: child.stdin.take().expect("stdin"), messages, next: 0 };
+    peer.send(json!({ "jsonrpc": "2.0", "id": 7, "method": "textDocument/hover", "params": {} }));
+    let m = peer.next_answer();
+    assert_eq!((&m["id"], &m["error"]["code"]), (&json!(7), &json!(-32002)), "{m}");
+    peer.send(json!({ "jsonrpc": "2.0", "id": 8, "method": "initialize", "params": { "capabilities": 3 } }));
+    let m = peer.next_answer();
+    assert_eq!((&m["id"], &m["error"]["code"]), (&json!(8), &json!(-32602)), "{m}");
+    peer.notify("exit", Value::Null);
+    drop(peer);
+    assert_eq!(child.wait().expect("exit").code(), Some(1), "exit before initialize, without shutdown");
+}

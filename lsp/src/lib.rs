@@ -16,7 +16,7 @@ mod text;
 mod transport;
 mod workspace;
 
-use lsp_server::Connection;
+use lsp_server::{Connection, ErrorCode, Message, RequestId, Response};
 use lsp_types::{
     CodeActionProviderCapability, CompletionOptions, HoverProviderCapability, InitializeParams, OneOf, RenameOptions,
     SemanticTokensFullOptions, SemanticTokensOptions, SemanticTokensServerCapabilities, ServerCapabilities, ServerInfo,
@@ -110,17 +110,47 @@ pub fn serve_io(
 
 /// Initializes with the client, then serves it until `exit`.
 pub fn serve(conn: &Connection) -> Result<Ending, String> {
-    let (id, params) = conn.initialize_start().map_err(|e| e.to_string())?;
-    let params: InitializeParams = serde_json::from_value(params).map_err(|e| e.to_string())?;
+    let Some((id, params)) = initialize_start(conn) else { return Ok(Ending::NoShutdown) };
     let result = lsp_types::InitializeResult {
         capabilities: capabilities(),
         server_info: Some(ServerInfo { name: "linc".into(), version: Some(env!("CARGO_PKG_VERSION").into()) }),
     };
     let result = serde_json::to_value(result).map_err(|e| e.to_string())?;
-    conn.initialize_finish(id, result).map_err(|e| e.to_string())?;
+    conn.sender.send(Response::new_ok(id, result).into()).map_err(|e| e.to_string())?;
     let mut server = server_for(&params);
     server.run(conn);
     Ok(if server.shutting_down { Ending::Shutdown } else { Ending::NoShutdown })
+}
+
+/// Waits for `initialize`, answering any other request with "not
+/// initialized" (-32002) and an `initialize` whose parameters don't read
+/// with "invalid params" (-32602), as the protocol asks; `None` when the
+/// client sends `exit` first or goes away (an ending without shutdown).
+/// lsp-server's own version ends the session on either, with no status.
+fn initialize_start(conn: &Connection) -> Option<(RequestId, InitializeParams)> {
+    for msg in &conn.receiver {
+        match msg {
+            Message::Request(req) if req.method == "initialize" => {
+                match serde_json::from_value::<InitializeParams>(req.params) {
+                    Ok(params) => return Some((req.id, params)),
+                    Err(e) => {
+                        let why = format!("initialize: {e}");
+                        conn.sender
+                            .send(Response::new_err(req.id, ErrorCode::InvalidParams as i32, why).into())
+                            .ok()?;
+                    }
+                }
+            }
+            Message::Request(req) => {
+                let why = format!("`{}` before initialize", req.method);
+                let r = Response::new_err(req.id, ErrorCode::ServerNotInitialized as i32, why);
+                conn.sender.send(r.into()).ok()?;
+            }
+            Message::Notification(n) if n.method == "exit" => return None,
+            Message::Notification(_) | Message::Response(_) => {}
+        }
+    }
+    None
 }
 
 /// The server a client's initialization asks for.
