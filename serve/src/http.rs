@@ -2,7 +2,7 @@
 //! offline), the JSON API and the event stream. Handlers ask the plant
 //! thread and wait for its answer; they never touch the strategy.
 
-use crate::http_guard::{foreign_origin, host_of, is_json, json_errors, refuse, Hosts};
+use crate::http_guard::{foreign_origin, hardened, host_of, is_json, json_errors, refuse, Hosts};
 use crate::wire::Limits;
 use crate::{Ask, Event, Reply};
 use axum::body::Body;
@@ -146,6 +146,7 @@ fn router(state: AppState) -> Router {
         .fallback(|| async { refuse(StatusCode::NOT_FOUND, "no such page or API (docs/serve.md lists them)") })
         .layer(axum::middleware::from_fn_with_state(state.clone(), guard))
         .layer(axum::middleware::map_response(json_errors))
+        .layer(axum::middleware::map_response(hardened))
         .with_state(state)
 }
 

@@ -141,6 +141,30 @@ fn every_error_is_a_json_body() {
 }
 
 #[test]
+fn every_response_forbids_frames_referrers_sniffing_and_foreign_scripts() {
+    let s = serve(PLANT, writes());
+    let h = host(&s);
+    for path in ["/", "/app.js", "/api/programs", "/no/such/page"] {
+        let mut t = TcpStream::connect(s.addr()).unwrap();
+        t.set_read_timeout(Some(Duration::from_secs(30))).unwrap();
+        t.write_all(format!("GET {path} HTTP/1.1\r\nHost: {h}\r\nConnection: close\r\n\r\n").as_bytes()).unwrap();
+        let mut out = Vec::new();
+        t.read_to_end(&mut out).unwrap();
+        let head = String::from_utf8_lossy(&out).split("\r\n\r\n").next().unwrap().to_ascii_lowercase();
+        for needle in [
+            "content-security-policy: default-src 'self'; script-src 'self';",
+            "frame-ancestors 'none'",
+            "x-frame-options: deny",
+            "x-content-type-options: nosniff",
+            "referrer-policy: no-referrer",
+        ] {
+            assert!(head.contains(needle), "{path} lacks {needle}:\n{head}");
+        }
+    }
+    s.stop();
+}
+
+#[test]
 fn an_empty_or_blank_token_is_refused_at_the_start() {
     for token in ["", "   ", "\t"] {
         let cfg = Config { token: Some(token.into()), ..common::config() };
