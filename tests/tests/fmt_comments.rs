@@ -287,6 +287,27 @@ fn ladder_comments_beside_labels_and_in_headers_are_kept() {
     assert_eq!(format(SourceKind::Ladder, want).as_deref(), Ok(want));
 }
 
+/// A generic sequence's names may have up to 16 characters (its map gives
+/// them targets); `fmt` formats it without the map. A longer name is an
+/// error in any sequence.
+#[test]
+fn a_generic_sequence_with_long_names_is_formatted_without_its_map() {
+    let src = "INITIAL_STEP Idle: Ready(P); END_STEP\nSTEP Fill: FillOn(N); END_STEP\n\
+               transition from Idle to Fill := StartCommand=1; end_transition\n\
+               ACTION Ready\nReactorVessel.Batches:=ReactorVessel.Batches+1;\nEND_ACTION\n";
+    let want = "INITIAL_STEP Idle: Ready(P);  END_STEP\nSTEP Fill:         FillOn(N); END_STEP\n\
+                TRANSITION FROM Idle TO Fill := StartCommand = 1; END_TRANSITION\n\
+                ACTION Ready\n    ReactorVessel.Batches := ReactorVessel.Batches + 1;\nEND_ACTION\n";
+    assert_eq!(format(SourceKind::Sequence, src).as_deref(), Ok(want));
+    let too_long = src.replace("StartCommand", "StartCommandOfReactor");
+    let codes: Vec<&str> = format(SourceKind::Sequence, &too_long)
+        .expect_err("a name of 21 characters")
+        .iter()
+        .map(|d| d.code.as_str())
+        .collect();
+    assert_eq!(codes, ["E0005"]);
+}
+
 /// A comment may stand before a contact's `/` as anywhere between
 /// elements: the contact is still negated (it was a syntax error).
 #[test]
