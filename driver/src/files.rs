@@ -368,7 +368,10 @@ pub fn replace_input(path: &Path, original: &[u8], bytes: &[u8]) -> Result<(), R
         return Err(cant_write(path, "it is read-only; `linc fmt` leaves it as it is"));
     }
     // Opened for writing (nothing changes yet) to learn whether we may.
-    let mut file = fs::OpenOptions::new().read(true).write(true).open(path).map_err(|e| cant_write(path, e))?;
+    let mut file = fs::OpenOptions::new().read(true).write(true).open(path).map_err(|e| match e.kind() {
+        io::ErrorKind::PermissionDenied => cant_write(path, format!("{e}; `linc fmt` leaves it as it is")),
+        _ => cant_write(path, e),
+    })?;
     let opened = file.metadata().map_err(|e| cant_write(path, e))?;
     if !same_file(&opened, &meta) {
         return Err(cant_write(path, "it was replaced while it was formatted"));
