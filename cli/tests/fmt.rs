@@ -95,3 +95,63 @@ fn a_directory_gives_its_fst_tables_but_not_other_csv_files() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert_eq!(stdout(&o), format!("{}\n", dir.join("table.csv").display()));
 }
+
+/// A file with two names (a hard link) is written in place: both names
+/// still show one file, formatted, and its permissions stay.
+#[cfg(unix)]
+#[test]
+fn a_hard_link_still_shares_the_file_after_fmt() {
+    use std::os::unix::fs::{MetadataExt, PermissionsExt};
+    let dir = temp_dir("fmt-hard-link");
+    let (file, other) = (dir.join("fill.stx"), dir.join("copy.stx"));
+    std::fs::write(&file, MESSY).expect("write");
+    std::fs::set_permissions(&file, std::fs::Permissions::from_mode(0o640)).expect("chmod");
+    std::fs::hard_link(&file, &other).expect("hard link");
+    let inode = std::fs::metadata(&file).expect("meta").ino();
+    let o = linc(&["fmt", file.to_str().expect("path")]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    for name in [&file, &other] {
+        let meta = std::fs::metadata(name).expect("meta");
+        assert_eq!((meta.ino(), meta.nlink(), meta.mode() & 0o777), (inode, 2, 0o640), "{}", name.display());
+        assert_eq!(std::fs::read_to_string(name).expect("read"), TIDY);
+    }
+}
+
+/// A file with one name is replaced atomically and keeps its permissions.
+#[cfg(unix)]
+#[test]
+fn a_file_with_one_name_is_replaced_and_keeps_its_mode() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = temp_dir("fmt-one-name");
+    let file = dir.join("fill.stx");
+    std::fs::write(&file, MESSY).expect("write");
+    std::fs::set_permissions(&file, std::fs::Permissions::from_mode(0o604)).expect("chmod");
+    let o = linc(&["fmt", file.to_str().expect("path")]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&file).expect("read"), TIDY);
+    assert_eq!(std::fs::metadata(&file).expect("meta").permissions().mode() & 0o777, 0o604);
+    let names: Vec<_> = std::fs::read_dir(&dir).expect("list").flatten().map(|e| e.file_name()).collect();
+    assert_eq!(names, [std::ffi::OsString::from("fill.stx")], "no temporary file left");
+}
+
+/// A read-only file is left as it is (content and mode), with E0900 and
+/// exit status 2, even for root; the other files named are formatted.
+#[cfg(unix)]
+#[test]
+fn a_read_only_file_is_left_alone_with_e0900() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = temp_dir("fmt-read-only");
+    let (locked, open) = (dir.join("locked.stx"), dir.join("open.stx"));
+    std::fs::write(&locked, MESSY).expect("write");
+    std::fs::write(&open, MESSY).expect("write");
+    std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o444)).expect("chmod");
+    let o = linc(&["fmt", locked.to_str().expect("path"), open.to_str().expect("path")]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("error[E0900]"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("read-only"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&locked).expect("read"), MESSY);
+    assert_eq!(std::fs::metadata(&locked).expect("meta").permissions().mode() & 0o777, 0o444);
+    assert_eq!(std::fs::read_to_string(&open).expect("read"), TIDY);
+    let o = linc(&["fmt", "--check", locked.to_str().expect("path")]);
+    assert_eq!(o.status.code(), Some(1), "--check still reads it: {}", stderr(&o));
+}

@@ -291,17 +291,81 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Refused> {
     file.commit()
 }
 
-/// Replaces the input file `path`, read as `original`, by `bytes`, as
-/// [`write_atomic`] writes (a link or device is refused, E0901): the one
-/// command that rewrites its input is `linc fmt`. If the file changed since
-/// it was read (an editor saved it meanwhile), nothing is written (E0900).
+/// Replaces the input file `path`, read as `original`, by `bytes`: the one
+/// command that rewrites its input is `linc fmt`, and it follows rustfmt's
+/// rule (docs/style.md, "Writing the file"). A link or device is refused
+/// (E0901), and so is a file its user can't write, or one that no one may
+/// write (E0900): a read-only file is left as it is, even for root. A file
+/// with one name is replaced atomically, as [`write_atomic`] writes; a file
+/// with several (hard links) is written in place, once the new text is
+/// whole, so that every name still shows the same file. If the file
+/// changed since it was read (an editor saved it meanwhile), nothing is
+/// written (E0900).
 pub fn replace_input(path: &Path, original: &[u8], bytes: &[u8]) -> Result<(), Refused> {
-    let mut file = AtomicFile::open(path, true)?;
-    if read_limited(path, MAX_INPUT_BYTES, false).map_err(|e| cant_write(path, e))? != original {
+    let Some(meta) = existing_output(path)? else {
+        return Err(cant_write(path, "it is gone"));
+    };
+    if read_only(&meta) {
+        return Err(cant_write(path, "it is read-only; `linc fmt` leaves it as it is"));
+    }
+    // Opened for writing (nothing changes yet) to learn whether we may.
+    let mut file = fs::OpenOptions::new().read(true).write(true).open(path).map_err(|e| match e.kind() {
+        io::ErrorKind::PermissionDenied => cant_write(path, format!("{e}; `linc fmt` leaves it as it is")),
+        _ => cant_write(path, e),
+    })?;
+    let opened = file.metadata().map_err(|e| cant_write(path, e))?;
+    if !same_file(&opened, &meta) {
+        return Err(cant_write(path, "it was replaced while it was formatted"));
+    }
+    let mut now = Vec::with_capacity(original.len());
+    (&mut file).take(MAX_INPUT_BYTES + 1).read_to_end(&mut now).map_err(|e| cant_write(path, e))?;
+    if now != original {
         return Err(cant_write(path, "it changed while it was formatted"));
     }
-    file.write_all(bytes).map_err(|e| cant_write(path, e))?;
-    file.commit()
+    if links(&meta) > 1 {
+        return write_in_place(&mut file, bytes).map_err(|e| cant_write(path, e));
+    }
+    drop(file);
+    let mut atomic = AtomicFile::open(path, true)?;
+    atomic.write_all(bytes).map_err(|e| cant_write(path, e))?;
+    atomic.commit()
+}
+
+/// No write permission bit is set: the owner marked it read-only.
+fn read_only(meta: &Metadata) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        meta.permissions().mode() & 0o222 == 0
+    }
+    #[cfg(not(unix))]
+    {
+        meta.permissions().readonly()
+    }
+}
+
+/// How many names (hard links) the file has.
+fn links(meta: &Metadata) -> u64 {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        meta.nlink()
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = meta;
+        1
+    }
+}
+
+/// Overwrites an open file with `bytes` from its start, cuts what is left
+/// of the old text, and syncs it.
+fn write_in_place(file: &mut fs::File, bytes: &[u8]) -> io::Result<()> {
+    use std::io::Seek;
+    file.seek(io::SeekFrom::Start(0))?;
+    file.write_all(bytes)?;
+    file.set_len(bytes.len() as u64)?;
+    file.sync_all()
 }
 
 /// Gives the new file the replaced file's permission bits (not set-id or
@@ -360,5 +424,27 @@ mod tests {
         assert_eq!(fs::read(&good).expect("read"), b"two");
         let names: Vec<_> = fs::read_dir(&dir).expect("list").filter_map(|e| e.ok()).map(|e| e.file_name()).collect();
         assert_eq!(names, vec![std::ffi::OsString::from("out.sto")]);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn replacing_an_input_keeps_hard_links_and_leaves_read_only_files() {
+        use std::os::unix::fs::{MetadataExt, PermissionsExt};
+        let dir = scratch("replace");
+        let (a, b) = (dir.join("a.st"), dir.join("b.st"));
+        fs::write(&a, b"old").expect("write");
+        fs::hard_link(&a, &b).expect("link");
+        replace_input(&a, b"old", b"new text").expect("in place");
+        let (ma, mb) = (fs::metadata(&a).expect("a"), fs::metadata(&b).expect("b"));
+        assert_eq!((ma.ino(), ma.nlink()), (mb.ino(), 2));
+        assert_eq!(fs::read(&b).expect("read"), b"new text");
+        replace_input(&a, b"new text", b"s").expect("shorter");
+        assert_eq!(fs::read(&b).expect("read"), b"s", "the old text's tail is cut");
+        let e = replace_input(&a, b"other", b"x").expect_err("changed since read");
+        assert!(e.message.contains("changed while"), "{}", e.message);
+        fs::set_permissions(&a, fs::Permissions::from_mode(0o444)).expect("chmod");
+        let e = replace_input(&a, b"s", b"x").expect_err("read-only");
+        assert_eq!((e.code.as_str(), fs::read(&a).expect("read")), ("E0900", b"s".to_vec()));
+        assert!(e.message.contains("read-only"), "{}", e.message);
     }
 }

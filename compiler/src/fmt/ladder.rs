@@ -15,7 +15,8 @@ enum Piece {
     /// A comment on its own line: text, column it stood at, blank line before.
     Comment(String, usize, bool),
     Header(String),
-    End(bool),
+    /// `END_ACTION`, the comments before its `;` and whether it has one.
+    End(String, bool),
     Rung(Rung),
 }
 
@@ -55,12 +56,14 @@ pub(crate) fn format(src: &str) -> String {
                     out.put(&h, false);
                     indent = INDENT.len();
                 }
-                Piece::End(semi) => {
+                Piece::End(comments, semi) => {
                     write_group(&mut out, &mut group, indent);
                     indent = 0;
                     out.newline();
                     out.indent = 0;
-                    out.put(if semi { "END_ACTION;" } else { "END_ACTION" }, false);
+                    out.put("END_ACTION", false);
+                    out.put(&comments, false);
+                    out.put(if semi { ";" } else { "" }, false);
                 }
                 other => group.push(other),
             }
@@ -137,7 +140,7 @@ fn write_group(out: &mut Out, group: &mut Vec<Piece>, indent: usize) {
                 out.indent = indent;
                 out.put(&line, false);
             }
-            Piece::Header(_) | Piece::End(_) => {}
+            Piece::Header(_) | Piece::End(..) => {}
         }
     }
 }
@@ -221,10 +224,14 @@ impl Scan<'_> {
             } else if self.at_word("END_ACTION") {
                 self.pos += "END_ACTION".len();
                 let save = self.pos;
-                self.comments();
+                let mut before_semi = String::new();
+                self.comments_into(&mut before_semi);
                 let semi = self.peek() == Some(b';');
                 self.pos = if semi { self.pos + 1 } else { save };
-                pieces.push(Piece::End(semi));
+                if !semi {
+                    before_semi.clear();
+                }
+                pieces.push(Piece::End(before_semi, semi));
                 return self.pos < self.b.len();
             } else {
                 let mut r = self.rung();
@@ -243,20 +250,40 @@ impl Scan<'_> {
         &self.s[start..self.pos]
     }
 
+    /// Skips blanks and comments, writing each comment with a space
+    /// before it: comments inside a header or between a label and its
+    /// `:` stay where they were, on the one line.
+    fn comments_into(&mut self, out: &mut String) {
+        for (a, b, _, _) in self.comments().0 {
+            out.push(' ');
+            out.push_str(&self.s[a..b]);
+        }
+    }
+
+    /// `ACTION name : TYPE`, with any comments between its words.
     fn header(&mut self) -> String {
         self.pos += "ACTION".len();
-        self.comments();
-        let mut h = format!("ACTION {}", self.ident());
+        let mut h = "ACTION".to_string();
+        self.comments_into(&mut h);
+        h.push(' ');
+        h.push_str(self.ident());
         let save = self.pos;
-        self.comments();
+        let mut before_colon = String::new();
+        self.comments_into(&mut before_colon);
         if self.peek() == Some(b':') {
             self.pos += 1;
-            self.comments();
-            let kind = self.ident().to_string();
-            h.push_str(" : ");
-            h.push_str(&kind);
+            h.push_str(&before_colon);
+            h.push_str(" :");
+            self.comments_into(&mut h);
+            h.push(' ');
+            h.push_str(self.ident());
         } else {
+            // Comments on later lines are the body's (read as pieces).
             self.pos = save;
+        }
+        for c in self.trailing() {
+            h.push(' ');
+            h.push_str(&c);
         }
         h
     }
@@ -264,12 +291,13 @@ impl Scan<'_> {
     fn rung(&mut self) -> Rung {
         let mut r = Rung::default();
         let save = self.pos;
-        let word = self.ident().to_string();
-        self.comments();
-        if !word.is_empty() && self.peek() == Some(b':') && self.b.get(self.pos + 1) != Some(&b'=') {
+        let mut word = self.ident().to_string();
+        let named = !word.is_empty();
+        self.comments_into(&mut word);
+        if named && self.peek() == Some(b':') && self.b.get(self.pos + 1) != Some(&b'=') {
+            // Comments after the `:` are read with the condition.
             self.pos += 1;
             r.label = Some(word);
-            self.comments();
         } else {
             self.pos = save;
         }
@@ -279,16 +307,23 @@ impl Scan<'_> {
         self.skip_to(b';');
         r.output = output(&self.s[start..self.pos]);
         self.pos = (self.pos + 1).min(self.s.len());
-        // Comments after the `;` on the same line stay on the rung's line.
+        r.trailing = self.trailing();
+        r
+    }
+
+    /// The comments after the cursor on its line (after a rung's `;`, an
+    /// action's header), which stay on that line.
+    fn trailing(&mut self) -> Vec<String> {
         let save = self.pos;
         let line_end = self.s[self.pos..].find('\n').map(|k| self.pos + k).unwrap_or(self.s.len());
         let (cs, _) = self.comments();
         self.pos = save;
+        let mut found = Vec::new();
         for (a, b, _, _) in cs.into_iter().filter(|c| c.1 <= line_end) {
-            r.trailing.push(self.s[a..b].to_string());
+            found.push(self.s[a..b].to_string());
             self.pos = b;
         }
-        r
+        found
     }
 
     /// A condition up to `->` (`stop` is `-`) or `;`, laid out.
@@ -342,6 +377,10 @@ impl Scan<'_> {
         let mut depth = 0usize;
         while let Some(c) = self.peek() {
             match c {
+                b'(' if self.b.get(self.pos + 1) == Some(&b'*') => {
+                    self.comments();
+                    continue;
+                }
                 b'[' => depth += 1,
                 b']' => {
                     depth -= 1;
@@ -405,11 +444,19 @@ fn join(out: &mut String, prev: u8, next: u8) {
     out.push(' ');
 }
 
+/// A contact `[…]` from the text between its brackets: comments before a
+/// negating `/` stay before it.
 fn contact(inner: &str) -> String {
-    let t = inner.trim();
+    let mut t = inner.trim();
+    let mut lead = String::new();
+    while let Some(k) = t.strip_prefix("(*").and_then(|r| r.find("*)")) {
+        lead.push_str(&t[..k + 4]);
+        lead.push(' ');
+        t = t[k + 4..].trim_start();
+    }
     match t.strip_prefix('/') {
-        Some(rest) => format!("[/{}]", st_inline(rest)),
-        None => format!("[{}]", st_inline(t)),
+        Some(rest) => format!("[{lead}/{}]", st_inline(rest)),
+        None => format!("[{}]", st_inline(inner.trim())),
     }
 }
 

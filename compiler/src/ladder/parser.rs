@@ -459,8 +459,16 @@ impl Parser<'_> {
             self.push(d);
             return Err(Reported);
         };
-        while self.pos < close && self.peek().is_some_and(|c| c.is_ascii_whitespace()) {
-            self.pos += 1;
+        // Blanks and comments (closed before `close`: `st_end` skipped
+        // them whole) may come before the `/` as anywhere else.
+        loop {
+            while self.pos < close && self.peek().is_some_and(|c| c.is_ascii_whitespace()) {
+                self.pos += 1;
+            }
+            match self.src[self.pos..close].strip_prefix("(*").and_then(|r| r.find("*)")) {
+                Some(k) => self.pos += 2 + k + 2,
+                None => break,
+            }
         }
         let negated = self.peek() == Some(b'/') && self.pos < close;
         if negated {
