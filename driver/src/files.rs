@@ -8,7 +8,7 @@ use linc_compiler::diag::Problems;
 use linc_format::Code;
 use std::fmt;
 use std::fs::{self, Metadata};
-use std::io::{self, Write};
+use std::io::{self, Read, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
