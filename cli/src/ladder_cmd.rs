@@ -44,7 +44,7 @@ pub fn run(command: LadderCommand, r: &Reporter) -> u8 {
                 return usage(r, "--values runs the ladder: give --db DB.json");
             };
             match linc_driver::ladder::after_run(&file, &db, &set, cycles) {
-                Ok((known, ran)) => show(&file, &|span| known.get(&(span.start, span.end)).copied(), ran, r),
+                Ok((after, ran)) => show(&file, &|span| after.truths.get(&(span.start, span.end)).copied(), ran, r),
                 Err(p) => r.report(&p),
             }
         }

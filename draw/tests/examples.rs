@@ -48,7 +48,7 @@ fn ladder_example() {
     let src = read("ladder/interlock.ld");
     let (file, d) = ladder::parser::parse(&src, "interlock");
     assert!(d.is_empty(), "{d:?}");
-    let (svg, geo) = linc_draw::ladder::file(&src, &file.actions, None);
+    let (svg, geo) = linc_draw::ladder::file(&src, &file.actions, None, None);
     let els = support::elements(&svg);
     let rungs: usize = file.actions.iter().map(|a| a.rungs.len()).sum();
     let ids = support::groups(&els, "rung-", "rung");

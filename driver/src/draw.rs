@@ -130,12 +130,13 @@ fn ladder_file(o: &Options) -> Result<Picture, Problems> {
         if o.cycles.is_some() || !o.set.is_empty() {
             return Err(usage("--cycles and --set run the ladder: give --db DB.json"));
         }
-        return Ok(Picture { svg: linc_draw::ladder::file(&source.text, &file.actions, None).0, problems });
+        return Ok(Picture { svg: linc_draw::ladder::file(&source.text, &file.actions, None, None).0, problems });
     };
-    let (known, ran) = crate::ladder::after_run(&o.file, db, &o.set, o.cycles.unwrap_or(0))?;
+    let (after, ran) = crate::ladder::after_run(&o.file, db, &o.set, o.cycles.unwrap_or(0))?;
     problems.append(ran);
-    let look = |span: linc_compiler::diag::Span| known.get(&(span.start, span.end)).copied();
-    Ok(Picture { svg: linc_draw::ladder::file(&source.text, &file.actions, Some(&look)).0, problems })
+    let look = |span: linc_compiler::diag::Span| after.truths.get(&(span.start, span.end)).copied();
+    let svg = linc_draw::ladder::file(&source.text, &file.actions, Some(&look), after.lines_ran.as_deref()).0;
+    Ok(Picture { svg, problems })
 }
 
 fn table(o: &Options) -> Result<Picture, Problems> {

@@ -1,8 +1,9 @@
 //! The live pictures of a served plant: each sequence, ladder action and
 //! FST table drawn by `linc-draw` with the state the plant is in now. A
 //! picture is drawn again only when what it shows has changed (its key:
-//! active steps and their whole seconds, powered elements, the current
-//! FST step with RR and CF), so a monitor of a quiet plant costs nothing.
+//! active steps and their whole seconds, powered elements and the rungs
+//! the action's last execution ran, the current FST step with RR and CF),
+//! so a monitor of a quiet plant costs nothing.
 
 use linc_compiler::Context;
 use linc_compiler::{fst, ladder, sfc};
@@ -93,15 +94,21 @@ impl Picture {
                 self.key = Some(key);
             }
             Live::Ladder { text, actions, elements } => {
+                // Watched from the first drawing, made before the first
+                // scan: from then on the action's last execution is known.
+                if s.lines_ran(block).is_none() {
+                    s.watch_runs(block);
+                }
+                let ran = s.lines_ran(block).filter(|r| r.executions > 0).map(|r| r.lines.clone());
                 let truths = elements.truths(&mut s.store);
                 let mut known: Vec<_> = truths.iter().collect();
                 known.sort();
-                let key = format!("{known:?}");
+                let key = format!("{known:?} {ran:?}");
                 if self.key.as_deref() == Some(key.as_str()) {
                     return false;
                 }
                 let look = |span: linc_compiler::diag::span::Span| truths.get(&(span.start, span.end)).copied();
-                self.svg = linc_draw::ladder::file(text, actions, Some(&look)).0;
+                self.svg = linc_draw::ladder::file(text, actions, Some(&look), ran.as_deref()).0;
                 self.key = Some(key);
             }
             Live::Fst { table, offsets } => {
