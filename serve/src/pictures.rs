@@ -14,7 +14,7 @@ use std::path::Path;
 enum Live {
     Sequence { text: String, tree: sfc::ast::Sequence },
     Ladder { text: String, actions: Vec<ladder::ast::Action>, elements: LiveElements },
-    Fst { table: fst::Table, offsets: Vec<u32> },
+    Fst { table: fst::Table },
 }
 
 /// One program's picture and the state it was last drawn with.
@@ -58,9 +58,7 @@ fn picture(dir: &Path, w: &Want, s: &Strategy) -> Option<Picture> {
         }
         WantKind::Fst => {
             let (table, _) = fst::reader::read(&text);
-            let object = fst::compile(&text, &stem, &path.display().to_string(), Some(db)).1;
-            let offsets = object.as_ref().and_then(fst::offsets).unwrap_or_default();
-            ("fst", Live::Fst { table, offsets })
+            ("fst", Live::Fst { table })
         }
         WantKind::Action => return None,
     };
@@ -111,8 +109,8 @@ impl Picture {
                 self.svg = linc_draw::ladder::file(text, actions, Some(&look), ran.as_deref()).0;
                 self.key = Some(key);
             }
-            Live::Fst { table, offsets } => {
-                let state = linc_driver::draw::fst_state(&s.store, block, offsets);
+            Live::Fst { table } => {
+                let state = linc_driver::draw::fst_state(s, block);
                 let key =
                     format!("{:?} {} {} {} {:?}", state.current, state.rr, state.cf, state.runflg, state.registers);
                 if self.key.as_deref() == Some(key.as_str()) {
