@@ -5,8 +5,10 @@
 //! the action's last execution ran, the current FST step with RR and CF),
 //! so a monitor of a quiet plant costs nothing.
 
+use crate::history::History;
 use linc_compiler::Context;
 use linc_compiler::{fst, ladder, sfc};
+use linc_draw::trend::Recent;
 use linc_driver::ladder::LiveElements;
 use linc_engines::strategy::{Strategy, Want, WantKind};
 use std::path::Path;
@@ -122,4 +124,39 @@ impl Picture {
         }
         true
     }
+}
+
+/// How a trend is named in `GET /api/pictures/NAME`:
+/// `trend:SECONDS:BLOCK.FIELD,BLOCK.FIELD…` — the page's trend, drawn by
+/// `linc-draw` as `linc draw` draws a trace's, not a second drawing in the
+/// page's script.
+pub const TREND: &str = "trend:";
+
+/// The most fields one trend draws.
+const MAX_TREND_FIELDS: usize = 12;
+
+/// The trend `spec` (a [`TREND`] name without its prefix) names: its
+/// fields over the last SECONDS of simulated time (at most the history's
+/// 15 minutes), from the changes the history kept. `None` when the window
+/// is not a positive number of seconds or a field is not in the database.
+pub fn trend(spec: &str, history: &History, s: &Strategy) -> Option<String> {
+    let (secs, fields) = spec.split_once(':')?;
+    let window = secs.parse::<f64>().ok().filter(|w| w.is_finite() && *w > 0.0)?;
+    let window = window.min(crate::history::KEEP_US as f64 / 1e6);
+    let seconds = |us: u64| us as f64 / 1e6;
+    let now = seconds(s.elapsed_us());
+    let from = (now - window).max(0.0);
+    let store = &s.store;
+    let mut out = Vec::new();
+    for path in fields.split(',').filter(|p| !p.trim().is_empty()).take(MAX_TREND_FIELDS) {
+        let cell = linc_engines::console::fields::address(store, path.trim()).ok()?.cell;
+        let kept = history.of(cell);
+        // The value when the window opens: the last change before it, or
+        // the value now for a field that has not changed in the history.
+        let before = kept.iter().rev().find(|(t, _)| seconds(*t) < from).map(|(_, v)| v.to_string());
+        let start = before.or_else(|| kept.is_empty().then(|| store.show(cell)));
+        let changes = kept.iter().map(|(t, v)| (seconds(*t), v.to_string())).collect();
+        out.push(Recent { name: store.describe(cell), start, changes });
+    }
+    Some(linc_draw::trend::recent(out, from, now))
 }

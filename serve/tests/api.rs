@@ -260,5 +260,16 @@ fn a_trend_starts_with_the_recent_past() {
     let times: Vec<f64> = points.iter().map(|p| p[0].as_f64().unwrap()).collect();
     assert!(times.windows(2).all(|w| w[0] <= w[1]) && times.last() <= t["now"].as_f64().as_ref());
     assert_eq!(get(&s, "/api/trend/R1.Nope", &[]).0, 404);
+    // The page's trend is linc-draw's, served as a picture: the level on a
+    // plot with a value scale, the valve as a strip, a time axis.
+    let (code, svg) = get(&s, "/api/pictures/trend%3A60%3Ar1.level%2CR1.FillVlv", &[]);
+    assert_eq!(code, 200, "{svg}");
+    assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"linc trend\""), "{svg}");
+    assert!(svg.contains("<g id=\"trend-R1.Level\" class=\"series\">"), "{svg}");
+    assert!(svg.contains("<g id=\"strip-R1.FillVlv\" class=\"strip\">"), "{svg}");
+    assert_eq!(svg.matches("class=\"dim\" text-anchor=\"end\"").count(), 5, "a value scale of five: {svg}");
+    assert!(svg.matches("class=\"dim\" text-anchor=\"middle\">").count() >= 4, "a time axis: {svg}");
+    assert_eq!(get(&s, "/api/pictures/trend%3A60%3AR1.Nope", &[]).0, 404);
+    assert_eq!(get(&s, "/api/pictures/trend%3A0%3AR1.Level", &[]).0, 404, "a window of no time");
     s.stop();
 }
