@@ -226,3 +226,18 @@ pub struct BlockCounts {
     pub hits: Vec<u64>,
     pub taken: Vec<u64>,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::lines_between;
+
+    #[test]
+    fn the_lines_between_two_counts_are_those_counted_in_between_once_each() {
+        let before = [(3, 1), (4, 1), (4, 0), (7, 2), (9, 0)];
+        let after = [(3, 2), (4, 1), (4, 1), (7, 2), (9, 0)];
+        assert_eq!(lines_between(&before, &after), [3, 4]);
+        assert!(lines_between(&after, &after).is_empty(), "nothing ran");
+        // A first count (coverage just enabled) counts from nothing.
+        assert_eq!(lines_between(&[], &[(5, 1), (2, 1), (5, 3)]), [2, 5]);
+    }
+}

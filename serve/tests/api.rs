@@ -273,3 +273,20 @@ fn a_trend_starts_with_the_recent_past() {
     assert_eq!(get(&s, "/api/pictures/trend%3A0%3AR1.Level", &[]).0, 404, "a window of no time");
     s.stop();
 }
+
+/// The live ladder shows what the action's last execution ran: the
+/// example's rung 5 jumps to `_End`, so rungs 6–8 are drawn not run.
+#[test]
+fn the_live_ladder_shows_the_rungs_a_taken_jump_skipped() {
+    let s = serve("examples/ladder/plant.json", config(Speed::Times(20.0), false, None));
+    let class = |svg: &str, n: usize| {
+        let open = format!("<g id=\"rung-{n}\" class=\"");
+        let rest = svg.find(&open).map_or("", |i| &svg[i + open.len()..]);
+        rest[..rest.find('"').unwrap_or(0)].to_string()
+    };
+    common::eventually("a scan of the ladder", || class(&get(&s, "/api/pictures/LAD", &[]).1, 6) == "rung skipped");
+    let svg = get(&s, "/api/pictures/LAD", &[]).1;
+    let classes: Vec<String> = (1..=8).map(|n| class(&svg, n)).collect();
+    assert_eq!(classes[3..], ["rung powered", "rung powered", "rung skipped", "rung skipped", "rung skipped"]);
+    s.stop();
+}
