@@ -24,6 +24,35 @@ pub type Look<'a> = Option<&'a dyn Fn(Span) -> Option<bool>>;
 /// run), and power flow is then worked out from the values alone.
 pub type Ran<'a> = Option<&'a [u32]>;
 
+/// Which rungs of a source ran, from [`Ran`]'s lines: shared by the SVG
+/// and the text drawing (`linc ladder show --values`), so both tell the
+/// same rungs apart.
+pub struct RanRungs<'a> {
+    lines: &'a [u32],
+    /// The offset each line of the source starts at.
+    line_starts: Vec<usize>,
+}
+
+impl<'a> RanRungs<'a> {
+    pub fn new(src: &str, lines: &'a [u32]) -> RanRungs<'a> {
+        let line_starts = std::iter::once(0).chain(src.match_indices('\n').map(|(i, _)| i + 1)).collect();
+        RanRungs { lines, line_starts }
+    }
+
+    /// The 1-based line of byte `offset`.
+    fn line(&self, offset: usize) -> u32 {
+        self.line_starts.partition_point(|&s| s <= offset) as u32
+    }
+
+    /// Whether the rung at `span` ran: some statement started on one of
+    /// its lines.
+    pub fn ran(&self, span: Span) -> bool {
+        let (first, last) = (self.line(span.start), self.line(span.end.saturating_sub(1).max(span.start)));
+        let at = self.lines.partition_point(|&l| l < first);
+        self.lines.get(at).is_some_and(|&l| l <= last)
+    }
+}
+
 const RAIL: f64 = 16.0;
 const JOIN: f64 = 12.0;
 const WY: f64 = 26.0;
@@ -31,9 +60,7 @@ const WY: f64 = 26.0;
 struct Ctx<'a> {
     src: &'a str,
     look: Look<'a>,
-    ran: Ran<'a>,
-    /// The offset each line of `src` starts at.
-    line_starts: Vec<usize>,
+    ran: Option<RanRungs<'a>>,
 }
 
 impl Ctx<'_> {
@@ -45,18 +72,10 @@ impl Ctx<'_> {
         self.look.and_then(|f| f(span))
     }
 
-    /// The 1-based line of byte `offset`.
-    fn line(&self, offset: usize) -> u32 {
-        self.line_starts.partition_point(|&s| s <= offset) as u32
-    }
-
     /// Whether the rung at `span` ran in the last execution (`None`: not
-    /// known): some statement started on one of its lines.
+    /// known).
     fn executed(&self, span: Span) -> Option<bool> {
-        let lines = self.ran?;
-        let (first, last) = (self.line(span.start), self.line(span.end.saturating_sub(1).max(span.start)));
-        let at = lines.partition_point(|&l| l < first);
-        Some(lines.get(at).is_some_and(|&l| l <= last))
+        self.ran.as_ref().map(|r| r.ran(span))
     }
 
     fn elem_h(&self) -> f64 {
@@ -342,8 +361,7 @@ fn truth(ctx: &Ctx, c: &Cond) -> Option<bool> {
 /// The actions of a ladder file, drawn one under the other with the same
 /// rails; rungs numbered from 1 through the file.
 pub fn file(src: &str, actions: &[Action], look: Look, ran: Ran) -> (String, Geometry) {
-    let line_starts = std::iter::once(0).chain(src.match_indices('\n').map(|(i, _)| i + 1)).collect();
-    let ctx = Ctx { src, look, ran, line_starts };
+    let ctx = Ctx { src, look, ran: ran.map(|lines| RanRungs::new(src, lines)) };
     let body_w = actions
         .iter()
         .flat_map(|a| &a.rungs)

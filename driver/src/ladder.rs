@@ -101,13 +101,15 @@ pub fn to_st(file: &Path, db: Option<&Path>) -> Result<String, Problems> {
 }
 
 /// The rungs drawn in text (`linc ladder show`), handed to `write` one
-/// action at a time; `values` gives each element's state. The file's
-/// syntax errors and rungs too large to draw are errors found in it.
-pub fn show(file: &Path, values: Values, write: &mut dyn FnMut(&str)) -> Result<(), Problems> {
+/// action at a time; `values` gives each element's state and `ran` the
+/// lines the last cycle ran ([`AfterRun::lines_ran`]: a rung not run is
+/// drawn as such). The file's syntax errors and rungs too large to draw
+/// are errors found in it.
+pub fn show(file: &Path, values: Values, ran: Option<&[u32]>, write: &mut dyn FnMut(&str)) -> Result<(), Problems> {
     let bytes = crate::files::read_input(file).map_err(|e| Problems::unreadable(file, &e))?;
     let (text, _) = linc_compiler::diag::decode(bytes);
     let stem = crate::source::stem(file, "ladder");
-    linc_draw::ladder_text::draw_to(&text, stem, values, write).map_err(|ds| {
+    linc_draw::ladder_text::draw_to(&text, stem, (values, ran), write).map_err(|ds| {
         let mut files = linc_compiler::diag::SourceFiles::new();
         let id = files.add(file.display().to_string(), text.clone());
         Problems::of(files, ds.into_iter().map(|d| d.in_file(id)).collect())
