@@ -38,13 +38,16 @@ pub fn run(command: LadderCommand, r: &Reporter) -> u8 {
     match command {
         LadderCommand::Show { file, values, db, set, cycles } => {
             if !values {
-                return show(&file, &|_| None, Problems::new(), r);
+                return show(&file, (&|_| None, None), Problems::new(), r);
             }
             let Some(db) = db else {
                 return usage(r, "--values runs the ladder: give --db DB.json");
             };
             match linc_driver::ladder::after_run(&file, &db, &set, cycles) {
-                Ok((known, ran)) => show(&file, &|span| known.get(&(span.start, span.end)).copied(), ran, r),
+                Ok((after, ran)) => {
+                    let values = |span: linc_compiler::diag::Span| after.truths.get(&(span.start, span.end)).copied();
+                    show(&file, (&values, after.lines_ran.as_deref()), ran, r)
+                }
                 Err(p) => r.report(&p),
             }
         }
@@ -60,10 +63,15 @@ pub fn run(command: LadderCommand, r: &Reporter) -> u8 {
 
 /// Prints the diagram after what the run found (`ran`), or the file's
 /// syntax errors (exit 1).
-fn show(file: &Path, values: linc_driver::ladder::Values, ran: Problems, r: &Reporter) -> u8 {
+fn show(
+    file: &Path,
+    (values, lines): (linc_driver::ladder::Values, Option<&[u32]>),
+    ran: Problems,
+    r: &Reporter,
+) -> u8 {
     let status = r.report(&ran);
     let mut out = crate::out::Stream::new();
-    let drawn = linc_driver::ladder::show(file, values, &mut |s| out.text(s));
+    let drawn = linc_driver::ladder::show(file, values, lines, &mut |s| out.text(s));
     let _ = std::io::Write::flush(&mut out);
     drop(out);
     match drawn {

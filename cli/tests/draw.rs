@@ -51,11 +51,51 @@ fn rungs_show_power_flow_after_a_run() {
     let svg = stdout(&o);
     let rungs = groups(&svg, "rung-");
     assert_eq!(rungs.len(), 8);
-    assert_eq!(with_class(&rungs, "powered"), ["rung-4", "rung-5", "rung-7", "rung-8"]);
-    assert!(svg.contains("class=\"value\" text-anchor=\"middle\">TRUE<"));
-    assert!(svg.contains("class=\"value\" text-anchor=\"middle\">FALSE<"));
+    // Rung 5's jump to _End is taken (`[/Dig_5b.In]` passes): rungs 6–8
+    // did not run, so they carry no power whatever their contacts read.
+    assert_eq!(with_class(&rungs, "powered"), ["rung-4", "rung-5"]);
+    assert_eq!(with_class(&rungs, "skipped"), ["rung-6", "rung-7", "rung-8"]);
+    for n in 6..=8 {
+        let body = rung_body(&svg, n);
+        assert!(!body.contains("wire on") && !body.contains("class=\"element on"), "rung {n}: {body}");
+        assert!(body.contains(&format!("<title>rung {n} did not run")), "rung {n} says why it is grey");
+    }
+    // Values are coloured by state: TRUE energised, FALSE dim.
+    assert!(svg.contains("class=\"value true\" text-anchor=\"middle\">TRUE<"));
+    assert!(svg.contains("class=\"value false\" text-anchor=\"middle\">FALSE<"));
+    assert!(!svg.contains("class=\"value\" text-anchor=\"middle\">TRUE<"));
+    assert!(svg.contains("text.value.true { fill: var(--on)") && svg.contains("text.value.false { fill: var(--dim)"));
     let plain = stdout(&linc(&["draw", "examples/ladder/interlock.ld"]));
     assert!(with_class(&groups(&plain, "rung-"), "powered").is_empty());
+}
+
+/// The SVG of group `rung-N`, up to the next rung.
+fn rung_body(svg: &str, n: usize) -> &str {
+    let start = svg.find(&format!("<g id=\"rung-{n}\"")).expect("rung");
+    let end = svg[start + 1..].find("<g id=\"rung-").map_or(svg.len(), |e| start + 1 + e);
+    &svg[start..end]
+}
+
+/// Which rungs ran is what the run recorded, not what the values say
+/// afterwards: here the rung after the label clears the jump's contact, so
+/// from the values alone the jump looks not taken and rung 2 powered.
+#[test]
+fn a_rung_a_taken_jump_skipped_is_drawn_not_run_even_when_its_jump_reads_false_now() {
+    let src = "(* skip *)\n[Dig_1b.Out] -> JUMP Over;\n[Dig_2a.In] -> (Dig_2c.Out);\nOver: -> (R Dig_1b.Out);\n";
+    let file = common::temp_file("draw-skip", "skip.ld", src);
+    let db = format!("{}/../examples/ladder/plant.json", env!("CARGO_MANIFEST_DIR"));
+    let args = ["draw", &file, "--db", &db, "--cycles", "1", "--set", "Dig_1b.Out=TRUE", "--set", "Dig_2a.In=TRUE"];
+    let o = linc(&args);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = stdout(&o);
+    let rungs = groups(&svg, "rung-");
+    assert_eq!(with_class(&rungs, "skipped"), ["rung-2"]);
+    assert_eq!(with_class(&rungs, "powered"), ["rung-3"]);
+    assert!(rung_body(&svg, 2).contains(">TRUE<"), "its contact still shows its value");
+    assert!(!rung_body(&svg, 2).contains("wire on"));
+    // Without a cycle nothing ran, and nothing is drawn as skipped.
+    let o = linc(&["draw", &file, "--db", &db, "--set", "Dig_1b.Out=TRUE", "--set", "Dig_2a.In=TRUE"]);
+    assert!(with_class(&groups(&stdout(&o), "rung-"), "skipped").is_empty());
 }
 
 #[test]

@@ -50,6 +50,25 @@ fn values_draw_powered_elements_after_a_run() {
     assert_eq!(o.status.code(), Some(2), "--values needs --db");
 }
 
+/// The rungs a taken jump skipped did not run: none of their contacts is
+/// drawn passing power (`==`), whatever it reads now, and each says so.
+/// Here the rung after the label clears the jump's contact, so the values
+/// alone would say the jump was not taken.
+#[test]
+fn values_tell_the_rungs_a_taken_jump_skipped() {
+    let f = temp_dir("ladder-show").join("skip.ld");
+    std::fs::write(&f, "[Dig_1b.Out] -> JUMP Over;\n[Dig_2a.In] -> (Dig_2c.Out);\nOver: -> (R Dig_1b.Out);\n")
+        .expect("write");
+    let db = "examples/ladder/plant.json";
+    let args = ["ladder", "show", f.to_str().unwrap(), "--values", "--db", db, "--set", "Dig_1b.Out=TRUE"];
+    let o = linc(&[&args[..], &["--set", "Dig_2a.In=TRUE"]].concat());
+    assert_eq!(o.status.code(), Some(0), "{}", common::stderr(&o));
+    let drawn = stdout(&o);
+    assert!(drawn.contains("  |--[ Dig_2a.In ]----( Dig_2c.Out )--"), "{drawn}");
+    assert_eq!(drawn.matches("(not run: a jump skipped it)").count(), 1, "{drawn}");
+    assert!(drawn.contains("  |--[ Dig_2a.In ]----( Dig_2c.Out )--|\n  |  (not run: a jump skipped it)\n"), "{drawn}");
+}
+
 /// A rung of 3,900 contacts is 66,000 characters wide: `format!` pads to
 /// at most 65,535 and panicked on it. Every rung check accepts is drawn.
 #[test]

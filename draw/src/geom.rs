@@ -76,6 +76,16 @@ pub struct Link {
     pub path: Vec<P>,
 }
 
+/// A simultaneous branch's double bar and the wires that belong to it (the
+/// transition's stem and the wires to or from the branch's steps): any
+/// other wire that meets the bar reads as if it led into the branch.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Double {
+    /// The bar: both lines, from its first branch to its last.
+    pub r: Rect,
+    pub own: Vec<(P, P)>,
+}
+
 /// The record of a picture's layout.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Geometry {
@@ -87,6 +97,8 @@ pub struct Geometry {
     pub links: Vec<Link>,
     /// Named connectors: (connector id, the name it shows, the node it stands for).
     pub connectors: Vec<(String, String, String)>,
+    /// The double bars of simultaneous branches.
+    pub doubles: Vec<Double>,
 }
 
 impl Geometry {
@@ -98,6 +110,29 @@ impl Geometry {
         self.wires.extend(other.wires.into_iter().map(|(a, b)| (mv(a), mv(b))));
         self.links.extend(other.links.into_iter().map(|l| Link { path: l.path.into_iter().map(mv).collect(), ..l }));
         self.connectors.extend(other.connectors);
+        self.doubles.extend(other.doubles.into_iter().map(|d| Double {
+            r: d.r.translate(dx, dy),
+            own: d.own.into_iter().map(|(a, b)| (mv(a), mv(b))).collect(),
+        }));
+    }
+
+    /// The first wire that meets a double bar it does not belong to (touching
+    /// counts: a wire that ends on the bar leads into it), with the bar.
+    pub fn through_double(&self) -> Option<((P, P), Rect)> {
+        const E: f64 = 1e-6;
+        let same = |a: &(P, P), b: &(P, P)| (a.0 == b.0 && a.1 == b.1) || (a.0 == b.1 && a.1 == b.0);
+        for d in &self.doubles {
+            let r = d.r;
+            for w in &self.wires {
+                let (lx, hx) = (w.0.x.min(w.1.x), w.0.x.max(w.1.x));
+                let (ly, hy) = (w.0.y.min(w.1.y), w.0.y.max(w.1.y));
+                let meets = lx <= r.right() + E && hx >= r.x - E && ly <= r.bottom() + E && hy >= r.y - E;
+                if meets && !d.own.iter().any(|o| same(o, w)) {
+                    return Some((*w, r));
+                }
+            }
+        }
+        None
     }
 
     /// The first two solids that overlap (in the order drawn), found by

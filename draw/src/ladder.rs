@@ -4,7 +4,10 @@
 //! joined left and right, function boxes with their inputs, the four
 //! coils, jumps and variable outputs at the right rail. With a run's
 //! state, wires that carry power are drawn `on` (the editor's power flow)
-//! and each contact shows its value.
+//! and each contact shows its value; with the lines the run executed, a
+//! rung that did not run (a taken jump skipped it) carries no power and
+//! is drawn `skipped`, as CODESYS and TwinCAT grey out code that did not
+//! run in the last cycle.
 
 use crate::geom::{p, Geometry, Link, Rect, Solid, P};
 use crate::svg::{id, num, text_width, Svg};
@@ -15,6 +18,41 @@ use linc_compiler::ladder::ast::{Action, BoxOp, CoilKind, Cond, Output, Rung};
 /// target) by its span, after a run.
 pub type Look<'a> = Option<&'a dyn Fn(Span) -> Option<bool>>;
 
+/// The source lines (1-based, sorted) on which a statement started in the
+/// actions' last execution, as the runtime counted them: a rung ran when a
+/// statement of one of its lines did. `None` when it is not known (no
+/// run), and power flow is then worked out from the values alone.
+pub type Ran<'a> = Option<&'a [u32]>;
+
+/// Which rungs of a source ran, from [`Ran`]'s lines: shared by the SVG
+/// and the text drawing (`linc ladder show --values`), so both tell the
+/// same rungs apart.
+pub struct RanRungs<'a> {
+    lines: &'a [u32],
+    /// The offset each line of the source starts at.
+    line_starts: Vec<usize>,
+}
+
+impl<'a> RanRungs<'a> {
+    pub fn new(src: &str, lines: &'a [u32]) -> RanRungs<'a> {
+        let line_starts = std::iter::once(0).chain(src.match_indices('\n').map(|(i, _)| i + 1)).collect();
+        RanRungs { lines, line_starts }
+    }
+
+    /// The 1-based line of byte `offset`.
+    fn line(&self, offset: usize) -> u32 {
+        self.line_starts.partition_point(|&s| s <= offset) as u32
+    }
+
+    /// Whether the rung at `span` ran: some statement started on one of
+    /// its lines.
+    pub fn ran(&self, span: Span) -> bool {
+        let (first, last) = (self.line(span.start), self.line(span.end.saturating_sub(1).max(span.start)));
+        let at = self.lines.partition_point(|&l| l < first);
+        self.lines.get(at).is_some_and(|&l| l <= last)
+    }
+}
+
 const RAIL: f64 = 16.0;
 const JOIN: f64 = 12.0;
 const WY: f64 = 26.0;
@@ -22,6 +60,7 @@ const WY: f64 = 26.0;
 struct Ctx<'a> {
     src: &'a str,
     look: Look<'a>,
+    ran: Option<RanRungs<'a>>,
 }
 
 impl Ctx<'_> {
@@ -31,6 +70,12 @@ impl Ctx<'_> {
 
     fn truth(&self, span: Span) -> Option<bool> {
         self.look.and_then(|f| f(span))
+    }
+
+    /// Whether the rung at `span` ran in the last execution (`None`: not
+    /// known).
+    fn executed(&self, span: Span) -> Option<bool> {
+        self.ran.as_ref().map(|r| r.ran(span))
     }
 
     fn elem_h(&self) -> f64 {
@@ -164,12 +209,19 @@ fn contact(
     }
     o.svg.text(cx, y + 11.0, &text, "", "middle");
     if let Some(t) = truth {
-        o.svg.text(cx, wy + 24.0, if t { "TRUE" } else { "FALSE" }, "value", "middle");
+        truth_label(o, cx, wy + 24.0, t);
     }
     o.svg.close();
     let tw = text_width(&text);
     o.geo.solids.push(Solid { what: format!("contact {text}"), r: Rect::new(cx - tw / 2.0, y, tw, s.h - 2.0) });
     out
+}
+
+/// A contact's or coil's value under it: `TRUE` in the energised colour,
+/// `FALSE` dim (class `value true` / `value false`), so a glance tells the
+/// state from the colour as well as the word.
+fn truth_label(o: &mut Out, x: f64, y: f64, t: bool) {
+    o.svg.text(x, y, if t { "TRUE" } else { "FALSE" }, if t { "value true" } else { "value false" }, "middle");
 }
 
 fn function_box(
@@ -259,7 +311,7 @@ fn output(ctx: &Ctx, out: &Output, x: f64, y: f64, pin: Option<bool>, o: &mut Ou
             wire(o, p(cx + 9.0, wy), p(x + w, wy), pin);
             o.svg.text(cx, y + 11.0, &text, "", "middle");
             if let Some(t) = ctx.truth(target.span) {
-                o.svg.text(cx, wy + 24.0, if t { "TRUE" } else { "FALSE" }, "value", "middle");
+                truth_label(o, cx, wy + 24.0, t);
             }
             o.svg.close();
             let tw = text_width(&text).max(24.0);
@@ -308,8 +360,8 @@ fn truth(ctx: &Ctx, c: &Cond) -> Option<bool> {
 
 /// The actions of a ladder file, drawn one under the other with the same
 /// rails; rungs numbered from 1 through the file.
-pub fn file(src: &str, actions: &[Action], look: Look) -> (String, Geometry) {
-    let ctx = Ctx { src, look };
+pub fn file(src: &str, actions: &[Action], look: Look, ran: Ran) -> (String, Geometry) {
+    let ctx = Ctx { src, look, ran: ran.map(|lines| RanRungs::new(src, lines)) };
     let body_w = actions
         .iter()
         .flat_map(|a| &a.rungs)
@@ -346,14 +398,24 @@ pub fn file(src: &str, actions: &[Action], look: Look) -> (String, Geometry) {
     (svg.finish("ld", right + RAIL, y), geo)
 }
 
-/// One rung at `y`; returns the y under it.
+/// One rung at `y`; returns the y under it. A rung that did not run gets
+/// no power from the left rail, so nothing in it is drawn `on`.
 fn rung(ctx: &Ctx, r: &Rung, number: usize, (left, right, mut y): (f64, f64, f64), o: &mut Out) -> f64 {
-    let powered = match &r.cond {
-        Some(c) => truth(ctx, c),
-        None => ctx.look.map(|_| true),
+    let executed = ctx.executed(r.span);
+    let powered = match (&r.cond, executed) {
+        (_, Some(false)) => Some(false),
+        (Some(c), _) => truth(ctx, c),
+        (None, _) => ctx.look.map(|_| true),
     };
-    let class = if powered == Some(true) { "rung powered" } else { "rung" };
+    let class = match (powered, executed) {
+        (_, Some(false)) => "rung skipped",
+        (Some(true), _) => "rung powered",
+        _ => "rung",
+    };
     o.svg.open(Some(&format!("rung-{number}")), class);
+    if executed == Some(false) {
+        o.svg.title(&format!("rung {number} did not run in the last scan (a jump skipped it)"));
+    }
     if let Some(l) = &r.label {
         o.svg.text(left + 6.0, y + 12.0, &format!("{}:", l.text), "name", "start");
         o.geo.solids.push(Solid {
@@ -365,7 +427,10 @@ fn rung(ctx: &Ctx, r: &Rung, number: usize, (left, right, mut y): (f64, f64, f64
     let cs = r.cond.as_ref().map_or(Size { w: 0.0, h: ctx.elem_h(), wy: WY }, |c| size(ctx, c));
     let wy = y + cs.wy.max(WY);
     let cy = wy - cs.wy;
-    let pin = ctx.look.map(|_| true);
+    let pin = match executed {
+        Some(false) => Some(false),
+        _ => ctx.look.map(|_| true),
+    };
     let pout = match &r.cond {
         Some(c) => cond(ctx, c, left, cy, pin, o),
         None => pin,

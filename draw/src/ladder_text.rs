@@ -5,6 +5,7 @@
 //! branch group, coils `( x )` `(/x)` `(S x)` `(R x)`, jumps `>> L`,
 //! variable outputs `{ t := v }`. Element text is the source as written.
 
+use crate::ladder::{Ran, RanRungs};
 use linc_compiler::diag::{Diagnostic, Span};
 use linc_compiler::ladder::ast::{Action, CoilKind, Cond, Output, Rung};
 use linc_compiler::ladder::parser;
@@ -186,18 +187,22 @@ fn rung_size(src: &str, r: &Rung) -> (usize, usize) {
     (w + out + 4, h)
 }
 
-/// One rung between the rails, its label on the line above.
-fn rung(src: &str, r: &Rung, width: usize, values: Values, out: &mut String) {
+/// One rung between the rails, its label on the line above. A rung that
+/// did not run (a taken jump skipped it) is drawn with no element passing
+/// power and says so under it.
+fn rung(src: &str, r: &Rung, width: usize, (values, ran): (Values, Option<&RanRungs>), out: &mut String) {
     if let Some(l) = &r.label {
         out.push_str(&format!("{}:\n", l.text));
     }
+    let skipped = ran.is_some_and(|ran| !ran.ran(r.span));
+    let values: Values = if skipped { &|_| None } else { values };
     let left = r.cond.as_ref().map_or_else(|| Cell::one("--".into()), |c| cond(src, c, values));
     let body = series(vec![left, output(src, &r.output, values)]);
     for i in 0..body.rows.len() {
         let line = if i == 0 { pad(&body.row(0), width, '-') + "--" } else { pad(&body.row(i), width, ' ') + "  " };
         out.push_str(&format!("  |{line}|\n"));
     }
-    out.push_str("  |\n");
+    out.push_str(if skipped { "  |  (not run: a jump skipped it)\n" } else { "  |\n" });
 }
 
 /// The rungs of `a` too large to draw (E0314), each located at its rung.
@@ -220,7 +225,8 @@ fn too_large(src: &str, a: &Action) -> Vec<Diagnostic> {
 
 /// Draws one action, elements in the state `values` gives them; `Err` with
 /// the rungs too large to draw, and nothing drawn, if it has any.
-fn action(src: &str, a: &Action, values: Values, out: &mut String) -> Result<(), Vec<Diagnostic>> {
+fn action(src: &str, a: &Action, shown: (Values, Option<&RanRungs>), out: &mut String) -> Result<(), Vec<Diagnostic>> {
+    let values = shown.0;
     let errors = too_large(src, a);
     if !errors.is_empty() {
         return Err(errors);
@@ -237,7 +243,7 @@ fn action(src: &str, a: &Action, values: Values, out: &mut String) -> Result<(),
         .max()
         .unwrap_or(0);
     for r in &a.rungs {
-        rung(src, r, width, values, out);
+        rung(src, r, width, shown, out);
     }
     out.push_str("  |_End\n");
     Ok(())
@@ -264,17 +270,24 @@ fn element_spans_of(a: &Action, out: &mut Vec<Span>) {
 
 /// The diagram of a ladder file (`linc ladder show`), or its syntax errors
 /// and the rungs too large to draw; `values` gives the state of each
-/// element (contact operands and coil targets, by span), for `--values`.
-pub fn draw(src: &str, stem: &str, values: Values) -> Result<String, Vec<Diagnostic>> {
+/// element (contact operands and coil targets, by span), for `--values`,
+/// and `ran` the lines the last cycle ran ([`crate::ladder::Ran`]).
+pub fn draw(src: &str, stem: &str, values: Values, ran: Ran) -> Result<String, Vec<Diagnostic>> {
     let mut out = String::new();
-    draw_to(src, stem, values, &mut |s| out.push_str(s))?;
+    draw_to(src, stem, (values, ran), &mut |s| out.push_str(s))?;
     Ok(out)
 }
 
 /// [`draw`], handing the drawing to `write` one action at a time. The file
 /// is read twice, for the errors and then for the drawing, so that only one
 /// action is held and nothing is drawn when there are errors.
-pub fn draw_to(src: &str, stem: &str, values: Values, write: &mut dyn FnMut(&str)) -> Result<(), Vec<Diagnostic>> {
+pub fn draw_to(
+    src: &str,
+    stem: &str,
+    (values, ran): (Values, Ran),
+    write: &mut dyn FnMut(&str),
+) -> Result<(), Vec<Diagnostic>> {
+    let ran = ran.map(|lines| RanRungs::new(src, lines));
     let mut oversized = Vec::new();
     let mut diagnostics = parser::parse_each(src, stem, &mut |a| oversized.extend(too_large(src, &a)));
     diagnostics.extend(oversized);
@@ -288,7 +301,7 @@ pub fn draw_to(src: &str, stem: &str, values: Values, write: &mut dyn FnMut(&str
         if !std::mem::take(&mut first) {
             out.push('\n');
         }
-        if let Err(e) = action(src, &a, values, &mut out) {
+        if let Err(e) = action(src, &a, (values, ran.as_ref()), &mut out) {
             diagnostics.extend(e);
         }
         write(&out);

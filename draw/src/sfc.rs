@@ -16,6 +16,11 @@ use crate::svg::{id, num, text_width, wrap, Svg, LINE_H};
 use linc_compiler::sfc::ast::{ActionBody, Chart, Sequence, Step, Transition};
 use std::collections::{HashMap, HashSet};
 
+/// The wires of the nets and links, and the double bars' records.
+#[path = "sfc_links.rs"]
+mod links;
+use links::wires;
+
 /// Links spanning more rows than this are drawn as named connectors.
 pub const LANE_SPAN: usize = 8;
 const MARGIN: f64 = 12.0;
@@ -415,12 +420,19 @@ enum NetKind {
     Plain(usize),
 }
 
-impl NetKind {
-    fn group(self) -> usize {
-        match self {
+impl Net {
+    /// The net's place among the nets of its boundary, top to bottom:
+    /// selective divergences, plain links, simultaneous divergences,
+    /// convergences. A simultaneous divergence's double bar goes under the
+    /// selective and plain wires so that none of them runs down through it
+    /// (which would read as leading into the parallel branch): their stems
+    /// from the row above end on their own lines above the bar.
+    fn group(&self) -> usize {
+        match self.kind {
+            NetKind::Out(_) if self.double => 2,
             NetKind::Out(_) => 0,
             NetKind::Plain(_) => 1,
-            NetKind::In(_) => 2,
+            NetKind::In(_) => 3,
         }
     }
 }
@@ -535,12 +547,12 @@ fn nets(g: &Graph, spine: &[f64], lane_x: &[f64]) -> (Vec<Net>, Vec<[Option<usiz
     (nets, edge_nets)
 }
 
-/// Gives each net a track in its boundary (divergences above plain links
-/// above convergences), then sets the rows' tops.
+/// Gives each net a track in its boundary (in the order of
+/// [`Net::group`]), then sets the rows' tops.
 fn tracks_and_rows(p: &mut Place, rows: usize) {
-    let mut per: Vec<Vec<Vec<usize>>> = vec![vec![Vec::new(); 3]; rows + 1];
+    let mut per: Vec<Vec<Vec<usize>>> = vec![vec![Vec::new(); 4]; rows + 1];
     for (i, n) in p.nets.iter().enumerate() {
-        per[n.boundary][n.kind.group()].push(i);
+        per[n.boundary][n.group()].push(i);
     }
     let mut y = 0.0;
     for (b, groups) in per.iter().enumerate() {
@@ -600,84 +612,6 @@ fn wire(svg: &mut Svg, geo: &mut Geometry, a: P, b: P) {
 fn row_bottom(g: &Graph, pl: &Place, u: usize) -> f64 {
     let r = g.nodes[u].rank;
     pl.row_top[r] + pl.row_h[r]
-}
-
-/// Where a link leaves node `u` and enters node `v`.
-fn out_port(ctx: &Ctx, g: &Graph, pl: &Place, u: usize) -> P {
-    let top = pl.row_top[g.nodes[u].rank];
-    match g.nodes[u].kind {
-        Kind::Step(_) => p(pl.spine[u], top + ctx.box_h()),
-        Kind::Trans(_) => p(pl.spine[u], top + 14.0),
-        Kind::Jump => p(pl.spine[u], top + 16.0),
-    }
-}
-
-fn in_port(g: &Graph, pl: &Place, v: usize) -> P {
-    let top = pl.row_top[g.nodes[v].rank];
-    match g.nodes[v].kind {
-        Kind::Trans(_) => p(pl.spine[v], top + 10.0),
-        Kind::Step(_) | Kind::Jump => p(pl.spine[v], top),
-    }
-}
-
-fn wires(ctx: &Ctx, g: &Graph, pl: &Place, svg: &mut Svg, geo: &mut Geometry) {
-    for n in &pl.nets {
-        wire(svg, geo, p(n.lo, n.y), p(n.hi, n.y));
-        if n.double {
-            svg.line(p(n.lo, n.y + 3.0), p(n.hi, n.y + 3.0), "wire double");
-        }
-        match n.kind {
-            NetKind::Out(u) => wire(svg, geo, p(pl.spine[u], row_bottom(g, pl, u)), p(pl.spine[u], n.y)),
-            NetKind::In(v) => wire(svg, geo, p(pl.spine[v], n.y), p(pl.spine[v], pl.row_top[g.nodes[v].rank])),
-            NetKind::Plain(e) => {
-                let (u, v) = (g.edges[e].from, g.edges[e].to);
-                wire(svg, geo, p(pl.spine[u], row_bottom(g, pl, u)), p(pl.spine[u], n.y));
-                wire(svg, geo, p(pl.spine[v], n.y), p(pl.spine[v], pl.row_top[g.nodes[v].rank]));
-            }
-        }
-    }
-    for (e, edge) in g.edges.iter().enumerate() {
-        let (u, v) = (edge.from, edge.to);
-        let [fo, fi, plain] = pl.edge_nets[e];
-        let (xu, xv) = (pl.spine[u], pl.spine[v]);
-        let (rb, rt) = (row_bottom(g, pl, u), pl.row_top[g.nodes[v].rank]);
-        let mut path = vec![out_port(ctx, g, pl, u), p(xu, rb)];
-        match (edge.lane, fo, fi, plain) {
-            (Some(k), Some(o), Some(i), _) => {
-                let (lx, yo, yi) = (pl.lane_x[k], pl.nets[o].y, pl.nets[i].y);
-                wire(svg, geo, p(lx, yo), p(lx, yi));
-                svg.arrow(p(lx, (yo + yi) / 2.0), 0.0, if yi < yo { -1.0 } else { 1.0 });
-                path.extend([p(xu, yo), p(lx, yo), p(lx, yi), p(xv, yi)]);
-            }
-            _ => {
-                if let Some(o) = fo {
-                    let y = pl.nets[o].y;
-                    let to = fi.map_or(rt, |i| pl.nets[i].y);
-                    wire(svg, geo, p(xv, y), p(xv, to));
-                    path.extend([p(xu, y), p(xv, y)]);
-                }
-                if let Some(i) = fi {
-                    let y = pl.nets[i].y;
-                    let x0 = if fo.is_some() { xv } else { xu };
-                    if fo.is_none() {
-                        wire(svg, geo, p(xu, rb), p(xu, y));
-                    }
-                    path.extend([p(x0, y), p(xv, y)]);
-                }
-                if let Some(pn) = plain {
-                    let y = pl.nets[pn].y;
-                    path.extend([p(xu, y), p(xv, y)]);
-                }
-            }
-        }
-        path.push(p(xv, rt));
-        path.push(in_port(g, pl, v));
-        if edge.lane.is_some() {
-            svg.arrow(p(xv, rt), 0.0, 1.0);
-        }
-        path.dedup();
-        geo.links.push(Link { from: g.nodes[u].id.clone(), to: g.nodes[v].id.clone(), path });
-    }
 }
 
 /// Where a node's drawing goes.

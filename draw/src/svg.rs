@@ -23,7 +23,12 @@ svg.dark { --fg: #e6edf3; --bg: #0d1117; --box: #161b22; --wire: #8b949e; --on: 
 .bg { fill: var(--bg); }
 text { font-family: ui-monospace, 'DejaVu Sans Mono', Menlo, Consolas, monospace; font-size: 12px; fill: var(--fg); white-space: pre; }
 text.dim { fill: var(--dim); }
-text.value { fill: var(--on); }
+text.value { fill: var(--fg); }
+text.value.true { fill: var(--on); font-weight: bold; }
+text.value.false { fill: var(--dim); }
+.rung.skipped { opacity: 0.55; }
+.rung.skipped .wire, .rung.skipped .contact, .rung.skipped .coil, .rung.skipped .box { stroke-dasharray: 4 3; }
+.rung.skipped text { fill: var(--dim); }
 .box { fill: var(--box); stroke: var(--fg); stroke-width: 1.2; }
 .wire { stroke: var(--wire); stroke-width: 1.2; fill: none; }
 .bar { stroke: var(--fg); stroke-width: 3; }

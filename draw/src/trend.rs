@@ -129,6 +129,32 @@ impl Trend {
     }
 }
 
+/// One field of a live trend: its name as shown, its value when the
+/// window opens (`None` when not known), and its changes in the window as
+/// (seconds, value), oldest first.
+pub struct Recent {
+    pub name: String,
+    pub start: Option<String>,
+    pub changes: Vec<(f64, String)>,
+}
+
+/// A trend of a running plant's recent past (`linc serve`'s page), from
+/// `from` to `to` seconds of its clock: drawn as [`Trend::finish`] draws a
+/// trace — the same plot, value scale, strips and time axis — so the live
+/// page and `linc draw` show a trend alike. A field with neither a start
+/// nor a change is left out.
+pub fn recent(fields: Vec<Recent>, from: f64, to: f64) -> String {
+    let to = to.max(from + 1e-6);
+    let mut series: Vec<Series> = Vec::with_capacity(fields.len());
+    for f in fields.into_iter().filter(|f| f.start.is_some() || !f.changes.is_empty()) {
+        let mut points: Vec<(f64, String)> = f.changes.into_iter().filter(|(t, _)| *t >= from && *t <= to).collect();
+        thin(&mut points, from, to);
+        series.push(Series { name: f.name, start: f.start, points });
+    }
+    let t = Trend { fields: series, from, to: Some(to), last_time: to, steps: BTreeMap::new(), lines: 0 };
+    t.finish().unwrap_or_default()
+}
+
 /// Keeps at most about four points per pixel column: first, lowest,
 /// highest and last (values that are not numbers are all kept while few).
 fn thin(points: &mut Vec<(f64, String)>, from: f64, to: f64) {

@@ -33,6 +33,37 @@ fn sequence(file: &str) {
     insta::assert_snapshot!(file.replace(['/', '.'], "_"), svg);
 }
 
+/// Every `.sfc` under `examples/`, with its path.
+fn charts(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let path = e.unwrap().path();
+        if path.is_dir() {
+            charts(&path, out);
+        } else if path.extension().is_some_and(|x| x == "sfc") {
+            out.push(path);
+        }
+    }
+}
+
+/// A selective branch's wire that runs through (or ends on) a simultaneous
+/// branch's double bar reads as if it led into the parallel branch: in the
+/// batch chart, the `Abort` link ran down through the double bar of `Full`.
+#[test]
+fn no_other_wire_meets_a_double_bar_in_any_example_chart() {
+    let mut files = Vec::new();
+    charts(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples"), &mut files);
+    assert!(files.len() >= 2, "{files:?}");
+    let mut bars = 0;
+    for f in files {
+        let src = std::fs::read_to_string(&f).unwrap();
+        let (seq, _) = sfc::parser::parse(&src);
+        let (_, geo) = linc_draw::sfc::sequence(&src, &seq, None);
+        bars += geo.doubles.len();
+        assert_eq!(geo.through_double(), None, "{}", f.display());
+    }
+    assert!(bars >= 2, "the examples have simultaneous branches");
+}
+
 #[test]
 fn batch_sequence() {
     sequence("sequences/batch.sfc");
@@ -48,7 +79,7 @@ fn ladder_example() {
     let src = read("ladder/interlock.ld");
     let (file, d) = ladder::parser::parse(&src, "interlock");
     assert!(d.is_empty(), "{d:?}");
-    let (svg, geo) = linc_draw::ladder::file(&src, &file.actions, None);
+    let (svg, geo) = linc_draw::ladder::file(&src, &file.actions, None, None);
     let els = support::elements(&svg);
     let rungs: usize = file.actions.iter().map(|a| a.rungs.len()).sum();
     let ids = support::groups(&els, "rung-", "rung");

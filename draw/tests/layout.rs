@@ -163,7 +163,7 @@ fn random_rungs_lay_out_cleanly() {
         let _ = writeln!(src, "L{rungs}: -> Z.PV := 0;");
         let (file, d) = ladder::parser::parse(&src, "random");
         assert!(d.is_empty(), "case {case}: {d:?}\n{src}");
-        let (_, geo) = linc_draw::ladder::file(&src, &file.actions, None);
+        let (_, geo) = linc_draw::ladder::file(&src, &file.actions, None, None);
         assert!(geo.overlap().is_none(), "case {case}: {:?}\n{src}", geo.overlap());
         assert!(geo.broken_link().is_none(), "case {case}: {:?}\n{src}", geo.broken_link());
         assert_eq!(geo.links.len(), rungs + 1, "case {case}");

@@ -12,7 +12,6 @@ use linc_draw::fst::FstState;
 use linc_draw::sfc::StepState;
 use linc_engines::strategy::Strategy;
 use linc_format::Code;
-use linc_runtime::Store;
 use std::io::BufRead;
 use std::path::PathBuf;
 
@@ -130,12 +129,13 @@ fn ladder_file(o: &Options) -> Result<Picture, Problems> {
         if o.cycles.is_some() || !o.set.is_empty() {
             return Err(usage("--cycles and --set run the ladder: give --db DB.json"));
         }
-        return Ok(Picture { svg: linc_draw::ladder::file(&source.text, &file.actions, None).0, problems });
+        return Ok(Picture { svg: linc_draw::ladder::file(&source.text, &file.actions, None, None).0, problems });
     };
-    let (known, ran) = crate::ladder::after_run(&o.file, db, &o.set, o.cycles.unwrap_or(0))?;
+    let (after, ran) = crate::ladder::after_run(&o.file, db, &o.set, o.cycles.unwrap_or(0))?;
     problems.append(ran);
-    let look = |span: linc_compiler::diag::Span| known.get(&(span.start, span.end)).copied();
-    Ok(Picture { svg: linc_draw::ladder::file(&source.text, &file.actions, Some(&look)).0, problems })
+    let look = |span: linc_compiler::diag::Span| after.truths.get(&(span.start, span.end)).copied();
+    let svg = linc_draw::ladder::file(&source.text, &file.actions, Some(&look), after.lines_ran.as_deref()).0;
+    Ok(Picture { svg, problems })
 }
 
 fn table(o: &Options) -> Result<Picture, Problems> {
@@ -146,7 +146,7 @@ fn table(o: &Options) -> Result<Picture, Problems> {
     let db = load_opt(o.db.as_deref())?;
     let (read, mut diagnostics) = fst::reader::read(&source.text);
     let stem = crate::source::stem(&o.file, "fst");
-    let (more, object) = fst::compile(&source.text, stem, &o.file.display().to_string(), db.as_ref().map(|d| &d.db));
+    let (more, _) = fst::compile(&source.text, stem, &o.file.display().to_string(), db.as_ref().map(|d| &d.db));
     if db.is_some() {
         diagnostics = more;
     } else {
@@ -156,10 +156,9 @@ fn table(o: &Options) -> Result<Picture, Problems> {
     if o.duration.is_none() {
         return Ok(Picture { svg: linc_draw::fst::table(&read, None).0, problems });
     }
-    let offsets = object.as_ref().and_then(fst::offsets).unwrap_or_default();
     let (s, block, ran) = run(o)?;
     problems.append(ran);
-    let state = fst_state(&s.store, block, &offsets);
+    let state = fst_state(&s, block);
     Ok(Picture { svg: linc_draw::fst::table(&read, Some(&state)).0, problems })
 }
 
@@ -172,12 +171,13 @@ pub fn step_state(seq: &linc_engines::sequence::Sequence, name: &str) -> Option<
 }
 
 /// What an FST block shows of its table's run, for a picture: the step
-/// the table goes on with (from `IP`, by the table's instruction offsets),
-/// RR, CF, RUNFLG and the registers, as the console displays them. Shared
-/// with `linc serve`'s live pictures.
-pub fn fst_state(store: &Store, block: usize, offsets: &[u32]) -> FstState {
+/// the table goes on with (the one `IP` names, as the program list and
+/// `P?` show it: [`Strategy::fst_step`]), RR, CF, RUNFLG and the
+/// registers, as the console displays them. Shared with `linc serve`'s
+/// live pictures.
+pub fn fst_state(s: &Strategy, block: usize) -> FstState {
+    let store = &s.store;
     let field = |f: &str| store.cell_of(block, f).map(|c| store.show(c)).unwrap_or_default();
-    let ip: Option<u32> = field("IP").trim().parse().ok();
     let registers = (1..=10)
         .map(|k| format!("R{k}"))
         .filter(|n| store.cell_of(block, n).is_some())
@@ -186,13 +186,7 @@ pub fn fst_state(store: &Store, block: usize, offsets: &[u32]) -> FstState {
             (n, v)
         })
         .collect();
-    FstState {
-        current: ip.and_then(|ip| offsets.iter().position(|&o| o == ip)),
-        rr: field("RR"),
-        cf: field("CMPFLG"),
-        runflg: field("RUNFLG"),
-        registers,
-    }
+    FstState { current: s.fst_step(block), rr: field("RR"), cf: field("CMPFLG"), runflg: field("RUNFLG"), registers }
 }
 
 /// Runs the one sequence or table as `linc run FILE --db … --for …` does

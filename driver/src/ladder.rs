@@ -17,11 +17,23 @@ use std::path::Path;
 /// The truth of each element of a ladder file, by the span of its operand.
 pub type Truths = HashMap<(usize, usize), bool>;
 
+/// What a run of a ladder file's actions left for a drawing.
+pub struct AfterRun {
+    /// The truth of each element, by span.
+    pub truths: Truths,
+    /// The lines of the file on which a statement started in the last
+    /// cycle (every action's last run), as the runtime counted them, so a
+    /// picture draws a rung a taken jump skipped as not run; `None` with
+    /// no cycles (nothing ran).
+    pub lines_ran: Option<Vec<u32>>,
+}
+
 /// The truth of each element after `cycles` runs of every action, by span,
-/// and the run's problems (warnings, runtime faults). The actions run
-/// through the plant builder, on the database's values with `set`, at the
-/// clock's zero with seed 1, so a picture does not depend on the day.
-pub fn after_run(file: &Path, db_path: &Path, set: &[String], cycles: u32) -> Result<(Truths, Problems), Problems> {
+/// what the last cycle ran, and the run's problems (warnings, runtime
+/// faults). The actions run through the plant builder, on the database's
+/// values with `set`, at the clock's zero with seed 1, so a picture does
+/// not depend on the day.
+pub fn after_run(file: &Path, db_path: &Path, set: &[String], cycles: u32) -> Result<(AfterRun, Problems), Problems> {
     let spec = PlantSpec {
         program: Program::Actions { file: file.to_path_buf(), action: Choice::Every, block: None },
         set: set.to_vec(),
@@ -31,8 +43,7 @@ pub fn after_run(file: &Path, db_path: &Path, set: &[String], cycles: u32) -> Re
     };
     let mut plant = crate::plant::build(&spec)?;
     let mut problems = std::mem::take(&mut plant.warnings);
-    let ran = crate::run::actions(&mut plant, cycles, 0.0, crate::run::RunRequest::default())?;
-    problems.append(ran.problems);
+    let lines_ran = cycle_watched(&mut plant, cycles, &mut problems)?;
     let Running::Actions(a) = &plant.running else { return Err(problems.refused()) };
     let text = crate::files::read_input_text(file).unwrap_or_default();
     let stem = crate::source::stem(file, "ladder");
@@ -42,7 +53,40 @@ pub fn after_run(file: &Path, db_path: &Path, set: &[String], cycles: u32) -> Re
             known.insert((span.start, span.end), v);
         }
     }
-    Ok((known, problems))
+    Ok((AfterRun { truths: known, lines_ran }, problems))
+}
+
+/// Runs every action `cycles` times, the last cycle counted (coverage
+/// counters, ADR 0020): the lines on which a statement started in it.
+fn cycle_watched(
+    plant: &mut crate::plant::Plant,
+    cycles: u32,
+    problems: &mut Problems,
+) -> Result<Option<Vec<u32>>, Problems> {
+    use linc_runtime::cover::{lines_between, statement_counts};
+    if let Running::Actions(a) = &mut plant.running {
+        a.programs.iter_mut().for_each(|(_, linked, _)| linked.enable_coverage());
+    }
+    let req = crate::run::RunRequest::default;
+    let first = crate::run::actions(plant, cycles.saturating_sub(1), 0.0, req())?.problems;
+    // A fault ends an action's cycles: its last cycle is not run after it,
+    // and what ran is then not known.
+    let faulted = first.has_errors();
+    problems.append(first);
+    let counts = |plant: &crate::plant::Plant| match &plant.running {
+        Running::Actions(a) => a.programs.iter().map(|(_, l, _)| statement_counts(l, 0)).collect(),
+        Running::Strategy(_) => Vec::new(),
+    };
+    let before: Vec<_> = counts(plant);
+    if cycles == 0 || faulted {
+        return Ok(None);
+    }
+    problems.append(crate::run::actions(plant, 1, 0.0, req())?.problems);
+    let after: Vec<_> = counts(plant);
+    let mut lines: Vec<u32> = before.iter().zip(&after).flat_map(|(b, a)| lines_between(b, a)).collect();
+    lines.sort_unstable();
+    lines.dedup();
+    Ok(Some(lines))
 }
 
 /// The ST a ladder file compiles as (`linc ladder to-st`, ADR 0009),
@@ -57,13 +101,15 @@ pub fn to_st(file: &Path, db: Option<&Path>) -> Result<String, Problems> {
 }
 
 /// The rungs drawn in text (`linc ladder show`), handed to `write` one
-/// action at a time; `values` gives each element's state. The file's
-/// syntax errors and rungs too large to draw are errors found in it.
-pub fn show(file: &Path, values: Values, write: &mut dyn FnMut(&str)) -> Result<(), Problems> {
+/// action at a time; `values` gives each element's state and `ran` the
+/// lines the last cycle ran ([`AfterRun::lines_ran`]: a rung not run is
+/// drawn as such). The file's syntax errors and rungs too large to draw
+/// are errors found in it.
+pub fn show(file: &Path, values: Values, ran: Option<&[u32]>, write: &mut dyn FnMut(&str)) -> Result<(), Problems> {
     let bytes = crate::files::read_input(file).map_err(|e| Problems::unreadable(file, &e))?;
     let (text, _) = linc_compiler::diag::decode(bytes);
     let stem = crate::source::stem(file, "ladder");
-    linc_draw::ladder_text::draw_to(&text, stem, values, write).map_err(|ds| {
+    linc_draw::ladder_text::draw_to(&text, stem, (values, ran), write).map_err(|ds| {
         let mut files = linc_compiler::diag::SourceFiles::new();
         let id = files.add(file.display().to_string(), text.clone());
         Problems::of(files, ds.into_iter().map(|d| d.in_file(id)).collect())

@@ -159,6 +159,13 @@ impl Counters {
         }
     }
 
+    /// Times instruction `pc` of block `block` of unit `unit` ran so far
+    /// (0 for one that does not exist): a single count, for a caller that
+    /// watches a few statements scan by scan without copying every count.
+    pub fn hits(&self, unit: usize, block: usize, pc: usize) -> u64 {
+        self.block(unit, block).and_then(|b| b.hits.get(pc)).map_or(0, Counter::get)
+    }
+
     /// The counts as they stand.
     pub fn counts(&self) -> Counts {
         let read = |c: &[Counter]| c.iter().map(Counter::get).collect();
@@ -169,6 +176,31 @@ impl Counters {
         });
         Counts { units: units.collect() }
     }
+}
+
+/// The count of each statement start of `program`'s unit in `linked`,
+/// with its source line: what a picture compares before and after an
+/// execution to tell which lines ran (empty when coverage is off).
+pub fn statement_counts(linked: &crate::Linked, program: usize) -> Vec<(u32, u64)> {
+    let (Some(counters), Some(p)) = (linked.coverage(), linked.program(program)) else { return Vec::new() };
+    let Some(unit) = linked.object().units.get(p.unit) else { return Vec::new() };
+    let mut out = Vec::new();
+    for (b, block) in unit.blocks.iter().enumerate() {
+        for l in &block.lines {
+            out.push((l.line, counters.hits(p.unit, b, l.op as usize)));
+        }
+    }
+    out
+}
+
+/// The lines (sorted, once each) whose statements were counted between
+/// two [`statement_counts`] of the same program.
+pub fn lines_between(before: &[(u32, u64)], after: &[(u32, u64)]) -> Vec<u32> {
+    let mut lines: Vec<u32> =
+        after.iter().enumerate().filter(|(i, a)| a.1 > before.get(*i).map_or(0, |b| b.1)).map(|(_, a)| a.0).collect();
+    lines.sort_unstable();
+    lines.dedup();
+    lines
 }
 
 /// Counts as plain numbers, laid out as the object's units (what a report
@@ -193,4 +225,19 @@ pub struct UnitCounts {
 pub struct BlockCounts {
     pub hits: Vec<u64>,
     pub taken: Vec<u64>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::lines_between;
+
+    #[test]
+    fn the_lines_between_two_counts_are_those_counted_in_between_once_each() {
+        let before = [(3, 1), (4, 1), (4, 0), (7, 2), (9, 0)];
+        let after = [(3, 2), (4, 1), (4, 1), (7, 2), (9, 0)];
+        assert_eq!(lines_between(&before, &after), [3, 4]);
+        assert!(lines_between(&after, &after).is_empty(), "nothing ran");
+        // A first count (coverage just enabled) counts from nothing.
+        assert_eq!(lines_between(&[], &[(5, 1), (2, 1), (5, 3)]), [2, 5]);
+    }
 }

@@ -7,7 +7,8 @@ const query = token ? '?token=' + encodeURIComponent(token) : '';
 const $ = (sel) => document.querySelector(sel);
 let status = null;
 let block = null;
-const trends = new Map();
+// The fields of the trend, in the order added.
+const trends = [];
 const forces = new Map();
 
 async function get(path) {
@@ -67,6 +68,7 @@ function renderStatus(s) {
   });
   body.replaceChildren(...rows);
   for (const p of s.programs) if (p.picture && !pictureOf(p.block)) addPicture(p);
+  if (trends.length) drawTrends();
 }
 
 function pictureOf(name) {
@@ -113,7 +115,10 @@ async function loadPicture(name) {
 function setPicture(name, svg) {
   const div = pictureOf(name);
   if (!div) return;
-  const host = div.querySelector('.svg');
+  setSvg(div.querySelector('.svg'), svg);
+}
+
+function setSvg(host, svg) {
   const tpl = document.createElement('template');
   tpl.innerHTML = svg.trim();
   const fresh = tpl.content.firstElementChild;
@@ -207,62 +212,39 @@ function values(changed) {
       const tr = [...document.querySelectorAll('#fields tbody tr')].find((r) => r.dataset.path === path);
       if (tr) text(tr.querySelector('.value'), value);
     }
-    const series = trends.get(path);
-    if (series) series.push([status ? status.elapsed : 0, value]);
   }
-  drawTrends();
 }
 
 // A trend starts with the field's recent past, kept by the server.
 async function addTrend(path) {
-  if (!path || trends.has(path)) return;
+  if (!path) return;
   const r = await fetch('api/trend/' + encodeURIComponent(path) + query);
   if (!r.ok) { $('#console-out').textContent += 'no field ' + path + '\n'; return; }
   const t = await r.json();
-  const series = t.points.length ? t.points : [[t.now, t.value]];
-  trends.set(t.field, series);
+  if (!trends.includes(t.field)) trends.push(t.field);
   drawTrends();
 }
 
-const NS = 'http://www.w3.org/2000/svg';
-function el(name, attrs, content) {
-  const e = document.createElementNS(NS, name);
-  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
-  if (content !== undefined) e.textContent = content;
-  return e;
-}
-
-function drawTrends() {
+// The trend is drawn by the server, by linc-draw as `linc draw` draws a
+// trace's trend (time and value axes, strips for BOOLs), and fetched again
+// as the plant's clock moves: one request at a time, the latest wins.
+let trendBusy = false;
+let trendAgain = false;
+async function drawTrends() {
   const host = $('#trend');
-  if (!trends.size) { host.replaceChildren(); return; }
-  const W = 800, H = 70, L = 160;
-  const now = status ? status.elapsed : 0;
-  const span = Number($('#trend-window').value);
-  const svg = el('svg', { width: W, height: trends.size * (H + 10), class: 'trend' });
-  let row = 0;
-  for (const [path, series] of trends) {
-    while (series.length > 2 && series[1][0] < now - span) series.shift();
-    const num = (v) => (v === 'TRUE' ? 1 : v === 'FALSE' ? 0 : Number(v));
-    const ys = series.map((p) => num(p[1])).filter((v) => Number.isFinite(v));
-    const lo = Math.min(...ys, 0), hi = Math.max(...ys, lo + 1);
-    const top = row * (H + 10) + 5;
-    const x = (t) => L + ((t - (now - span)) / span) * (W - L - 5);
-    const y = (v) => top + H - ((v - lo) / (hi - lo)) * H;
-    let d = '';
-    let last = null;
-    for (const [t, v] of series) {
-      const n = num(v);
-      if (!Number.isFinite(n)) continue;
-      const tx = Math.max(L, x(t));
-      d += (last === null ? 'M' + tx + ',' + y(n) : 'H' + tx + 'V' + y(n));
-      last = n;
-    }
-    if (last !== null) d += 'H' + x(now);
-    svg.append(el('text', { x: 4, y: top + 14 }, path), el('text', { x: 4, y: top + H, class: 'dim' }, lo + ' … ' + hi));
-    svg.append(el('path', { d, fill: 'none', stroke: 'currentColor', 'stroke-width': 1.5 }));
-    row += 1;
+  if (!trends.length) { host.replaceChildren(); return; }
+  if (trendBusy) { trendAgain = true; return; }
+  trendBusy = true;
+  try {
+    const name = 'trend:' + $('#trend-window').value + ':' + trends.join(',');
+    const r = await get('pictures/' + encodeURIComponent(name));
+    setSvg(host, await r.text());
+  } catch (e) {
+    $('#console-out').textContent += String(e) + '\n';
+  } finally {
+    trendBusy = false;
   }
-  host.replaceChildren(svg);
+  if (trendAgain) { trendAgain = false; drawTrends(); }
 }
 
 function listen() {
@@ -285,5 +267,6 @@ $('#console-form').addEventListener('submit', (ev) => {
   if (line) command(line);
 });
 $('#trend-form').addEventListener('submit', (ev) => { ev.preventDefault(); addTrend($('#trend-field').value.trim()); });
+$('#trend-window').addEventListener('change', () => drawTrends());
 
 start().then(loadBlocks).then(listen).catch((e) => { $('#console-out').textContent = String(e); });

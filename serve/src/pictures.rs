@@ -1,11 +1,14 @@
 //! The live pictures of a served plant: each sequence, ladder action and
 //! FST table drawn by `linc-draw` with the state the plant is in now. A
 //! picture is drawn again only when what it shows has changed (its key:
-//! active steps and their whole seconds, powered elements, the current
-//! FST step with RR and CF), so a monitor of a quiet plant costs nothing.
+//! active steps and their whole seconds, powered elements and the rungs
+//! the action's last execution ran, the current FST step with RR and CF),
+//! so a monitor of a quiet plant costs nothing.
 
+use crate::history::History;
 use linc_compiler::Context;
 use linc_compiler::{fst, ladder, sfc};
+use linc_draw::trend::Recent;
 use linc_driver::ladder::LiveElements;
 use linc_engines::strategy::{Strategy, Want, WantKind};
 use std::path::Path;
@@ -13,7 +16,7 @@ use std::path::Path;
 enum Live {
     Sequence { text: String, tree: sfc::ast::Sequence },
     Ladder { text: String, actions: Vec<ladder::ast::Action>, elements: LiveElements },
-    Fst { table: fst::Table, offsets: Vec<u32> },
+    Fst { table: fst::Table },
 }
 
 /// One program's picture and the state it was last drawn with.
@@ -57,9 +60,7 @@ fn picture(dir: &Path, w: &Want, s: &Strategy) -> Option<Picture> {
         }
         WantKind::Fst => {
             let (table, _) = fst::reader::read(&text);
-            let object = fst::compile(&text, &stem, &path.display().to_string(), Some(db)).1;
-            let offsets = object.as_ref().and_then(fst::offsets).unwrap_or_default();
-            ("fst", Live::Fst { table, offsets })
+            ("fst", Live::Fst { table })
         }
         WantKind::Action => return None,
     };
@@ -93,19 +94,25 @@ impl Picture {
                 self.key = Some(key);
             }
             Live::Ladder { text, actions, elements } => {
+                // Watched from the first drawing, made before the first
+                // scan: from then on the action's last execution is known.
+                if s.lines_ran(block).is_none() {
+                    s.watch_runs(block);
+                }
+                let ran = s.lines_ran(block).filter(|r| r.executions > 0).map(|r| r.lines.clone());
                 let truths = elements.truths(&mut s.store);
                 let mut known: Vec<_> = truths.iter().collect();
                 known.sort();
-                let key = format!("{known:?}");
+                let key = format!("{known:?} {ran:?}");
                 if self.key.as_deref() == Some(key.as_str()) {
                     return false;
                 }
                 let look = |span: linc_compiler::diag::span::Span| truths.get(&(span.start, span.end)).copied();
-                self.svg = linc_draw::ladder::file(text, actions, Some(&look)).0;
+                self.svg = linc_draw::ladder::file(text, actions, Some(&look), ran.as_deref()).0;
                 self.key = Some(key);
             }
-            Live::Fst { table, offsets } => {
-                let state = linc_driver::draw::fst_state(&s.store, block, offsets);
+            Live::Fst { table } => {
+                let state = linc_driver::draw::fst_state(s, block);
                 let key =
                     format!("{:?} {} {} {} {:?}", state.current, state.rr, state.cf, state.runflg, state.registers);
                 if self.key.as_deref() == Some(key.as_str()) {
@@ -117,4 +124,39 @@ impl Picture {
         }
         true
     }
+}
+
+/// How a trend is named in `GET /api/pictures/NAME`:
+/// `trend:SECONDS:BLOCK.FIELD,BLOCK.FIELD…` — the page's trend, drawn by
+/// `linc-draw` as `linc draw` draws a trace's, not a second drawing in the
+/// page's script.
+pub const TREND: &str = "trend:";
+
+/// The most fields one trend draws.
+const MAX_TREND_FIELDS: usize = 12;
+
+/// The trend `spec` (a [`TREND`] name without its prefix) names: its
+/// fields over the last SECONDS of simulated time (at most the history's
+/// 15 minutes), from the changes the history kept. `None` when the window
+/// is not a positive number of seconds or a field is not in the database.
+pub fn trend(spec: &str, history: &History, s: &Strategy) -> Option<String> {
+    let (secs, fields) = spec.split_once(':')?;
+    let window = secs.parse::<f64>().ok().filter(|w| w.is_finite() && *w > 0.0)?;
+    let window = window.min(crate::history::KEEP_US as f64 / 1e6);
+    let seconds = |us: u64| us as f64 / 1e6;
+    let now = seconds(s.elapsed_us());
+    let from = (now - window).max(0.0);
+    let store = &s.store;
+    let mut out = Vec::new();
+    for path in fields.split(',').filter(|p| !p.trim().is_empty()).take(MAX_TREND_FIELDS) {
+        let cell = linc_engines::console::fields::address(store, path.trim()).ok()?.cell;
+        let kept = history.of(cell);
+        // The value when the window opens: the last change before it, or
+        // the value now for a field that has not changed in the history.
+        let before = kept.iter().rev().find(|(t, _)| seconds(*t) < from).map(|(_, v)| v.to_string());
+        let start = before.or_else(|| kept.is_empty().then(|| store.show(cell)));
+        let changes = kept.iter().map(|(t, v)| (seconds(*t), v.to_string())).collect();
+        out.push(Recent { name: store.describe(cell), start, changes });
+    }
+    Some(linc_draw::trend::recent(out, from, now))
 }

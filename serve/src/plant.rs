@@ -239,6 +239,10 @@ impl Plant {
                     let _ = reply.send(answer);
                 }
             }
+            Ask::Picture { name, reply } if name.starts_with(crate::pictures::TREND) => {
+                let spec = &name[crate::pictures::TREND.len()..];
+                let _ = reply.send(crate::pictures::trend(spec, &self.history, &self.console.strategy));
+            }
             Ask::Picture { name, reply } => {
                 let s = &mut self.console.strategy;
                 let pic = self.pictures.iter_mut().find(|p| p.name.eq_ignore_ascii_case(&name));

@@ -260,5 +260,33 @@ fn a_trend_starts_with_the_recent_past() {
     let times: Vec<f64> = points.iter().map(|p| p[0].as_f64().unwrap()).collect();
     assert!(times.windows(2).all(|w| w[0] <= w[1]) && times.last() <= t["now"].as_f64().as_ref());
     assert_eq!(get(&s, "/api/trend/R1.Nope", &[]).0, 404);
+    // The page's trend is linc-draw's, served as a picture: the level on a
+    // plot with a value scale, the valve as a strip, a time axis.
+    let (code, svg) = get(&s, "/api/pictures/trend%3A60%3Ar1.level%2CR1.FillVlv", &[]);
+    assert_eq!(code, 200, "{svg}");
+    assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"linc trend\""), "{svg}");
+    assert!(svg.contains("<g id=\"trend-R1.Level\" class=\"series\">"), "{svg}");
+    assert!(svg.contains("<g id=\"strip-R1.FillVlv\" class=\"strip\">"), "{svg}");
+    assert_eq!(svg.matches("class=\"dim\" text-anchor=\"end\"").count(), 5, "a value scale of five: {svg}");
+    assert!(svg.matches("class=\"dim\" text-anchor=\"middle\">").count() >= 4, "a time axis: {svg}");
+    assert_eq!(get(&s, "/api/pictures/trend%3A60%3AR1.Nope", &[]).0, 404);
+    assert_eq!(get(&s, "/api/pictures/trend%3A0%3AR1.Level", &[]).0, 404, "a window of no time");
+    s.stop();
+}
+
+/// The live ladder shows what the action's last execution ran: the
+/// example's rung 5 jumps to `_End`, so rungs 6–8 are drawn not run.
+#[test]
+fn the_live_ladder_shows_the_rungs_a_taken_jump_skipped() {
+    let s = serve("examples/ladder/plant.json", config(Speed::Times(20.0), false, None));
+    let class = |svg: &str, n: usize| {
+        let open = format!("<g id=\"rung-{n}\" class=\"");
+        let rest = svg.find(&open).map_or("", |i| &svg[i + open.len()..]);
+        rest[..rest.find('"').unwrap_or(0)].to_string()
+    };
+    common::eventually("a scan of the ladder", || class(&get(&s, "/api/pictures/LAD", &[]).1, 6) == "rung skipped");
+    let svg = get(&s, "/api/pictures/LAD", &[]).1;
+    let classes: Vec<String> = (1..=8).map(|n| class(&svg, n)).collect();
+    assert_eq!(classes[3..], ["rung powered", "rung powered", "rung skipped", "rung skipped", "rung skipped"]);
     s.stop();
 }

@@ -2,8 +2,12 @@
 //! over WebDriver by chromedriver (both installed by `.ci/run`). The page
 //! of the sequences example is opened; the test waits until `#step-Fill`
 //! has class `active`, clicks a step on the page to hold it and sees the
-//! hold in `/api/programs`, adds a trend, saves screenshots under
-//! `target/monitor/`, and requires that the browser logged no error.
+//! hold in `/api/programs`, adds a trend, and requires that the browser
+//! logged no error. The ladder example's page must grey out the rungs a
+//! taken jump skipped and colour values by state; the FST example's
+//! program list and picture must name the same current step. Each test
+//! saves screenshots under `target/ci-artifacts/monitor/` (docs/testing.md),
+//! which CI keeps as artifacts.
 //!
 //! Without chromium and chromedriver the test says so and passes, unless
 //! `LINC_REQUIRE_BROWSER` is set (as `.ci/run` sets it).
@@ -134,31 +138,58 @@ impl Browser {
     }
 }
 
+/// Where the screenshots go: kept by CI as artifacts (docs/testing.md).
 fn shots() -> PathBuf {
-    let dir = Path::new(ROOT).join("target/monitor");
-    std::fs::create_dir_all(&dir).expect("target/monitor");
+    let dir = Path::new(ROOT).join("target/ci-artifacts/monitor");
+    std::fs::create_dir_all(&dir).expect("target/ci-artifacts/monitor");
     dir
 }
 
-#[test]
-fn the_monitor_page_shows_the_running_sequence_and_holds_a_step() {
+/// One browser at a time: the tests run on threads of one process, and
+/// two Chromiums on a small CI machine only slow each other down.
+static ONE_BROWSER: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// Whether the browser is there; without it the test passes, unless
+/// `LINC_REQUIRE_BROWSER` is set.
+fn have_browser() -> bool {
     if !Path::new(CHROMIUM).exists() || !Path::new(DRIVER).exists() {
         assert!(
             std::env::var_os("LINC_REQUIRE_BROWSER").is_none(),
             "{CHROMIUM} and {DRIVER} are needed (apt-get install chromium chromium-driver)"
         );
         eprintln!("skipped: no {CHROMIUM} or {DRIVER} (.ci/run installs them)");
-        return;
+        return false;
     }
+    true
+}
+
+/// Serves `db` (writes allowed, at `speed` times real time) and opens its
+/// page in a new browser.
+fn open(db: &str, speed: f64, tag: &str) -> (linc_serve::Server, Browser) {
     let cfg = linc_serve::Config {
-        speed: linc_serve::Speed::Times(2.0),
+        speed: linc_serve::Speed::Times(speed),
         allow_writes: true,
         ..linc_serve::Config::new("127.0.0.1:0".parse().unwrap())
     };
-    let server = common::serve("examples/sequences/plant.json", cfg);
-    let profile = linc_test_support::temp_dir("chromium-profile");
+    let server = common::serve(db, cfg);
+    let profile = linc_test_support::temp_dir(&format!("chromium-profile-{tag}"));
     let b = Browser::start(&profile);
     call("POST", &b.url("/url"), Some(json!({"url": format!("http://{}/", server.addr())})));
+    (server, b)
+}
+
+fn no_errors_logged(b: &Browser) {
+    let errors: Vec<Value> = b.log().into_iter().filter(|e| e["level"] == "SEVERE").collect();
+    assert!(errors.is_empty(), "the page logged errors: {errors:?}");
+}
+
+#[test]
+fn the_monitor_page_shows_the_running_sequence_and_holds_a_step() {
+    let _one = ONE_BROWSER.lock().unwrap_or_else(|e| e.into_inner());
+    if !have_browser() {
+        return;
+    }
+    let (server, b) = open("examples/sequences/plant.json", 2.0, "sequence");
     b.wait_for("return !!document.querySelector('#step-Fill.active')", "#step-Fill to be active");
     let dir = shots();
     b.screenshot(&dir.join("sequence-running.png"));
@@ -181,10 +212,106 @@ fn the_monitor_page_shows_the_running_sequence_and_holds_a_step() {
     b.screenshot(&dir.join("sequence-held.png"));
     // A trend chosen on the page starts with the recent past and is drawn.
     b.script("document.querySelector('#trend-field').value = 'R1.Level'; document.querySelector('#trend-form').requestSubmit(); return true;");
-    b.wait_for("return !!document.querySelector('#trend svg path')", "the trend of R1.Level");
+    b.wait_for(
+        "const g = document.getElementById('trend-R1.Level');
+         return !!(g && g.closest('#trend svg.linc.trend') && g.querySelector('polyline'));",
+        "the trend of R1.Level",
+    );
+    // The trend is linc-draw's: a value scale and a time axis with ticks
+    // in simulated time, not a bare sparkline.
+    let axes = b.script(
+        "const t = [...document.querySelectorAll('#trend svg.trend text.dim')];
+         const ticks = t.filter(e => e.getAttribute('text-anchor') === 'middle').map(e => e.textContent);
+         const scale = t.filter(e => e.getAttribute('text-anchor') === 'end').map(e => e.textContent);
+         return [ticks.length, ticks.every(x => /^([0-9]+m)?[0-9.]+s$/.test(x)), scale.length,
+                 scale.every(x => Number.isFinite(Number(x)))];",
+    );
+    let axes = axes.as_array().expect("axes").clone();
+    assert!(axes[0].as_u64().unwrap_or(0) >= 2, "time ticks: {axes:?}");
+    assert_eq!((&axes[1], &axes[2], &axes[3]), (&json!(true), &json!(5), &json!(true)), "{axes:?}");
+    b.script("document.querySelector('#trend').scrollIntoView(); return true;");
     b.screenshot(&dir.join("trend.png"));
-    let errors: Vec<Value> = b.log().into_iter().filter(|e| e["level"] == "SEVERE").collect();
-    assert!(errors.is_empty(), "the page logged errors: {errors:?}");
+    no_errors_logged(&b);
+    drop(b);
+    server.stop();
+}
+
+/// The ladder example's rung 5 jumps to `_End` (`[/Dig_5b.In]` passes):
+/// the live page draws rungs 6–8 as not run, with no power, and colours
+/// each value by its state.
+#[test]
+fn the_live_ladder_greys_the_rungs_a_taken_jump_skipped() {
+    let _one = ONE_BROWSER.lock().unwrap_or_else(|e| e.into_inner());
+    if !have_browser() {
+        return;
+    }
+    let (server, b) = open("examples/ladder/plant.json", 1.0, "ladder");
+    b.wait_for("return !!document.querySelector('#rung-6.skipped')", "#rung-6 drawn as not run");
+    let classes = b.script(
+        "return [...document.querySelectorAll('#pictures g.rung')].map(g => g.id + ' ' + g.getAttribute('class'));",
+    );
+    assert_eq!(
+        classes,
+        json!([
+            "rung-1 rung",
+            "rung-2 rung",
+            "rung-3 rung",
+            "rung-4 rung powered",
+            "rung-5 rung powered",
+            "rung-6 rung skipped",
+            "rung-7 rung skipped",
+            "rung-8 rung skipped"
+        ]),
+    );
+    let on = b.script("return document.querySelectorAll('#rung-7 .on, #rung-8 .on, #rung-6 .on').length;");
+    assert_eq!(on, json!(0), "no power in a rung that did not run");
+    // The skipped rung is drawn dashed and faded, as computed by the browser.
+    let look = b.script(
+        "const w = document.querySelector('#rung-7 line.wire'); const g = document.querySelector('#rung-7');
+         return [getComputedStyle(w).strokeDasharray, getComputedStyle(g).opacity];",
+    );
+    assert_eq!(look, json!(["4px, 3px", "0.55"]));
+    // TRUE in the energised green, FALSE grey: not the same colour (rung 2's
+    // contacts read FALSE, its negated coil's Dig_2c.Out TRUE).
+    let fills = b.script(
+        "const f = (s) => getComputedStyle(document.querySelector('#rung-2 ' + s)).fill;
+         return [f('text.value.true'), f('text.value.false')];",
+    );
+    let fills = fills.as_array().expect("two colours").clone();
+    assert_ne!(fills[0], fills[1], "TRUE and FALSE look different");
+    assert!(
+        matches!(fills[0].as_str(), Some("rgb(26, 127, 55)") | Some("rgb(63, 185, 80)")),
+        "TRUE is green: {fills:?}"
+    );
+    b.screenshot(&shots().join("ladder-skipped-rungs.png"));
+    no_errors_logged(&b);
+    drop(b);
+    server.stop();
+}
+
+/// The FST example's program list and the table's picture name the same
+/// current step: the one the table goes on with. The table is suspended
+/// first, so that both show one state.
+#[test]
+fn the_fst_program_row_and_its_picture_name_the_same_step() {
+    let _one = ONE_BROWSER.lock().unwrap_or_else(|e| e.into_inner());
+    if !have_browser() {
+        return;
+    }
+    let (server, b) = open("examples/fst/plant.json", 4.0, "fst");
+    b.wait_for(
+        "return !!document.querySelector('#pictures .picture[data-block=\"FST 1\"] .fst-step.current')",
+        "the table's picture",
+    );
+    common::console_line(&server, "SUSPEND FST 1");
+    let agree = "const row = [...document.querySelectorAll('#programs tbody tr')]
+                   .find(tr => tr.children[0].textContent === 'FST 1');
+                 const m = row && /^step (\\d+) /.exec(row.children[4].textContent);
+                 const cur = document.querySelector('#pictures .picture[data-block=\"FST 1\"] .fst-step.current');
+                 return !!(m && row.children[3].textContent === 'suspended' && cur && cur.id === 'fst-step-' + m[1]);";
+    b.wait_for(agree, "the program list and the picture to name the same step");
+    b.screenshot(&shots().join("fst-current-step.png"));
+    no_errors_logged(&b);
     drop(b);
     server.stop();
 }

@@ -79,3 +79,32 @@ fn st_stops_and_restarts_the_table_through_its_run_flag() {
     assert!(s.run_for(300_000, None).is_empty());
     assert_eq!(num(&s, "SFP 1.DATA1"), 8.0, "running again, from step 0");
 }
+
+/// The table's current step is the one it goes on with, for the program
+/// list (`P?`, `linc serve`) as for its picture: after END, step 0 — not
+/// the END step that ran last (docs/fst.md).
+#[test]
+fn the_current_step_after_end_is_step_0_everywhere() {
+    let mut s = strategy();
+    assert!(s.run_for(150_000, None).is_empty());
+    let b = s.store.db.block("FST 1").unwrap();
+    assert_eq!(s.fst_step(b), Some(0));
+    let fst = s.programs().into_iter().find(|p| p.block == "FST 1").expect("FST 1");
+    assert_eq!(fst.position, "step 0 RUNFLG 1");
+    assert_eq!(s.fst_step(s.store.db.block("COPY").unwrap()), None, "an action runs no table");
+}
+
+/// A watched action keeps which of its lines its last execution ran; a
+/// table cannot be watched.
+#[test]
+fn a_watched_action_keeps_the_lines_its_last_execution_ran() {
+    let mut s = strategy();
+    let copy = s.store.db.block("COPY").unwrap();
+    assert!(!s.watch_runs(s.store.db.block("FST 1").unwrap()));
+    assert_eq!(s.lines_ran(copy), None, "not watched");
+    assert!(s.watch_runs(copy));
+    assert_eq!(s.lines_ran(copy).map(|r| r.executions), Some(0));
+    assert!(s.run_for(250_000, None).is_empty());
+    let ran = s.lines_ran(copy).expect("watched");
+    assert_eq!((ran.lines.as_slice(), ran.executions), (&[3, 4, 5][..], 3), "three scans, each ran lines 3–5");
+}

@@ -40,7 +40,7 @@ pub struct ProgramInfo {
     pub state: ProgramState,
     /// Where it is: the failing line of an action in the error status
     /// (else `-`), a sequence's status and active steps, an FST table's
-    /// step and RUNFLG.
+    /// step (the one it goes on with, [`Strategy::fst_step`]) and RUNFLG.
     pub position: String,
 }
 
@@ -86,7 +86,8 @@ impl Strategy {
             (WantKind::Sequence, rest, pos)
         } else if member.fst.is_some() {
             let flag = self.runflg(m).map_or(0, |(_, v)| v);
-            (WantKind::Fst, flag != 1, format!("step {} RUNFLG {flag}", member.act.step))
+            let step = self.fst_step(member.block).unwrap_or(0);
+            (WantKind::Fst, flag != 1, format!("step {step} RUNFLG {flag}"))
         } else {
             let line = self.error.as_ref().filter(|e| e.block == block && e.error.line > 0);
             (WantKind::Action, false, line.map_or("-".to_string(), |e| format!("line {}", e.error.line)))

@@ -172,6 +172,19 @@ impl Strategy {
         result
     }
 
+    /// The step (0-based row) FST block `block`'s table goes on with: the
+    /// step its `IP` names after a cycle — step 0 after END or when
+    /// stopped, the failing step after a fault. The one meaning of "current
+    /// step" that the program list, the console's `P?` and the table's
+    /// picture share (docs/fst.md). `None` when the block runs no table.
+    pub fn fst_step(&self, block: usize) -> Option<usize> {
+        let m = self.members.iter().position(|m| m.block == block && m.fst.is_some())?;
+        let f = self.members[m].fst.as_deref()?;
+        let failed = int(&self.store, f.cells.runflg) == 5;
+        let ip = self.next_ip(m, failed);
+        Some(f.offsets.iter().position(|&o| o == ip).unwrap_or(0))
+    }
+
     /// IP after a cycle of member `m`: the offset of "the next function to
     /// be executed" (B.2) — where the suspended run resumes, or step 0 after
     /// END — or, after a fault, of the failing step.

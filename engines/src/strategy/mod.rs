@@ -13,6 +13,7 @@ mod errors;
 mod fst;
 mod observe;
 pub mod qualifier;
+mod runs;
 mod sequences;
 mod state;
 mod state_parts;
@@ -22,6 +23,7 @@ pub use control::{ProgramInfo, ProgramState};
 pub use errors::{ErrorStatus, StrategyError, RUNTIME_CODES};
 pub use fst::{register, steps_per_cycle};
 use linc_format::Code;
+pub use runs::LinesRan;
 pub use state::StateError;
 
 use crate::link::{Linked, Program};
@@ -114,6 +116,8 @@ struct Member {
     seq: Option<Box<crate::sequence::Sequence>>,
     /// The state of the table an FST block runs.
     fst: Option<Box<fst::FstRun>>,
+    /// What the action's last execution ran, when a picture watches it.
+    watch: Option<Box<runs::Watch>>,
 }
 
 #[derive(Clone, Debug)]
@@ -201,6 +205,7 @@ impl Strategy {
                 quals,
                 seq: None,
                 fst: None,
+                watch: None,
             });
         }
         let mut linked = Vec::with_capacity(objects.len());
@@ -381,7 +386,10 @@ impl Strategy {
         }
         let runs = self.scan_qualifier(m, number, trace.as_deref_mut());
         if runs {
-            if let Err(e) = self.run_member(m, number, trace.as_deref_mut()) {
+            self.watch_before(m);
+            let ran = self.run_member(m, number, trace.as_deref_mut());
+            self.watch_after(m);
+            if let Err(e) = ran {
                 self.enter_error(m, number, e, trace.as_deref_mut());
             }
         }
