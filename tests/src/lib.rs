@@ -118,7 +118,7 @@ pub fn run(section: &str, src: &str, mode: Mode) -> Outcome {
     };
     let steps: &[String] = &[];
     let steps = matches!(mode, Mode::Sequence | Mode::Transition).then_some(steps);
-    let ctx = Context { db, resolve_blocks, steps, record: None };
+    let ctx = Context { db, resolve_blocks, steps, steps_known: false, record: None };
     let (tree, diagnostics): (Option<String>, Vec<Diagnostic>) = if mode == Mode::Transition {
         let r = linc_compiler::check_transition(src, ctx);
         (r.tree.map(|e| pretty::expr(&e) + "\n"), r.diagnostics)
