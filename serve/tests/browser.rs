@@ -9,6 +9,9 @@
 //! saves screenshots under `target/ci-artifacts/monitor/` (docs/testing.md),
 //! which CI keeps as artifacts.
 //!
+//! A page served on another name (DNS rebinding: `evil.test`, mapped to
+//! 127.0.0.1 by Chromium's resolver rules) has every API call refused.
+//!
 //! Without chromium and chromedriver the test says so and passes, unless
 //! `LINC_REQUIRE_BROWSER` is set (as `.ci/run` sets it).
 
@@ -61,6 +64,11 @@ fn call(method: &str, url: &str, body: Option<Value>) -> Value {
 
 impl Browser {
     fn start(profile: &Path) -> Browser {
+        Browser::start_with(profile, &[])
+    }
+
+    /// A browser with `extra` command-line switches.
+    fn start_with(profile: &Path, extra: &[&str]) -> Browser {
         let port = std::net::TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
         let driver = Command::new(DRIVER)
             .arg(format!("--port={port}"))
@@ -86,6 +94,7 @@ impl Browser {
             "--window-size=1280,1400",
         ]
         .iter()
+        .chain(extra)
         .map(|s| s.to_string())
         .chain([format!("--user-data-dir={}", profile.display())])
         .collect::<Vec<_>>();
@@ -312,6 +321,105 @@ fn the_fst_program_row_and_its_picture_name_the_same_step() {
     b.wait_for(agree, "the program list and the picture to name the same step");
     b.screenshot(&shots().join("fst-current-step.png"));
     no_errors_logged(&b);
+    drop(b);
+    server.stop();
+}
+
+/// The page a rebinding attacker serves from `evil.test:PORT` before the
+/// name is re-pointed: once the monitor listens on the same port, its
+/// script calls every API as same-origin and records what came back.
+const ATTACK: &str = r#"<!doctype html><meta charset="utf-8"><title>cat pictures</title>
+<script>
+async function attack() {
+  const calls = [
+    ["page", "/", {}],
+    ["programs", "/api/programs", {}],
+    ["blocks", "/api/blocks", {}],
+    ["picture", "/api/pictures/BATCH", {}],
+    ["trend", "/api/trend/R1.Level", {}],
+    ["events", "/api/events", {}],
+    ["command", "/api/command", {method: "POST", headers: {"Content-Type": "application/json"},
+                                 body: JSON.stringify({command: "M R1.Level=99"})}],
+  ];
+  const out = {};
+  for (const [name, path, init] of calls) {
+    try {
+      const r = await fetch(path, init);
+      out[name] = {status: r.status, body: (await r.text()).slice(0, 300)};
+    } catch (e) {
+      out[name] = {error: String(e)};
+    }
+  }
+  window.results = out;
+}
+</script>"#;
+
+/// Serves [`ATTACK`] on `listener` to each connection until `done`, with
+/// `Connection: close` so the browser keeps no connection to it.
+fn serve_attack(listener: std::net::TcpListener, done: std::sync::Arc<std::sync::atomic::AtomicBool>) {
+    listener.set_nonblocking(true).expect("nonblocking");
+    while !done.load(std::sync::atomic::Ordering::Relaxed) {
+        match listener.accept() {
+            Ok((mut c, _)) => {
+                use std::io::{Read, Write};
+                c.set_nonblocking(false).expect("blocking");
+                c.set_read_timeout(Some(Duration::from_secs(5))).expect("timeout");
+                let mut buf = [0u8; 4096];
+                let _ = c.read(&mut buf);
+                let head = format!(
+                    "HTTP/1.1 200 OK\r\nContent-Type: text/html\r\nCache-Control: no-store\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
+                    ATTACK.len()
+                );
+                let _ = c.write_all(head.as_bytes());
+                let _ = c.write_all(ATTACK.as_bytes());
+            }
+            Err(_) => std::thread::sleep(Duration::from_millis(20)),
+        }
+    }
+}
+
+/// DNS rebinding, as a browser lives it: a page loaded from `evil.test`
+/// (Chromium resolves the name to 127.0.0.1), whose name then points at
+/// the engineer's monitor on the same port. Every call its script makes is
+/// same-origin to the browser, and every one is refused by the server
+/// (421, the `Host` is not one it answers to), the write included.
+#[test]
+fn a_page_on_another_name_is_refused_every_api_call() {
+    if !have_browser() {
+        return;
+    }
+    let _one = ONE_BROWSER.lock().unwrap_or_else(|e| e.into_inner());
+    let profile = linc_test_support::temp_dir("chromium-rebind");
+    let b = Browser::start_with(&profile, &["--host-resolver-rules=MAP evil.test 127.0.0.1"]);
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").expect("a port");
+    let port = listener.local_addr().expect("address").port();
+    let done = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let attacker = {
+        let done = done.clone();
+        std::thread::spawn(move || serve_attack(listener, done))
+    };
+    call("POST", &b.url("/url"), Some(json!({"url": format!("http://evil.test:{port}/")})));
+    b.wait_for("return typeof attack === 'function'", "the attacker's page");
+    done.store(true, std::sync::atomic::Ordering::Relaxed);
+    attacker.join().expect("the attacker's server");
+    // The name now leads to the monitor, with writes allowed.
+    let cfg = linc_serve::Config {
+        allow_writes: true,
+        ..linc_serve::Config::new(format!("127.0.0.1:{port}").parse().unwrap())
+    };
+    let server = common::serve("examples/sequences/plant.json", cfg);
+    let before = common::api(&server, "R1", "Level");
+    b.script("attack(); return true;");
+    b.wait_for("return !!window.results", "the attack's calls");
+    let results = b.script("return window.results;");
+    for name in ["page", "programs", "blocks", "picture", "trend", "events", "command"] {
+        let r = &results[name];
+        assert_eq!(r["status"], 421, "{name}: {r}");
+        let body: Value = serde_json::from_str(r["body"].as_str().unwrap_or("")).unwrap_or(Value::Null);
+        assert!(body["error"].as_str().is_some_and(|e| e.contains("evil.test")), "{name}: {r}");
+    }
+    b.screenshot(&shots().join("rebinding-refused.png"));
+    assert_eq!(common::api(&server, "R1", "Level"), before, "the write did not happen");
     drop(b);
     server.stop();
 }
