@@ -171,7 +171,7 @@ fn serial_and_parallel_runs_give_identical_reports() {
     assert!(serial.1.contains("running 30 scenarios"), "{}", serial.1);
     assert_eq!(serial.1.matches("error[E0010]").count(), 6, "{}", serial.1);
     assert_eq!(serial.1.matches("error[E0900]").count(), 6, "{}", serial.1);
-    assert_eq!(serial.1.matches("error[E0131]").count(), 6, "{}", serial.1);
+    assert_eq!(serial.1.matches("error[E0120]").count(), 6, "{}", serial.1);
 }
 
 #[test]
