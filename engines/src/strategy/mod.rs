@@ -128,6 +128,10 @@ struct TaskRun {
 pub struct Strategy {
     pub store: Store,
     objects: Vec<Linked>,
+    /// Each object's CRC for the fingerprint (`state.rs`), summed before
+    /// linking: a unit's code is linked in place, so the linked objects no
+    /// longer hold the bytes the object file had.
+    sums: Vec<u32>,
     members: Vec<Member>,
     tasks: Vec<TaskRun>,
     vm: Vm,
@@ -203,6 +207,7 @@ impl Strategy {
                 fst: None,
             });
         }
+        let sums = objects.iter().map(|v| crate::object::crc32(&v.object().to_bytes_without_files())).collect();
         let mut linked = Vec::with_capacity(objects.len());
         for (o, v) in objects.into_iter().enumerate() {
             let l = v.link_each(&store, &programs[o]).map_err(|(i, e)| {
@@ -229,6 +234,7 @@ impl Strategy {
         let mut s = Strategy {
             store,
             objects: linked,
+            sums,
             members,
             tasks,
             vm,
