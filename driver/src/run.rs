@@ -105,8 +105,7 @@ pub fn actions(plant: &mut Plant, cycles: u32, period: f64, req: RunRequest) -> 
     let (mut writer, trace_name) = req.trace.map(|(w, n)| (Some(w), n)).unwrap_or((None, String::new()));
     let (failure, written) = cycle(a, cycles, period, writer.as_deref_mut());
     let mut problems = faults(&failure);
-    let compiled = a.programs.iter().map(|(_, l, _)| l.compiled_blocks()).fold((0, 0), |s, c| (s.0 + c.0, s.1 + c.1));
-    compiled_note(&mut problems, req.tier, compiled);
+    compiled_note(&mut problems, req.tier, a.linked.compiled_blocks());
     let shows = fields.iter().map(|(p, addr)| (p.clone(), show_value(&a.store, *addr))).collect();
     let flushed = written.and_then(|()| writer.map_or(Ok(()), |mut w| w.flush()));
     if let Err(e) = flushed {
@@ -130,7 +129,7 @@ fn cycle(
     let mut written = Ok(());
     let mut failures = Vec::new();
     let tracing = trace.is_some();
-    for (_, linked, act) in &mut a.programs {
+    for (_, act) in &mut a.programs {
         for n in 1..=cycles {
             let mut tracer = |s: &Store, cell: u32| {
                 if let (Some(w), Ok(())) = (trace.as_deref_mut(), &written) {
@@ -138,7 +137,7 @@ fn cycle(
                 }
             };
             let t: Tracer = if tracing { Some(&mut tracer) } else { None };
-            if let Err(e) = a.vm.run(linked, act, &mut a.store, t) {
+            if let Err(e) = a.vm.run(&a.linked, act, &mut a.store, t) {
                 failures.push(e);
                 break;
             }

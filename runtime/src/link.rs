@@ -34,12 +34,14 @@ pub struct Target {
 }
 
 /// One code block ready to run: jumps are instruction indices and symbols
-/// index the program's target table. A block with neither runs the
-/// object's instructions as they are, without a copy ([`Linked::ops`]): a
-/// copy of a block of one-byte instructions took 8 bytes per byte.
+/// index the program's target table. A block runs the object's
+/// instructions, without a copy ([`Linked::ops`]), when it has neither or
+/// when it was linked in place (see [`Verified::link_each`]): a copy of a
+/// block of one-byte instructions took 8 bytes per byte.
 #[derive(Clone, Debug)]
 pub struct LinkedBlock {
-    /// The linked instructions; `None` when they are the object's.
+    /// The linked instructions; `None` when they are the object's (as they
+    /// were, or linked in place).
     ops: Option<Vec<Op>>,
     pub limits: Limits,
 }
@@ -118,6 +120,9 @@ impl Linked {
         (compiled, all)
     }
 
+    /// The object. The code of a linked unit is as linked (jumps to
+    /// instruction indices, symbols to a program's table), the form
+    /// [`Linked::ops`] gives; its labels, tables and records are the file's.
     pub fn object(&self) -> &ObjectFile {
         self.verified.object()
     }
@@ -164,73 +169,123 @@ impl Verified {
     }
 
     /// As [`Verified::link`], naming the program that failed to link.
-    pub fn link_each(self, store: &Store, programs: &[Program]) -> Result<Linked, (usize, LoadError)> {
+    ///
+    /// The last program of each unit links the object's own instructions in
+    /// place, and only the earlier ones (the same unit run by another
+    /// block) link a copy: a copy of a block of one-byte instructions took
+    /// 8 bytes per byte of the file, doubling what the load needs. No one
+    /// reads the unlinked code of a unit once it is linked (the VM, the
+    /// compiling tier and coverage read [`Linked::ops`] or what kind each
+    /// instruction is, which linking keeps).
+    pub fn link_each(mut self, store: &Store, programs: &[Program]) -> Result<Linked, (usize, LoadError)> {
+        let units = self.object().units.len();
+        let mut last = vec![usize::MAX; units];
+        for (i, p) in programs.iter().enumerate() {
+            if let Some(l) = last.get_mut(p.unit) {
+                *l = i;
+            }
+        }
         let mut linked = Vec::with_capacity(programs.len());
         for (i, &p) in programs.iter().enumerate() {
-            let unit = self.object().units.get(p.unit).ok_or_else(|| {
-                let what = format!("no unit {} (the object has {})", p.unit, self.object().units.len());
-                (i, LoadError::Malformed { what })
-            })?;
-            linked.push(link_program(&self, unit, p, store).map_err(|e| (i, e))?);
+            if p.unit >= units {
+                let what = format!("no unit {} (the object has {units})", p.unit);
+                return Err((i, LoadError::Malformed { what }));
+            }
+            linked.push(link_program(&mut self, p, last[p.unit] == i, store).map_err(|e| (i, e))?);
         }
         let jit = crate::jit::Cache::new(linked.iter().map(|p| p.blocks.len()));
         Ok(Linked { verified: self, programs: linked, jit, cover: None })
     }
 }
 
-fn link_program(v: &Verified, unit: &Unit, p: Program, store: &Store) -> Result<LinkedProgram, LoadError> {
-    if let (Some(b), false) = (p.own, unit.block_type.is_empty()) {
+/// What linking one program has bound so far: each object symbol it uses
+/// with its index in the program's table.
+struct Binder<'a> {
+    symbols: &'a [Symbol],
+    unit: (&'a str, &'a str),
+    own: Option<usize>,
+    fst: bool,
+    store: &'a Store,
+    local: HashMap<u16, u16>,
+    targets: Vec<Target>,
+    used: Vec<u16>,
+}
+
+/// Links unit `p.unit` of `v` for `p`: in the object's own code when
+/// `in_place` (no later program links that unit), otherwise in a copy.
+fn link_program(v: &mut Verified, p: Program, in_place: bool, store: &Store) -> Result<LinkedProgram, LoadError> {
+    let limits: Vec<Limits> = (0..v.object().units[p.unit].blocks.len()).map(|b| v.limits(p.unit, b)).collect();
+    let (units, symbols) = v.units_and_symbols();
+    let Unit { name, block_type, kind, blocks: code, .. } = &mut units[p.unit];
+    if let (Some(b), false) = (p.own, block_type.is_empty()) {
         let t = store.db.block_template(b);
-        if !t.name.eq_ignore_ascii_case(&unit.block_type) {
+        if !t.name.eq_ignore_ascii_case(block_type) {
             let name = &store.db.blocks[b].name;
             return Err(LoadError::Link {
-                symbol: unit.name.clone(),
-                why: format!("the action runs on a {} block, but `{name}` is a {} block", unit.block_type, t.name),
+                symbol: name.clone(),
+                why: format!("the action runs on a {block_type} block, but `{name}` is a {} block", t.name),
             });
         }
     }
-    let mut local: HashMap<u16, u16> = HashMap::new();
-    let mut targets = Vec::new();
-    let mut symbols = Vec::new();
-    let fst = unit.kind == crate::object::UnitKind::Fst;
-    let mut blocks = Vec::with_capacity(unit.blocks.len());
-    for (bi, b) in unit.blocks.iter().enumerate() {
-        if b.ops.iter().all(|op| op.target().is_none() && op.symbol().is_none()) {
-            blocks.push(LinkedBlock { ops: None, limits: v.limits(p.unit, bi) });
-            continue;
-        }
-        let mut ops = Vec::with_capacity(b.ops.len());
-        for op in b.ops.iter() {
-            let mut op = match op.target() {
-                Some(label) => op.retarget(b.labels[label as usize]),
-                None => *op,
-            };
-            if let Some(s) = op.symbol() {
-                let next = targets.len() as u16;
-                let n = match local.get(&s) {
-                    Some(&n) => n,
-                    None => {
-                        let sym = &v.object().symbols[usize::from(s)];
-                        let target = match bind(sym, unit, p.own, store) {
-                            Err(_) if fst && !sym.block.is_empty() => Target::ABSENT,
-                            other => other?,
-                        };
-                        targets.push(target);
-                        symbols.push(s);
-                        local.insert(s, next);
-                        next
-                    }
-                };
-                if op.writes() && !targets[usize::from(n)].is_absent() {
-                    check_writable(&v.object().symbols[usize::from(s)], targets[usize::from(n)], store)?;
-                }
-                op = op.with_symbol(n);
+    let fst = *kind == crate::object::UnitKind::Fst;
+    let mut binder = Binder {
+        symbols,
+        unit: (name, block_type),
+        own: p.own,
+        fst,
+        store,
+        local: HashMap::new(),
+        targets: Vec::new(),
+        used: Vec::new(),
+    };
+    let mut blocks = Vec::with_capacity(code.len());
+    for (b, limits) in code.iter_mut().zip(limits) {
+        let ops = if b.ops.iter().all(|op| op.target().is_none() && op.symbol().is_none()) {
+            None
+        } else if in_place {
+            for op in b.ops.0.iter_mut() {
+                *op = binder.link_op(*op, &b.labels)?;
             }
-            ops.push(op);
-        }
-        blocks.push(LinkedBlock { ops: Some(ops), limits: v.limits(p.unit, bi) });
+            None
+        } else {
+            Some(b.ops.iter().map(|&op| binder.link_op(op, &b.labels)).collect::<Result<Vec<Op>, _>>()?)
+        };
+        blocks.push(LinkedBlock { ops, limits });
     }
-    Ok(LinkedProgram { unit: p.unit, own: p.own, targets, symbols, blocks })
+    let Binder { targets, used, .. } = binder;
+    Ok(LinkedProgram { unit: p.unit, own: p.own, targets, symbols: used, blocks })
+}
+
+impl Binder<'_> {
+    /// `op` linked: its jump to an instruction index, its symbol to the
+    /// program's table (bound on first use).
+    fn link_op(&mut self, op: Op, labels: &[u32]) -> Result<Op, LoadError> {
+        let op = match op.target() {
+            Some(label) => op.retarget(labels[label as usize]),
+            None => op,
+        };
+        let Some(s) = op.symbol() else { return Ok(op) };
+        let n = match self.local.get(&s) {
+            Some(&n) => n,
+            None => {
+                let next = self.targets.len() as u16;
+                let sym = &self.symbols[usize::from(s)];
+                let target = match bind(sym, self.unit, self.own, self.store) {
+                    Err(_) if self.fst && !sym.block.is_empty() => Target::ABSENT,
+                    other => other?,
+                };
+                self.targets.push(target);
+                self.used.push(s);
+                self.local.insert(s, next);
+                next
+            }
+        };
+        let target = self.targets[usize::from(n)];
+        if op.writes() && !target.is_absent() {
+            check_writable(&self.symbols[usize::from(s)], target, self.store)?;
+        }
+        Ok(op.with_symbol(n))
+    }
 }
 
 /// A direct write to a read-only field is refused at link time; writes
@@ -245,13 +300,16 @@ fn check_writable(sym: &Symbol, t: Target, store: &Store) -> Result<(), LoadErro
     Ok(())
 }
 
-/// Binds one symbol to a cell of `store`.
-fn bind(sym: &Symbol, unit: &Unit, own: Option<usize>, store: &Store) -> Result<Target, LoadError> {
+/// Binds one symbol to a cell of `store`, for the unit (name, block type).
+fn bind(
+    sym: &Symbol,
+    (unit, block_type): (&str, &str),
+    own: Option<usize>,
+    store: &Store,
+) -> Result<Target, LoadError> {
     let fail = |why: String| LoadError::Link { symbol: sym.text(), why };
     let block = if sym.block.is_empty() {
-        own.ok_or_else(|| {
-            fail(format!("action `{}` runs on a {} block; name one with --block", unit.name, unit.block_type))
-        })?
+        own.ok_or_else(|| fail(format!("action `{unit}` runs on a {block_type} block; name one with --block")))?
     } else {
         store.db.block(&sym.block).ok_or_else(|| fail("the database has no such block".into()))?
     };

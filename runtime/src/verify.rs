@@ -81,6 +81,13 @@ impl Verified {
         at.filter(|&i| i < inside)
     }
 
+    /// The units to link in place, and the symbols they name: only linking
+    /// changes a verified object, into the code it runs (jumps to
+    /// instruction indices, symbols to a program's table).
+    pub(crate) fn units_and_symbols(&mut self) -> (&mut [Unit], &[Symbol]) {
+        (&mut self.obj.units, &self.obj.symbols)
+    }
+
     /// The unit called `name` (names ignore case).
     pub fn unit_named(&self, name: &str) -> Option<usize> {
         self.obj.units.iter().position(|u| u.name.eq_ignore_ascii_case(name))

@@ -132,6 +132,10 @@ struct TaskRun {
 pub struct Strategy {
     pub store: Store,
     objects: Vec<Linked>,
+    /// Each object's CRC for the fingerprint (`state.rs`), summed before
+    /// linking: a unit's code is linked in place, so the linked objects no
+    /// longer hold the bytes the object file had.
+    sums: Vec<u32>,
     members: Vec<Member>,
     tasks: Vec<TaskRun>,
     vm: Vm,
@@ -208,6 +212,7 @@ impl Strategy {
                 watch: None,
             });
         }
+        let sums = objects.iter().map(|v| crate::object::crc32(&v.object().to_bytes_without_files())).collect();
         let mut linked = Vec::with_capacity(objects.len());
         for (o, v) in objects.into_iter().enumerate() {
             let l = v.link_each(&store, &programs[o]).map_err(|(i, e)| {
@@ -234,6 +239,7 @@ impl Strategy {
         let mut s = Strategy {
             store,
             objects: linked,
+            sums,
             members,
             tasks,
             vm,

@@ -135,7 +135,9 @@ impl Strategy {
 
     /// A CRC-32 of the strategy's shape: every block with its template and
     /// fields' names and types, and every program's object file without its
-    /// source file names.
+    /// source file names. The file names say where the sources were read
+    /// from, not what the programs are: the same plant named by another
+    /// path (`./plant.json`, an absolute path) is the same strategy.
     fn fingerprint(&self) -> String {
         let db = &self.store.db;
         let mut shape = String::new();
@@ -147,20 +149,8 @@ impl Strategy {
             }
             shape.push_str(")\n");
         }
-        let mut sums = Vec::with_capacity(self.objects.len());
-        for o in &self.objects {
-            // The file names say where the sources were read from, not what
-            // the programs are: the same plant named by another path
-            // (`./plant.json`, an absolute path) is the same strategy.
-            let mut content = o.object().clone();
-            content.source.clear();
-            for u in &mut content.units {
-                u.file.clear();
-            }
-            sums.push(crc32(&content.to_bytes()));
-        }
         for m in &self.members {
-            let sum = sums.get(m.object).copied().unwrap_or(0);
+            let sum = self.sums.get(m.object).copied().unwrap_or(0);
             shape.push_str(&format!("{} {} {} {:08x}\n", db.blocks[m.block].name, m.object, m.program, sum));
         }
         format!("{:08x}", crc32(shape.as_bytes()))
