@@ -65,7 +65,7 @@ fn cycle_watched(
 ) -> Result<Option<Vec<u32>>, Problems> {
     use linc_runtime::cover::{lines_between, statement_counts};
     if let Running::Actions(a) = &mut plant.running {
-        a.programs.iter_mut().for_each(|(_, linked, _)| linked.enable_coverage());
+        a.linked.enable_coverage();
     }
     let req = crate::run::RunRequest::default;
     let first = crate::run::actions(plant, cycles.saturating_sub(1), 0.0, req())?.problems;
@@ -74,7 +74,7 @@ fn cycle_watched(
     let faulted = first.has_errors();
     problems.append(first);
     let counts = |plant: &crate::plant::Plant| match &plant.running {
-        Running::Actions(a) => a.programs.iter().map(|(_, l, _)| statement_counts(l, 0)).collect(),
+        Running::Actions(a) => (0..a.programs.len()).map(|i| statement_counts(&a.linked, i)).collect(),
         Running::Strategy(_) => Vec::new(),
     };
     let before: Vec<_> = counts(plant);
