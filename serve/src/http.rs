@@ -31,8 +31,13 @@ const MAX_LINE: usize = 4096;
 /// bytes, every one escaped in JSON, with room to spare.
 const MAX_BODY: usize = 8 * MAX_LINE;
 
-/// What a client over the connection cap is sent before it is closed.
-const BUSY: &[u8] = b"HTTP/1.1 503 Service Unavailable\r\nContent-Type: application/json\r\nContent-Length: 56\r\nConnection: close\r\n\r\n{\"error\":\"too many connections: try again in a moment\"}";
+/// What a client over the connection cap is sent before it is closed,
+/// its length counted from the body (a hand-counted one was one too many).
+static BUSY: std::sync::LazyLock<Vec<u8>> = std::sync::LazyLock::new(|| {
+    let body = json!({ "error": "too many connections: try again in a moment" }).to_string();
+    let head = "HTTP/1.1 503 Service Unavailable\r\nContent-Type: application/json\r\nConnection: close";
+    format!("{head}\r\nContent-Length: {}\r\n\r\n{body}", body.len()).into_bytes()
+});
 
 #[derive(Clone)]
 pub struct AppState {
@@ -111,7 +116,7 @@ pub fn serve(listener: std::net::TcpListener, state: AppState, wires: Wires, clo
         }
         let how = crate::wire::net::Listen {
             what: "http",
-            busy: BUSY,
+            busy: &BUSY,
             drain: true,
             limits: wires.limits,
             log: wires.log.clone(),

@@ -36,6 +36,11 @@ fn parse(out: &[u8]) -> (u16, Value) {
     let (head, body) = text.split_once("\r\n\r\n").unwrap_or_else(|| panic!("no response head: {text:?}"));
     let status = head.split(' ').nth(1).and_then(|c| c.parse().ok()).unwrap_or_else(|| panic!("{head}"));
     assert!(head.to_ascii_lowercase().contains("content-type: application/json"), "not JSON: {head}");
+    let length =
+        head.lines().find_map(|l| l.to_ascii_lowercase().strip_prefix("content-length:").map(|n| n.trim().to_string()));
+    if let Some(n) = length {
+        assert_eq!(n.parse::<usize>().ok(), Some(body.len()), "Content-Length says {n}, the body has {}", body.len());
+    }
     let json = serde_json::from_str(body).unwrap_or_else(|e| panic!("{e}: body {body:?}"));
     (status, json)
 }
