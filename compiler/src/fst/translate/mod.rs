@@ -221,6 +221,11 @@ fn refuse_steps(
         .filter_map(|n| st::refusal(&checked.steps[n], in_one_run).map(|why| no_equivalent(table, checked, n, why)))
         .collect();
     refused.sort_by_key(|d| d.span.start);
+    none_refused(refused)
+}
+
+/// `Ok` when nothing was refused, else the refusals.
+fn none_refused(refused: Vec<Diagnostic>) -> Result<(), Vec<Diagnostic>> {
     if refused.is_empty() {
         Ok(())
     } else {

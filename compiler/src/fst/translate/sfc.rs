@@ -171,11 +171,7 @@ fn stops_itself(
                 .help("stop the sequence from outside (its SFC_CON block), or translate with `linc fst to-st`, whose action runs only while RUNFLG is 1")
         })
         .collect();
-    if refused.is_empty() {
-        Ok(())
-    } else {
-        Err(refused)
-    }
+    super::none_refused(refused)
 }
 
 /// E0434 when the `--exit` field is one the table itself reads or writes:
@@ -194,11 +190,7 @@ fn exit_usable(table: &Table, checked: &Checked, exit: &Param) -> Result<(), Vec
                 .help("name a numeric field that nothing else uses with --exit BLOCK.FIELD")
         })
         .collect();
-    if used.is_empty() {
-        Ok(())
-    } else {
-        Err(used)
-    }
+    super::none_refused(used)
 }
 
 fn needs_exit_field(table: &Table, start: usize) -> Diagnostic {
