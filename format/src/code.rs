@@ -250,6 +250,8 @@ codes! {
     E0852 => "Modbus map type does not fit its field",
     E0853 => "Modbus map addresses overlap",
     E0854 => "ROC operator entry is malformed",
+    E0855 => "ROC configurable opcode table is malformed",
+    E0856 => "ROC store-and-forward link is malformed",
     E0840 => "state file is damaged or cut short",
     E0841 => "state file is of another version",
     E0842 => "state file was saved from another strategy",

@@ -43,6 +43,8 @@ pub mod code {
     pub const MODBUS_TYPE: Code = Code::E0852;
     pub const MODBUS_OVERLAP: Code = Code::E0853;
     pub const USERS: Code = Code::E0854;
+    pub const OPCODE_TABLE: Code = Code::E0855;
+    pub const FORWARD: Code = Code::E0856;
 }
 
 /// Longest name in bytes: the object file stores names with a u16 length.
@@ -173,11 +175,12 @@ impl<'a> Loader<'a> {
     fn load(&mut self, text: &str) -> Result<(), DbError> {
         let root = tree::parse(text)?;
         let members = object(&root, "the database")?;
-        // `roc` holds the logs and archives a run wrote with `--out`; it
-        // describes a past run, not the database, so loading skips it.
+        // `roc` holds the logs and archives a run wrote with `--out`, which
+        // describe a past run, not the database, so loading skips them; only
+        // its `forward` links (store and forward) configure the device.
         only_keys(
             members,
-            &["device", "templates", "blocks", "aliases", "tasks", "roc", "modbus", "users"],
+            &["device", "templates", "blocks", "aliases", "tasks", "roc", "modbus", "users", "opcode_tables"],
             "the database",
         )?;
         if let Some(m) = get(members, "device") {
@@ -210,6 +213,12 @@ impl<'a> Loader<'a> {
         // The map names blocks and aliases, so it is read after them.
         if let Some(m) = get(members, "modbus") {
             self.db.modbus = Some(super::modbus::load(self.db, &m.value)?);
+        }
+        if let Some(m) = get(members, "opcode_tables") {
+            self.db.opcode_tables = super::roc_device::opcode_tables(self.db, &m.value)?;
+        }
+        if let Some(m) = get(members, "roc") {
+            self.db.roc_forward = super::roc_device::forward(&m.value)?;
         }
         Ok(())
     }

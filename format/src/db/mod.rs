@@ -12,6 +12,7 @@ mod names;
 mod period;
 pub mod programs;
 mod roc;
+pub mod roc_device;
 mod schema;
 pub mod tree;
 pub mod users;

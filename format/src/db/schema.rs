@@ -174,6 +174,11 @@ pub struct Database {
     /// The ROC operators (`"users"`): when there are any, a ROC host must
     /// log in.
     pub users: Vec<super::users::RocUser>,
+    /// The configurable opcode tables of a ROC-protocol device, by table
+    /// number (`"opcode_tables"`).
+    pub opcode_tables: Vec<(u8, super::roc_device::OpcodeTable)>,
+    /// Where store and forward reaches each device (`"roc": {"forward"}`).
+    pub roc_forward: Vec<(super::roc_device::UnitGroup, std::net::SocketAddr)>,
     template_index: NameMap,
     block_index: NameMap,
     alias_index: NameMap,
@@ -190,6 +195,8 @@ impl Default for Database {
             device: Device::default(),
             modbus: None,
             users: Vec::new(),
+            opcode_tables: Vec::new(),
+            roc_forward: Vec::new(),
             template_index: NameMap::default(),
             block_index: NameMap::default(),
             alias_index: NameMap::default(),
