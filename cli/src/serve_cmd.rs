@@ -61,7 +61,7 @@ pub struct ServeArgs {
     /// client on the wire made, written when the server stops.
     #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
-    /// Also be a ROC Plus device on this TCP port (loopback) or ADDR:PORT (any other address must be named).
+    /// Also be a ROC device (ROC Plus, or the ROC protocol for an FB107 database) on this TCP port (loopback) or ADDR:PORT (any other address must be named).
     #[arg(long, value_name = "[ADDR:]PORT", value_parser = wire_addr)]
     pub roc: Option<SocketAddr>,
     /// Also be a Modbus TCP server over the database's "modbus" map on this port (loopback) or ADDR:PORT.
@@ -135,7 +135,7 @@ pub fn run(a: ServeArgs, r: &Reporter) -> u8 {
     let mode = if a.allow_writes { "controls on" } else { "read-only" };
     crate::out::line(&format!("serving http://{}/ ({mode}); Ctrl-C stops", server.addr()));
     if let Some(roc) = server.roc_addr() {
-        crate::out::line(&format!("ROC Plus device {} on {roc}", a.roc_address));
+        crate::out::line(&format!("{} device {} on {roc}", server.roc_dialect().name(), a.roc_address));
     }
     if let Some(m) = server.modbus_addr() {
         crate::out::line(&format!("Modbus TCP server on {m}"));

@@ -85,7 +85,7 @@ impl AppState {
 
 /// The wire servers that run beside the HTTP one, on the same runtime.
 pub struct Wires {
-    pub roc: Option<(std::net::TcpListener, linc_comms::roc::Address)>,
+    pub roc: Option<(std::net::TcpListener, crate::wire::roc_server::Station)>,
     /// The Modbus listener and the unit of the map.
     pub modbus: Option<(std::net::TcpListener, u8)>,
     pub asks: Sender<Ask>,
@@ -102,9 +102,9 @@ pub fn serve(listener: std::net::TcpListener, state: AppState, wires: Wires, clo
     rt.block_on(async move {
         let Ok(listener) = tokio::net::TcpListener::from_std(listener) else { return };
         let plant = (wires.asks.clone(), wires.limits, wires.log.clone());
-        if let Some((l, me)) = wires.roc {
+        if let Some((l, station)) = wires.roc {
             if let Ok(l) = tokio::net::TcpListener::from_std(l) {
-                let wire = move || crate::wire::roc_server::Roc::new(me);
+                let wire = move || crate::wire::roc_server::Roc::new(station.clone());
                 tokio::spawn(crate::wire::net::accept_wire(l, plant.clone(), closing.clone(), wire));
             }
         }

@@ -168,6 +168,7 @@ pub struct Finished {
 pub struct Server {
     addr: SocketAddr,
     roc: Option<SocketAddr>,
+    roc_dialect: wire::roc::Dialect,
     modbus: Option<SocketAddr>,
     asks: Sender<Ask>,
     stop: Arc<AtomicBool>,
@@ -259,6 +260,8 @@ fn start_console(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) 
     let (listener, addr) = bind(cfg.addr)?;
     let roc = cfg.roc.map(|(a, me)| bind(a).map(|(l, bound)| (l, bound, me))).transpose()?;
     let roc_addr = roc.as_ref().map(|r| r.1);
+    let dialect = wire::roc::Dialect::of(console.strategy.store.db.device);
+    let links = Arc::new(console.strategy.store.db.roc_forward.clone());
     let unit = match (cfg.modbus, console.strategy.store.db.modbus.as_ref()) {
         (None, _) => None,
         (Some(_), None) => return Err(StartError::NoModbusMap),
@@ -281,7 +284,7 @@ fn start_console(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) 
             until: cfg.until_us,
             allow_writes: cfg.allow_writes,
             state: cfg.state,
-            roc: roc.as_ref().map(|r| wire::roc::RocDevice { address: r.2, allow_writes: cfg.allow_writes }),
+            roc: roc.as_ref().map(|r| wire::roc::RocDevice { address: r.2, allow_writes: cfg.allow_writes, dialect }),
             modbus: modbus.as_ref().map(|_| wire::modbus::ModbusDevice { allow_writes: cfg.allow_writes }),
         },
         events.clone(),
@@ -318,7 +321,7 @@ fn start_console(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) 
     let hosts = http_guard::Hosts::new(addr, &cfg.allow_hosts);
     let state = http::AppState::new(asks.clone(), events, status, (cfg.token, hosts, cfg.limits));
     let wires = http::Wires {
-        roc: roc.map(|(l, _, me)| (l, me)),
+        roc: roc.map(|(l, _, me)| (l, wire::roc_server::Station { me, dialect, links })),
         modbus: modbus.zip(unit).map(|((l, _), u)| (l, u)),
         asks: asks.clone(),
         limits: cfg.limits,
@@ -328,7 +331,7 @@ fn start_console(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) 
         .name("linc-net".into())
         .spawn(move || http::serve(listener, state, wires, closed))
         .map_err(|e| StartError::Bind(addr, e))?;
-    Ok(Server { addr, roc: roc_addr, modbus: modbus_addr, asks, stop, plant, http, closing: Some(closing) })
+    Ok(Server { addr, roc: roc_addr, roc_dialect: dialect, modbus: modbus_addr, asks, stop, plant, http, closing: Some(closing) })
 }
 
 impl Server {
@@ -340,6 +343,11 @@ impl Server {
     /// Where the ROC Plus device listens, if it does.
     pub fn roc_addr(&self) -> Option<SocketAddr> {
         self.roc
+    }
+
+    /// The ROC dialect the device speaks, by its database's family.
+    pub fn roc_dialect(&self) -> wire::roc::Dialect {
+        self.roc_dialect
     }
 
     /// Where the Modbus TCP server listens, if it does.

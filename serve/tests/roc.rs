@@ -1,4 +1,6 @@
-//! The ROC Plus device over real TCP on 127.0.0.1, driven by a client
+//! The ROC device over real TCP on 127.0.0.1 (ROC Plus for the ROC800
+//! plant of examples/fst, the ROC protocol for the FB107 example of
+//! examples/roc, whose 180/181, login and error paths these share), driven by a client
 //! written here from the public frame layout (its own framing, and its CRC
 //! from the `crc` crate's CRC-16/ARC, not the server's table): reads agree
 //! with the monitor's API, writes are all or nothing under the console's
@@ -130,27 +132,27 @@ fn writes_are_all_or_nothing_under_the_consoles_rules() {
     let mut w = vec![2, 17, 0, 2];
     w.extend_from_slice(&1.0f32.to_le_bytes());
     w.extend_from_slice(&[3, 0, 14, 0]);
-    assert_eq!(h.ask(181, &w), (255, vec![19, 6 + 1 + 7 + 2]));
+    assert_eq!(h.ask(181, &w), (255, vec![19, 181, 6 + 1 + 7 + 2]));
     assert_eq!(api(&s, "SFP 1", "DATA1"), "65.5");
     // A forced field keeps its forced value: error 51 at the point type.
     console_line(&s, "F SFP 1.DATA2=0.3");
     let mut w = vec![1, 17, 0, 3];
     w.extend_from_slice(&9.0f32.to_le_bytes());
-    assert_eq!(h.ask(181, &w), (255, vec![51, 7]));
+    assert_eq!(h.ask(181, &w), (255, vec![51, 181, 7]));
     assert_eq!(api(&s, "SFP 1", "DATA2"), "0.3");
     // A value the field can't hold (a REAL must be finite): error 25 at
     // the parameter byte; a value of the wrong size is a length error.
     let mut w = vec![1, 17, 0, 2];
     w.extend_from_slice(&f32::NAN.to_le_bytes());
-    assert_eq!(h.ask(181, &w), (255, vec![25, 9]));
-    assert_eq!(h.ask(181, &[1, 16, 0, 19, 7, 0]), (255, vec![5, 5]), "MISC1 is one byte");
-    assert_eq!(h.ask(181, &[1, 17, 0, 2, 0, 0]), (255, vec![6, 5]), "DATA1 is four bytes");
+    assert_eq!(h.ask(181, &w), (255, vec![25, 181, 9]));
+    assert_eq!(h.ask(181, &[1, 16, 0, 19, 7, 0]), (255, vec![5, 181, 5]), "MISC1 is one byte");
+    assert_eq!(h.ask(181, &[1, 17, 0, 2, 0, 0]), (255, vec![6, 181, 5]), "DATA1 is four bytes");
     // An unknown point type, logical number and parameter.
-    assert_eq!(h.ask(181, &[1, 99, 0, 2, 0, 0, 0, 0]), (255, vec![4, 7]));
-    assert_eq!(h.ask(180, &[1, 3, 5, 12]), (255, vec![3, 8]));
-    assert_eq!(h.ask(180, &[2, 3, 0, 12, 3, 0, 99]), (255, vec![2, 12]));
+    assert_eq!(h.ask(181, &[1, 99, 0, 2, 0, 0, 0, 0]), (255, vec![4, 181, 7]));
+    assert_eq!(h.ask(180, &[1, 3, 5, 12]), (255, vec![3, 180, 8]));
+    assert_eq!(h.ask(180, &[2, 3, 0, 12, 3, 0, 99]), (255, vec![2, 180, 12]));
     // An opcode the device does not know.
-    assert_eq!(h.ask(99, &[]), (255, vec![1, 4]));
+    assert_eq!(h.ask(99, &[]), (255, vec![1, 99, 4]));
     s.stop();
 }
 
@@ -160,9 +162,9 @@ fn a_read_only_server_refuses_writes_with_a_security_error() {
     let mut h = Host::connect(&s);
     let mut w = vec![1, 17, 0, 2];
     w.extend_from_slice(&1.0f32.to_le_bytes());
-    assert_eq!(h.ask(181, &w), (255, vec![20, 4]));
+    assert_eq!(h.ask(181, &w), (255, vec![20, 181, 4]));
     assert_eq!(api(&s, "SFP 1", "DATA1"), "80.0");
-    assert_eq!(h.ask(8, &[0, 0, 12, 1, 6, 0xE9, 0x07]), (255, vec![20, 4]));
+    assert_eq!(h.ask(8, &[0, 0, 12, 1, 6, 25]), (255, vec![20, 8, 4]));
     s.stop();
 }
 
@@ -209,6 +211,9 @@ fn the_clock_is_set_and_read_and_the_configuration_counts_points() {
     assert_eq!((op, d.len(), d[18]), (6, 215, 6));
     let count = |t: usize| d[19 + t - 60];
     assert_eq!((count(96), count(98), count(102), count(103), count(104)), (4, 2, 3, 2, 0));
+    // ROC Plus (this plant is a ROC800) answers an error with code and
+    // offset; the FB107 example above adds the opcode between them.
+    assert_eq!(h.ask(99, &[]), (255, vec![1, 4]));
     s.stop();
 }
 
@@ -343,22 +348,22 @@ fn with_operators_a_host_logs_in_before_it_reads_or_writes() {
     let s = serve(scratch.join("plant.json").to_str().unwrap(), true);
     let mut h = Host::connect(&s);
     let read = [1, 17, 0, 2];
-    assert_eq!(h.ask(180, &read), (255, vec![20, 4]), "not logged in");
+    assert_eq!(h.ask(180, &read), (255, vec![20, 180, 4]), "not logged in");
     assert_eq!(h.ask(6, &[]).0, 6, "the configuration needs no login");
-    assert_eq!(h.ask(17, &[b'L', b'O', b'I', 0xE9, 0x03, 5]), (255, vec![21, 6]), "wrong password");
-    assert_eq!(h.ask(17, &[b'R', b'O', b' ', 7, 0, 1]), (255, vec![63, 11]), "level too high");
+    assert_eq!(h.ask(17, &[b'L', b'O', b'I', 0xE9, 0x03, 5]), (255, vec![21, 17, 6]), "wrong password");
+    assert_eq!(h.ask(17, &[b'R', b'O', b' ', 7, 0, 1]), (255, vec![63, 17, 11]), "level too high");
     assert_eq!(h.ask(17, &[b'R', b'O', b' ', 7, 0, 0]), (17, vec![]));
     assert_eq!(h.ask(180, &read).0, 180, "level 0 reads");
     let mut w = vec![1, 17, 0, 2];
     w.extend_from_slice(&1.0f32.to_le_bytes());
-    assert_eq!(h.ask(181, &w), (255, vec![20, 4]), "level 0 does not write");
+    assert_eq!(h.ask(181, &w), (255, vec![20, 181, 4]), "level 0 does not write");
     assert_eq!(h.ask(17, &[b'L', b'O', b'I', 0xE8, 0x03, 5]), (17, vec![]));
     assert_eq!(h.ask(181, &w), (181, vec![]));
-    assert_eq!(h.ask(17, b"LOI\xE8\x03LOGOFF"), (255, vec![77, 11]));
+    assert_eq!(h.ask(17, b"LOI\xE8\x03LOGOFF"), (255, vec![77, 17, 11]));
     assert_eq!(h.ask(17, b"LOI\xE8\x03LOGOUT"), (17, vec![]));
-    assert_eq!(h.ask(180, &read), (255, vec![20, 4]), "logged out");
+    assert_eq!(h.ask(180, &read), (255, vec![20, 180, 4]), "logged out");
     // The login belongs to the connection: another starts logged out.
     let mut other = Host::connect(&s);
-    assert_eq!(other.ask(180, &read), (255, vec![20, 4]));
+    assert_eq!(other.ask(180, &read), (255, vec![20, 180, 4]));
     s.stop();
 }

@@ -14,7 +14,7 @@ use linc_comms::roc::frame::MAX_FRAME;
 use linc_comms::roc::{Address, Deframer, Frame};
 use linc_engines::console::Console;
 use linc_serve::wire::modbus::ModbusDevice;
-use linc_serve::wire::roc::RocDevice;
+use linc_serve::wire::roc::{Dialect, RocDevice};
 use linc_test_support::alloc::{peak_of, serial, Counting};
 use linc_test_support::Rng;
 
@@ -89,7 +89,7 @@ fn mutate(rng: &mut Rng, mut b: Vec<u8>) -> Vec<u8> {
 fn random_and_mutated_roc_streams_never_panic_and_stay_bounded() {
     let _one = serial();
     let mut c = roc_console();
-    let device = RocDevice { address: Address { unit: 1, group: 2 }, allow_writes: true };
+    let device = RocDevice { address: Address { unit: 1, group: 2 }, allow_writes: true, dialect: Dialect::RocPlus };
     let seeds = roc_seeds();
     let mut rng = Rng::new(0x524F_4331);
     let (mut frames, mut replies) = (0usize, 0usize);

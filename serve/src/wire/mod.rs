@@ -8,6 +8,8 @@ pub(crate) mod modbus_server;
 pub(crate) mod net;
 pub mod roc;
 mod roc_logs;
+mod rocp;
+mod rocp_history;
 pub(crate) mod roc_server;
 
 pub use net::{Limits, Log};

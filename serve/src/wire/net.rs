@@ -199,6 +199,10 @@ pub(crate) enum Next<A> {
     Ask(Ask, oneshot::Receiver<A>),
     /// Answered without the plant (a request that does not decode).
     Reply(Vec<u8>),
+    /// Answered without the plant, once something else has answered (a
+    /// store-and-forward frame passed on to the next device): the bytes to
+    /// send back, if any, and the log lines.
+    Later(std::pin::Pin<Box<dyn std::future::Future<Output = (Option<Vec<u8>>, Vec<String>)> + Send>>),
     /// Not for this device: no reply.
     Skip,
     /// A stream that can't go on: closed, and logged with why.
@@ -230,6 +234,11 @@ pub(crate) async fn client<W: Wire, S: AsyncRead + AsyncWrite + Unpin>(
                     return;
                 }
                 Next::Reply(bytes) => Some(bytes),
+                Next::Later(answer) => {
+                    let (bytes, lines) = answer.await;
+                    lines.into_iter().for_each(|line| log(line));
+                    bytes
+                }
                 Next::Ask(ask, answer) => {
                     if asks.send(ask).is_err() {
                         return;
@@ -321,7 +330,7 @@ fn waiting_since(pending: usize, begun: Option<Instant>) -> Option<Instant> {
 mod tests {
     use super::*;
     use crate::wire::roc::Answer;
-    use crate::wire::roc_server::Roc;
+    use crate::wire::roc_server::{Roc, Station};
     use linc_comms::roc::{Address, Frame};
     use std::sync::Mutex;
     use tokio::io::{duplex, DuplexStream};
@@ -341,7 +350,7 @@ mod tests {
         let log: Log = Arc::new(move |l| kept.lock().unwrap().push(l));
         let (asks, asked) = std::sync::mpsc::channel();
         let peer: SocketAddr = "127.0.0.1:5000".parse().unwrap();
-        tokio::spawn(client(server, peer, Roc::new(ME), (asks, limits(), log)));
+        tokio::spawn(client(server, peer, Roc::new(Station { me: ME, dialect: crate::wire::roc::Dialect::RocPlus, links: Default::default() }), (asks, limits(), log)));
         (client_end, lines, asked)
     }
 

@@ -2,7 +2,7 @@
 //! plant's thread between scans (docs/roc-protocol.md). Reads and writes go
 //! through the console's rules, so a host can do what `M` can and no more.
 
-use linc_comms::roc::ops::{self, code, Clock, RocError, Write};
+use linc_comms::roc::ops::{self, code, Clock, RocError};
 use linc_comms::roc::value::{self, Value};
 use linc_comms::roc::{Address, Frame};
 use linc_engines::console::fields::Addr;
@@ -11,6 +11,33 @@ use linc_engines::strategy::trace::Trace;
 use linc_format::db::{FieldType, RocType, Tlp, TlpFault};
 use linc_runtime::store::{Cell, Store};
 
+/// Which ROC dialect a device speaks: the database's family decides
+/// (docs/roc-protocol.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dialect {
+    /// ROC Plus, the ROC800's.
+    RocPlus,
+    /// The ROC protocol of the FloBoss 100- and ROC300-series.
+    Roc,
+}
+
+impl Dialect {
+    pub fn of(device: linc_format::db::Device) -> Dialect {
+        match device {
+            linc_format::db::Device::Roc800 => Dialect::RocPlus,
+            linc_format::db::Device::Fb107 => Dialect::Roc,
+        }
+    }
+
+    /// How the startup line names it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Dialect::RocPlus => "ROC Plus",
+            Dialect::Roc => "ROC protocol",
+        }
+    }
+}
+
 /// What the device is.
 #[derive(Clone, Copy, Debug)]
 pub struct RocDevice {
@@ -18,6 +45,7 @@ pub struct RocDevice {
     pub address: Address,
     /// Whether hosts may write (`--allow-writes`).
     pub allow_writes: bool,
+    pub dialect: Dialect,
 }
 
 /// A reply and what to log about the request.
@@ -30,19 +58,45 @@ pub struct Answer {
 }
 
 /// A parameter a TLP names: its cell, how it travels and its field's type.
-struct Param<'a> {
-    cell: u32,
-    wire: RocType,
+pub(super) struct Param<'a> {
+    pub cell: u32,
+    pub wire: RocType,
     ty: &'a FieldType,
 }
 
 /// The parameter a TLP names; a field of a type with no ROC form is an
 /// invalid parameter.
-fn resolve(store: &Store, tlp: Tlp) -> Result<Param<'_>, TlpFault> {
+pub(super) fn resolve(store: &Store, tlp: Tlp) -> Result<Param<'_>, TlpFault> {
     let (block, field) = store.db.tlp_parts(tlp)?;
-    let wire = store.db.roc_type(block, field).ok_or(TlpFault::Parameter)?;
+    field_param(store, block, field).ok_or(TlpFault::Parameter)
+}
+
+/// A block's field as a parameter, if it has a ROC form.
+pub(super) fn field_param(store: &Store, block: usize, field: usize) -> Option<Param<'_>> {
+    let wire = store.db.roc_type(block, field)?;
     let ty = &store.db.block_template(block).fields[field].ty;
-    Ok(Param { cell: store.first[block] + field as u32, wire, ty })
+    Some(Param { cell: store.first[block] + field as u32, wire, ty })
+}
+
+/// A parameter's value now, as the wire carries it.
+pub(super) fn encode(store: &Store, p: &Param, out: &mut Vec<u8>) {
+    value::encode(p.wire, &wire_value(&store.cells[p.cell as usize]), out);
+}
+
+/// Where a write goes and the bytes of its value, with the offsets its
+/// errors point at: `at` (forced) and `param_at` (range, read-only).
+pub(super) struct Put<'a> {
+    pub target: Target,
+    pub value: &'a [u8],
+    pub at: usize,
+    pub param_at: usize,
+}
+
+/// A parameter by TLP, or a block's field (an opcode table's location).
+#[derive(Clone, Copy)]
+pub(super) enum Target {
+    Tlp(Tlp),
+    Field(usize, usize),
 }
 
 /// A cell's value as the wire carries it.
@@ -82,9 +136,13 @@ impl RocDevice {
         session: Option<u8>,
         trace: Option<&mut Trace>,
     ) -> Answer {
+        if self.dialect == Dialect::Roc {
+            return super::rocp::answer(self, console, req, peer, session, trace);
+        }
         let mut log = Vec::new();
         let mut session = session;
-        let result = match security(&console.strategy.store, req.opcode, session) {
+        let writes = req.opcode == ops::WRITE || req.opcode == ops::CLOCK_SET;
+        let result = match security(&console.strategy.store, req.opcode, session, writes) {
             Err(e) => Err(vec![e]),
             Ok(()) => self.opcode(console, req, peer, &mut session, &mut log, trace),
         };
@@ -127,14 +185,18 @@ impl RocDevice {
     /// The reply when answering failed inside linc (a bug): error 50,
     /// general error, and a log line.
     pub fn internal_error(&self, req: &Frame, peer: &str) -> Answer {
-        let data = ops::error_data(&[RocError { code: code::GENERAL, offset: 4 }]);
+        let e = RocError { code: code::GENERAL, offset: 4 };
+        let data = match self.dialect {
+            Dialect::RocPlus => ops::error_data(&[e]),
+            Dialect::Roc => linc_comms::roc::rocp::error_data(e, req.opcode),
+        };
         let log = vec![format!("roc {peer}: internal error answering opcode {}: refused with error 50", req.opcode)];
         Answer { reply: Frame { dst: req.src, src: self.address, opcode: ops::ERROR, data }, log, session: None }
     }
 
     /// Opcode 181: every value is checked (the TLP, its size, the field's
     /// range, read-only, forced) before any is written: all or nothing.
-    fn write(
+    pub(super) fn write(
         &self,
         console: &mut Console,
         data: &[u8],
@@ -144,24 +206,46 @@ impl RocDevice {
     ) -> Result<Vec<u8>, Vec<RocError>> {
         let store = &console.strategy.store;
         let writes = ops::parse_write(data, |t| resolve(store, t).map(|p| p.wire.size())).map_err(|e| vec![e])?;
+        let puts: Vec<Put> = writes
+            .iter()
+            .map(|w| Put { target: Target::Tlp(w.tlp), value: w.value, at: w.at, param_at: w.at + 2 })
+            .collect();
+        self.put_all(console, &puts, peer, log, trace)
+    }
+
+    /// Writes every value or none: each is checked (where it goes, the
+    /// field's range, read-only, forced) before any is written, and the
+    /// first refused is the error, at the byte its [`Put`] names.
+    pub(super) fn put_all(
+        &self,
+        console: &mut Console,
+        puts: &[Put],
+        peer: &str,
+        log: &mut Vec<String>,
+        trace: Option<&mut Trace>,
+    ) -> Result<Vec<u8>, Vec<RocError>> {
         if !self.allow_writes {
             return Err(vec![RocError { code: code::SECURITY, offset: 4 }]);
         }
-        let mut cells = Vec::with_capacity(writes.len());
-        for Write { at, tlp, value } in &writes {
-            let p = resolve(store, *tlp).map_err(|f| vec![ops::tlp_error(f, *at)])?;
-            let Some(new) = value::decode(p.wire, value).and_then(|v| field_value(p.ty, v)) else {
-                let sent = format!("the bytes {value:02X?}");
+        let store = &console.strategy.store;
+        let mut cells = Vec::with_capacity(puts.len());
+        for put in puts {
+            let p = match put.target {
+                Target::Tlp(t) => resolve(store, t).map_err(|f| vec![ops::tlp_error(f, put.at)])?,
+                Target::Field(b, f) => field_param(store, b, f)
+                    .ok_or_else(|| vec![RocError::at_data(code::INVALID_PARAMETER, put.param_at)])?,
+            };
+            let Some(new) = value::decode(p.wire, put.value).and_then(|v| field_value(p.ty, v)) else {
+                let sent = format!("the bytes {:02X?}", put.value);
                 super::refuse_value(console, &format!("roc {peer}"), p.cell, &sent, log, trace);
-                return Err(vec![RocError::at_data(code::PARAMETER_RANGE, at + 2)]);
+                return Err(vec![RocError::at_data(code::PARAMETER_RANGE, put.param_at)]);
             };
             cells.push((Addr { cell: p.cell, bit: None }, new));
         }
         if let Err((i, why)) = super::commit(console, &cells, &format!("roc {peer}"), log, trace) {
-            let at = writes[i].at;
             return Err(vec![match why {
-                super::Refused::Forced => RocError::at_data(code::INVALID_STATE_FOR_WRITE, at),
-                super::Refused::ReadOnly => RocError::at_data(code::READ_ONLY, at + 2),
+                super::Refused::Forced => RocError::at_data(code::INVALID_STATE_FOR_WRITE, puts[i].at),
+                super::Refused::ReadOnly => RocError::at_data(code::READ_ONLY, puts[i].param_at),
             }]);
         }
         Ok(Vec::new())
@@ -176,6 +260,17 @@ impl RocDevice {
         log: &mut Vec<String>,
     ) -> Result<Vec<u8>, Vec<RocError>> {
         let c = Clock::parse_set(data).map_err(|e| vec![e])?;
+        self.set_clock(console, c, peer, log)
+    }
+
+    /// Sets the device clock (opcode 8 in either dialect), if writes are on.
+    pub(super) fn set_clock(
+        &self,
+        console: &mut Console,
+        c: Clock,
+        peer: &str,
+        log: &mut Vec<String>,
+    ) -> Result<Vec<u8>, Vec<RocError>> {
         if !self.allow_writes {
             return Err(vec![RocError { code: code::SECURITY, offset: 4 }]);
         }
@@ -191,11 +286,10 @@ impl RocDevice {
 /// When the database names operators, a connection must log in (opcode
 /// 17) before anything but the system configuration (6), and an operator
 /// of access level 0 may only read: error 20 (security) otherwise.
-fn security(store: &Store, opcode: u8, session: Option<u8>) -> Result<(), RocError> {
+pub(super) fn security(store: &Store, opcode: u8, session: Option<u8>, writes: bool) -> Result<(), RocError> {
     if store.db.users.is_empty() || opcode == ops::LOGIN || opcode == ops::CONFIG {
         return Ok(());
     }
-    let writes = opcode == ops::WRITE || opcode == ops::CLOCK_SET;
     match session {
         Some(level) if level > 0 || !writes => Ok(()),
         _ => Err(RocError { code: code::SECURITY, offset: 4 }),
@@ -206,7 +300,7 @@ fn security(store: &Store, opcode: u8, session: Option<u8>) -> Result<(), RocErr
 /// the access level asked for against the operator's (error 63); a logout
 /// needs the ID, the password and the text `LOGOUT` (error 77). A database
 /// with no operators takes any login.
-fn login(
+pub(super) fn login(
     store: &Store,
     data: &[u8],
     peer: &str,
@@ -247,13 +341,13 @@ fn login(
 
 /// Opcode 180: each TLP's value; the first TLP that names nothing is the
 /// error.
-fn read(store: &Store, data: &[u8]) -> Result<Vec<u8>, Vec<RocError>> {
+pub(super) fn read(store: &Store, data: &[u8]) -> Result<Vec<u8>, Vec<RocError>> {
     let tlps = ops::parse_read(data).map_err(|e| vec![e])?;
     let mut values = Vec::with_capacity(tlps.len());
     for (i, t) in tlps.iter().enumerate() {
         let p = resolve(store, *t).map_err(|f| vec![ops::tlp_error(f, 1 + 3 * i)])?;
         let mut bytes = Vec::with_capacity(p.wire.size());
-        value::encode(p.wire, &wire_value(&store.cells[p.cell as usize]), &mut bytes);
+        encode(store, &p, &mut bytes);
         values.push((*t, bytes));
     }
     ops::read_reply(values.iter().map(|(t, b)| (*t, b.as_slice()))).map_err(|e| vec![e])
@@ -264,10 +358,15 @@ fn clock_read(console: &Console, data: &[u8]) -> Result<Vec<u8>, Vec<RocError>> 
     if !data.is_empty() {
         return Err(vec![RocError::length(code::TOO_MANY_BYTES)]);
     }
+    Ok(clock_now(console).reply())
+}
+
+/// The device clock as opcodes 7 carry it.
+pub(super) fn clock_now(console: &Console) -> Clock {
     let now = console.strategy.device_seconds();
     let c = linc_runtime::roc::civil(now);
     let weekday = linc_runtime::roc::day_of_week(now) as u8;
-    let clock = Clock {
+    Clock {
         second: c.second as u8,
         minute: c.minute as u8,
         hour: c.hour as u8,
@@ -275,8 +374,7 @@ fn clock_read(console: &Console, data: &[u8]) -> Result<Vec<u8>, Vec<RocError>> 
         month: c.month as u8,
         year: u16::try_from(c.year).unwrap_or(0),
         weekday,
-    };
-    Ok(clock.reply())
+    }
 }
 
 /// Opcode 6: the system configuration, with the number of points of each
@@ -285,10 +383,14 @@ fn config(store: &Store, data: &[u8]) -> Result<Vec<u8>, Vec<RocError>> {
     if !data.is_empty() {
         return Err(vec![RocError::length(code::TOO_MANY_BYTES)]);
     }
+    Ok(ops::config_reply(0, |t| points_of_type(store, t)))
+}
+
+/// How many points of a type the database has (at most 255).
+pub(super) fn points_of_type(store: &Store, t: u8) -> u8 {
     let db = &store.db;
-    let count = |t: u8| match db.point_template(u16::from(t)) {
+    match db.point_template(u16::from(t)) {
         Some(tp) => db.blocks.iter().filter(|b| b.template == tp).count().min(255) as u8,
         None => 0,
-    };
-    Ok(ops::config_reply(0, count))
+    }
 }

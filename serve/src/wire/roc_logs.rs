@@ -16,8 +16,16 @@ fn fst_number(store: &Store, e: &LogEntry) -> u8 {
 
 /// The log as the device keeps it: a ring of `capacity` slots where entry
 /// number k (counting every entry ever logged from 0) sits at slot
-/// k mod capacity; the current index is the slot the next one takes.
-fn records(store: &Store, log: &Log, req: LogRequest, alarms: bool) -> Vec<u8> {
+/// k mod capacity; the current index is the slot the next one takes. Each
+/// held entry becomes a record by `build` (its record and time); an empty
+/// slot is `size` zeros.
+pub(super) fn records(
+    store: &Store,
+    log: &Log,
+    req: LogRequest,
+    size: usize,
+    build: impl Fn(&Record, i64) -> Vec<u8>,
+) -> Vec<u8> {
     let cap = log.capacity().max(1) as u64;
     let total = log.total();
     let first = total - log.len() as u64; // the oldest entry's number
@@ -27,7 +35,6 @@ fn records(store: &Store, log: &Log, req: LogRequest, alarms: bool) -> Vec<u8> {
         // The newest entry at this slot, if one is held.
         let newest = total.checked_sub(1).and_then(|last| last.checked_sub((last + cap - slot) % cap));
         let entry = newest.filter(|&k| k >= first && k < total).and_then(|k| log.get((k - first) as usize));
-        let size = if alarms { logs::ALARM_RECORD } else { logs::EVENT_RECORD };
         out.push(match entry {
             None => vec![0; size],
             Some(e) => {
@@ -37,23 +44,27 @@ fn records(store: &Store, log: &Log, req: LogRequest, alarms: bool) -> Vec<u8> {
                     text: e.text.as_bytes().to_vec(),
                     value: e.value,
                 };
-                if alarms {
-                    logs::alarm(&r).to_vec()
-                } else {
-                    logs::event(&r).to_vec()
-                }
+                build(&r, e.time)
             }
         });
     }
-    let current = (total % cap) as u16;
-    logs::reply(req, current, &out)
+    logs::reply(req, current_slot(log), &out)
+}
+
+/// The slot a log's next entry takes.
+pub(super) fn current_slot(log: &Log) -> u16 {
+    (log.total() % log.capacity().max(1) as u64) as u16
 }
 
 /// Opcodes 118 (alarms) and 119 (events).
 pub fn log(store: &Store, data: &[u8], alarms: bool) -> Result<Vec<u8>, Vec<RocError>> {
     let req = logs::parse(data, alarms).map_err(|e| vec![e])?;
     let log = if alarms { &store.roc.alarms } else { &store.roc.events };
-    Ok(records(store, log, req, alarms))
+    Ok(if alarms {
+        records(store, log, req, logs::ALARM_RECORD, |r, _| logs::alarm(r).to_vec())
+    } else {
+        records(store, log, req, logs::EVENT_RECORD, |r, _| logs::event(r).to_vec())
+    })
 }
 
 fn archive(kind: Kind) -> (Archive, bool) {
