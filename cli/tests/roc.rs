@@ -35,7 +35,7 @@ impl Device {
         let _serving = lines.next().expect("a line").expect("text");
         let roc = lines.next().expect("the ROC line").expect("text");
         let addr = roc.rsplit(' ').next().expect("an address").to_string();
-        assert!(roc.starts_with("ROC Plus device 25,2 on 127.0.0.1:"), "{roc}");
+        assert!(roc.starts_with("ROC protocol device 25,2 on 127.0.0.1:"), "{roc}");
         Device(child, addr)
     }
 }

@@ -119,11 +119,16 @@ pub fn write_db(out: &Path, original: &str, store: &Store) -> Result<(), Problem
         }
     }
     // The ROC device's logs and archives, when the database has history
-    // points or a table logged something (the loader skips this key).
+    // points or a table logged something (the loader skips them), beside
+    // the store-and-forward links the input configured (which it reads).
     let roc = &store.roc;
     if !roc.history.points().is_empty() || !roc.alarms.is_empty() || !roc.events.is_empty() {
+        let mut state = roc.to_json();
+        if let (Some(s), Some(links)) = (state.as_object_mut(), root.get("roc").and_then(|r| r.get("forward"))) {
+            s.insert("forward".to_string(), links.clone());
+        }
         if let Some(obj) = root.as_object_mut() {
-            obj.insert("roc".to_string(), roc.to_json());
+            obj.insert("roc".to_string(), state);
         }
     }
     let text = serde_json::to_string_pretty(&root).map_err(json_error)? + "\n";
