@@ -1,5 +1,6 @@
-//! Fuzz of both decoders on the server side, in process: random and
-//! mutated ROC Plus byte streams through the deframer and the device, and
+//! Fuzz of the decoders on the server side, in process: random and
+//! mutated ROC Plus and ROC-protocol byte streams through the deframer, the
+//! store-and-forward routing and the device, and
 //! random and mutated Modbus TCP streams through the deframer, the request
 //! decoder and the device, against a running example plant. Nothing may panic, and
 //! memory stays bounded (the deframer holds at most a frame beyond the last
@@ -126,6 +127,103 @@ fn random_and_mutated_roc_streams_never_panic_and_stay_bounded() {
         }
     });
     assert!(frames > cases() / 4 && replies > cases() / 5, "{frames} frames, {replies} replies");
+    assert!(peak < 4 << 20, "peak heap {peak} bytes");
+}
+
+/// The FB107 example plant after three hours: its logs and archives hold
+/// entries for the ROC protocol's history opcodes.
+fn fb107_console() -> Console {
+    let mut c = console("examples/roc/plant.json");
+    assert!(c.execute("ADVANCE 3h").iter().all(Result::is_ok));
+    c
+}
+
+/// ROC-protocol requests: every opcode the FB107 answers, store and
+/// forward ending here and passing on, broadcasts and the universal address.
+fn fb107_seeds() -> Vec<Frame> {
+    let f = |dst: [u8; 2], opcode, data: &[u8]| Frame {
+        dst: Address { unit: dst[0], group: dst[1] },
+        src: Address { unit: 3, group: 1 },
+        opcode,
+        data: data.to_vec(),
+    };
+    let me = [1, 2];
+    let wrapped = |hops: &[u8], inner: &[u8]| [&[3u8, 1][..], hops, inner].concat();
+    vec![
+        f(me, 6, &[]),
+        f(me, 7, &[]),
+        f([240, 240], 7, &[]),
+        f([0, 2], 8, &[0, 0, 12, 1, 6, 26]),
+        f(me, 10, &[0, 0, 5]),
+        f(me, 11, &[0, 2, 1, 0, 0, 0x90, 0x42]),
+        f(me, 17, b"LOI\xE8\x03"),
+        f(me, 120, &[]),
+        f(me, 121, &[10, 0, 0]),
+        f(me, 122, &[10, 230, 0]),
+        f(me, 126, &[1]),
+        f(me, 128, &[1, 5, 1]),
+        f(me, 130, &[0, 1, 60, 0, 0]),
+        f(me, 130, &[1, 254, 3, 0xFF, 0xFF]),
+        f(me, 166, &[17, 0, 2, 2, 0, 0, 0x80, 0x3F, 0, 0, 0, 0]),
+        f(me, 167, &[3, 0, 16, 0]),
+        f(me, 180, &[2, 3, 0, 12, 17, 0, 2]),
+        f(me, 181, &[1, 17, 0, 2, 0, 0, 0x80, 0x3F]),
+        f(me, 24, &wrapped(&[1, 2, 0, 0, 0, 0, 0, 0], &[180, 4, 1, 17, 0, 2])),
+        f(me, 24, &wrapped(&[1, 2, 5, 2, 0, 0, 0, 0], &[128, 3, 1, 5, 1])),
+        f(me, 24, &wrapped(&[5, 2, 1, 2, 5, 2, 0, 0], &[7, 0])),
+    ]
+}
+
+#[test]
+fn random_and_mutated_roc_protocol_streams_never_panic_and_stay_bounded() {
+    use linc_comms::roc::rocp::{self, forward, Addressed};
+    let _one = serial();
+    let mut c = fb107_console();
+    let me = Address { unit: 1, group: 2 };
+    let device = RocDevice { address: me, allow_writes: true, dialect: Dialect::Roc };
+    let seeds = fb107_seeds();
+    let mut rng = Rng::new(0x524F_4350);
+    let (mut frames, mut replies, mut relayed) = (0usize, 0usize, 0usize);
+    let peak = peak_of(|| {
+        let mut d = Deframer::default();
+        for _ in 0..cases() {
+            let seed = &seeds[rng.below(seeds.len())];
+            let bytes = match rng.below(3) {
+                0 => {
+                    let mut f = seed.clone();
+                    f.data = mutate(&mut rng, f.data);
+                    f.data.truncate(255);
+                    f.encode().unwrap()
+                }
+                1 => mutate(&mut rng, seed.encode().unwrap()),
+                _ => (0..rng.below(300)).map(|_| rng.below(256) as u8).collect(),
+            };
+            for chunk in bytes.chunks(1 + rng.below(64)) {
+                d.push(chunk);
+                while let Some(f) = d.next_frame() {
+                    frames += 1;
+                    if rocp::addressed(me, f.dst) == Addressed::Other {
+                        continue;
+                    }
+                    // What the connection decides for a 24: pass it on
+                    // (counted, not sent) or let the device answer it.
+                    let route = forward::parse(&f.data).ok().map(|w| w.path.route(me));
+                    if f.opcode == rocp::FORWARD && matches!(route, Some(Ok(forward::Route::Next(_)))) {
+                        relayed += 1;
+                        continue;
+                    }
+                    let a = device.answer(&mut c, &f, "fuzz", None, None);
+                    assert!(a.reply.encode().is_some(), "every reply fits a frame: {f:?}");
+                    if a.reply.opcode == rocp::ERROR {
+                        assert_eq!((a.reply.data.len(), a.reply.data[1]), (3, f.opcode), "{f:?}");
+                    }
+                    replies += 1;
+                }
+                assert!(d.pending() < MAX_FRAME + 64, "the deframer holds {} bytes", d.pending());
+            }
+        }
+    });
+    assert!(frames > cases() / 4 && replies > cases() / 5 && relayed > 0, "{frames} frames, {replies} replies");
     assert!(peak < 4 << 20, "peak heap {peak} bytes");
 }
 
