@@ -1,5 +1,5 @@
 //! Load on the wire servers for the README: 50 clients × 1,000 requests
-//! (25 on ROC Plus reading three parameters, 25 on Modbus reading five
+//! (25 on the FB107 example's ROC protocol reading three parameters, 25 on Modbus reading five
 //! registers) against the example plant running at speed 1, each client
 //! one request at a time. Prints the latency percentiles per protocol, the
 //! late scans, and a native baseline measured in the same run: the same

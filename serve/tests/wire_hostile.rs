@@ -19,6 +19,10 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 fn serve(log: Arc<Mutex<Vec<String>>>) -> Server {
+    serve_db("examples/roc/plant.json", log)
+}
+
+fn serve_db(db: &str, log: Arc<Mutex<Vec<String>>>) -> Server {
     let cfg = Config {
         speed: Speed::Times(1.0),
         allow_writes: true,
@@ -28,7 +32,7 @@ fn serve(log: Arc<Mutex<Vec<String>>>) -> Server {
         log: Arc::new(move |line| log.lock().unwrap().push(line)),
         ..common::config()
     };
-    common::serve("examples/roc/plant.json", cfg)
+    common::serve(db, cfg)
 }
 
 /// One ROC read of SFP 1,DATA1 and its reply's value.
@@ -152,4 +156,60 @@ fn many_clients_at_once_are_answered_right_one_request_each_at_a_time() {
     let done = s.stop();
     assert!(done.busiest <= 16, "{} requests of 16 clients waited for a scan", done.busiest);
     eprintln!("16 clients: {} scans, {} late", done.scans, done.late);
+}
+
+/// Store and forward to a device that never answers (a link that accepts
+/// and stays silent): each relayed request waits off the plant thread and
+/// ends in error 22 with a log line, while reads on other connections are
+/// answered at once and every due scan runs.
+#[test]
+fn store_and_forward_into_a_black_hole_holds_no_scan() {
+    let hole = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let hole_addr = hole.local_addr().unwrap();
+    let held = std::thread::spawn(move || hole.incoming().take(20).filter_map(Result::ok).collect::<Vec<_>>());
+    let dir = std::path::Path::new(common::ROOT).join("examples/roc");
+    let scratch = linc_test_support::fresh_dir("roc-hole");
+    for f in ["drain.csv", "sim.stx"] {
+        std::fs::copy(dir.join(f), scratch.join(f)).unwrap();
+    }
+    let text = std::fs::read_to_string(dir.join("plant.json")).unwrap().replace("127.0.0.1:4001", &hole_addr.to_string());
+    std::fs::write(scratch.join("plant.json"), text).unwrap();
+    let log = Arc::new(Mutex::new(Vec::new()));
+    let s = serve_db(scratch.join("plant.json").to_str().unwrap(), log.clone());
+    let roc = s.roc_addr().unwrap();
+    let forward = Frame {
+        dst: Address { unit: 1, group: 2 },
+        src: Address { unit: 3, group: 1 },
+        opcode: 24,
+        data: vec![3, 1, 1, 2, 5, 2, 0, 0, 0, 0, 7, 0],
+    };
+    let relays: Vec<_> = (0..20)
+        .map(|_| {
+            let bytes = forward.encode().unwrap();
+            std::thread::spawn(move || {
+                let mut t = TcpStream::connect(roc).unwrap();
+                t.set_read_timeout(Some(Duration::from_secs(30))).unwrap();
+                t.write_all(&bytes).unwrap();
+                let mut reply = [0u8; 6 + 3 + 2];
+                t.read_exact(&mut reply).unwrap();
+                (reply[4], reply[6..9].to_vec())
+            })
+        })
+        .collect();
+    let mut r = TcpStream::connect(roc).unwrap();
+    r.set_read_timeout(Some(Duration::from_secs(30))).unwrap();
+    let asked = std::time::Instant::now();
+    assert_eq!(roc_read(&mut r), 80.0);
+    let read_took = asked.elapsed();
+    for t in relays {
+        assert_eq!(t.join().unwrap(), (255, vec![22, 24, 8]));
+    }
+    let done = s.stop();
+    drop(held.join());
+    let s = &done.console.strategy;
+    let due = s.elapsed_us() / s.fastest_period_us().expect("a task");
+    assert!(done.scans >= due, "{} scans for {due} instants", done.scans);
+    let refused = log.lock().unwrap().iter().filter(|l| l.contains("did not answer within 3 s")).count();
+    assert_eq!(refused, 20, "each relay that timed out is logged");
+    eprintln!("20 relays into a black hole: a read beside them took {read_took:?}; {} late scans", done.late);
 }
