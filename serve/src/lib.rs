@@ -60,7 +60,7 @@ pub struct Config {
     pub until_us: Option<u64>,
     /// Where `SAVE` writes the retentive state (`--state`).
     pub state: Option<PathBuf>,
-    /// A ROC Plus device on this address, answering as this unit and group
+    /// A ROC device (in its database family's dialect) on this address, answering as this unit and group
     /// (`--roc`, `--roc-address`).
     pub roc: Option<(SocketAddr, linc_comms::roc::Address)>,
     /// A Modbus TCP server on this address, over the database's map
@@ -340,7 +340,7 @@ impl Server {
         self.addr
     }
 
-    /// Where the ROC Plus device listens, if it does.
+    /// Where the ROC device listens, if it does.
     pub fn roc_addr(&self) -> Option<SocketAddr> {
         self.roc
     }

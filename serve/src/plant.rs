@@ -52,7 +52,7 @@ pub struct Setup {
     pub allow_writes: bool,
     /// Where `SAVE` writes the state.
     pub state: Option<std::path::PathBuf>,
-    /// The ROC Plus device, when serving one.
+    /// The ROC device (either dialect), when serving one.
     pub roc: Option<crate::wire::roc::RocDevice>,
     /// The Modbus device, when serving one.
     pub modbus: Option<crate::wire::modbus::ModbusDevice>,

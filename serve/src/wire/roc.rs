@@ -1,4 +1,5 @@
-//! The ROC Plus device: frames answered from the running plant, on the
+//! The ROC device, and ROC Plus's opcodes (the ROC protocol's are in
+//! `rocp.rs`): frames answered from the running plant, on the
 //! plant's thread between scans (docs/roc-protocol.md). Reads and writes go
 //! through the console's rules, so a host can do what `M` can and no more.
 
