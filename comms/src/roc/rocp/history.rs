@@ -174,6 +174,17 @@ mod tests {
         assert_eq!(r[125], 16);
     }
 
+    /// A FloBoss 407 host's opcode 130 request quoted with its CRC on
+    /// Emerson Exchange 365 ("Roclink protocol"): RAM area (history type)
+    /// 0, point 254 (time stamps), 59 values from pointer 781.
+    #[test]
+    fn a_published_130_request() {
+        let wire = [0x01, 0x02, 0x03, 0x01, 0x82, 0x05, 0x00, 0xFE, 0x3B, 0x0D, 0x03, 0xD6, 0xE3];
+        let (f, n) = crate::roc::Frame::decode(&wire).unwrap();
+        assert_eq!((n, f.opcode), (wire.len(), 130));
+        assert_eq!(parse_from_pointer(&f.data), Ok(FromPointer { kind: 0, point: STAMPS, count: 59, start: 781 }));
+    }
+
     /// abferm/roc's 130: type, point, count, pointer (2 bytes); the reply
     /// type, point, count and four bytes a value (response/130.go).
     #[test]
