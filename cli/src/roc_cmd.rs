@@ -12,7 +12,7 @@ use std::time::Duration;
 
 #[derive(clap::Subcommand)]
 pub enum RocCommand {
-    /// Run a command list (CSV in the module manual's columns) against a ROC Plus device over TCP.
+    /// Run a command list (CSV in the module manual's columns) against a ROC or ROC Plus device over TCP.
     Poll(PollArgs),
 }
 
@@ -39,6 +39,25 @@ pub struct PollArgs {
     /// This host's own ROC unit and group, the source of its requests.
     #[arg(long, value_name = "UNIT,GROUP", default_value = "3,1", value_parser = crate::serve_cmd::roc_address)]
     pub unit: Address,
+    /// The protocol the device speaks: roc (FloBoss 107; the module's whole list) or rocplus (8, 180, 181).
+    #[arg(long, value_enum, default_value = "roc")]
+    pub protocol: ProtocolArg,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum ProtocolArg {
+    Roc,
+    #[value(name = "rocplus")]
+    RocPlus,
+}
+
+impl From<ProtocolArg> for linc_driver::roc::Protocol {
+    fn from(p: ProtocolArg) -> Self {
+        match p {
+            ProtocolArg::Roc => Self::Roc,
+            ProtocolArg::RocPlus => Self::RocPlus,
+        }
+    }
 }
 
 pub fn run(c: RocCommand, r: &Reporter) -> u8 {
@@ -57,8 +76,16 @@ fn poll_cmd(a: PollArgs, r: &Reporter) -> u8 {
         Ok(t) => t,
         Err(p) => return r.report(&p),
     };
-    let req =
-        PollRequest { host: a.host, commands: a.commands, words: a.words, run_for, out: a.out, timeout, unit: a.unit };
+    let req = PollRequest {
+        host: a.host,
+        commands: a.commands,
+        words: a.words,
+        run_for,
+        out: a.out,
+        timeout,
+        unit: a.unit,
+        protocol: a.protocol.into(),
+    };
     match linc_driver::roc::poll(&req, &mut |line| out::line(line)) {
         Ok(status) => u8::from(status.iter().any(|&s| s != 0)),
         Err(p) => r.report(&p),

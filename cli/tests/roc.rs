@@ -128,6 +128,58 @@ fn file_errors_are_located_and_outputs_never_overwrite_inputs() {
 }
 
 #[test]
+fn the_protocol_decides_which_commands_a_list_may_hold() {
+    let dir = linc_test_support::fresh_dir("roc-protocol");
+    let head = "PORT,SLV UNIT,SLV GROUP,OP CODE,CNT,SRC ADDR,DEST ADDR,TYPE,POLL TIME,STORE FWD\n";
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    std::fs::write(dir.join("log.csv"), format!("{head}1,25,2,120,0,0,50,0,0,0\n")).unwrap();
+    std::fs::write(dir.join("fwd.csv"), format!("{head}1,25,2,180,1,0,50,0,0,40\n")).unwrap();
+    let poll = |cmds: &str, protocol: &str| {
+        let (cmds, none) = (p(cmds), "127.0.0.1:9");
+        let args = ["roc", "poll", "--host", none, "--commands", &cmds, "--protocol", protocol, "--timeout", "50ms"];
+        common::linc(&[&args[..], &["--message-format", "short"]].concat())
+    };
+    // A ROC Plus device has no opcode 120 and no store and forward.
+    let o = poll("log.csv", "rocplus");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        common::stderr(&o).contains("log.csv:2:8: error[E0923]: opcode 120 is the ROC protocol's"),
+        "{}",
+        common::stderr(&o)
+    );
+    let o = poll("fwd.csv", "rocplus");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(common::stderr(&o).contains("fwd.csv:2:23: error[E0923]: store and forward"), "{}", common::stderr(&o));
+    // The ROC protocol takes both; nothing answers on port 9.
+    for cmds in ["log.csv", "fwd.csv"] {
+        let o = poll(cmds, "roc");
+        assert_eq!(o.status.code(), Some(1), "{}", common::stderr(&o));
+        assert!(common::stdout(&o).ends_with("to 25,2: error 8: timeout: no reply after 3 attempts\n"));
+    }
+    assert_eq!(poll("log.csv", "modbus").status.code(), Some(2));
+    // The manual's 180/181 example runs the same against a ROC Plus device
+    // named as one.
+    let dev = Device::start();
+    std::fs::write(dir.join("cmds.csv"), EXAMPLE).unwrap();
+    std::fs::write(dir.join("words.json"), r#"{"0": [3, 0, 2, 3, 1, 2], "100": [500, 1000]}"#).unwrap();
+    let (cmds, words) = (p("cmds.csv"), p("words.json"));
+    let o = common::linc(&[
+        "roc",
+        "poll",
+        "--host",
+        &dev.1,
+        "--commands",
+        &cmds,
+        "--words",
+        &words,
+        "--protocol",
+        "rocplus",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", common::stderr(&o));
+    assert_eq!(common::stdout(&o), "command 1 (line 2): 180 to 25,2: done\ncommand 2 (line 3): 181 to 25,2: done\n");
+}
+
+#[test]
 fn serve_modbus_answers_over_tcp_and_a_database_without_a_map_is_refused() {
     use std::io::{Read, Write};
     let mut child = common::spawn(&[

@@ -5,6 +5,7 @@
 
 use crate::files::{read_input_text, write_atomic};
 use linc_comms::error::FileError;
+pub use linc_comms::roc::host::Protocol;
 use linc_comms::roc::host::{poll::poll as run_list, status_text, Command, Host, TcpLink, Words};
 pub use linc_comms::roc::Address;
 use linc_compiler::diag::{Diagnostic, Problems, Span};
@@ -26,6 +27,9 @@ pub struct PollRequest {
     pub timeout: Duration,
     /// This host's own unit and group.
     pub unit: Address,
+    /// The protocol the device speaks (`--protocol`): which commands the
+    /// list may hold.
+    pub protocol: Protocol,
 }
 
 /// A comms file error at its place in the file (a refused request).
@@ -49,7 +53,7 @@ fn read<T>(path: &Path, parse: impl Fn(&str) -> Result<T, FileError>) -> Result<
 /// word table that can't be read, or an output that names an input, is a
 /// refused request, before any request is sent.
 pub fn poll(req: &PollRequest, say: &mut dyn FnMut(&str)) -> Result<Vec<u16>, Problems> {
-    let list = read(&req.commands, linc_comms::roc::host::commands::parse)?;
+    let list = read(&req.commands, |text| linc_comms::roc::host::commands::parse(text, req.protocol))?;
     let words = match &req.words {
         Some(p) => read(p, Words::parse)?,
         None => Words::default(),

@@ -34,6 +34,7 @@ fn a_roc_host_sets_the_point_the_fst_acts_on_and_a_modbus_client_reads_the_resul
     // FB107) as a float from words 100-101, low word first.
     let list = commands::parse(
         "PORT,SLV UNIT,SLV GROUP,OP CODE,CNT,SRC ADDR,DEST ADDR,TYPE,POLL TIME,STORE FWD\n1,1,2,181,1,0,100,4,0,0\n",
+        commands::Protocol::RocPlus,
     )
     .unwrap();
     let bits = 40.0f32.to_bits();

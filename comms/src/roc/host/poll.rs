@@ -1,8 +1,11 @@
 //! Running the command list: each command's request built from the word
-//! table, sent, retried, and its reply stored back, with the module's
-//! status codes (`003_…` §5.1.6).
+//! table, sent (wrapped in opcode 24 when it goes by store and forward),
+//! retried, and its reply stored back, with the module's status codes
+//! (`003_…` §5.1.6). What each opcode's bytes are in words is
+//! [`layouts`](super::layouts)'.
 
-use super::commands::Command;
+use super::commands::{Command, PATH_WORDS};
+use super::layouts::{self, op, Kind};
 use super::words::{Words, SIZE};
 use crate::roc::frame::MAX_DATA;
 use crate::roc::ops;
@@ -41,7 +44,7 @@ pub fn status_text(code: u16) -> String {
         status::OK => "done".into(),
         1 => "illegal function".into(),
         status::BAD_ADDRESS => "bad data address: the values would pass word 3999".into(),
-        status::BAD_VALUE => "bad data value: a TLP word is over 255".into(),
+        status::BAD_VALUE => "bad data value: a word sent as a byte (TLP, clock, table or path) is over 255".into(),
         status::INCOMPLETE => "incomplete response: the reply does not match the request".into(),
         status::TIMEOUT => format!("timeout: no reply after {ATTEMPTS} attempts"),
         status::OVERFLOW => "buffer overflow: the request is longer than a frame (fewer parameters)".into(),
@@ -52,7 +55,9 @@ pub fn status_text(code: u16) -> String {
     }
 }
 
-/// The meaning of a device's opcode 255 error code.
+/// The meaning of a device's opcode 255 error code: the codes of both
+/// protocols' tables that linc's device sends (docs/roc-protocol.md); the
+/// two agree where they overlap.
 fn roc_error(code: u16) -> &'static str {
     match code {
         1 => "invalid opcode",
@@ -61,12 +66,21 @@ fn roc_error(code: u16) -> &'static str {
         4 => "invalid point type",
         5 => "received too many data bytes",
         6 => "received too few data bytes",
+        13 => "outside the valid address range",
+        14 => "invalid history request",
+        17 => "too many alarms asked for",
+        18 => "too many events asked for",
         19 => "write to a read-only parameter",
         20 => "security error",
+        21 => "invalid security logon",
+        22 => "invalid store and forward path",
         25 => "invalid parameter range",
+        30 => "invalid history point",
         33 => "invalid time",
         50 => "general error",
         51 => "invalid state for write (the parameter is forced)",
+        63 => "requested security level too high",
+        77 => "invalid logoff string",
         _ => "see the device's error table",
     }
 }
@@ -80,112 +94,103 @@ pub struct Host {
 
 impl Host {
     /// Runs one command: `OK` or the status code the module would store.
+    /// Nothing is stored for a command that failed.
     pub fn run(&mut self, c: &Command, link: &mut dyn Link) -> u16 {
-        let data = match self.request(c) {
-            Ok(d) => d,
-            Err(code) => return code,
-        };
-        let req = Frame { dst: Address { unit: c.unit, group: c.group }, src: self.me, opcode: c.opcode, data };
-        let mut reply = None;
-        for _ in 0..ATTEMPTS {
-            if let Ok(r) = link.exchange(&req) {
-                reply = Some(r);
-                break;
-            }
-        }
-        let Some(reply) = reply else { return status::TIMEOUT };
-        if reply.opcode == ops::ERROR {
-            return reply.data.first().map_or(status::INCOMPLETE, |&c| status::ROC_ERROR + u16::from(c));
-        }
-        if reply.opcode != c.opcode {
-            return status::INCOMPLETE;
-        }
-        match c.opcode {
-            ops::READ => self.store(c, &reply.data),
-            _ if reply.data.is_empty() => status::OK,
-            _ => status::INCOMPLETE,
+        match self.try_run(c, link) {
+            Ok(()) => status::OK,
+            Err(code) => code,
         }
     }
 
-    /// The TLPs of a command, from its SRC ADDR words.
-    fn tlps(&self, c: &Command) -> Result<Vec<[u8; 3]>, u16> {
-        let from = usize::from(c.src);
-        let words = &self.words.0[from..from + 3 * usize::from(c.count)];
-        words
-            .chunks_exact(3)
-            .map(|w| {
-                let b = |x: u16| u8::try_from(x).map_err(|_| status::BAD_VALUE);
-                Ok([b(w[0])?, b(w[1])?, b(w[2])?])
-            })
-            .collect()
-    }
-
-    /// The data of a command's request.
-    fn request(&self, c: &Command) -> Result<Vec<u8>, u16> {
-        let tlps = self.tlps(c)?;
-        let mut data = vec![c.count as u8];
-        for (i, t) in tlps.iter().enumerate() {
-            data.extend_from_slice(t);
-            if c.opcode == ops::WRITE {
-                data.extend_from_slice(&self.value(c, i));
-            }
-        }
-        if data.len() > MAX_DATA {
+    fn try_run(&mut self, c: &Command, link: &mut dyn Link) -> Result<(), u16> {
+        let sent = layouts::request(c, &self.words.0)?;
+        if sent.len() > MAX_DATA {
             return Err(status::OVERFLOW);
         }
-        Ok(data)
+        let path = self.path(c)?;
+        let (opcode, data) = match &path {
+            Some(p) => (op::STORE_FORWARD, wrap(p, c.opcode, &sent)?),
+            None => (c.opcode, sent.clone()),
+        };
+        let req = Frame { dst: Address { unit: c.unit, group: c.group }, src: self.me, opcode, data };
+        let reply = exchange(link, &req)?;
+        let (opcode, data) = match &path {
+            Some(p) => unwrap(p, &reply)?,
+            None => (reply.opcode, reply.data.as_slice()),
+        };
+        refused(opcode, data)?;
+        if opcode != c.opcode {
+            return Err(status::INCOMPLETE);
+        }
+        let layout = layouts::reply_layout(c, &sent, data)?;
+        let words = layouts::place(&layout, data).ok_or(status::INCOMPLETE)?;
+        self.store(c.dest, &words)
     }
 
-    /// The bytes of value `i` of a 181 from its DEST ADDR words, by TYPE:
-    /// a float is two words, low word first; an integer one word; a byte
-    /// the low byte of one word.
-    fn value(&self, c: &Command, i: usize) -> Vec<u8> {
-        let words_each = usize::from(c.ty.div_ceil(2));
-        let at = usize::from(c.dest) + i * words_each;
-        let w = &self.words.0[at..at + words_each];
-        match c.ty {
-            4 => [w[0].to_le_bytes(), w[1].to_le_bytes()].concat(),
-            2 => w[0].to_le_bytes().to_vec(),
-            _ => vec![w[0] as u8],
+    /// The store-and-forward path's ten bytes, from the words at STORE
+    /// FWD (a word over 255 is status 3); `None` for a direct command.
+    fn path(&self, c: &Command) -> Result<Option<Vec<u8>>, u16> {
+        if c.store_fwd == 0 {
+            return Ok(None);
         }
+        let at = usize::from(c.store_fwd);
+        layouts::gather(&[(Kind::Bin, PATH_WORDS)], &self.words.0[at..at + PATH_WORDS]).map(Some)
     }
 
-    /// Stores a 180 reply's values from DEST ADDR: each value's words (a
-    /// byte in the low byte of a word, two bytes one word, four bytes two
-    /// words low word first, longer text a byte a word), after its TLP's
-    /// three words when TYPE is 1. Every value of one command has the same
-    /// size (the module's rule), so the reply splits without a parameter
-    /// table.
-    fn store(&mut self, c: &Command, data: &[u8]) -> u16 {
-        let Ok(tlps) = self.tlps(c) else { return status::BAD_VALUE };
-        let n = usize::from(c.count);
-        let body = data.len().saturating_sub(1 + 3 * n);
-        if data.first() != Some(&(c.count as u8)) || body == 0 || !body.is_multiple_of(n) {
-            return status::INCOMPLETE;
+    /// Stores a reply's words from `at`: all of them, or none and status 2
+    /// when they would pass word 3999.
+    fn store(&mut self, at: u16, words: &[u16]) -> Result<(), u16> {
+        let at = usize::from(at);
+        if at + words.len() > SIZE {
+            return Err(status::BAD_ADDRESS);
         }
-        let size = body / n;
-        let mut out: Vec<u16> = Vec::new();
-        for (i, chunk) in data[1..].chunks_exact(3 + size).enumerate() {
-            if chunk[..3] != tlps[i] {
-                return status::INCOMPLETE;
-            }
-            if c.ty == 1 {
-                out.extend(chunk[..3].iter().map(|&b| u16::from(b)));
-            }
-            let v = &chunk[3..];
-            match size {
-                2 => out.push(u16::from_le_bytes([v[0], v[1]])),
-                4 => out.extend([u16::from_le_bytes([v[0], v[1]]), u16::from_le_bytes([v[2], v[3]])]),
-                _ => out.extend(v.iter().map(|&b| u16::from(b))),
-            }
-        }
-        let at = usize::from(c.dest);
-        if at + out.len() > SIZE {
-            return status::BAD_ADDRESS;
-        }
-        self.words.0[at..at + out.len()].copy_from_slice(&out);
-        status::OK
+        self.words.0[at..at + words.len()].copy_from_slice(words);
+        Ok(())
     }
+}
+
+/// Sends a request until a reply comes, [`ATTEMPTS`] times at most.
+fn exchange(link: &mut dyn Link, req: &Frame) -> Result<Frame, u16> {
+    (0..ATTEMPTS).find_map(|_| link.exchange(req).ok()).ok_or(status::TIMEOUT)
+}
+
+/// An opcode 255 reply as its status, 20 + its code. The ROC protocol's
+/// error data is three bytes (code, opcode, offset), ROC Plus's pairs of
+/// (code, offset): the first byte is the code either way.
+fn refused(opcode: u8, data: &[u8]) -> Result<(), u16> {
+    if opcode != ops::ERROR {
+        return Ok(());
+    }
+    Err(data.first().map_or(status::INCOMPLETE, |&c| status::ROC_ERROR + u16::from(c)))
+}
+
+/// An opcode 24 request's data (§6.3, docs/roc-protocol.md): the path,
+/// then the wrapped opcode, its length and its data. Status 10 when it
+/// no longer fits a frame.
+fn wrap(path: &[u8], opcode: u8, data: &[u8]) -> Result<Vec<u8>, u16> {
+    let len = u8::try_from(data.len()).map_err(|_| status::OVERFLOW)?;
+    let out = [path, &[opcode, len], data].concat();
+    if out.len() > MAX_DATA {
+        return Err(status::OVERFLOW);
+    }
+    Ok(out)
+}
+
+/// The final device's reply inside a 24 reply: its opcode and data. The
+/// relay's own 255 (22, a path it cannot follow, is status 42) is its
+/// status; a reply that is not a 24, does not echo the path sent, or
+/// whose inner length is not what it carries, is status 4.
+fn unwrap<'a>(path: &[u8], reply: &'a Frame) -> Result<(u8, &'a [u8]), u16> {
+    refused(reply.opcode, &reply.data)?;
+    let d = &reply.data;
+    if reply.opcode != op::STORE_FORWARD || d.len() < PATH_WORDS + 2 || d[..PATH_WORDS] != *path {
+        return Err(status::INCOMPLETE);
+    }
+    let (opcode, len, inner) = (d[PATH_WORDS], d[PATH_WORDS + 1], &d[PATH_WORDS + 2..]);
+    if inner.len() != usize::from(len) {
+        return Err(status::INCOMPLETE);
+    }
+    Ok((opcode, inner))
 }
 
 /// The shortest time between two passes of the list, so that a list of
@@ -239,7 +244,7 @@ pub fn poll(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::roc::host::commands::parse;
+    use crate::roc::host::commands::{parse, Protocol};
 
     /// A device that answers every write with an acknowledgement and
     /// counts the requests per destination unit.
@@ -260,6 +265,7 @@ mod tests {
              1,2,2,181,1,0,100,2,1,0\n\
              9,3,2,181,1,0,100,2,0,0\n\
              0,4,2,181,1,0,100,2,0,0\n",
+            Protocol::Roc,
         )
         .unwrap();
         let mut host = Host { me: Address { unit: 3, group: 1 }, words: Words::default() };
