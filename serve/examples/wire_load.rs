@@ -124,7 +124,7 @@ fn main() {
         "{clients} clients x {n} requests in {wall:.2?} ({:.0} requests/s), plant at speed 1",
         all.len() as f64 / wall.as_secs_f64()
     );
-    println!("ROC Plus 180 (3 parameters): {}", pct(r_lat));
+    println!("ROC protocol 180 (FB107, 3 parameters): {}", pct(r_lat));
     println!("Modbus 04 (5 registers):     {}", pct(m_lat));
     println!("plant: {} scans, {} late", done.scans, done.late);
     let e = echo();

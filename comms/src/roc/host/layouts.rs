@@ -10,25 +10,19 @@
 //! data — its fields and the header bytes its reply echoes — rather than
 //! a function of its own, and the parse-time range checks read the same
 //! rows as running does, so they cannot disagree. The byte layouts are
-//! those of docs/roc-protocol.md, "The ROC protocol: FloBoss 107".
+//! those of docs/roc-protocol.md, "The ROC protocol".
 
 use super::commands::Command;
 use super::poll::status;
 use crate::roc::ops;
 
-/// The ROC protocol's opcodes the module's command list names (ROC Plus
-/// shares 8, 180 and 181, in [`ops`]).
+/// The ROC protocol's opcodes the module's command list names, by the
+/// host's names for them (ROC Plus shares 8, 180 and 181, in [`ops`]).
 pub mod op {
-    /// Read a configurable opcode table.
-    pub const TABLE: u8 = 10;
-    /// Store and forward: a request wrapped with a communication path.
-    pub const STORE_FORWARD: u8 = 24;
-    /// The alarm, event and history log pointers.
-    pub const LOG_POINTERS: u8 = 120;
-    /// A day's hourly and daily history.
-    pub const DAY_HOURS: u8 = 128;
-    /// History from a pointer.
-    pub const HISTORY: u8 = 130;
+    pub use crate::roc::rocp::{
+        DAY as DAY_HOURS, FORWARD as STORE_FORWARD, FROM_POINTER as HISTORY, POINTERS as LOG_POINTERS,
+        TABLE_READ as TABLE,
+    };
 }
 
 /// One field kind of the manual's layouts.
