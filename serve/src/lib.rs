@@ -331,7 +331,17 @@ fn start_console(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) 
         .name("linc-net".into())
         .spawn(move || http::serve(listener, state, wires, closed))
         .map_err(|e| StartError::Bind(addr, e))?;
-    Ok(Server { addr, roc: roc_addr, roc_dialect: dialect, modbus: modbus_addr, asks, stop, plant, http, closing: Some(closing) })
+    Ok(Server {
+        addr,
+        roc: roc_addr,
+        roc_dialect: dialect,
+        modbus: modbus_addr,
+        asks,
+        stop,
+        plant,
+        http,
+        closing: Some(closing),
+    })
 }
 
 impl Server {

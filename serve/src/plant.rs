@@ -418,7 +418,8 @@ mod tests {
         assert_eq!(caught, None);
         let me = Address { unit: 1, group: 2 };
         let req = Frame { dst: me, src: Address { unit: 3, group: 1 }, opcode: 180, data: vec![] };
-        let a = RocDevice { address: me, allow_writes: false, dialect: crate::wire::roc::Dialect::RocPlus }.internal_error(&req, "p");
+        let a = RocDevice { address: me, allow_writes: false, dialect: crate::wire::roc::Dialect::RocPlus }
+            .internal_error(&req, "p");
         assert_eq!((a.reply.opcode, a.reply.data.as_slice(), a.reply.dst), (255, &[50u8, 4][..], req.src));
         let m = ModbusDevice { allow_writes: false }.internal_error(&linc_comms::modbus::Request::ReadCoils(0, 1), "p");
         assert_eq!((m.function, m.reply), (1, Err(linc_comms::modbus::Exception::ServerDeviceFailure)));

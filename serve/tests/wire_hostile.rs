@@ -172,7 +172,8 @@ fn store_and_forward_into_a_black_hole_holds_no_scan() {
     for f in ["drain.csv", "sim.stx"] {
         std::fs::copy(dir.join(f), scratch.join(f)).unwrap();
     }
-    let text = std::fs::read_to_string(dir.join("plant.json")).unwrap().replace("127.0.0.1:4001", &hole_addr.to_string());
+    let text =
+        std::fs::read_to_string(dir.join("plant.json")).unwrap().replace("127.0.0.1:4001", &hole_addr.to_string());
     std::fs::write(scratch.join("plant.json"), text).unwrap();
     let log = Arc::new(Mutex::new(Vec::new()));
     let s = serve_db(scratch.join("plant.json").to_str().unwrap(), log.clone());

@@ -51,7 +51,11 @@ pub(super) fn opcode_tables(db: &Database, node: &Node) -> Result<Vec<(u8, Opcod
     for t in tables {
         let number = index_key(t, "a table number", TABLES)?;
         let Json::Obj(spec) = &t.value.v else {
-            return Err(bad(code::OPCODE_TABLE, "a table is an object with `slots` and optionally `version`", t.value.span));
+            return Err(bad(
+                code::OPCODE_TABLE,
+                "a table is an object with `slots` and optionally `version`",
+                t.value.span,
+            ));
         };
         let mut table = OpcodeTable::default();
         for m in spec {

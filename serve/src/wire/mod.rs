@@ -8,9 +8,9 @@ pub(crate) mod modbus_server;
 pub(crate) mod net;
 pub mod roc;
 mod roc_logs;
+pub(crate) mod roc_server;
 mod rocp;
 mod rocp_history;
-pub(crate) mod roc_server;
 
 pub use net::{Limits, Log};
 

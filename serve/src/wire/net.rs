@@ -193,6 +193,10 @@ pub(crate) trait Wire: Send + 'static {
     }
 }
 
+/// An answer that waits on something other than the plant: the bytes to
+/// send back, if any, and the log lines.
+pub(crate) type Later = std::pin::Pin<Box<dyn std::future::Future<Output = (Option<Vec<u8>>, Vec<String>)> + Send>>;
+
 /// What a protocol makes of a request off the stream.
 pub(crate) enum Next<A> {
     /// A question for the plant, and where its answer comes.
@@ -202,7 +206,7 @@ pub(crate) enum Next<A> {
     /// Answered without the plant, once something else has answered (a
     /// store-and-forward frame passed on to the next device): the bytes to
     /// send back, if any, and the log lines.
-    Later(std::pin::Pin<Box<dyn std::future::Future<Output = (Option<Vec<u8>>, Vec<String>)> + Send>>),
+    Later(Later),
     /// Not for this device: no reply.
     Skip,
     /// A stream that can't go on: closed, and logged with why.
@@ -350,7 +354,12 @@ mod tests {
         let log: Log = Arc::new(move |l| kept.lock().unwrap().push(l));
         let (asks, asked) = std::sync::mpsc::channel();
         let peer: SocketAddr = "127.0.0.1:5000".parse().unwrap();
-        tokio::spawn(client(server, peer, Roc::new(Station { me: ME, dialect: crate::wire::roc::Dialect::RocPlus, links: Default::default() }), (asks, limits(), log)));
+        tokio::spawn(client(
+            server,
+            peer,
+            Roc::new(Station { me: ME, dialect: crate::wire::roc::Dialect::RocPlus, links: Default::default() }),
+            (asks, limits(), log),
+        ));
         (client_end, lines, asked)
     }
 

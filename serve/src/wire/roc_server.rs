@@ -84,7 +84,9 @@ async fn pass_on(
         Ok(Err(e)) => return fail(format!("{addr}: {e}")),
         Err(_) => return fail(format!("{addr} did not answer within {} s", RELAY_TIMEOUT.as_secs())),
     };
-    let ours = |f: &Frame| forward::parse(&f.data).is_ok_and(|w| Some(w.path) == forward::parse(&req.data).ok().map(|r| r.path));
+    let ours = |f: &Frame| {
+        forward::parse(&f.data).is_ok_and(|w| Some(w.path) == forward::parse(&req.data).ok().map(|r| r.path))
+    };
     if reply.opcode != rocp::ERROR && !(reply.opcode == rocp::FORWARD && ours(&reply)) {
         return fail(format!("{addr} answered with opcode {} for another path", reply.opcode));
     }

@@ -192,9 +192,12 @@ fn contiguous_write(
     dev.put_all(console, &puts, r.peer, log, trace)
 }
 
+/// A table's version and the block and field of each location asked for.
+type TableFields = (f32, Vec<(usize, usize)>);
+
 /// The fields of locations `first ..` of an opcode table; a location the
 /// table does not map is error 13 at the first-location byte.
-fn table_fields(store: &Store, t: &params::TableRequest) -> Result<(f32, Vec<(usize, usize)>), Vec<RocError>> {
+fn table_fields(store: &Store, t: &params::TableRequest) -> Result<TableFields, Vec<RocError>> {
     let unmapped = || vec![RocError::at_data(rocp::code::OUTSIDE_RANGE, 1)];
     let table = store.db.opcode_tables.iter().find(|(n, _)| *n == t.table).map(|(_, tb)| tb).ok_or_else(unmapped)?;
     let slots = &table.slots[usize::from(t.first)..usize::from(t.first) + usize::from(t.count)];

@@ -63,7 +63,12 @@ fn log(store: &Store, data: &[u8], alarms: bool) -> Reply {
 
 /// A history point with archives, by the number at data byte `at`.
 fn point(store: &Store, number: u8, at: usize) -> Result<&Point, Vec<RocError>> {
-    store.roc.history.point(u16::from(number)).filter(|p| !p.archive(Archive::Periodic).is_empty()).ok_or_else(|| no_history(at))
+    store
+        .roc
+        .history
+        .point(u16::from(number))
+        .filter(|p| !p.archive(Archive::Periodic).is_empty())
+        .ok_or_else(|| no_history(at))
 }
 
 /// Opcode 126: the minute archive, index 0 minute 0.
@@ -139,7 +144,11 @@ fn archived_type(store: &Store, p: &Point) -> u8 {
 fn from_pointer(store: &Store, data: &[u8]) -> Reply {
     let r = hist::parse_from_pointer(data).map_err(|e| vec![e])?;
     let a = if r.kind == hist::DAILY { Archive::Daily } else { Archive::Periodic };
-    let p = if r.point == hist::STAMPS { logger_point(store).ok_or_else(|| no_history(1))? } else { point(store, r.point, 1)? };
+    let p = if r.point == hist::STAMPS {
+        logger_point(store).ok_or_else(|| no_history(1))?
+    } else {
+        point(store, r.point, 1)?
+    };
     let entries = p.archive(a);
     if entries.is_empty() {
         return Err(no_history(1));

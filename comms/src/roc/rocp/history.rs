@@ -106,7 +106,8 @@ pub struct FromPointer {
 /// bytes); a type other than 0 or 1 or a count outside 1–60 is error 14.
 pub fn parse_from_pointer(data: &[u8]) -> Result<FromPointer, RocError> {
     exactly(data, 5)?;
-    let r = FromPointer { kind: data[0], point: data[1], count: data[2], start: u16::from_le_bytes([data[3], data[4]]) };
+    let r =
+        FromPointer { kind: data[0], point: data[1], count: data[2], start: u16::from_le_bytes([data[3], data[4]]) };
     if r.kind > DAILY {
         return Err(RocError::at_data(INVALID_HISTORY, 0));
     }
