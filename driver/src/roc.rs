@@ -7,7 +7,9 @@ use crate::files::{read_input_text, write_atomic};
 use linc_comms::error::FileError;
 use linc_comms::roc::host::{poll::poll as run_list, status_text, Command, Host, TcpLink, Words};
 pub use linc_comms::roc::Address;
+pub use linc_comms::serial::{DataBits, Line, Parity, StopBits};
 use linc_compiler::diag::{Diagnostic, Problems, Span};
+use linc_format::Code;
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -26,6 +28,12 @@ pub struct PollRequest {
     pub timeout: Duration,
     /// This host's own unit and group.
     pub unit: Address,
+}
+
+/// A serial port that could not be opened (E0905), shown against its path.
+pub fn serial_unopenable(path: &Path, e: &dyn std::fmt::Display) -> Problems {
+    let name = path.display().to_string();
+    Problems::whole_file(&name, Code::E0905, format!("can't open the serial port `{name}`: {e}"))
 }
 
 /// A comms file error at its place in the file (a refused request).

@@ -1,11 +1,11 @@
-//! The ROC Plus server: frames off TCP for this device's address go to the
-//! plant thread; the connection loop is the one both servers share.
+//! The ROC Plus server: frames off TCP, or off a serial line, for this
+//! device's address go to the plant thread; the connection loop is the one
+//! both servers share.
 
 use super::net::{Next, Wire};
 use super::roc::Answer;
 use crate::Ask;
 use linc_comms::roc::{Address, Deframer};
-use std::net::SocketAddr;
 use tokio::sync::oneshot;
 
 /// One client's ROC Plus state: its frames, and the operator logged in on
@@ -36,7 +36,7 @@ impl Wire for Roc {
 
     /// A whole frame for this device goes to the plant; frames for other
     /// addresses and bytes that make no frame (a bad CRC) get no reply.
-    fn next(&mut self, peer: SocketAddr) -> Option<Next<Answer>> {
+    fn next(&mut self, peer: &str) -> Option<Next<Answer>> {
         let frame = self.frames.next_frame()?;
         if frame.dst != self.me {
             return Some(Next::Skip);
@@ -50,7 +50,7 @@ impl Wire for Roc {
         (answer.reply.encode(), answer.log)
     }
 
-    fn farewell(&self, peer: SocketAddr) -> Option<String> {
+    fn farewell(&self, peer: &str) -> Option<String> {
         let dropped = self.frames.dropped;
         (dropped > 0).then(|| format!("roc {peer}: {dropped} bytes made no frame (bad CRC or noise) and were dropped"))
     }
