@@ -5,10 +5,12 @@
 
 pub mod commands;
 pub mod poll;
+pub mod serial;
 pub mod tcp;
 pub mod words;
 
 pub use commands::Command;
 pub use poll::{status_text, Host, Link};
+pub use serial::SerialLink;
 pub use tcp::TcpLink;
 pub use words::Words;
