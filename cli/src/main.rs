@@ -12,6 +12,7 @@ mod explain_cmd;
 mod fmt_cmd;
 mod fst_cmd;
 mod ladder_cmd;
+mod line_args;
 mod out;
 mod report;
 mod roc_cmd;

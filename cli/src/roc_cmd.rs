@@ -5,22 +5,29 @@
 use crate::out;
 use crate::report::Reporter;
 use linc_driver::roc::Address;
-use linc_driver::roc::PollRequest;
+use linc_driver::roc::{LinkTo, PollRequest};
 use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::time::Duration;
 
 #[derive(clap::Subcommand)]
 pub enum RocCommand {
-    /// Run a command list (CSV in the module manual's columns) against a ROC or ROC Plus device over TCP.
+    /// Run a command list (CSV in the module manual's columns) against a ROC or ROC Plus device over TCP
+    /// or a serial line.
     Poll(PollArgs),
 }
 
 #[derive(clap::Args)]
+#[command(group(clap::ArgGroup::new("device").required(true).args(["host", "serial"])))]
 pub struct PollArgs {
     /// The device: ADDR:PORT.
-    #[arg(long, value_name = "ADDR:PORT")]
-    pub host: SocketAddr,
+    #[arg(long, value_name = "ADDR:PORT", conflicts_with = "line")]
+    pub host: Option<SocketAddr>,
+    /// The device on this serial port instead (with --baud).
+    #[arg(long, id = "serial", value_name = "PATH", requires = "baud")]
+    pub serial: Option<PathBuf>,
+    #[command(flatten)]
+    pub line: crate::line_args::LineArgs,
     /// The command list: PORT,SLV UNIT,SLV GROUP,OP CODE,CNT,SRC ADDR,DEST ADDR,TYPE,POLL TIME,STORE FWD.
     #[arg(long, value_name = "CMDS.csv")]
     pub commands: PathBuf,
@@ -76,8 +83,14 @@ fn poll_cmd(a: PollArgs, r: &Reporter) -> u8 {
         Ok(t) => t,
         Err(p) => return r.report(&p),
     };
+    let link = match (a.host, a.serial, a.line.line()) {
+        (_, Some(path), Some(line)) => LinkTo::Serial { path, line },
+        (Some(addr), ..) => LinkTo::Tcp(addr),
+        // clap requires one of the two, and --baud with --serial.
+        _ => return crate::report::usage(r, "--host ADDR:PORT or --serial PATH --baud N"),
+    };
     let req = PollRequest {
-        host: a.host,
+        link,
         commands: a.commands,
         words: a.words,
         run_for,

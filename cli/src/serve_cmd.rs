@@ -16,6 +16,7 @@ use std::time::Duration;
 
 /// `linc serve`'s options.
 #[derive(clap::Args)]
+#[command(group(clap::ArgGroup::new("roc_device").multiple(true).args(["roc", "serial"])))]
 pub struct ServeArgs {
     /// The strategy's database (.json).
     pub file: PathBuf,
@@ -64,11 +65,17 @@ pub struct ServeArgs {
     /// Also be a ROC device (ROC Plus, or the ROC protocol for an FB107 database) on this TCP port (loopback) or ADDR:PORT (any other address must be named).
     #[arg(long, value_name = "[ADDR:]PORT", value_parser = wire_addr)]
     pub roc: Option<SocketAddr>,
+    /// Also be the ROC device on this serial port (with --baud); with --roc too, one device
+    /// answers on both.
+    #[arg(long, id = "serial", value_name = "PATH", requires = "baud")]
+    pub roc_serial: Option<PathBuf>,
+    #[command(flatten)]
+    pub line: crate::line_args::LineArgs,
     /// Also be a Modbus TCP server over the database's "modbus" map on this port (loopback) or ADDR:PORT.
     #[arg(long, value_name = "[ADDR:]PORT", value_parser = wire_addr)]
     pub modbus: Option<SocketAddr>,
     /// The ROC unit and group the device answers to.
-    #[arg(long, value_name = "UNIT,GROUP", default_value = "1,2", value_parser = roc_address, requires = "roc")]
+    #[arg(long, value_name = "UNIT,GROUP", default_value = "1,2", value_parser = roc_address, requires = "roc_device")]
     pub roc_address: linc_driver::roc::Address,
     /// Most clients connected to each server (HTTP, ROC, Modbus) at once; more are refused and logged.
     #[arg(long, value_name = "N", default_value_t = 64, value_parser = clap::value_parser!(u16).range(1..=4096))]
@@ -137,6 +144,14 @@ pub fn run(a: ServeArgs, r: &Reporter) -> u8 {
     if let Some(roc) = server.roc_addr() {
         crate::out::line(&format!("{} device {} on {roc}", server.roc_dialect().name(), a.roc_address));
     }
+    if let (Some(path), Some(line)) = (&a.roc_serial, a.line.line()) {
+        crate::out::line(&format!(
+            "{} device {} on serial {} at {line}",
+            server.roc_dialect().name(),
+            a.roc_address,
+            path.display()
+        ));
+    }
     if let Some(m) = server.modbus_addr() {
         crate::out::line(&format!("Modbus TCP server on {m}"));
     }
@@ -190,6 +205,7 @@ fn start(a: &ServeArgs, r: &Reporter) -> Result<Server, u8> {
         until_us,
         state: a.state.clone(),
         roc: a.roc.map(|addr| (addr, a.roc_address)),
+        roc_serial: a.roc_serial.clone().zip(a.line.line()).map(|(path, line)| (path, line, a.roc_address)),
         modbus: a.modbus,
         limits,
         trace,

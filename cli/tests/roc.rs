@@ -1,7 +1,9 @@
 //! `linc roc poll` against `linc serve --roc`, both as processes over TCP
 //! on 127.0.0.1: the communication module manual's §6.1.1 example word for
 //! word, its status codes for an unknown TLP and a timeout, and located
-//! errors in its files.
+//! errors in its files; the same example over a serial line
+//! (`--serial`, `--roc-serial`) on pseudo-terminals, word for word as
+//! over TCP.
 mod common;
 
 use std::io::{BufRead, BufReader};
@@ -48,11 +50,16 @@ impl Drop for Device {
 }
 
 fn poll(dev: &Device, dir: &std::path::Path, cmds: &str, words: &str, out: &str) -> std::process::Output {
+    poll_on(&["--host", &dev.1], dir, cmds, words, out)
+}
+
+/// `linc roc poll` to the device `link` names (`--host …`, `--serial …`).
+fn poll_on(link: &[&str], dir: &std::path::Path, cmds: &str, words: &str, out: &str) -> std::process::Output {
     std::fs::write(dir.join("cmds.csv"), cmds).unwrap();
     std::fs::write(dir.join("words.json"), words).unwrap();
     let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
-    let args = ["roc", "poll", "--host", &dev.1, "--commands", &p("cmds.csv"), "--words", &p("words.json")];
-    let mut all: Vec<String> = args.iter().map(|s| s.to_string()).collect();
+    let args = ["roc", "poll", "--commands", &p("cmds.csv"), "--words", &p("words.json")];
+    let mut all: Vec<String> = args.iter().chain(link).map(|s| s.to_string()).collect();
     all.extend(["--out".to_string(), p(out), "--timeout".into(), "300ms".into()]);
     common::linc(&all.iter().map(String::as_str).collect::<Vec<_>>())
 }
@@ -157,8 +164,8 @@ fn the_protocol_decides_which_commands_a_list_may_hold() {
         assert!(common::stdout(&o).ends_with("to 25,2: error 8: timeout: no reply after 3 attempts\n"));
     }
     assert_eq!(poll("log.csv", "modbus").status.code(), Some(2));
-    // The manual's 180/181 example runs the same against a ROC Plus device
-    // named as one.
+    // 180 and 181 are the same in both dialects: the manual's example runs
+    // the same with `--protocol rocplus` against the FB107 device.
     let dev = Device::start();
     std::fs::write(dir.join("cmds.csv"), EXAMPLE).unwrap();
     std::fs::write(dir.join("words.json"), r#"{"0": [3, 0, 2, 3, 1, 2], "100": [500, 1000]}"#).unwrap();
@@ -209,4 +216,124 @@ fn serve_modbus_answers_over_tcp_and_a_database_without_a_map_is_refused() {
     let o = common::linc(&["serve", "examples/fst/plant.json", "--http", "127.0.0.1:0", "--modbus", "0"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(common::stderr(&o).contains("--modbus needs a \"modbus\" register map"), "{}", common::stderr(&o));
+}
+
+/// The manual's example run twice (the second time from the table the
+/// first wrote) with `poll`: what the first run said, and the two tables.
+fn example_twice(
+    dir: &std::path::Path,
+    poll: impl Fn(&std::path::Path, &str, &str, &str) -> std::process::Output,
+) -> (String, String, String) {
+    let o = poll(dir, EXAMPLE, r#"{"0": [3, 0, 2, 3, 1, 2], "100": [500, 1000]}"#, "after1.json");
+    assert_eq!(o.status.code(), Some(0), "{}{}", common::stdout(&o), common::stderr(&o));
+    let after1 = std::fs::read_to_string(dir.join("after1.json")).unwrap();
+    let o2 = poll(dir, EXAMPLE, &after1, "after2.json");
+    assert_eq!(o2.status.code(), Some(0), "{}{}", common::stdout(&o2), common::stderr(&o2));
+    (common::stdout(&o), after1, std::fs::read_to_string(dir.join("after2.json")).unwrap())
+}
+
+/// Two pseudo-terminal pairs whose master ends a thread each way joins,
+/// as a null-modem cable joins two serial ports: what is written to one
+/// slave is read from the other. The slaves stay open here too, so
+/// neither terminal hangs up between the programs' opens of it.
+#[cfg(unix)]
+struct NullModem {
+    paths: [String; 2],
+    _slaves: [serialport::TTYPort; 2],
+    stop: std::sync::Arc<std::sync::atomic::AtomicBool>,
+    copiers: Vec<std::thread::JoinHandle<()>>,
+}
+
+#[cfg(unix)]
+impl NullModem {
+    fn new() -> NullModem {
+        use serialport::SerialPort;
+        let (a, sa) = serialport::TTYPort::pair().expect("a pseudo-terminal pair");
+        let (b, sb) = serialport::TTYPort::pair().expect("a pseudo-terminal pair");
+        let paths = [sa.name().expect("a path"), sb.name().expect("a path")];
+        let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let copy = |mut from: serialport::TTYPort, mut to: serialport::TTYPort| {
+            let stop = stop.clone();
+            std::thread::spawn(move || {
+                use std::io::{Read, Write};
+                from.set_timeout(std::time::Duration::from_millis(50)).unwrap();
+                let mut buf = [0u8; 512];
+                while !stop.load(std::sync::atomic::Ordering::Relaxed) {
+                    match from.read(&mut buf) {
+                        Ok(n) => to.write_all(&buf[..n]).expect("copy"),
+                        Err(e) if e.kind() == std::io::ErrorKind::TimedOut => {}
+                        Err(e) => panic!("the bridge failed: {e}"),
+                    }
+                }
+            })
+        };
+        let (a2, b2) = (a.try_clone_native().unwrap(), b.try_clone_native().unwrap());
+        let copiers = vec![copy(a, b2), copy(b, a2)];
+        NullModem { paths, _slaves: [sa, sb], stop, copiers }
+    }
+}
+
+#[cfg(unix)]
+impl Drop for NullModem {
+    fn drop(&mut self) {
+        self.stop.store(true, std::sync::atomic::Ordering::Relaxed);
+        for c in self.copiers.drain(..) {
+            let _ = c.join();
+        }
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn the_manuals_example_over_a_serial_line_matches_tcp_word_for_word() {
+    let tcp = Device::start();
+    let dir = linc_test_support::fresh_dir("roc-example-tcp");
+    let over_tcp = example_twice(&dir, |d, c, w, o| poll(&tcp, d, c, w, o));
+    // The device on one end of the line (and on TCP: one device answers
+    // on both), the host on the other.
+    let line = NullModem::new();
+    let mut child = common::spawn(&[
+        "serve",
+        "examples/roc/plant.json",
+        "--http",
+        "127.0.0.1:0",
+        "--roc",
+        "127.0.0.1:0",
+        "--roc-serial",
+        &line.paths[0],
+        "--baud",
+        "19200",
+        "--roc-address",
+        "25,2",
+        "--allow-writes",
+        "--speed",
+        "0.001",
+    ]);
+    let mut lines = BufReader::new(child.stdout.take().expect("stdout")).lines();
+    let _serving = lines.next().expect("a line").expect("text");
+    let roc = lines.next().expect("the ROC line").expect("text");
+    assert!(roc.starts_with("ROC protocol device 25,2 on 127.0.0.1:"), "{roc}");
+    let serial = lines.next().expect("the serial line").expect("text");
+    assert_eq!(serial, format!("ROC protocol device 25,2 on serial {} at 19200 baud", line.paths[0]));
+    let dir = linc_test_support::fresh_dir("roc-example-serial");
+    let link = ["--serial", &line.paths[1], "--baud", "19200"];
+    let over_serial = example_twice(&dir, |d, c, w, o| poll_on(&link, d, c, w, o));
+    let _ = child.kill();
+    let _ = child.wait();
+    assert_eq!(over_serial, over_tcp);
+    assert!(over_tcp.2.contains("\"50\": [500, 1000]"), "the second run read what the first wrote: {}", over_tcp.2);
+}
+
+#[test]
+fn a_serial_port_that_cant_be_opened_is_e0905_before_any_request() {
+    let dir = linc_test_support::fresh_dir("roc-serial-missing");
+    let link = ["--serial", "/dev/linc-no-such-tty", "--baud", "9600", "--message-format", "short"];
+    let o = poll_on(&link, &dir, EXAMPLE, "{}", "out.json");
+    assert_eq!(o.status.code(), Some(2));
+    let want = "/dev/linc-no-such-tty:1:1: error[E0905]: can't open the serial port `/dev/linc-no-such-tty`";
+    assert!(common::stderr(&o).starts_with(want), "{}", common::stderr(&o));
+    assert!(!dir.join("out.json").exists(), "nothing written");
+    let o = common::linc(&["roc", "poll", "--host", "127.0.0.1:9", "--baud", "9600", "--commands", "x.csv"]);
+    assert_eq!(o.status.code(), Some(2), "--baud means nothing over TCP");
+    assert!(common::stderr(&o).contains("error[E0903]"), "{}", common::stderr(&o));
 }

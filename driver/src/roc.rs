@@ -7,15 +7,19 @@ use crate::files::{read_input_text, write_atomic};
 use linc_comms::error::FileError;
 pub use linc_comms::roc::host::Protocol;
 use linc_comms::roc::host::{poll::poll as run_list, status_text, Command, Host, TcpLink, Words};
+use linc_comms::roc::host::{Link, SerialLink};
 pub use linc_comms::roc::Address;
+pub use linc_comms::serial::{DataBits, Line, Parity, StopBits};
 use linc_compiler::diag::{Diagnostic, Problems, Span};
+use linc_format::Code;
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 /// What to poll, and how.
 pub struct PollRequest {
-    pub host: SocketAddr,
+    /// The device's end: `--host` or `--serial`.
+    pub link: LinkTo,
     /// The command list (`--commands`).
     pub commands: PathBuf,
     /// The initial word table (`--words`); all zeros without it.
@@ -30,6 +34,35 @@ pub struct PollRequest {
     /// The protocol the device speaks (`--protocol`): which commands the
     /// list may hold.
     pub protocol: Protocol,
+}
+
+/// Where the device is.
+#[derive(Clone, Debug)]
+pub enum LinkTo {
+    /// Over TCP (`--host ADDR:PORT`).
+    Tcp(SocketAddr),
+    /// On a serial port (`--serial PATH --baud N`).
+    Serial { path: PathBuf, line: Line },
+}
+
+impl LinkTo {
+    /// The link, opened now for a serial port: a port that can't be
+    /// opened is a refused request (E0905) shown against its path, where
+    /// a TCP device that does not answer is each command's timeout.
+    fn open(&self, timeout: Duration) -> Result<Box<dyn Link>, Problems> {
+        match self {
+            LinkTo::Tcp(addr) => Ok(Box::new(TcpLink::new(*addr, timeout))),
+            LinkTo::Serial { path, line } => SerialLink::open(&path.to_string_lossy(), *line, timeout)
+                .map(|l| Box::new(l) as Box<dyn Link>)
+                .map_err(|e| serial_unopenable(path, &e)),
+        }
+    }
+}
+
+/// A serial port that could not be opened (E0905), shown against its path.
+pub fn serial_unopenable(path: &Path, e: &dyn std::fmt::Display) -> Problems {
+    let name = path.display().to_string();
+    Problems::whole_file(&name, Code::E0905, format!("can't open the serial port `{name}`: {e}"))
 }
 
 /// A comms file error at its place in the file (a refused request).
@@ -50,8 +83,9 @@ fn read<T>(path: &Path, parse: impl Fn(&str) -> Result<T, FileError>) -> Result<
 /// Runs the command list: each status line goes to `say` as it happens
 /// (every command's once without `run_for`, errors only with it, then each
 /// command's last status). The statuses, each command's last; a list or
-/// word table that can't be read, or an output that names an input, is a
-/// refused request, before any request is sent.
+/// word table that can't be read, an output that names an input, or a
+/// serial port that can't be opened, is a refused request, before any
+/// request is sent.
 pub fn poll(req: &PollRequest, say: &mut dyn FnMut(&str)) -> Result<Vec<u16>, Problems> {
     let list = read(&req.commands, |text| linc_comms::roc::host::commands::parse(text, req.protocol))?;
     let words = match &req.words {
@@ -63,9 +97,9 @@ pub fn poll(req: &PollRequest, say: &mut dyn FnMut(&str)) -> Result<Vec<u16>, Pr
         crate::files::check_output(out, &inputs)?;
     }
     let mut host = Host { me: req.unit, words };
-    let mut link = TcpLink::new(req.host, req.timeout);
+    let mut link = req.link.open(req.timeout)?;
     let once = req.run_for.is_none();
-    let status = run_list(&mut host, &list, &mut link, req.run_for, |i, code| {
+    let status = run_list(&mut host, &list, link.as_mut(), req.run_for, |i, code| {
         if once || code != 0 {
             say(&status_line(i, &list[i], code));
         }

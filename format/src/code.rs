@@ -260,6 +260,7 @@ codes! {
     E0902 => "output file is one of the inputs, or another output",
     E0903 => "invalid command-line value",
     E0904 => "--block names a block of another type",
+    E0905 => "serial port cannot be opened",
     E0910 => "trace line is not a trace record",
     E0911 => "trend field the trace never writes",
     E0912 => "coverage file is not an lcov tracefile, or a name lcov cannot hold",

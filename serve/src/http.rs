@@ -86,6 +86,8 @@ impl AppState {
 /// The wire servers that run beside the HTTP one, on the same runtime.
 pub struct Wires {
     pub roc: Option<(std::net::TcpListener, crate::wire::roc_server::Station)>,
+    /// The ROC device's serial port, opened, and its address.
+    pub(crate) roc_serial: Option<(crate::wire::serial::Port, crate::wire::roc_server::Station)>,
     /// The Modbus listener and the unit of the map.
     pub modbus: Option<(std::net::TcpListener, u8)>,
     pub asks: Sender<Ask>,
@@ -93,9 +95,15 @@ pub struct Wires {
     pub log: crate::wire::Log,
 }
 
-/// Serves until `closed` fires, then ends the event streams and returns.
-pub fn serve(listener: std::net::TcpListener, state: AppState, wires: Wires, closed: oneshot::Receiver<()>) {
-    let Ok(rt) = tokio::runtime::Builder::new_multi_thread().worker_threads(2).enable_all().build() else { return };
+/// Serves on `rt` until `closed` fires, then ends the event streams and
+/// returns.
+pub fn serve(
+    rt: tokio::runtime::Runtime,
+    listener: std::net::TcpListener,
+    state: AppState,
+    wires: Wires,
+    closed: oneshot::Receiver<()>,
+) {
     let close = state.close.clone();
     let closing = state.closing.clone();
     let app = router(state);
@@ -107,6 +115,10 @@ pub fn serve(listener: std::net::TcpListener, state: AppState, wires: Wires, clo
                 let wire = move || crate::wire::roc_server::Roc::new(station.clone());
                 tokio::spawn(crate::wire::net::accept_wire(l, plant.clone(), closing.clone(), wire));
             }
+        }
+        if let Some((port, station)) = wires.roc_serial {
+            let wire = move || crate::wire::roc_server::Roc::new(station.clone());
+            tokio::spawn(crate::wire::serial::serve(port, plant.clone(), closing.clone(), wire));
         }
         if let Some((l, unit)) = wires.modbus {
             if let Ok(l) = tokio::net::TcpListener::from_std(l) {

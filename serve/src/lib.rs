@@ -63,6 +63,10 @@ pub struct Config {
     /// A ROC device (in its database family's dialect) on this address, answering as this unit and group
     /// (`--roc`, `--roc-address`).
     pub roc: Option<(SocketAddr, linc_comms::roc::Address)>,
+    /// The ROC device on this serial port too, its line, and the unit
+    /// and group it answers as (`--roc-serial`, `--baud`, …): one device,
+    /// so with `roc` as well both must give the same address.
+    pub roc_serial: Option<(PathBuf, linc_comms::serial::Line, linc_comms::roc::Address)>,
     /// A Modbus TCP server on this address, over the database's map
     /// (`--modbus`).
     pub modbus: Option<SocketAddr>,
@@ -90,6 +94,7 @@ impl Config {
             until_us: None,
             state: None,
             roc: None,
+            roc_serial: None,
             modbus: None,
             limits: wire::Limits::default(),
             log: Arc::new(|_| {}),
@@ -205,6 +210,23 @@ pub enum StartError {
     Bind(SocketAddr, std::io::Error),
     /// `--modbus` over a database with no `"modbus"` map.
     NoModbusMap,
+    /// The serial port could not be opened (E0905).
+    Serial(PathBuf, String),
+    /// `roc` and `roc_serial` with different addresses for their one device.
+    RocAddresses(linc_comms::roc::Address, linc_comms::roc::Address),
+    /// The threads or the runtime could not be made.
+    Runtime(std::io::Error),
+}
+
+impl StartError {
+    /// As a refused request: E0905, against the port's path, for a serial
+    /// port that can't be opened; E0903 for the rest.
+    pub fn problems(&self) -> Problems {
+        match self {
+            StartError::Serial(path, why) => linc_driver::roc::serial_unopenable(path, why),
+            _ => Problems::usage(Code::E0903, self.to_string()),
+        }
+    }
 }
 
 /// A listener bound now (so a busy port fails at the start), handed to
@@ -233,6 +255,11 @@ impl std::fmt::Display for StartError {
             StartError::NoModbusMap => {
                 write!(f, "--modbus needs a \"modbus\" register map in the database (docs/modbus.md)")
             }
+            StartError::Serial(path, why) => write!(f, "can't open the serial port `{}`: {why}", path.display()),
+            StartError::RocAddresses(tcp, serial) => {
+                write!(f, "one ROC device answers as one address: {tcp} over TCP but {serial} on the serial port")
+            }
+            StartError::Runtime(e) => write!(f, "can't start the server: {e}"),
         }
     }
 }
@@ -245,7 +272,43 @@ pub fn start(plant: linc_driver::plant::Plant, cfg: Config) -> Result<Server, Pr
     let Some(strategy) = plant.into_strategy() else {
         return Err(Problems::usage(Code::E0903, "linc serve runs a strategy"));
     };
-    start_console(Console::new(strategy), &wants, &dir, cfg).map_err(|e| Problems::usage(Code::E0903, e.to_string()))
+    start_console(Console::new(strategy), &wants, &dir, cfg).map_err(|e| e.problems())
+}
+
+/// The wire servers' ports, bound (and the serial port opened) before
+/// anything runs, so a busy port or a wrong path fails the start.
+struct Bound {
+    roc: Option<(std::net::TcpListener, SocketAddr)>,
+    serial: Option<wire::serial::Port>,
+    /// The ROC device's address, with either.
+    me: Option<linc_comms::roc::Address>,
+    /// The Modbus listener, where it listens and the unit of the map.
+    modbus: Option<(std::net::TcpListener, SocketAddr, u8)>,
+}
+
+/// Binds the wire servers' ports; the serial port is opened on `rt`, the
+/// runtime that will serve it.
+fn bind_wires(cfg: &Config, console: &Console, rt: &tokio::runtime::Runtime) -> Result<Bound, StartError> {
+    let roc = cfg.roc.map(|(a, _)| bind(a)).transpose()?;
+    let me = match (cfg.roc.map(|r| r.1), cfg.roc_serial.as_ref().map(|r| r.2)) {
+        (Some(tcp), Some(serial)) if tcp != serial => return Err(StartError::RocAddresses(tcp, serial)),
+        (tcp, serial) => tcp.or(serial),
+    };
+    let unit = match (cfg.modbus, console.strategy.store.db.modbus.as_ref()) {
+        (None, _) => None,
+        (Some(_), None) => return Err(StartError::NoModbusMap),
+        (Some(_), Some(map)) => Some(map.unit),
+    };
+    let modbus = cfg.modbus.map(bind).transpose()?.zip(unit).map(|((l, a), u)| (l, a, u));
+    let serial = match &cfg.roc_serial {
+        None => None,
+        Some((path, line, _)) => {
+            let _runtime = rt.enter();
+            let stream = wire::serial::open(path, line).map_err(|e| StartError::Serial(path.clone(), e.to_string()))?;
+            Some(wire::serial::Port { path: path.clone(), line: *line, stream })
+        }
+    };
+    Ok(Bound { roc, serial, me, modbus })
 }
 
 /// Starts the plant thread and the HTTP server over `console`'s strategy;
@@ -258,17 +321,14 @@ fn start_console(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) 
         return Err(StartError::NeedsToken(cfg.addr));
     }
     let (listener, addr) = bind(cfg.addr)?;
-    let roc = cfg.roc.map(|(a, me)| bind(a).map(|(l, bound)| (l, bound, me))).transpose()?;
-    let roc_addr = roc.as_ref().map(|r| r.1);
+    // Built here rather than on the network thread: the serial port is
+    // opened on it now, so a port that can't be opened fails the start.
+    let rt = tokio::runtime::Builder::new_multi_thread().worker_threads(2).enable_all().build();
+    let rt = rt.map_err(StartError::Runtime)?;
+    let bound = bind_wires(&cfg, &console, &rt)?;
+    let (roc_addr, modbus_addr) = (bound.roc.as_ref().map(|r| r.1), bound.modbus.as_ref().map(|m| m.1));
     let dialect = wire::roc::Dialect::of(console.strategy.store.db.device);
     let links = Arc::new(console.strategy.store.db.roc_forward.clone());
-    let unit = match (cfg.modbus, console.strategy.store.db.modbus.as_ref()) {
-        (None, _) => None,
-        (Some(_), None) => return Err(StartError::NoModbusMap),
-        (Some(_), Some(map)) => Some(map.unit),
-    };
-    let modbus = cfg.modbus.map(bind).transpose()?;
-    let modbus_addr = modbus.as_ref().map(|m| m.1);
     console.can_save = cfg.state.is_some();
     console.max_scans = Some(MAX_SCANS_PER_LINE);
     let pictures = pictures::load(dir, wants, &console.strategy);
@@ -276,7 +336,7 @@ fn start_console(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) 
     let status = Arc::new(Mutex::new(serde_json::Value::Null));
     let (asks, asked) = std::sync::mpsc::channel();
     let stop = Arc::new(AtomicBool::new(false));
-    let mut plant = plant::Plant::new(
+    let plant = plant::Plant::new(
         console,
         pictures,
         plant::Setup {
@@ -284,53 +344,29 @@ fn start_console(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) 
             until: cfg.until_us,
             allow_writes: cfg.allow_writes,
             state: cfg.state,
-            roc: roc.as_ref().map(|r| wire::roc::RocDevice { address: r.2, allow_writes: cfg.allow_writes, dialect }),
-            modbus: modbus.as_ref().map(|_| wire::modbus::ModbusDevice { allow_writes: cfg.allow_writes }),
+            roc: bound.me.map(|address| wire::roc::RocDevice { address, allow_writes: cfg.allow_writes, dialect }),
+            modbus: bound.modbus.as_ref().map(|_| wire::modbus::ModbusDevice { allow_writes: cfg.allow_writes }),
         },
         events.clone(),
         status.clone(),
     );
-    let flag = stop.clone();
-    let mut trace_file = cfg.trace;
-    let plant = std::thread::Builder::new()
-        .name("linc-plant".into())
-        .spawn(move || {
-            let trace_error = match trace_file.as_mut() {
-                None => {
-                    plant.run(&asked, &flag, None);
-                    None
-                }
-                Some(file) => {
-                    let mut t = Trace::new(file, &plant.console.strategy.store);
-                    plant.run(&asked, &flag, Some(&mut t));
-                    t.finish().err().map(|e| format!("can't write the trace: {e}"))
-                }
-            };
-            // A trace that could not be written whole is not put in place:
-            // dropping the file removes its temporary.
-            let committed = match (trace_error.is_none(), trace_file) {
-                (true, Some(f)) => f.commit().err().map(|e| e.diagnostic().message.clone()),
-                _ => None,
-            };
-            let mut finished = plant.finish();
-            finished.trace_error = trace_error.or(committed);
-            finished
-        })
-        .map_err(|e| StartError::Bind(addr, e))?;
+    let plant = run_plant(plant, cfg.trace, asked, stop.clone()).map_err(StartError::Runtime)?;
     let (closing, closed) = oneshot::channel();
     let hosts = http_guard::Hosts::new(addr, &cfg.allow_hosts);
     let state = http::AppState::new(asks.clone(), events, status, (cfg.token, hosts, cfg.limits));
+    let station = bound.me.map(|me| wire::roc_server::Station { me, dialect, links });
     let wires = http::Wires {
-        roc: roc.map(|(l, _, me)| (l, wire::roc_server::Station { me, dialect, links })),
-        modbus: modbus.zip(unit).map(|((l, _), u)| (l, u)),
+        roc: bound.roc.zip(station.clone()).map(|((l, _), st)| (l, st)),
+        roc_serial: bound.serial.zip(station),
+        modbus: bound.modbus.map(|(l, _, u)| (l, u)),
         asks: asks.clone(),
         limits: cfg.limits,
         log: cfg.log,
     };
     let http = std::thread::Builder::new()
         .name("linc-net".into())
-        .spawn(move || http::serve(listener, state, wires, closed))
-        .map_err(|e| StartError::Bind(addr, e))?;
+        .spawn(move || http::serve(rt, listener, state, wires, closed))
+        .map_err(StartError::Runtime)?;
     Ok(Server {
         addr,
         roc: roc_addr,
@@ -341,6 +377,38 @@ fn start_console(mut console: Console, wants: &[Want], dir: &Path, cfg: Config) 
         plant,
         http,
         closing: Some(closing),
+    })
+}
+
+/// The plant thread: runs the plant until it is told to stop (or reaches
+/// `--for`), then commits the trace.
+fn run_plant(
+    mut plant: plant::Plant,
+    mut trace_file: Option<linc_driver::files::AtomicFile>,
+    asked: std::sync::mpsc::Receiver<Ask>,
+    flag: Arc<AtomicBool>,
+) -> std::io::Result<JoinHandle<Finished>> {
+    std::thread::Builder::new().name("linc-plant".into()).spawn(move || {
+        let trace_error = match trace_file.as_mut() {
+            None => {
+                plant.run(&asked, &flag, None);
+                None
+            }
+            Some(file) => {
+                let mut t = Trace::new(file, &plant.console.strategy.store);
+                plant.run(&asked, &flag, Some(&mut t));
+                t.finish().err().map(|e| format!("can't write the trace: {e}"))
+            }
+        };
+        // A trace that could not be written whole is not put in place:
+        // dropping the file removes its temporary.
+        let committed = match (trace_error.is_none(), trace_file) {
+            (true, Some(f)) => f.commit().err().map(|e| e.diagnostic().message.clone()),
+            _ => None,
+        };
+        let mut finished = plant.finish();
+        finished.trace_error = trace_error.or(committed);
+        finished
     })
 }
 

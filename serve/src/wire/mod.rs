@@ -1,7 +1,8 @@
-//! The plant on the wire: ROC Plus and Modbus TCP servers beside the
-//! monitor (docs/roc-protocol.md, docs/modbus.md). The network side reads
-//! frames and hands each to the plant thread, which answers between scans;
-//! a scan never waits for a client and a client never sees a half-scan.
+//! The plant on the wire: ROC Plus (over TCP and serial lines) and Modbus
+//! TCP servers beside the monitor (docs/roc-protocol.md, docs/modbus.md).
+//! The network side reads frames and hands each to the plant thread, which
+//! answers between scans; a scan never waits for a client and a client
+//! never sees a half-scan.
 
 pub mod modbus;
 pub(crate) mod modbus_server;
@@ -11,6 +12,7 @@ mod roc_logs;
 pub(crate) mod roc_server;
 mod rocp;
 mod rocp_history;
+pub(crate) mod serial;
 
 pub use net::{Limits, Log};
 

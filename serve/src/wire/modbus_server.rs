@@ -6,7 +6,6 @@ use super::modbus::MbAnswer;
 use super::net::{Next, Wire};
 use crate::Ask;
 use linc_comms::modbus::{self, Deframer, Header};
-use std::net::SocketAddr;
 use tokio::sync::oneshot;
 
 /// One client's Modbus state: its frames, and the header of the request
@@ -41,7 +40,7 @@ impl Wire for Modbus {
     /// decode gets its exception here. A stream that is not Modbus TCP (a
     /// protocol identifier other than 0, a length no frame has) can't be
     /// resynchronised, so the connection is closed.
-    fn next(&mut self, peer: SocketAddr) -> Option<Next<MbAnswer>> {
+    fn next(&mut self, peer: &str) -> Option<Next<MbAnswer>> {
         let (head, pdu) = match self.frames.next_frame()? {
             Ok(f) => f,
             Err(e) => return Some(Next::Close(format!("not Modbus TCP ({e:?})"))),

@@ -8,6 +8,8 @@
 //! Each connection is a task on the server's runtime with at most one
 //! request at the plant at a time, so however hostile the traffic, the
 //! plant thread sees at most one question per client between two scans.
+//! The loop is generic over the stream: a serial port (`serial.rs`) is
+//! served by it as one long-lived connection.
 
 use crate::Ask;
 use std::net::SocketAddr;
@@ -167,9 +169,23 @@ pub(crate) async fn accept_wire<W: Wire>(
     let how = Listen { what: W::NAME, busy: b"", drain: false, limits, log: log.clone() };
     accept(listener, how, closing, move |stream, peer| {
         let _ = stream.set_nodelay(true);
-        client(stream, peer, wire(), (asks.clone(), limits, log.clone()))
+        let peer = Peer { name: peer.to_string(), idle_ends: true };
+        let served = client(stream, peer, wire(), (asks.clone(), limits, log.clone()));
+        async move {
+            served.await;
+        }
     })
     .await
+}
+
+/// Who a connection is with.
+pub(crate) struct Peer {
+    /// How log lines name it: `127.0.0.1:51000`, `/dev/ttyS0`.
+    pub name: String,
+    /// Whether sending nothing for [`Limits::idle`] ends the connection: a
+    /// TCP client that does is gone or stuck, and holds a place under the
+    /// cap; a serial line is quiet between polls as a matter of course.
+    pub idle_ends: bool,
 }
 
 /// What a protocol plugs into the connection loop.
@@ -183,12 +199,12 @@ pub(crate) trait Wire: Send + 'static {
     /// Bytes waiting for the rest of their request.
     fn pending(&self) -> usize;
     /// The next whole request, if any, and what to do with it.
-    fn next(&mut self, peer: SocketAddr) -> Option<Next<Self::Answer>>;
+    fn next(&mut self, peer: &str) -> Option<Next<Self::Answer>>;
     /// The bytes to send back for the plant's answer (none: no reply), and
     /// the log lines it brought.
     fn answered(&mut self, answer: Self::Answer) -> (Option<Vec<u8>>, Vec<String>);
     /// A last log line when the connection ends (bytes thrown away).
-    fn farewell(&self, _peer: SocketAddr) -> Option<String> {
+    fn farewell(&self, _peer: &str) -> Option<String> {
         None
     }
 }
@@ -216,16 +232,19 @@ pub(crate) enum Next<A> {
 /// Serves one client: each request the protocol takes off the stream is
 /// answered in turn (through the plant, or by the protocol itself) until
 /// the client leaves, is idle or slow too long, or sends what can't go on.
+/// Returns why it ended (what a serial port's loop needs to go on).
 pub(crate) async fn client<W: Wire, S: AsyncRead + AsyncWrite + Unpin>(
     mut stream: S,
-    peer: SocketAddr,
+    peer: Peer,
     mut wire: W,
     (asks, limits, log): (std::sync::mpsc::Sender<Ask>, Limits, Log),
-) {
+) -> Stop {
     let mut buf = [0u8; 4096];
     let mut begun: Option<Instant> = None;
+    let idle = peer.idle_ends.then_some(limits.idle);
+    let peer = peer.name.as_str();
     let stop = 'conn: loop {
-        let n = match read_some(&mut stream, &mut buf, &limits, begun).await {
+        let n = match read_some(&mut stream, &mut buf, (idle, limits.request), begun).await {
             Ok(n) => n,
             Err(stop) => break stop,
         };
@@ -235,7 +254,7 @@ pub(crate) async fn client<W: Wire, S: AsyncRead + AsyncWrite + Unpin>(
                 Next::Skip => continue,
                 Next::Close(why) => {
                     log(format!("{} {peer}: dropped: {why}", W::NAME));
-                    return;
+                    return Stop::Over;
                 }
                 Next::Reply(bytes) => Some(bytes),
                 Next::Later(answer) => {
@@ -245,9 +264,9 @@ pub(crate) async fn client<W: Wire, S: AsyncRead + AsyncWrite + Unpin>(
                 }
                 Next::Ask(ask, answer) => {
                     if asks.send(ask).is_err() {
-                        return;
+                        return Stop::Over;
                     }
-                    let Ok(answer) = answer.await else { return };
+                    let Ok(answer) = answer.await else { return Stop::Over };
                     let (bytes, lines) = wire.answered(answer);
                     lines.into_iter().for_each(|line| log(line));
                     bytes
@@ -267,23 +286,28 @@ pub(crate) async fn client<W: Wire, S: AsyncRead + AsyncWrite + Unpin>(
     if let Some(why) = stop.why(&limits) {
         log(format!("{} {peer}: dropped: {why}", W::NAME));
     }
+    stop
 }
 
-/// Why a read gave nothing.
-enum Stop {
-    /// The client closed the connection or it failed.
-    Closed,
+/// Why a connection ended.
+#[derive(Debug)]
+pub(crate) enum Stop {
+    /// The client closed the connection (end of file: `None`), or reading
+    /// or writing failed.
+    Closed(Option<std::io::Error>),
     /// Nothing for [`Limits::idle`].
     Idle,
     /// A request begun and not finished within [`Limits::request`].
     Slow,
+    /// The plant has stopped, or the protocol closed the stream (logged).
+    Over,
 }
 
 impl Stop {
     /// The log line for a dropped client, `None` for one that left.
     fn why(&self, limits: &Limits) -> Option<String> {
         match self {
-            Stop::Closed => None,
+            Stop::Closed(_) | Stop::Over => None,
             Stop::Idle => Some(format!("idle for {} s", limits.idle.as_secs())),
             Stop::Slow => Some(format!("a request took more than {} s to arrive", limits.request.as_secs())),
         }
@@ -291,21 +315,30 @@ impl Stop {
 }
 
 /// Reads what arrives, with the deadline that applies: the request's if
-/// `begun` (bytes of an unfinished request wait), else the idle one.
+/// `begun` (bytes of an unfinished request wait), else the idle one, if
+/// silence ends the connection (`idle`); without either, it waits.
 async fn read_some<R: AsyncRead + Unpin>(
     stream: &mut R,
     buf: &mut [u8],
-    limits: &Limits,
+    (idle, request): (Option<Duration>, Duration),
     begun: Option<Instant>,
 ) -> Result<usize, Stop> {
-    let (deadline, why) = match begun {
-        Some(t) => (t + limits.request, Stop::Slow),
-        None => (Instant::now() + limits.idle, Stop::Idle),
+    let (deadline, why) = match (begun, idle) {
+        (Some(t), _) => (t + request, Stop::Slow),
+        (None, Some(idle)) => (Instant::now() + idle, Stop::Idle),
+        (None, None) => return read_result(stream.read(buf).await),
     };
     match tokio::time::timeout_at(deadline, stream.read(buf)).await {
         Err(_) => Err(why),
-        Ok(Ok(0)) | Ok(Err(_)) => Err(Stop::Closed),
-        Ok(Ok(n)) => Ok(n),
+        Ok(read) => read_result(read),
+    }
+}
+
+fn read_result(read: std::io::Result<usize>) -> Result<usize, Stop> {
+    match read {
+        Ok(0) => Err(Stop::Closed(None)),
+        Ok(n) => Ok(n),
+        Err(e) => Err(Stop::Closed(Some(e))),
     }
 }
 
@@ -314,7 +347,11 @@ async fn read_some<R: AsyncRead + Unpin>(
 async fn reply<S: AsyncWrite + Unpin>(stream: &mut S, bytes: &[u8], limits: &Limits) -> Result<(), Stop> {
     match tokio::time::timeout(limits.idle, stream.write_all(bytes)).await {
         Ok(Ok(())) => Ok(()),
-        _ => Err(Stop::Closed),
+        Ok(Err(e)) => Err(Stop::Closed(Some(e))),
+        Err(_) => {
+            let why = format!("a reply could not be written in {} s", limits.idle.as_secs());
+            Err(Stop::Closed(Some(std::io::Error::new(std::io::ErrorKind::TimedOut, why))))
+        }
     }
 }
 
@@ -353,13 +390,9 @@ mod tests {
         let kept = lines.clone();
         let log: Log = Arc::new(move |l| kept.lock().unwrap().push(l));
         let (asks, asked) = std::sync::mpsc::channel();
-        let peer: SocketAddr = "127.0.0.1:5000".parse().unwrap();
-        tokio::spawn(client(
-            server,
-            peer,
-            Roc::new(Station { me: ME, dialect: crate::wire::roc::Dialect::RocPlus, links: Default::default() }),
-            (asks, limits(), log),
-        ));
+        let peer = Peer { name: "127.0.0.1:5000".into(), idle_ends: true };
+        let station = Station { me: ME, dialect: crate::wire::roc::Dialect::RocPlus, links: Default::default() };
+        tokio::spawn(client(server, peer, Roc::new(station), (asks, limits(), log)));
         (client_end, lines, asked)
     }
 
@@ -380,6 +413,26 @@ mod tests {
         let (c, log, _) = connection();
         assert_eq!(closed(c).await, Duration::from_secs(2));
         assert_eq!(*log.lock().unwrap(), ["roc 127.0.0.1:5000: dropped: idle for 2 s"]);
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn a_quiet_serial_line_is_not_dropped_but_a_stalled_request_still_is() {
+        let (mut c, server) = duplex(4096);
+        let lines = Arc::new(Mutex::new(Vec::new()));
+        let kept = lines.clone();
+        let log: Log = Arc::new(move |l| kept.lock().unwrap().push(l));
+        let (asks, _asked) = std::sync::mpsc::channel();
+        let peer = Peer { name: "/dev/ttyS0".into(), idle_ends: false };
+        let station = Station { me: ME, dialect: crate::wire::roc::Dialect::RocPlus, links: Default::default() };
+        let served = tokio::spawn(client(server, peer, Roc::new(station), (asks, limits(), log)));
+        // An hour of silence: ten times nothing, and the line is still served.
+        tokio::time::sleep(Duration::from_secs(3600)).await;
+        assert!(!served.is_finished() && lines.lock().unwrap().is_empty());
+        // Half a frame is still a request that must arrive within 1 s.
+        c.write_all(&read_frame(180)[..4]).await.unwrap();
+        let stop = served.await.unwrap();
+        assert!(matches!(stop, Stop::Slow), "{stop:?}");
+        assert_eq!(*lines.lock().unwrap(), ["roc /dev/ttyS0: dropped: a request took more than 1 s to arrive"]);
     }
 
     #[tokio::test(start_paused = true)]

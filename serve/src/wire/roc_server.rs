@@ -1,5 +1,6 @@
-//! The ROC server: frames off the stream for this device go to the plant
-//! thread; the connection loop is the one every wire server shares. The
+//! The ROC server: frames off TCP, or off a serial line, for this device
+//! go to the plant thread; the connection loop is the one every wire
+//! server shares. The
 //! dialect decides which frames are this device's (the ROC protocol also
 //! answers the universal address and obeys broadcasts silently), and a
 //! store-and-forward frame bound further is passed on here, off the plant
@@ -44,7 +45,7 @@ impl Roc {
 
     /// A store-and-forward frame bound past this device: passed on, or an
     /// error reply for a path it cannot follow. `None` when it ends here.
-    fn relay(&self, frame: &Frame, peer: SocketAddr) -> Option<Next<Answer>> {
+    fn relay(&self, frame: &Frame, peer: &str) -> Option<Next<Answer>> {
         let me = self.station.me;
         let w = forward::parse(&frame.data).ok()?;
         let next = match w.path.route(me) {
@@ -53,7 +54,7 @@ impl Roc {
             Err(e) => return Some(Next::Reply(error_reply(frame, me, e).unwrap_or_default())),
         };
         let link = self.station.links.iter().find(|(d, _)| *d == (next.unit, next.group)).map(|&(_, a)| a);
-        Some(Next::Later(Box::pin(pass_on(frame.clone(), me, next, link, peer))))
+        Some(Next::Later(Box::pin(pass_on(frame.clone(), me, next, link, peer.to_string()))))
     }
 }
 
@@ -71,7 +72,7 @@ async fn pass_on(
     me: Address,
     next: Address,
     link: Option<SocketAddr>,
-    peer: SocketAddr,
+    peer: String,
 ) -> (Option<Vec<u8>>, Vec<String>) {
     let fail = |why: String| {
         let e = linc_comms::roc::ops::RocError::at_data(rocp::code::FORWARD_PATH, 2);
@@ -132,7 +133,7 @@ impl Wire for Roc {
     /// A whole frame for this device goes to the plant (a store-and-forward
     /// frame bound further is passed on); frames for other addresses and
     /// bytes that make no frame (a bad CRC) get no reply.
-    fn next(&mut self, peer: SocketAddr) -> Option<Next<Answer>> {
+    fn next(&mut self, peer: &str) -> Option<Next<Answer>> {
         let frame = self.frames.next_frame()?;
         let me = self.station.me;
         self.silent = false;
@@ -162,7 +163,7 @@ impl Wire for Roc {
         (answer.reply.encode(), answer.log)
     }
 
-    fn farewell(&self, peer: SocketAddr) -> Option<String> {
+    fn farewell(&self, peer: &str) -> Option<String> {
         let dropped = self.frames.dropped;
         (dropped > 0).then(|| format!("roc {peer}: {dropped} bytes made no frame (bad CRC or noise) and were dropped"))
     }

@@ -6,6 +6,7 @@
 pub mod commands;
 pub mod layouts;
 pub mod poll;
+pub mod serial;
 pub mod tcp;
 pub mod words;
 
@@ -14,5 +15,6 @@ mod tests;
 
 pub use commands::{Command, Protocol};
 pub use poll::{status_text, Host, Link};
+pub use serial::SerialLink;
 pub use tcp::TcpLink;
 pub use words::Words;

@@ -1,0 +1,128 @@
+//! The host's link to a device over a serial line (RS-232/485, a radio):
+//! blocking, one request at a time, as [`super::TcpLink`] is. The bytes
+//! are the same frames as over TCP and go through the same [`Deframer`],
+//! so noise on the line is dropped and a reply that arrives in pieces is
+//! joined; the reply timeout is the same too.
+
+use super::poll::{Link, LinkError};
+use crate::roc::{Deframer, Frame};
+use crate::serial::Line;
+use std::io::{ErrorKind, Read, Write};
+use std::time::{Duration, Instant};
+
+pub struct SerialLink {
+    path: String,
+    line: Line,
+    port: Option<Box<dyn serialport::SerialPort>>,
+    frames: Deframer,
+    /// How long to wait for a reply (the module's default is one second).
+    pub timeout: Duration,
+}
+
+impl SerialLink {
+    /// Opens the port at `path` now, so a wrong path or a port another
+    /// program holds is an error before the command list runs, rather
+    /// than every command timing out.
+    pub fn open(path: &str, line: Line, timeout: Duration) -> Result<SerialLink, serialport::Error> {
+        let port = line.builder(path, timeout).open()?;
+        Ok(SerialLink { path: path.to_string(), line, port: Some(port), frames: Deframer::default(), timeout })
+    }
+
+    /// The port, opened again after it failed (a USB adapter unplugged and
+    /// back); the bytes held from before are thrown away with it.
+    fn opened(&mut self) -> Result<&mut Box<dyn serialport::SerialPort>, LinkError> {
+        if self.port.is_none() {
+            let port = self.line.builder(&self.path, self.timeout).open().map_err(|_| LinkError::Timeout)?;
+            self.frames = Deframer::default();
+            self.port = Some(port);
+        }
+        self.port.as_mut().ok_or(LinkError::Timeout)
+    }
+}
+
+impl Link for SerialLink {
+    /// Sends the request and waits for a frame from its device to this
+    /// host; other frames (another host's traffic on a shared line) are
+    /// dropped. A port that fails is closed, and opened again on the next
+    /// attempt.
+    fn exchange(&mut self, request: &Frame) -> Result<Frame, LinkError> {
+        let bytes = request.encode().ok_or(LinkError::Timeout)?;
+        let deadline = Instant::now() + self.timeout;
+        let port = self.opened()?;
+        if port.write_all(&bytes).and_then(|()| port.flush()).is_err() {
+            self.port = None;
+            return Err(LinkError::Timeout);
+        }
+        let mut buf = [0u8; 1024];
+        loop {
+            while let Some(f) = self.frames.next_frame() {
+                if f.dst == request.src && f.src == request.dst {
+                    return Ok(f);
+                }
+            }
+            let left = deadline.saturating_duration_since(Instant::now());
+            let Some(port) = self.port.as_mut().filter(|_| !left.is_zero()) else {
+                return Err(LinkError::Timeout);
+            };
+            let _ = port.set_timeout(left);
+            match port.read(&mut buf) {
+                // End of file on a terminal: the line was hung up.
+                Ok(0) => {
+                    self.port = None;
+                    return Err(LinkError::Timeout);
+                }
+                Ok(n) => self.frames.push(&buf[..n]),
+                Err(e) if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut) => {
+                    return Err(LinkError::Timeout)
+                }
+                Err(e) if e.kind() == ErrorKind::Interrupted => {}
+                Err(_) => {
+                    self.port = None;
+                    return Err(LinkError::Timeout);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::*;
+    use crate::roc::Address;
+    use serialport::SerialPort;
+
+    /// Over a pseudo-terminal: a reply that comes after noise, in two
+    /// pieces with a pause between them, is found; silence is a timeout.
+    #[test]
+    fn a_reply_in_pieces_after_noise_is_found_and_silence_times_out() {
+        let (mut master, slave) = serialport::TTYPort::pair().expect("a pseudo-terminal");
+        let path = slave.name().expect("the slave's path");
+        let mut link = SerialLink::open(&path, Line::new(19200), Duration::from_millis(300)).expect("open");
+        let (host, dev) = (Address { unit: 3, group: 1 }, Address { unit: 1, group: 2 });
+        let req = Frame { dst: dev, src: host, opcode: 180, data: vec![1, 3, 0, 2] };
+        let reply = Frame { dst: host, src: dev, opcode: 180, data: vec![1, 3, 0, 2, 1, 0] };
+        let bytes = reply.encode().unwrap();
+        let device = std::thread::spawn(move || {
+            master.set_timeout(Duration::from_secs(5)).unwrap();
+            let mut got = vec![0u8; req.encode().unwrap().len()];
+            master.read_exact(&mut got).expect("the request");
+            master.write_all(&[0xFF, 0x00, 0x13]).unwrap();
+            master.write_all(&bytes[..5]).unwrap();
+            std::thread::sleep(Duration::from_millis(50));
+            master.write_all(&bytes[5..]).unwrap();
+            (got, master)
+        });
+        assert_eq!(link.exchange(&Frame { dst: dev, src: host, opcode: 180, data: vec![1, 3, 0, 2] }).unwrap(), reply);
+        let (got, _master) = device.join().unwrap();
+        assert_eq!(Frame::decode(&got).unwrap().0.dst, dev);
+        let again = link.exchange(&Frame { dst: dev, src: host, opcode: 180, data: vec![1, 3, 0, 2] });
+        assert!(matches!(again, Err(LinkError::Timeout)));
+        drop(slave);
+    }
+
+    #[test]
+    fn a_port_that_does_not_exist_is_an_error_at_once() {
+        let e = SerialLink::open("/dev/linc-no-such-port", Line::new(9600), Duration::from_secs(1)).err();
+        assert!(e.is_some());
+    }
+}
