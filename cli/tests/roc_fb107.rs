@@ -1,5 +1,6 @@
 //! `linc roc poll` against `linc serve --roc` of the FB107 example, both as
-//! processes over TCP on 127.0.0.1: the module's command list beyond
+//! processes over TCP on 127.0.0.1 and over a serial line (two
+//! pseudo-terminals joined as by a null-modem cable): the module's command list beyond
 //! 180/181 — the §6.1.2 layout of opcode 120 word for word, a day of
 //! hourly values with 128 and 130, the device clock set with 8, and a
 //! device reached behind another by store and forward (§6.3). The
@@ -28,21 +29,44 @@ fn plant_copy(tag: &str, far: Option<&str>) -> PathBuf {
     dir
 }
 
-/// A served plant; its ROC address, and its log once stopped.
-struct Device(std::process::Child, String);
+/// How the host reaches the device: over TCP, or over a serial line the
+/// device answers on at one end.
+enum Via {
+    Tcp,
+    #[cfg(unix)]
+    Serial(common::null_modem::NullModem),
+}
+
+/// A served plant; its ROC address (TCP), how the host reaches it, and
+/// its log once stopped.
+struct Device(std::process::Child, String, Vec<String>);
 
 impl Device {
-    fn start(db: &Path, unit: &str, extra: &[&str]) -> Device {
+    fn start(db: &Path, unit: &str, extra: &[&str], via: &Via) -> Device {
         let db = db.to_string_lossy().into_owned();
         let mut args = vec!["serve", &db, "--http", "127.0.0.1:0", "--roc", "127.0.0.1:0", "--roc-address", unit];
         args.extend(["--allow-writes", "--speed", "0.001"]);
+        #[cfg(unix)]
+        if let Via::Serial(line) = via {
+            args.extend(["--roc-serial", &line.paths[0], "--baud", "19200"]);
+        }
         args.extend(extra);
         let mut child = common::spawn(&args);
         let mut lines = BufReader::new(child.stdout.take().expect("stdout")).lines();
         let _serving = lines.next().expect("a line").expect("text");
         let roc = lines.next().expect("the ROC line").expect("text");
         assert!(roc.starts_with(&format!("ROC protocol device {unit} on 127.0.0.1:")), "{roc}");
-        Device(child, roc.rsplit(' ').next().unwrap().to_string())
+        let addr = roc.rsplit(' ').next().unwrap().to_string();
+        let link = match via {
+            Via::Tcp => vec!["--host".to_string(), addr.clone()],
+            #[cfg(unix)]
+            Via::Serial(line) => {
+                let serial = lines.next().expect("the serial line").expect("text");
+                assert!(serial.contains(&format!("on serial {}", line.paths[0])), "{serial}");
+                vec!["--serial".into(), line.paths[1].clone(), "--baud".into(), "19200".into()]
+            }
+        };
+        Device(child, addr, link)
     }
 
     /// Stops the device and returns what it logged.
@@ -68,7 +92,9 @@ fn poll(dev: &Device, dir: &Path, cmds: &str, words: &str) -> (String, Value) {
     std::fs::write(p("cmds.csv"), format!("{HEAD}{cmds}")).unwrap();
     std::fs::write(p("words.json"), words).unwrap();
     let (c, w, out) = (p("cmds.csv"), p("words.json"), p("out.json"));
-    let args = ["roc", "poll", "--host", &dev.1, "--commands", &c, "--words", &w, "--out", &out, "--timeout", "5s"];
+    let mut args: Vec<&str> = vec!["roc", "poll"];
+    args.extend(dev.2.iter().map(String::as_str));
+    args.extend(["--commands", &c, "--words", &w, "--out", &out, "--timeout", "5s"]);
     let o = common::linc(&args);
     assert_eq!(o.status.code(), Some(0), "{}{}", common::stdout(&o), common::stderr(&o));
     (common::stdout(&o), serde_json::from_str(&std::fs::read_to_string(p("out.json")).unwrap()).unwrap())
@@ -104,10 +130,21 @@ fn a_day_and_a_half(tag: &str) -> (PathBuf, Value) {
 }
 
 #[test]
-fn pointers_a_day_of_hours_and_the_clock() {
-    let (dir, roc) = a_day_and_a_half("roc-fb107-day");
+fn pointers_a_day_of_hours_and_the_clock_over_tcp() {
+    pointers_a_day_of_hours_and_the_clock(Via::Tcp, "roc-fb107-day");
+}
+
+#[cfg(unix)]
+#[test]
+fn pointers_a_day_of_hours_and_the_clock_over_a_serial_line() {
+    let line = common::null_modem::NullModem::new();
+    pointers_a_day_of_hours_and_the_clock(Via::Serial(line), "roc-fb107-day-serial");
+}
+
+fn pointers_a_day_of_hours_and_the_clock(via: Via, tag: &str) {
+    let (dir, roc) = a_day_and_a_half(tag);
     let state = dir.join("state.json").to_string_lossy().into_owned();
-    let dev = Device::start(&dir.join("plant.json"), "25,2", &["--state", &state]);
+    let dev = Device::start(&dir.join("plant.json"), "25,2", &["--state", &state], &via);
     // 120 into words 0…; 128 of 6 January (point 1) into 100…; 130: 24
     // hourly values of point 1 from index 17 into 200…; 8 sets the clock
     // to 12:30:00 on 6 January 2026 from words 40….
@@ -144,14 +181,28 @@ fn pointers_a_day_of_hours_and_the_clock() {
     assert_eq!([word(&w, 154), word(&w, 155)], float_words(daily["value"].as_f64().unwrap() as f32));
     assert_eq!((word(&w, 170), word(&w, 200), word(&w, 201), word(&w, 202)), (3, 0, 1, 24));
     assert!(dev.log().contains("set the clock to 2026-01-06T12:30:00"));
+    drop(via);
 }
 
 #[test]
-fn store_and_forward_reaches_a_device_behind_another() {
-    let far_dir = plant_copy("roc-fb107-far", None);
-    let far = Device::start(&far_dir.join("plant.json"), "5,2", &["--set", "SFP 1.DATA1=55.5"]);
-    let relay_dir = plant_copy("roc-fb107-relay", Some(&far.1));
-    let relay = Device::start(&relay_dir.join("plant.json"), "25,2", &[]);
+fn store_and_forward_reaches_a_device_behind_another_over_tcp() {
+    store_and_forward_reaches_a_device_behind_another(Via::Tcp, "tcp");
+}
+
+/// The host on a serial line to the relay, the relay on TCP to the far
+/// device (a radio network's gateway).
+#[cfg(unix)]
+#[test]
+fn store_and_forward_reaches_a_device_behind_another_over_a_serial_line() {
+    let line = common::null_modem::NullModem::new();
+    store_and_forward_reaches_a_device_behind_another(Via::Serial(line), "serial");
+}
+
+fn store_and_forward_reaches_a_device_behind_another(via: Via, tag: &str) {
+    let far_dir = plant_copy(&format!("roc-fb107-far-{tag}"), None);
+    let far = Device::start(&far_dir.join("plant.json"), "5,2", &["--set", "SFP 1.DATA1=55.5"], &Via::Tcp);
+    let relay_dir = plant_copy(&format!("roc-fb107-relay-{tag}"), Some(&far.1));
+    let relay = Device::start(&relay_dir.join("plant.json"), "25,2", &[], &via);
     // Read SFP 1 DATA1 (TLP 17,0,2) through 25,2 from 5,2: the path in
     // words 50… (host 3,1, then 25,2 and 5,2), as §6.3 stores it.
     let cmds = "1,25,2,180,1,0,10,0,0,50\n1,25,2,180,1,0,20,0,0,0\n";
@@ -163,4 +214,5 @@ fn store_and_forward_reaches_a_device_behind_another() {
     let log = relay.log();
     assert!(log.contains(&format!("passed a store-and-forward frame to 5,2 at {}", far.1)), "{log}");
     drop(far);
+    drop(via);
 }

@@ -4,6 +4,8 @@
 
 use std::process::{Command, Output};
 
+pub mod null_modem;
+
 /// The guide's database, relative to the repository root.
 pub const DB: &str = "examples/guide/plant.db.json";
 
