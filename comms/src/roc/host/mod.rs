@@ -4,6 +4,7 @@
 //! each command sends and what its reply brought (docs/roc-host.md).
 
 pub mod commands;
+mod exchange;
 pub mod layouts;
 pub mod poll;
 pub mod serial;

@@ -4,11 +4,11 @@
 //! so noise on the line is dropped and a reply that arrives in pieces is
 //! joined; the reply timeout is the same too.
 
+use super::exchange::{exchange, Failed};
 use super::poll::{Link, LinkError};
 use crate::roc::{Deframer, Frame};
 use crate::serial::Line;
-use std::io::{ErrorKind, Read, Write};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 pub struct SerialLink {
     path: String,
@@ -46,41 +46,15 @@ impl Link for SerialLink {
     /// dropped. A port that fails is closed, and opened again on the next
     /// attempt.
     fn exchange(&mut self, request: &Frame) -> Result<Frame, LinkError> {
-        let bytes = request.encode().ok_or(LinkError::Timeout)?;
-        let deadline = Instant::now() + self.timeout;
-        let port = self.opened()?;
-        if port.write_all(&bytes).and_then(|()| port.flush()).is_err() {
-            self.port = None;
-            return Err(LinkError::Timeout);
-        }
-        let mut buf = [0u8; 1024];
-        loop {
-            while let Some(f) = self.frames.next_frame() {
-                if f.dst == request.src && f.src == request.dst {
-                    return Ok(f);
-                }
+        let timeout = self.timeout;
+        self.opened()?;
+        let (Some(port), frames) = (self.port.as_mut(), &mut self.frames) else { return Err(LinkError::Timeout) };
+        match exchange(port, frames, request, timeout) {
+            Err(Failed::Broken) => {
+                self.port = None;
+                Err(LinkError::Timeout)
             }
-            let left = deadline.saturating_duration_since(Instant::now());
-            let Some(port) = self.port.as_mut().filter(|_| !left.is_zero()) else {
-                return Err(LinkError::Timeout);
-            };
-            let _ = port.set_timeout(left);
-            match port.read(&mut buf) {
-                // End of file on a terminal: the line was hung up.
-                Ok(0) => {
-                    self.port = None;
-                    return Err(LinkError::Timeout);
-                }
-                Ok(n) => self.frames.push(&buf[..n]),
-                Err(e) if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut) => {
-                    return Err(LinkError::Timeout)
-                }
-                Err(e) if e.kind() == ErrorKind::Interrupted => {}
-                Err(_) => {
-                    self.port = None;
-                    return Err(LinkError::Timeout);
-                }
-            }
+            other => Ok(other?),
         }
     }
 }
@@ -90,6 +64,7 @@ mod tests {
     use super::*;
     use crate::roc::Address;
     use serialport::SerialPort;
+    use std::io::{Read, Write};
 
     /// Over a pseudo-terminal: a reply that comes after noise, in two
     /// pieces with a pause between them, is found; silence is a timeout.

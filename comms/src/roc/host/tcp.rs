@@ -2,11 +2,11 @@
 //! (a poll list runs its commands in order), reconnecting after the
 //! device closed the connection.
 
+use super::exchange::{exchange, Failed};
 use super::poll::{Link, LinkError};
 use crate::roc::{Deframer, Frame};
-use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 pub struct TcpLink {
     addr: SocketAddr,
@@ -37,39 +37,15 @@ impl Link for TcpLink {
     /// host; other frames are dropped. A closed or failed connection is
     /// dropped too, and made again on the next attempt.
     fn exchange(&mut self, request: &Frame) -> Result<Frame, LinkError> {
-        let bytes = request.encode().ok_or(LinkError::Timeout)?;
-        let deadline = Instant::now() + self.timeout;
-        let stream = self.connected()?;
-        if stream.write_all(&bytes).is_err() {
-            self.stream = None;
-            return Err(LinkError::Timeout);
-        }
-        let mut buf = [0u8; 1024];
-        loop {
-            while let Some(f) = self.frames.next_frame() {
-                if f.dst == request.src && f.src == request.dst {
-                    return Ok(f);
-                }
+        let timeout = self.timeout;
+        self.connected()?;
+        let (Some(stream), frames) = (self.stream.as_mut(), &mut self.frames) else { return Err(LinkError::Timeout) };
+        match exchange(stream, frames, request, timeout) {
+            Err(Failed::Broken) => {
+                self.stream = None;
+                Err(LinkError::Timeout)
             }
-            let left = deadline.saturating_duration_since(Instant::now());
-            let Some(stream) = self.stream.as_mut().filter(|_| !left.is_zero()) else {
-                return Err(LinkError::Timeout);
-            };
-            let _ = stream.set_read_timeout(Some(left));
-            match stream.read(&mut buf) {
-                Ok(0) => {
-                    self.stream = None;
-                    return Err(LinkError::Timeout);
-                }
-                Ok(n) => self.frames.push(&buf[..n]),
-                Err(e) if matches!(e.kind(), std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut) => {
-                    return Err(LinkError::Timeout)
-                }
-                Err(_) => {
-                    self.stream = None;
-                    return Err(LinkError::Timeout);
-                }
-            }
+            other => Ok(other?),
         }
     }
 }
