@@ -129,7 +129,7 @@ enum Command {
     Draw(Box<draw_cmd::DrawArgs>),
     /// Run a strategy in real time behind a live monitor page and a JSON API (docs/serve.md).
     Serve(Box<serve_cmd::ServeArgs>),
-    /// The ROC host: poll a ROC Plus device with a command list, as the communication module does.
+    /// The ROC host: poll a ROC or ROC Plus device with a command list, as the communication module does.
     Roc {
         #[command(subcommand)]
         command: roc_cmd::RocCommand,

@@ -362,6 +362,11 @@ fn with_operators_a_host_logs_in_before_it_reads_or_writes() {
     assert_eq!(h.ask(17, b"LOI\xE8\x03LOGOFF"), (255, vec![77, 17, 11]));
     assert_eq!(h.ask(17, b"LOI\xE8\x03LOGOUT"), (17, vec![]));
     assert_eq!(h.ask(180, &read), (255, vec![20, 180, 4]), "logged out");
+    // The ROC protocol's short login (ID and password, no level) takes the
+    // operator's own level: RO reads and may not write.
+    assert_eq!(h.ask(17, b"RO \x07\x00"), (17, vec![]));
+    assert_eq!(h.ask(180, &read).0, 180);
+    assert_eq!(h.ask(181, &w), (255, vec![20, 181, 4]), "RO is level 0");
     // The login belongs to the connection: another starts logged out.
     let mut other = Host::connect(&s);
     assert_eq!(other.ask(180, &read), (255, vec![20, 180, 4]));
