@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# The whole-process figures of docs/performance.md, in one run: each
+# workload run by this checkout's release `linc` and by a previous
+# release's (built once from BASE in a worktree under target/perf), beside
+# a native Rust equivalent built with `rustc -O` where one exists. Each
+# command runs ROUNDS times; the best wall time and its peak memory are
+# kept (a busy machine only ever makes a run slower).
+#
+#   tests/perf/compare.sh BASE-COMMIT [ROUNDS]      # prints a Markdown table
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+base=$(git rev-parse --short "${1:?usage: tests/perf/compare.sh BASE-COMMIT [ROUNDS]}")
+rounds=${2:-5}
+out=target/perf
+mkdir -p "$out"
+
+cargo build -q --release -p linc
+cp target/release/linc "$out/linc-head"
+if [ "$base" = "$(git rev-parse --short HEAD)" ] && git diff --quiet HEAD -- . ':!tests/perf' ':!docs'; then
+  cp "$out/linc-head" "$out/linc-$base"   # this checkout is the base: one build
+elif [ ! -x "$out/linc-$base" ]; then
+  rm -rf "$out/base-src"
+  git worktree add -q -f --detach "$out/base-src" "$base"
+  (cd "$out/base-src" && CARGO_TARGET_DIR="$PWD/../base-target" cargo build -q --release -p linc)
+  cp "$out/base-target/release/linc" "$out/linc-$base"
+  git worktree remove --force "$out/base-src"
+fi
+for k in int poly shift strings; do
+  rustc -O -o "$out/native-$k" "tests/perf/native/$k.rs"
+done
+# The 5 MB of dense realistic actions the check benchmark generates.
+(cd compiler && cargo bench -q --bench check -- --test "check actions" >/dev/null)
+actions=target/check-actions-5M.st
+
+# best CMD...: the best wall time (s, to the microsecond: time(1)'s own is
+# to the hundredth) and that run's peak memory (KB).
+best() {
+  local bt="" bm=0 t m s
+  for _ in $(seq "$rounds"); do
+    s=$EPOCHREALTIME
+    /usr/bin/time -f "%M" -o "$out/time" "$@" >/dev/null 2>&1 || { echo "failed: $*" >&2; exit 1; }
+    t=$(awk "BEGIN{ printf \"%.4f\", $EPOCHREALTIME - $s }")
+    m=$(tail -1 "$out/time")
+    if [ -z "$bt" ] || awk "BEGIN{exit !($t < $bt)}"; then bt=$t; bm=$m; fi
+  done
+  echo "$bt $bm"
+}
+
+ratio() { awk "BEGIN{ if ($2 > 0) printf \"%.2f×\", $1 / $2; else print \"-\" }"; }
+
+db=examples/guide/plant.db.json
+echo "| workload | command | $base | head | native | head ÷ native |"
+echo "|---|---|---|---|---|---|"
+for k in int poly shift strings; do
+  cycles=1; [ "$k" = strings ] && cycles=50
+  cmd=(run "tests/perf/kernels/$k.stx" --db "$db" --cycles "$cycles" --watchdog 4000000000)
+  read -r b _ < <(best "$out/linc-$base" "${cmd[@]}")
+  read -r h _ < <(best "$out/linc-head" "${cmd[@]}")
+  read -r n _ < <(best "$out/native-$k")
+  echo "| kernel \`$k\` | \`linc ${cmd[*]}\` | $b s | $h s | $n s | $(ratio "$h" "$n") |"
+done
+size=$(stat -c %s "$actions")
+cmd=(check "$actions" --db "$db")
+read -r b bm < <(best "$out/linc-$base" "${cmd[@]}")
+read -r h hm < <(best "$out/linc-head" "${cmd[@]}")
+mbps() { awk "BEGIN{ printf \"%.1f MB/s\", $size / 1e6 / $1 }"; }
+mem() { awk "BEGIN{ printf \"%.1f×\", $1 * 1024 / $size }"; }
+echo "| \`linc check\` of $((size / 1000)) kB of actions | \`linc ${cmd[*]}\` | $b s, $(mbps "$b"), peak $(mem "$bm") the source | $h s, $(mbps "$h"), peak $(mem "$hm") the source | | |"
+for plant in strategy sequences ladder fst roc; do
+  cmd=(run "examples/$plant/plant.json" --for 24h)
+  read -r b _ < <(best "$out/linc-$base" "${cmd[@]}")
+  read -r h _ < <(best "$out/linc-head" "${cmd[@]}")
+  echo "| a day of \`examples/$plant\` (plant time) | \`linc ${cmd[*]}\` | $b s | $h s | | |"
+done

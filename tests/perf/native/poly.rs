@@ -1,0 +1,10 @@
+// The REAL polynomial in plain Rust: Horner's rule in f32.
+fn main() {
+    let n: i32 = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(10_000_000);
+    let (mut x, mut y) = (0.0f32, 0.0f32);
+    for _ in 0..n {
+        y = (((1.5 * x - 2.0) * x + 0.5) * x + 3.0) * x - 1.0;
+        x += 0.001;
+    }
+    println!("{y} {x}");
+}
