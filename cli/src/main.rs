@@ -305,8 +305,9 @@ struct RunArgs {
         value_parser = watchdog
     )]
     watchdog: u64,
-    /// Which tier runs the code: `auto` compiles loops at once and other code once it has run long
-    /// (ADR 0011); `compiled` compiles every block at its first run; `interpreter` never compiles.
+    /// Which tier runs the code: `auto` compiles loops at once and other code once it has run long,
+    /// in the background while the interpreter runs it (ADR 0011, 0023); `compiled` compiles every
+    /// block before its first run; `interpreter` never compiles.
     #[arg(long, value_enum, default_value = "auto")]
     tier: TierArg,
 }

@@ -83,8 +83,9 @@ pub struct ServeArgs {
     /// Drop a client that sends nothing (a wire client) or reads nothing (HTTP) for this long.
     #[arg(long, value_name = "DURATION", default_value = "60s")]
     pub client_timeout: String,
-    /// Which tier runs the code; `compiled` translates every block at the start rather than
-    /// while the plant runs (translation happens on the plant's thread, between scans).
+    /// Which tier runs the code; `auto` translates in the background while the plant runs on the
+    /// interpreter, so no scan waits; `compiled` translates every block at its first run, on the
+    /// plant's thread.
     #[arg(long, value_enum, default_value = "auto")]
     pub tier: crate::TierArg,
 }

@@ -109,6 +109,18 @@ impl Linked {
         self.jit.is_compiled_traced((program, block))
     }
 
+    /// Waits until the translations `--tier auto` queued for these programs
+    /// have ended, so that a test knows which code the next run uses.
+    pub fn settle_translations(&self) {
+        self.jit.settle();
+    }
+
+    /// Runs of a block that began on the interpreter while its translation
+    /// was pending (ADR 0023): each is a run that did not wait for one.
+    pub fn runs_behind_translation(&self, program: usize, block: usize) -> u64 {
+        self.jit.runs_behind((program, block))
+    }
+
     /// Code blocks of the linked programs: how many the compiling tier has
     /// compiled so far (for a traced run or not), and how many there are.
     pub fn compiled_blocks(&self) -> (usize, usize) {

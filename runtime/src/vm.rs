@@ -47,11 +47,14 @@ pub const JIT_AFTER: u64 = 1_000_000;
 /// Which tier runs code blocks (ADR 0011; `linc run --tier`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Tier {
-    /// A block with a loop compiled at its first run, a straight block once
-    /// it has run [`JIT_AFTER`] instructions on the interpreter.
+    /// A block with a loop due for compilation at its first run, a straight
+    /// block once it has run [`JIT_AFTER`] instructions on the interpreter;
+    /// a due block is translated in the background and runs on the
+    /// interpreter until its code is ready (ADR 0023), so no run waits.
     #[default]
     Auto,
-    /// Every block compiled at its first run (those the tier translates).
+    /// Every block translated before its first run, on the running thread
+    /// (those the tier translates): for benchmarks.
     Compiled,
     /// The interpreter alone.
     Interpreter,
@@ -229,8 +232,11 @@ pub struct Vm {
     /// Runs blocks through the compiling tier (ADR 0011) when set (the
     /// default; a run touching a forced cell uses the interpreter).
     pub jit: bool,
-    /// Instructions a block runs on the interpreter before it is compiled
-    /// (0: compile at first use).
+    /// Instructions a block runs on the interpreter before it is due for
+    /// compilation; a due block is translated on a background thread while
+    /// the interpreter goes on running it (ADR 0023). 0: every block is
+    /// translated before its first run, on the running thread
+    /// (`Tier::Compiled`).
     pub jit_after: u64,
     /// The compiled tier's scratch copy of the cells.
     jit_mem: Vec<u32>,

@@ -9,6 +9,7 @@
 //! interpreter, which finishes the run. Faults and their positions are
 //! therefore the interpreter's own by construction.
 
+mod background;
 #[cfg(feature = "jit")]
 mod emit;
 #[cfg(feature = "jit")]
@@ -20,28 +21,32 @@ mod off;
 #[cfg(feature = "jit")]
 mod plan;
 
-#[cfg(feature = "jit")]
-use native::compile_as;
+#[doc(hidden)]
+pub use background::{hold, Hold};
 #[cfg(feature = "jit")]
 pub use native::Compiled;
 #[cfg(feature = "jit")]
+use native::{compile_as, prepare, Prepared};
+#[cfg(feature = "jit")]
 pub(crate) use native::{Entry, Frame};
 #[cfg(not(feature = "jit"))]
-use off::compile_as;
-#[cfg(not(feature = "jit"))]
 pub use off::Compiled;
+#[cfg(not(feature = "jit"))]
+use off::{compile_as, prepare, Prepared};
 
 use crate::link::Linked;
 use crate::store::Store;
 use crate::vm::Vm;
 use crate::wire::Bytes;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::mpsc::TrySendError;
 use std::sync::{Arc, OnceLock};
 
 /// The largest block the tier translates, in instructions; a larger one
 /// stays on the interpreter. Translating costs about 5–30 µs per
 /// instruction (Cranelift's optimiser and register allocator), so a block
-/// at this limit takes up to about 100 ms, which is the most `--tier auto`
-/// spends on one block before running it; a 2.5 MB action (400,000
+/// at this limit takes up to about 100 ms of the translation thread (of the
+/// running thread under `--tier compiled`); a 2.5 MB action (400,000
 /// instructions in one loop) took 28 s and 730 MB to translate before there
 /// was a limit (`docs/adr/0011-compiling-tier.md`).
 pub const MAX_BLOCK_OPS: usize = 2_048;
@@ -73,7 +78,13 @@ impl Mode {
 #[derive(Default)]
 pub(crate) struct SlotState {
     variants: [OnceLock<Option<Arc<Compiled>>>; 4],
-    interpreted: std::sync::atomic::AtomicU64,
+    /// Per variant: handed to the translation thread (at most once, so a
+    /// block is never translated twice).
+    queued: [AtomicBool; 4],
+    interpreted: AtomicU64,
+    /// Runs that began on the interpreter while their translation was
+    /// pending: what shows that no run waited for one.
+    behind: AtomicU64,
     /// Whether the block has a backward jump (a loop), once looked at.
     looping: OnceLock<bool>,
 }
@@ -85,11 +96,30 @@ impl SlotState {
             .into_iter()
             .any(|covered| self.variants[Mode { traced, covered }.index()].get().is_some_and(Option::is_some))
     }
+
+    /// Whether a variant is queued and not translated yet.
+    fn pending(&self) -> bool {
+        self.queued.iter().zip(&self.variants).any(|(q, v)| q.load(Ordering::Acquire) && v.get().is_none())
+    }
+
+    /// Whether the block is due for compilation: a loop at once, since
+    /// that is where a run spends its time and one run may be long (a
+    /// whole `linc run`); a straight block once it has run `after`
+    /// instructions on the interpreter (compiling takes about 2 ms, so
+    /// short one-off programs stay on the interpreter).
+    fn due(&self, linked: &Linked, (program, block): (usize, usize), after: u64) -> bool {
+        let looping = *self.looping.get_or_init(|| {
+            linked
+                .ops(program, block)
+                .is_some_and(|ops| ops.iter().enumerate().any(|(i, op)| op.target().is_some_and(|t| (t as usize) <= i)))
+        });
+        looping || self.interpreted.load(Ordering::Relaxed) >= after
+    }
 }
 
 type Slot = Arc<SlotState>;
 
-/// Compiled code per (program, block), made on first use.
+/// Compiled code per (program, block), made once a block is due.
 #[derive(Clone, Default)]
 pub struct Cache {
     blocks: Vec<Vec<Slot>>,
@@ -106,35 +136,58 @@ impl Cache {
         Cache { blocks: blocks_per_program.map(|n| (0..n).map(|_| Arc::default()).collect()).collect() }
     }
 
-    /// The compiled code of a block with a loop, or of a straight block once
-    /// the interpreter has run `after` instructions of it (0: at once),
-    /// compiling it then. Compiling takes about 2 ms, so a straight block is
-    /// compiled only when it has run about as long: short one-off programs
-    /// stay on the interpreter.
+    /// The compiled code of a block, once it is due ([`SlotState::due`]).
+    /// With `after` 0 (`--tier compiled`) a block is translated here, before
+    /// its first run, as a benchmark wants; otherwise it is queued for the
+    /// translation thread and this run, like every run until the code is
+    /// ready, is the interpreter's.
     pub(crate) fn get(
         &self,
         linked: &Linked,
         store: &Store,
-        (program, block): (usize, usize),
+        at: (usize, usize),
         after: u64,
         mode: Mode,
     ) -> Option<Arc<Compiled>> {
-        let slot = self.blocks.get(program)?.get(block)?;
+        let slot = self.slot(at)?;
         let cell = &slot.variants[mode.index()];
         if let Some(code) = cell.get() {
             return code.clone();
         }
-        // A loop is where a run spends its time, and one run may be long
-        // (a whole `linc run`): a block with a loop is compiled at once.
-        let looping = *slot.looping.get_or_init(|| {
-            linked
-                .ops(program, block)
-                .is_some_and(|ops| ops.iter().enumerate().any(|(i, op)| op.target().is_some_and(|t| (t as usize) <= i)))
-        });
-        if !looping && slot.interpreted.load(std::sync::atomic::Ordering::Relaxed) < after {
+        if !slot.due(linked, at, after) {
             return None;
         }
-        cell.get_or_init(|| compile_as(linked, store, (program, block), mode).map(Arc::new)).clone()
+        if after == 0 {
+            return cell.get_or_init(|| compile_as(linked, store, at, mode).map(Arc::new)).clone();
+        }
+        Self::queue(slot, linked, store, at, mode);
+        None
+    }
+
+    /// Hands a due variant to the translation thread, once. What the thread
+    /// needs is copied out now ([`Prepared`]): a block the tier refuses is
+    /// settled here, without a trip there.
+    fn queue(slot: &Slot, linked: &Linked, store: &Store, at: (usize, usize), mode: Mode) {
+        let variant = mode.index();
+        if slot.queued[variant].swap(true, Ordering::AcqRel) {
+            slot.behind.fetch_add(1, Ordering::Relaxed);
+            return;
+        }
+        let Some(work) = prepare(linked, store, at, mode) else {
+            let _ = slot.variants[variant].set(None);
+            return;
+        };
+        match background::submit(background::Job { slot: Arc::downgrade(slot), variant, work: Box::new(work) }) {
+            Ok(()) => {
+                slot.behind.fetch_add(1, Ordering::Relaxed);
+            }
+            // Offered again at the block's next run.
+            Err(TrySendError::Full(_)) => slot.queued[variant].store(false, Ordering::Release),
+            // No thread could be started: translate here, as before.
+            Err(TrySendError::Disconnected(job)) => {
+                let _ = slot.variants[variant].set(job.work.compile().map(Arc::new));
+            }
+        }
     }
 
     fn slot(&self, (program, block): (usize, usize)) -> Option<&Slot> {
@@ -151,11 +204,24 @@ impl Cache {
         self.slot(at).is_some_and(|s| s.compiled(true))
     }
 
+    /// Runs of a block that began on the interpreter because its
+    /// translation was still pending (for tests).
+    pub fn runs_behind(&self, at: (usize, usize)) -> u64 {
+        self.slot(at).map_or(0, |s| s.behind.load(Ordering::Relaxed))
+    }
+
+    /// Waits until every translation queued for these programs has ended,
+    /// so that a test can say which code the next run uses; runs never
+    /// call it.
+    pub fn settle(&self) {
+        background::settle(|| self.blocks.iter().flatten().any(|s| s.pending()));
+    }
+
     /// Counts instructions the interpreter ran of a block not yet compiled.
     pub(crate) fn note_interpreted(&self, at: (usize, usize), instructions: u64) {
         if let Some(slot) = self.slot(at) {
             if slot.variants.iter().any(|v| v.get().is_none()) {
-                slot.interpreted.fetch_add(instructions, std::sync::atomic::Ordering::Relaxed);
+                slot.interpreted.fetch_add(instructions, Ordering::Relaxed);
             }
         }
     }

@@ -70,15 +70,30 @@ impl Drop for Compiled {
     }
 }
 
-/// Compiles a block; traced code reports every write to the run's tracer
-/// as the interpreter does, covered code counts as the interpreter does.
-pub(super) fn compile_as(
+/// What translating a block needs, copied out of the program and the store
+/// by the thread that runs the block, so that the translation itself (the
+/// slow part) can run on another thread without the program or the store:
+/// at most [`MAX_BLOCK_OPS`] instructions, their label shapes, the cell
+/// layout and the coverage points.
+pub(crate) struct Prepared {
+    ops: Vec<Op>,
+    shapes: Vec<(u32, crate::verify::Shape)>,
+    plan: Plan,
+    locals: usize,
+    retained: usize,
+    traced: bool,
+    points: Option<Vec<bool>>,
+}
+
+/// Looks at a block: `None` when it uses anything outside the subset, is
+/// larger than [`MAX_BLOCK_OPS`] or meets a cell the tier leaves alone, so
+/// that a refusal costs no translation and no trip to another thread.
+pub(super) fn prepare(
     linked: &Linked,
     store: &Store,
     (program, block): (usize, usize),
-    mode: Mode,
-) -> Option<Compiled> {
-    let Mode { traced, covered } = mode;
+    Mode { traced, covered }: Mode,
+) -> Option<Prepared> {
     let prog = linked.program(program)?;
     let unit = linked.unit(program)?;
     let ops = linked.ops(program, block)?;
@@ -87,17 +102,39 @@ pub(super) fn compile_as(
         return None;
     }
     let plan = Plan::new(ops, &prog.targets, store, traced)?;
-    let locals = usize::from(code.locals);
-    let retained = usize::from(unit.retained);
-    let shapes = linked.shapes(program, block);
     // The counters' own points: a bail-out takes back the count of exactly
     // these (`Vm::run`).
     let points = match covered {
-        true => Some(linked.cover_block(program, block)?.points()),
+        true => Some(linked.cover_block(program, block)?.points().to_vec()),
         false => None,
     };
-    let (entry, module, max_depth) = emit::emit((ops, shapes), &plan, (locals, retained), (traced, points))?;
-    Some(Compiled { entry, module: Some(module), plan, max_depth, locals, retained, covered })
+    Some(Prepared {
+        ops: ops.to_vec(),
+        shapes: linked.shapes(program, block).to_vec(),
+        plan,
+        locals: usize::from(code.locals),
+        retained: usize::from(unit.retained),
+        traced,
+        points,
+    })
+}
+
+impl Prepared {
+    /// Translates the block; traced code reports every write to the run's
+    /// tracer as the interpreter does, covered code counts as the
+    /// interpreter does.
+    pub(super) fn compile(self) -> Option<Compiled> {
+        let Prepared { ops, shapes, plan, locals, retained, traced, points } = self;
+        let (entry, module, max_depth) =
+            emit::emit((&ops, &shapes), &plan, (locals, retained), (traced, points.as_deref()))?;
+        let covered = points.is_some();
+        Some(Compiled { entry, module: Some(module), plan, max_depth, locals, retained, covered })
+    }
+}
+
+/// Compiles a block on the calling thread.
+pub(super) fn compile_as(linked: &Linked, store: &Store, at: (usize, usize), mode: Mode) -> Option<Compiled> {
+    prepare(linked, store, at, mode)?.compile()
 }
 
 /// Whether the compiled tier translates this instruction (the table's

@@ -24,6 +24,21 @@ impl Compiled {
     }
 }
 
+/// A block ready to translate, of which there is none either.
+pub(crate) struct Prepared {
+    never: std::convert::Infallible,
+}
+
+impl Prepared {
+    pub(super) fn compile(self) -> Option<Compiled> {
+        match self.never {}
+    }
+}
+
+pub(super) fn prepare(_: &Linked, _: &Store, _: (usize, usize), _: Mode) -> Option<Prepared> {
+    None
+}
+
 pub(super) fn compile_as(_: &Linked, _: &Store, _: (usize, usize), _: Mode) -> Option<Compiled> {
     None
 }
