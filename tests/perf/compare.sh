@@ -53,7 +53,7 @@ echo "| workload | command | $base | head | native | head ÷ native |"
 echo "|---|---|---|---|---|---|"
 for k in int poly shift strings; do
   cycles=1; [ "$k" = strings ] && cycles=50
-  cmd=(run "tests/perf/kernels/$k.stx" --db "$db" --cycles "$cycles" --watchdog 4000000000)
+  cmd=(run "tests/perf/kernels/$k.stx" --db "$db" --cycles "$cycles" --watchdog 4000000000 --tier compiled)
   read -r b _ < <(best "$out/linc-$base" "${cmd[@]}")
   read -r h _ < <(best "$out/linc-head" "${cmd[@]}")
   read -r n _ < <(best "$out/native-$k")
