@@ -143,14 +143,14 @@ fn slice(src: &str, lo: usize, hi: usize) -> String {
 
 fn trans_lines(ctx: &Ctx, t: &Transition) -> Vec<String> {
     let mut lines = Vec::new();
-    let head = match (&t.name, &t.priority) {
+    let head = match (&t.name, t.priority.as_deref()) {
         (Some(n), Some((p, _))) => Some(format!("{} ({p})", n.text)),
         (Some(n), None) => Some(n.text.to_string()),
         (None, Some((p, _))) => Some(format!("({p})")),
         (None, None) => None,
     };
     lines.extend(head);
-    let cond = match (t.ladder, &t.cond) {
+    let cond = match (t.ladder.as_deref(), &t.cond) {
         (Some(span), _) => format!("LADDER {}", slice(ctx.src, span.start, span.end)),
         (None, Some(c)) => slice(ctx.src, c.span.start, c.span.end),
         (None, None) => "?".into(),

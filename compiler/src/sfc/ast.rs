@@ -49,15 +49,17 @@ pub struct Assoc {
 /// `TRANSITION [name] [(PRIORITY := n)] FROM steps TO steps := cond; END_TRANSITION`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Transition {
-    pub name: Option<Ident>,
-    pub priority: Option<(i64, Span)>,
+    /// Boxed, as are `priority` and `ladder`: few transitions have one, and
+    /// a sequence of 100,000 steps holds as many transitions (issue 30).
+    pub name: Option<Box<Ident>>,
+    pub priority: Option<Box<(i64, Span)>>,
     pub from: Vec<Ident>,
     pub to: Vec<Ident>,
     /// `None` when the condition did not parse (already reported).
     pub cond: Option<Expr>,
     /// Where the rung of a `: LADDER` condition is (§20.5.7): `cond` is
     /// the ST it stands for, this the contacts as written, for pictures.
-    pub ladder: Option<Span>,
+    pub ladder: Option<Box<Span>>,
     pub span: Span,
 }
 

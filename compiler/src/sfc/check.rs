@@ -30,10 +30,13 @@ pub fn check(seq: &Sequence, ctx: Context) -> Vec<Diagnostic> {
     }
     let mut out = Vec::new();
     let steps = step_names(&charts, &mut out);
-    let home = step_charts(&charts);
+    // Which chart has a step is asked only about unknown steps: the map is
+    // made at the first.
+    let mut home = None;
     for c in &charts {
-        chart(c, &home, &mut out);
+        chart(c, &charts, &mut home, &mut out);
     }
+    drop(home);
     transition_names(&charts, &mut out);
     actions(seq, &charts, &mut out);
     let before = out.len();
@@ -73,6 +76,31 @@ fn first_span(c: &Chart) -> Span {
     }
 }
 
+/// A step name as a key, compared as [`key`] compares, borrowed from the
+/// tree: the chart's index holds no copy of each name (issue 30).
+#[derive(Clone, Copy, Debug)]
+struct NoCase<'a>(&'a str);
+
+impl PartialEq for NoCase<'_> {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.eq_ignore_ascii_case(other.0)
+    }
+}
+
+impl Eq for NoCase<'_> {}
+
+impl std::hash::Hash for NoCase<'_> {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        for b in self.0.bytes() {
+            h.write_u8(b.to_ascii_uppercase());
+        }
+        h.write_u8(0xff);
+    }
+}
+
+/// Each step of a chart by name: its first index.
+type StepIndex<'a> = HashMap<NoCase<'a>, usize>;
+
 fn key(i: &Ident) -> String {
     i.text.as_str().to_ascii_uppercase()
 }
@@ -109,20 +137,20 @@ fn step_charts(charts: &[Named]) -> HashMap<String, String> {
 }
 
 /// One chart: an initial step, known steps in transitions, reachability.
-/// `home` says which chart has a step this one names but lacks.
-fn chart(c: &Named, home: &HashMap<String, String>, out: &mut Vec<Diagnostic>) {
+/// `home` says which chart has a step this one names but lacks (made from
+/// `charts` when first needed).
+fn chart(c: &Named, charts: &[Named], home: &mut Option<HashMap<String, String>>, out: &mut Vec<Diagnostic>) {
     let has_initial = c.chart.steps.iter().any(|s| s.initial);
     if !has_initial {
         out.push(Diagnostic::from(SfcError::NoInitialStep { span: c.at, chart: c.what.clone() }));
     }
-    let index: HashMap<String, usize> =
-        c.chart.steps.iter().enumerate().rev().map(|(i, s)| (key(&s.name), i)).collect();
+    let index: StepIndex<'_> = c.chart.steps.iter().enumerate().rev().map(|(i, s)| (NoCase(&s.name.text), i)).collect();
     for t in &c.chart.transitions {
         for s in t.from.iter().chain(&t.to) {
-            if index.contains_key(&key(s)) {
+            if index.contains_key(&NoCase(&s.text)) {
                 continue;
             }
-            let other_chart = home.get(&key(s)).cloned();
+            let other_chart = home.get_or_insert_with(|| step_charts(charts)).get(&key(s)).cloned();
             out.push(Diagnostic::from(SfcError::UnknownStep { span: s.span, name: s.text.to_string(), other_chart }));
         }
     }
@@ -138,8 +166,13 @@ fn chart(c: &Named, home: &HashMap<String, String>, out: &mut Vec<Diagnostic>) {
 }
 
 /// Transitions that can activate a step that is still active (W0202).
-fn unsafe_transitions(c: &Chart, index: &HashMap<String, usize>, out: &mut Vec<Diagnostic>) {
-    let known = |list: &[Ident]| list.iter().filter_map(|s| index.get(&key(s)).copied()).collect::<Vec<_>>();
+fn unsafe_transitions(c: &Chart, index: &StepIndex<'_>, out: &mut Vec<Diagnostic>) {
+    let known = |list: &[Ident]| {
+        let mut v = list.iter().filter_map(|s| index.get(&NoCase(&s.text)).copied()).collect::<Vec<_>>();
+        // A filtered collect makes room for four.
+        v.shrink_to_fit();
+        v
+    };
     let edges: Vec<Edge> = c.transitions.iter().map(|t| Edge { from: known(&t.from), to: known(&t.to) }).collect();
     let initial: Vec<usize> = (0..c.steps.len()).filter(|&i| c.steps[i].initial).collect();
     if let Some((ti, si)) = unsafe_edge(c.steps.len(), &initial, &edges) {
@@ -155,11 +188,11 @@ fn unsafe_transitions(c: &Chart, index: &HashMap<String, usize>, out: &mut Vec<D
 /// Steps no transition can reach from the initial steps. A transition is
 /// taken once all of its source steps are reachable (a simultaneous
 /// convergence waits for every branch); each is visited once.
-fn unreachable<'c>(c: &'c Chart, index: &HashMap<String, usize>) -> Vec<&'c Step> {
+fn unreachable<'c>(c: &'c Chart, index: &StepIndex<'_>) -> Vec<&'c Step> {
     let mut waiting: Vec<usize> = waits(c, index);
     let mut leaving: Vec<Vec<usize>> = vec![Vec::new(); c.steps.len()];
     for (ti, t) in c.transitions.iter().enumerate() {
-        for s in t.from.iter().filter_map(|s| index.get(&key(s))) {
+        for s in t.from.iter().filter_map(|s| index.get(&NoCase(&s.text))) {
             // `FROM (A, A)` waits for A once.
             if leaving[*s].last() != Some(&ti) {
                 leaving[*s].push(ti);
@@ -175,20 +208,20 @@ fn unreachable<'c>(c: &'c Chart, index: &HashMap<String, usize>) -> Vec<&'c Step
         for &ti in &leaving[s] {
             waiting[ti] -= 1;
             if waiting[ti] == 0 {
-                todo.extend(c.transitions[ti].to.iter().filter_map(|s| index.get(&key(s))));
+                todo.extend(c.transitions[ti].to.iter().filter_map(|s| index.get(&NoCase(&s.text))));
             }
         }
     }
-    let first = |i: usize| index.get(&key(&c.steps[i].name)) == Some(&i);
+    let first = |i: usize| index.get(&NoCase(&c.steps[i].name.text)) == Some(&i);
     (0..c.steps.len()).filter(|&i| !reached[i] && first(i)).map(|i| &c.steps[i]).collect()
 }
 
 /// For each transition, how many distinct known source steps it waits for.
-fn waits(c: &Chart, index: &HashMap<String, usize>) -> Vec<usize> {
+fn waits(c: &Chart, index: &StepIndex<'_>) -> Vec<usize> {
     c.transitions
         .iter()
         .map(|t| {
-            let mut s: Vec<usize> = t.from.iter().filter_map(|s| index.get(&key(s)).copied()).collect();
+            let mut s: Vec<usize> = t.from.iter().filter_map(|s| index.get(&NoCase(&s.text)).copied()).collect();
             s.sort_unstable();
             s.dedup();
             s.len()

@@ -115,7 +115,8 @@ impl Lowering<'_, '_> {
             let name = t.display_name();
             let cond = t.cond.as_ref().map(|e| self.checker.transition(e));
             let block = cond.map_or(0, |h| self.b.condition(&name, &h));
-            let priority = t.priority.map_or(u32::MAX, |(p, _)| u32::try_from(p.max(0)).unwrap_or(u32::MAX - 1));
+            let priority =
+                t.priority.as_deref().map_or(u32::MAX, |&(p, _)| u32::try_from(p.max(0)).unwrap_or(u32::MAX - 1));
             let line = self.b.line_of(t.span);
             transitions.push(TransitionRec { name, from: ids(&t.from), to: ids(&t.to), priority, block, line });
         }

@@ -16,17 +16,23 @@ use crate::diag::span::Span;
 use crate::diag::{Diagnostic, MAX_ERRORS};
 use crate::st::ast::{Action as StAction, Ident};
 use crate::st::errors::SyntaxError;
-use crate::st::lexer::{lex, Spanned, Tok};
+use crate::st::lexer::{Lexer, Spanned, Tok};
 use crate::st::parser::{parse_expr, parse_file, ParseErrors};
 use linc_format::Code;
+use std::cell::RefCell;
+use std::collections::VecDeque;
 
 /// Parses a sequence; every diagnostic of lexing and parsing comes back,
 /// placed in the file (not yet sorted or deduplicated).
 pub fn parse(src: &str) -> (Sequence, Vec<Diagnostic>) {
-    let (toks, lex_errors) = lex(src);
-    let mut p = Parser { src, toks, pos: 0, diags: Vec::new(), ladder: Vec::new() };
+    let window = Window { lexer: Lexer::new(src), held: VecDeque::new(), first: 0 };
+    let mut p = Parser { src, toks: RefCell::new(window), pos: 0, diags: Vec::new(), ladder: Vec::new() };
     let mut sequence = Sequence { chart: Chart::default(), actions: Vec::new() };
     p.items(&mut sequence.chart, Some(&mut sequence.actions));
+    fit(&mut sequence.chart);
+    let mut lexer = p.toks.into_inner().lexer;
+    lexer.by_ref().for_each(drop);
+    let lex_errors = lexer.errors.into_parts().0;
     // The ST lexer does not know rungs (`|`, `->`): the ladder front end
     // reads the bodies of ladder actions and reports their errors itself.
     let in_ladder = |at: usize| p.ladder.iter().any(|&(l, r)| (l..r).contains(&at));
@@ -36,12 +42,31 @@ pub fn parse(src: &str) -> (Sequence, Vec<Diagnostic>) {
     (sequence, diags)
 }
 
+/// Gives back the room a chart's lists grew beyond their items, before the
+/// checks add their tables to the tree.
+fn fit(chart: &mut Chart) {
+    chart.steps.shrink_to_fit();
+    chart.transitions.shrink_to_fit();
+}
+
 /// The words that start an item; reading resumes at them after an error.
 const STARTERS: [&str; 3] = ["STEP", "INITIAL_STEP", "TRANSITION"];
 
+/// The tokens from the start of the item being read on, lexed as the
+/// parser reaches them: the whole file's tokens (40 bytes each, about 10
+/// times the text) are never held at once (issue 30).
+struct Window<'s> {
+    lexer: Lexer<'s>,
+    held: VecDeque<Spanned<'s>>,
+    /// The index in the file's tokens of `held[0]`.
+    first: usize,
+}
+
 struct Parser<'s> {
     src: &'s str,
-    toks: Vec<Spanned<'s>>,
+    /// Interior mutability lets the read-only helpers (`tok`, `here`, …)
+    /// lex ahead.
+    toks: RefCell<Window<'s>>,
     pos: usize,
     diags: Vec<Diagnostic>,
     /// Byte ranges of ladder action bodies.
@@ -54,19 +79,45 @@ struct Reported;
 type R<T> = Result<T, Reported>;
 
 impl<'s> Parser<'s> {
-    fn tok(&self) -> Option<&Tok<'s>> {
-        self.toks.get(self.pos).map(|t| &t.1)
+    /// The token at index `i` of the file, lexing up to it.
+    fn at(&self, i: usize) -> Option<Spanned<'s>> {
+        let mut w = self.toks.borrow_mut();
+        let k = i.checked_sub(w.first).expect("a token the parser let go of");
+        while w.held.len() <= k {
+            let t = w.lexer.next()?;
+            w.held.push_back(t);
+        }
+        w.held.get(k).copied()
+    }
+
+    /// A token already read.
+    fn nth(&self, i: usize) -> Spanned<'s> {
+        self.at(i).expect("a token read before")
+    }
+
+    /// Lets go of the tokens before the last one read: an item looks back
+    /// only within itself, and its end is where the last token read ends.
+    fn forget_read(&mut self) {
+        let w = self.toks.get_mut();
+        let keep = self.pos.saturating_sub(1);
+        while w.first < keep && w.held.pop_front().is_some() {
+            w.first += 1;
+        }
+    }
+
+    fn tok(&self) -> Option<Tok<'s>> {
+        self.at(self.pos).map(|t| t.1)
     }
 
     fn here(&self) -> Span {
-        match self.toks.get(self.pos) {
+        match self.at(self.pos) {
             Some(t) => Span::new(t.0, t.2),
             None => Span::new(self.src.len(), self.src.len()),
         }
     }
 
     fn word_at(&self, i: usize, word: &str) -> bool {
-        matches!(self.toks.get(i), Some((_, Tok::Name(n), _)) if n.eq_ignore_ascii_case(word))
+        matches!(self.at(i), Some((_, Tok::Name(n), _)) if n.eq_ignore_ascii_case(word))
     }
 
     fn word(&self, word: &str) -> bool {
@@ -95,9 +146,9 @@ impl<'s> Parser<'s> {
     }
 
     fn expect(&mut self, tok: Tok<'static>, expected: &'static str) -> R<Span> {
-        if self.tok() == Some(&tok) {
+        if self.tok() == Some(tok) {
             self.pos += 1;
-            return Ok(Span::new(self.toks[self.pos - 1].0, self.toks[self.pos - 1].2));
+            return Ok(Span::new(self.nth(self.pos - 1).0, self.nth(self.pos - 1).2));
         }
         Err(self.error(expected))
     }
@@ -111,8 +162,8 @@ impl<'s> Parser<'s> {
     }
 
     fn name(&mut self, expected: &'static str) -> R<Ident> {
-        match self.toks.get(self.pos) {
-            Some(&(l, Tok::Name(n), r)) => {
+        match self.at(self.pos) {
+            Some((l, Tok::Name(n), r)) => {
                 self.pos += 1;
                 Ok(Ident { text: n.trim().into(), span: Span::new(l, r) })
             }
@@ -121,7 +172,7 @@ impl<'s> Parser<'s> {
     }
 
     fn semi(&mut self) {
-        if self.tok() == Some(&Tok::Semi) {
+        if self.tok() == Some(Tok::Semi) {
             self.pos += 1;
         }
     }
@@ -145,6 +196,7 @@ impl<'s> Parser<'s> {
     /// actions; a nested chart stops at its `END_ACTION`.
     fn items(&mut self, chart: &mut Chart, mut actions: Option<&mut Vec<Action>>) {
         while let Some(t) = self.tok() {
+            self.forget_read();
             if self.word("STEP") || self.word("INITIAL_STEP") {
                 self.step(chart);
             } else if self.word("TRANSITION") {
@@ -182,18 +234,21 @@ impl<'s> Parser<'s> {
             self.recover("END_STEP");
         }
         step.span = Span::new(l, self.prev_end());
+        // A step has few associations: a Vec's first growth makes room for
+        // four (512 bytes, more than the step's text).
+        step.assocs.shrink_to_fit();
         chart.steps.push(step);
     }
 
     fn prev_end(&self) -> usize {
-        self.pos.checked_sub(1).and_then(|i| self.toks.get(i)).map(|t| t.2).unwrap_or(0)
+        self.pos.checked_sub(1).and_then(|i| self.at(i)).map(|t| t.2).unwrap_or(0)
     }
 
     /// The associations of a step. A missing `:` is reported and reading
     /// goes on; a broken association is skipped to its `;`, so the ones
     /// after it still count (and their actions are not reported unused).
     fn step_body(&mut self, step: &mut Step) -> R<()> {
-        if self.expect(Tok::Colon, "`:` after the step name").is_err() && self.tok() == Some(&Tok::Colon) {
+        if self.expect(Tok::Colon, "`:` after the step name").is_err() && self.tok() == Some(Tok::Colon) {
             self.pos += 1;
         }
         while !self.word("END_STEP") {
@@ -215,7 +270,7 @@ impl<'s> Parser<'s> {
     fn skip_assoc(&mut self) {
         while self.tok().is_some() && !self.word("END_STEP") && !self.at_starter() {
             self.pos += 1;
-            if self.toks[self.pos - 1].1 == Tok::Semi {
+            if self.nth(self.pos - 1).1 == Tok::Semi {
                 return;
             }
         }
@@ -227,10 +282,10 @@ impl<'s> Parser<'s> {
         self.expect(Tok::LParen, "`(` and a qualifier after the action name")?;
         let qualifier = self.name("a qualifier: P, N, L, D, E, F, S or R")?;
         let mut time = None;
-        if self.tok() == Some(&Tok::Comma) {
+        if self.tok() == Some(Tok::Comma) {
             self.pos += 1;
-            match self.toks.get(self.pos) {
-                Some(&(l, Tok::Time(t), r)) => {
+            match self.at(self.pos) {
+                Some((l, Tok::Time(t), r)) => {
                     self.pos += 1;
                     time = Some((t, Span::new(l, r)));
                 }
@@ -284,16 +339,16 @@ impl Parser<'_> {
         if matches!(self.tok(), Some(Tok::Name(_))) && !self.word("FROM") {
             let n = self.name("a transition name")?;
             self.check_name(&n, "a transition name has no dots");
-            t.name = Some(n);
+            t.name = Some(Box::new(n));
         }
-        if self.tok() == Some(&Tok::LParen) {
+        if self.tok() == Some(Tok::LParen) {
             self.pos += 1;
             self.expect_word("PRIORITY", "`PRIORITY`")?;
             self.expect(Tok::Assign, "`:=` after PRIORITY")?;
-            match self.toks.get(self.pos) {
-                Some(&(l, Tok::Int(n), r)) => {
+            match self.at(self.pos) {
+                Some((l, Tok::Int(n), r)) => {
                     self.pos += 1;
-                    t.priority = Some((n, Span::new(l, r)));
+                    t.priority = Some(Box::new((n, Span::new(l, r))));
                 }
                 _ => return Err(self.error("a priority number")),
             }
@@ -303,7 +358,7 @@ impl Parser<'_> {
         t.from = self.steps()?;
         self.expect(Tok::To, "`TO` and the steps the transition leads to")?;
         t.to = self.steps()?;
-        if self.tok() == Some(&Tok::Colon) && self.word_at(self.pos + 1, "LADDER") {
+        if self.tok() == Some(Tok::Colon) && self.word_at(self.pos + 1, "LADDER") {
             self.pos += 2;
             return self.ladder_condition(t);
         }
@@ -315,17 +370,17 @@ impl Parser<'_> {
     /// an output, read by the ladder front end and desugared into the ST
     /// condition it stands for.
     fn ladder_condition(&mut self, t: &mut Transition) -> R<()> {
-        let a = self.toks.get(self.pos).map_or(self.src.len(), |tok| tok.0);
-        while self.tok().is_some() && self.tok() != Some(&Tok::Semi) && !self.word("END_TRANSITION") {
+        let a = self.at(self.pos).map_or(self.src.len(), |tok| tok.0);
+        while self.tok().is_some() && self.tok() != Some(Tok::Semi) && !self.word("END_TRANSITION") {
             self.pos += 1;
         }
-        let b = self.toks.get(self.pos).map_or(self.src.len(), |tok| tok.0);
-        if self.tok() != Some(&Tok::Semi) {
+        let b = self.at(self.pos).map_or(self.src.len(), |tok| tok.0);
+        if self.tok() != Some(Tok::Semi) {
             return Err(self.error("`;` after the ladder condition"));
         }
         self.pos += 1;
         self.ladder.push((a, b));
-        t.ladder = Some(Span::new(a, b));
+        t.ladder = Some(Box::new(Span::new(a, b)));
         let (cond, diagnostics) = crate::ladder::desugar_condition(&self.src[a..b]);
         for mut d in diagnostics {
             shift::diagnostic(&mut d, a);
@@ -342,12 +397,12 @@ impl Parser<'_> {
 
     /// A step name or `(a, b, …)`.
     fn steps(&mut self) -> R<Vec<Ident>> {
-        if self.tok() != Some(&Tok::LParen) {
+        if self.tok() != Some(Tok::LParen) {
             return Ok(vec![self.name("a step name or `(` and a list of steps")?]);
         }
         self.pos += 1;
         let mut list = vec![self.name("a step name")?];
-        while self.tok() == Some(&Tok::Comma) {
+        while self.tok() == Some(Tok::Comma) {
             self.pos += 1;
             list.push(self.name("a step name")?);
         }
@@ -363,13 +418,13 @@ impl Parser<'_> {
             self.pos += 1;
         }
         let end = self.pos;
-        let has_semi = end > first && self.toks[end - 1].1 == Tok::Semi;
+        let has_semi = end > first && self.nth(end - 1).1 == Tok::Semi;
         let last = if has_semi { end - 1 } else { end };
         if last == first {
             self.pos = first;
             return Err(self.error("a transition condition"));
         }
-        let (a, b) = (self.toks[first].0, self.toks[last - 1].2);
+        let (a, b) = (self.nth(first).0, self.nth(last - 1).2);
         let (expr, errors) = parse_expr(&self.src[a..b]);
         self.slice_errors(errors, a, b, last);
         t.cond = expr.map(|mut e| {
@@ -392,10 +447,10 @@ impl Parser<'_> {
         let syntax = errors.syntax.iter().map(|e| e.to_diagnostic());
         for mut d in lex.chain(syntax).collect::<Vec<_>>() {
             shift::diagnostic(&mut d, at);
-            if let (Some((l, t, r)), Code::E0011, true) = (self.toks.get(next), d.code, d.span.start >= end) {
+            if let (Some((l, t, r)), Code::E0011, true) = (self.at(next), d.code, d.span.start >= end) {
                 d.code = Code::E0010;
                 d.message = format!("unexpected {}", t.describe());
-                d.span = Span::new(*l, *r);
+                d.span = Span::new(l, r);
             }
             self.push(d);
         }
@@ -403,13 +458,12 @@ impl Parser<'_> {
 
     fn action(&mut self) -> Action {
         let l = self.here().start;
-        let is_chart =
-            matches!(self.toks.get(self.pos + 2), Some((_, Tok::Colon, _))) && self.word_at(self.pos + 3, "CHART");
+        let is_chart = matches!(self.at(self.pos + 2), Some((_, Tok::Colon, _))) && self.word_at(self.pos + 3, "CHART");
         if is_chart {
             return self.chart_action(l);
         }
         let is_ladder =
-            matches!(self.toks.get(self.pos + 2), Some((_, Tok::Colon, _))) && self.word_at(self.pos + 3, "LADDER");
+            matches!(self.at(self.pos + 2), Some((_, Tok::Colon, _))) && self.word_at(self.pos + 3, "LADDER");
         if is_ladder {
             return self.ladder_action(l);
         }
@@ -421,11 +475,11 @@ impl Parser<'_> {
     /// action checks and compiles like an ST action. Contacts and coils are
     /// typed by the ST checker here (its codes, not the ladder's).
     fn ladder_action(&mut self, l: usize) -> Action {
-        let name = match self.toks.get(self.pos + 1) {
-            Some(&(nl, Tok::Name(n), nr)) => Ident { text: n.trim().into(), span: Span::new(nl, nr) },
+        let name = match self.at(self.pos + 1) {
+            Some((nl, Tok::Name(n), nr)) => Ident { text: n.trim().into(), span: Span::new(nl, nr) },
             _ => Ident { text: crate::st::ast::Name::default(), span: self.here() },
         };
-        let body_start = self.toks.get(self.pos + 3).map_or(l, |t| t.2);
+        let body_start = self.at(self.pos + 3).map_or(l, |t| t.2);
         self.pos += 4;
         while self.tok().is_some() && !matches!(self.tok(), Some(Tok::EndAction | Tok::Action)) {
             self.pos += 1;
@@ -449,8 +503,8 @@ impl Parser<'_> {
     /// `ACTION name : CHART steps and transitions END_ACTION`.
     fn chart_action(&mut self, l: usize) -> Action {
         self.pos += 1;
-        let name = match self.toks.get(self.pos) {
-            Some(&(nl, Tok::Name(n), nr)) => Ident { text: n.trim().into(), span: Span::new(nl, nr) },
+        let name = match self.at(self.pos) {
+            Some((nl, Tok::Name(n), nr)) => Ident { text: n.trim().into(), span: Span::new(nl, nr) },
             _ => {
                 self.error("an action name");
                 Ident { text: crate::st::ast::Name::default(), span: self.here() }
@@ -465,6 +519,7 @@ impl Parser<'_> {
         self.pos += 3;
         let mut chart = Chart::default();
         self.items(&mut chart, None);
+        fit(&mut chart);
         if self.expect(Tok::EndAction, "`END_ACTION`").is_ok() {
             self.semi();
         }
@@ -479,12 +534,12 @@ impl Parser<'_> {
         while self.tok().is_some() && !matches!(self.tok(), Some(Tok::EndAction | Tok::Action)) {
             self.pos += 1;
         }
-        if self.tok() == Some(&Tok::EndAction) {
+        if self.tok() == Some(Tok::EndAction) {
             self.pos += 1;
             self.semi();
         }
         let end = self.prev_end();
-        let stem = match self.toks.get(first + 1) {
+        let stem = match self.at(first + 1) {
             Some((_, Tok::Name(n), _)) => n.trim().to_string(),
             _ => String::new(),
         };

@@ -40,7 +40,7 @@ fn chart(out: &mut String, c: &Chart, depth: usize) {
     }
     for t in &c.transitions {
         let _ = write!(out, "{pad}(transition \"{}\"", escape(&t.display_name()));
-        if let Some((p, _)) = t.priority {
+        if let Some(&(p, _)) = t.priority.as_deref() {
             let _ = write!(out, " (priority {p})");
         }
         let names = |v: &[crate::st::ast::Ident]| v.iter().map(|i| escape(&i.text)).collect::<Vec<_>>().join(" ");

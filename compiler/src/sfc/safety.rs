@@ -37,14 +37,7 @@ pub fn unsafe_edge(steps: usize, initial: &[usize], edges: &[Edge]) -> Option<(u
     // The transitions leaving each step: a set of active steps looks only
     // at those, not at every transition of the chart (which made a chart of
     // n steps in a ring cost n × n).
-    let mut leaving: Vec<Vec<usize>> = vec![Vec::new(); steps];
-    for (ti, e) in edges.iter().enumerate() {
-        for &s in &e.from {
-            if leaving[s].last() != Some(&ti) {
-                leaving[s].push(ti);
-            }
-        }
-    }
+    let leaving = Leaving::new(steps, edges);
     let has = |m: &[u64], s: usize| m[s / 64] & (1 << (s % 64)) != 0;
     let mut seen: HashSet<Vec<u64>> = HashSet::from([start.clone()]);
     let mut todo = VecDeque::from([start]);
@@ -53,7 +46,7 @@ pub fn unsafe_edge(steps: usize, initial: &[usize], edges: &[Edge]) -> Option<(u
     while let Some(m) = todo.pop_front() {
         // In index order, as the search examined them before.
         enabled.clear();
-        enabled.extend(active(&m).flat_map(|s| leaving.get(s).into_iter().flatten().copied()));
+        enabled.extend(active(&m).flat_map(|s| leaving.of(s).iter().copied()));
         enabled.sort_unstable();
         enabled.dedup();
         for &ti in &enabled {
@@ -81,6 +74,49 @@ pub fn unsafe_edge(steps: usize, initial: &[usize], edges: &[Edge]) -> Option<(u
         }
     }
     None
+}
+
+/// The transitions leaving each step, in order, each once (`FROM (A, A)`
+/// leaves A once), in one list: a list per step took 56 bytes a step.
+struct Leaving {
+    /// Step `s`'s transitions are `list[start[s]..start[s + 1]]`.
+    start: Vec<usize>,
+    list: Vec<usize>,
+}
+
+impl Leaving {
+    fn new(steps: usize, edges: &[Edge]) -> Leaving {
+        // Each (step, transition) once: the transition last counted for each
+        // step tells a repeat.
+        let mut last = vec![usize::MAX; steps];
+        let mut start = vec![0usize; steps + 1];
+        for (ti, e) in edges.iter().enumerate() {
+            for &s in &e.from {
+                if std::mem::replace(&mut last[s], ti) != ti {
+                    start[s + 1] += 1;
+                }
+            }
+        }
+        for s in 0..steps {
+            start[s + 1] += start[s];
+        }
+        last.fill(usize::MAX);
+        let mut next = start.clone();
+        let mut list = vec![0; start[steps]];
+        for (ti, e) in edges.iter().enumerate() {
+            for &s in &e.from {
+                if std::mem::replace(&mut last[s], ti) != ti {
+                    list[next[s]] = ti;
+                    next[s] += 1;
+                }
+            }
+        }
+        Leaving { start, list }
+    }
+
+    fn of(&self, s: usize) -> &[usize] {
+        self.start.get(s..s + 2).map_or(&[], |r| &self.list[r[0]..r[1]])
+    }
 }
 
 /// The steps of a set, in order.
