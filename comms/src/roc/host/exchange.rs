@@ -27,20 +27,53 @@ impl Timed for Box<dyn serialport::SerialPort> {
 
 /// How an exchange failed: the stream may be kept, or must be dropped
 /// (closed, hung up or broken) and opened again for the next attempt.
-pub(super) enum Failed {
+enum Failed {
     Timeout,
     Broken,
 }
 
-impl From<Failed> for LinkError {
-    fn from(_: Failed) -> LinkError {
-        LinkError::Timeout
+/// A link's stream and the frames read from it: opened when an exchange
+/// needs it, dropped (with the bytes held from it) when it breaks, so the
+/// next attempt opens it again. TCP and serial links differ only in how
+/// they open it.
+pub(super) struct Held<S> {
+    stream: Option<S>,
+    frames: Deframer,
+}
+
+impl<S: Timed> Held<S> {
+    pub(super) fn new(stream: Option<S>) -> Held<S> {
+        Held { stream, frames: Deframer::default() }
+    }
+
+    /// One request and its reply, opening the stream with `open` first if
+    /// there is none; any failure is a timeout to the host (the module's
+    /// status 8 after its attempts).
+    pub(super) fn exchange(
+        &mut self,
+        request: &Frame,
+        timeout: Duration,
+        open: impl FnOnce() -> Option<S>,
+    ) -> Result<Frame, LinkError> {
+        if self.stream.is_none() {
+            self.stream = Some(open().ok_or(LinkError::Timeout)?);
+            self.frames = Deframer::default();
+        }
+        let Some(stream) = self.stream.as_mut() else { return Err(LinkError::Timeout) };
+        match exchange(stream, &mut self.frames, request, timeout) {
+            Ok(reply) => Ok(reply),
+            Err(Failed::Broken) => {
+                self.stream = None;
+                Err(LinkError::Timeout)
+            }
+            Err(Failed::Timeout) => Err(LinkError::Timeout),
+        }
     }
 }
 
 /// Sends `request` and waits until `timeout` for the frame from its
 /// device to this host.
-pub(super) fn exchange<S: Timed + ?Sized>(
+fn exchange<S: Timed + ?Sized>(
     stream: &mut S,
     frames: &mut Deframer,
     request: &Frame,

@@ -4,17 +4,16 @@
 //! so noise on the line is dropped and a reply that arrives in pieces is
 //! joined; the reply timeout is the same too.
 
-use super::exchange::{exchange, Failed};
+use super::exchange::Held;
 use super::poll::{Link, LinkError};
-use crate::roc::{Deframer, Frame};
+use crate::roc::Frame;
 use crate::serial::Line;
 use std::time::Duration;
 
 pub struct SerialLink {
     path: String,
     line: Line,
-    port: Option<Box<dyn serialport::SerialPort>>,
-    frames: Deframer,
+    held: Held<Box<dyn serialport::SerialPort>>,
     /// How long to wait for a reply (the module's default is one second).
     pub timeout: Duration,
 }
@@ -25,37 +24,18 @@ impl SerialLink {
     /// than every command timing out.
     pub fn open(path: &str, line: Line, timeout: Duration) -> Result<SerialLink, serialport::Error> {
         let port = line.builder(path, timeout).open()?;
-        Ok(SerialLink { path: path.to_string(), line, port: Some(port), frames: Deframer::default(), timeout })
-    }
-
-    /// The port, opened again after it failed (a USB adapter unplugged and
-    /// back); the bytes held from before are thrown away with it.
-    fn opened(&mut self) -> Result<&mut Box<dyn serialport::SerialPort>, LinkError> {
-        if self.port.is_none() {
-            let port = self.line.builder(&self.path, self.timeout).open().map_err(|_| LinkError::Timeout)?;
-            self.frames = Deframer::default();
-            self.port = Some(port);
-        }
-        self.port.as_mut().ok_or(LinkError::Timeout)
+        Ok(SerialLink { path: path.to_string(), line, held: Held::new(Some(port)), timeout })
     }
 }
 
 impl Link for SerialLink {
     /// Sends the request and waits for a frame from its device to this
     /// host; other frames (another host's traffic on a shared line) are
-    /// dropped. A port that fails is closed, and opened again on the next
-    /// attempt.
+    /// dropped. A port that fails (a USB adapter unplugged and back) is
+    /// closed, and opened again on the next attempt.
     fn exchange(&mut self, request: &Frame) -> Result<Frame, LinkError> {
-        let timeout = self.timeout;
-        self.opened()?;
-        let (Some(port), frames) = (self.port.as_mut(), &mut self.frames) else { return Err(LinkError::Timeout) };
-        match exchange(port, frames, request, timeout) {
-            Err(Failed::Broken) => {
-                self.port = None;
-                Err(LinkError::Timeout)
-            }
-            other => Ok(other?),
-        }
+        let (line, path, timeout) = (&self.line, &self.path, self.timeout);
+        self.held.exchange(request, timeout, || line.builder(path, timeout).open().ok())
     }
 }
 

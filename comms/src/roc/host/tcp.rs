@@ -2,33 +2,22 @@
 //! (a poll list runs its commands in order), reconnecting after the
 //! device closed the connection.
 
-use super::exchange::{exchange, Failed};
+use super::exchange::Held;
 use super::poll::{Link, LinkError};
-use crate::roc::{Deframer, Frame};
+use crate::roc::Frame;
 use std::net::{SocketAddr, TcpStream};
 use std::time::Duration;
 
 pub struct TcpLink {
     addr: SocketAddr,
-    stream: Option<TcpStream>,
-    frames: Deframer,
+    held: Held<TcpStream>,
     /// How long to wait for a reply (the module's default is one second).
     pub timeout: Duration,
 }
 
 impl TcpLink {
     pub fn new(addr: SocketAddr, timeout: Duration) -> TcpLink {
-        TcpLink { addr, stream: None, frames: Deframer::default(), timeout }
-    }
-
-    fn connected(&mut self) -> Result<&mut TcpStream, LinkError> {
-        if self.stream.is_none() {
-            let s = TcpStream::connect_timeout(&self.addr, self.timeout).map_err(|_| LinkError::Timeout)?;
-            let _ = s.set_nodelay(true);
-            self.frames = Deframer::default();
-            self.stream = Some(s);
-        }
-        self.stream.as_mut().ok_or(LinkError::Timeout)
+        TcpLink { addr, held: Held::new(None), timeout }
     }
 }
 
@@ -37,15 +26,11 @@ impl Link for TcpLink {
     /// host; other frames are dropped. A closed or failed connection is
     /// dropped too, and made again on the next attempt.
     fn exchange(&mut self, request: &Frame) -> Result<Frame, LinkError> {
-        let timeout = self.timeout;
-        self.connected()?;
-        let (Some(stream), frames) = (self.stream.as_mut(), &mut self.frames) else { return Err(LinkError::Timeout) };
-        match exchange(stream, frames, request, timeout) {
-            Err(Failed::Broken) => {
-                self.stream = None;
-                Err(LinkError::Timeout)
-            }
-            other => Ok(other?),
-        }
+        let (addr, timeout) = (self.addr, self.timeout);
+        self.held.exchange(request, timeout, || {
+            let s = TcpStream::connect_timeout(&addr, timeout).ok()?;
+            let _ = s.set_nodelay(true);
+            Some(s)
+        })
     }
 }
