@@ -54,7 +54,7 @@ impl Roc {
             Err(e) => return Some(Next::Reply(error_reply(frame, me, e).unwrap_or_default())),
         };
         let link = self.station.links.iter().find(|(d, _)| *d == (next.unit, next.group)).map(|&(_, a)| a);
-        Some(Next::Later(Box::pin(pass_on(frame.clone(), me, next, link, peer.to_string()))))
+        Some(Next::Later(Box::pin(pass_on(frame.clone(), me, (w.path, next), link, peer.to_string()))))
     }
 }
 
@@ -63,14 +63,14 @@ fn error_reply(req: &Frame, me: Address, e: linc_comms::roc::ops::RocError) -> O
     Frame { dst: req.src, src: me, opcode: rocp::ERROR, data: rocp::error_data(e, req.opcode) }.encode()
 }
 
-/// Passes a store-and-forward frame to `next` over `link` and brings its
+/// Passes a store-and-forward frame along `path` to `next` over `link` and brings its
 /// reply back to the host with this device as the source; no link, no
 /// answer within [`RELAY_TIMEOUT`], or a reply that is not for this path,
 /// is error 22. Each outcome is logged.
 async fn pass_on(
     req: Frame,
     me: Address,
-    next: Address,
+    (path, next): (forward::Path, Address),
     link: Option<SocketAddr>,
     peer: String,
 ) -> (Option<Vec<u8>>, Vec<String>) {
@@ -85,9 +85,7 @@ async fn pass_on(
         Ok(Err(e)) => return fail(format!("{addr}: {e}")),
         Err(_) => return fail(format!("{addr} did not answer within {} s", RELAY_TIMEOUT.as_secs())),
     };
-    let ours = |f: &Frame| {
-        forward::parse(&f.data).is_ok_and(|w| Some(w.path) == forward::parse(&req.data).ok().map(|r| r.path))
-    };
+    let ours = |f: &Frame| forward::parse(&f.data).is_ok_and(|w| w.path == path);
     if reply.opcode != rocp::ERROR && !(reply.opcode == rocp::FORWARD && ours(&reply)) {
         return fail(format!("{addr} answered with opcode {} for another path", reply.opcode));
     }
