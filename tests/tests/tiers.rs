@@ -295,6 +295,46 @@ fn generated_programs_agree_on_both_tiers() {
     assert!(failed * 10 >= ran, "too few faults to exercise the bail-outs: {failed}");
 }
 
+/// Offsets whose range and kinds the compiling tier knows at translation
+/// (a `RefOff` and its load or store in one basic block: the range check
+/// is done once and the kind check left out) and loops whose watchdog is
+/// checked only at their headers, against the longest way round: under
+/// every watchdog from 1 to 400 instructions both tiers stop at the same
+/// instruction with the same store, and an offset past the run faults at
+/// the same place.
+#[test]
+fn known_offsets_and_loop_headers_agree_under_every_watchdog() {
+    let shift = "FOR Counters.N1 := 1 TO 4 DO
+    FOR Counters.N0 := 7 TO 1 BY -1 DO
+        Block_5.Val1{Counters.N0} := Block_5.Val1{Counters.N0 - 1};
+        Recipe.N0{Counters.N0} := Recipe.N0{Counters.N0 - 1} + Counters.N1;
+    END_FOR;
+    IF Counters.N1 MOD 2 = 0 THEN
+        Block_5.Val1 := Block_5.Val8 * 0.5 + 1.0;
+    ELSE
+        Recipe.A0{Counters.N1} := Recipe.A0{Counters.N1 + 1} - 2.0;
+    END_IF;
+END_FOR;
+";
+    let past = "FOR Counters.N0 := 0 TO 9 DO
+    Recipe.N0{Counters.N0} := Counters.N0;
+END_FOR;
+";
+    for (what, src) in [("the shift register", shift), ("an offset past the run", past)] {
+        for watchdog in 1..=400 {
+            let case = Case::new(src, watchdog, None).expect("compiles");
+            assert!(case.compiles(), "{what} is compiled");
+            let a = case.run(false, 2, false, false);
+            let b = case.run(true, 2, false, false);
+            assert_eq!(a, b, "tiers differ on {what} under a watchdog of {watchdog}");
+        }
+        let case = Case::new(src, 100_000, None).expect("compiles");
+        case.assert_tiers_agree(what);
+        let ending = case.run(true, 1, false, false);
+        assert_eq!(ending.error.is_some(), src == past, "{what}: {:?}", ending.error);
+    }
+}
+
 #[test]
 fn what_compiles_and_what_is_left_to_the_interpreter() {
     let numeric = Case::new("Recipe.A1 := Recipe.A0 * 2.0;\n", 1000, None).expect("compiles");

@@ -3,8 +3,8 @@
 //! The operand stack lives in Cranelift variables (one per depth and type,
 //! so REAL arithmetic stays in float registers); its shape before every
 //! instruction follows from the verifier's shapes at labels. Every point where
-//! the interpreter could fault, and every block entry where the watchdog
-//! budget would run out inside the block, leads to a cold *bail-out* that
+//! the interpreter could fault, and every loop header where the watchdog
+//! budget could run out before the next one ([`budget`]), leads to a cold *bail-out* that
 //! writes the stack, locals, promoted cells, reference and budget into the
 //! [`Frame`] and returns 1, so the interpreter resumes at that instruction.
 
@@ -32,7 +32,7 @@ pub(super) enum Ty {
 const MAX_DEPTH: usize = 256;
 
 /// Whether control never falls through to the next instruction.
-fn ends_block(op: &Op) -> bool {
+pub(super) fn ends_block(op: &Op) -> bool {
     matches!(op, Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {} | Op::Return { .. })
 }
 
@@ -171,6 +171,11 @@ struct Emitter<'a, 'f> {
     exit_order: Vec<(ExitKey, Block)>,
     /// The first instruction of the basic block being translated.
     leader: usize,
+    /// The watchdog checkpoints and their bounds, by leader ([`budget`]).
+    checks: Vec<Option<u64>>,
+    /// The slots the reference can hold, when a `Ref` or `RefOff` earlier
+    /// in the same basic block set it (its range already checked there).
+    ref_known: Option<(u32, u32)>,
 }
 
 fn frame_off(off: usize) -> i32 {
@@ -213,6 +218,8 @@ impl<'a, 'f> Emitter<'a, 'f> {
             exits: Default::default(),
             exit_order: Vec::new(),
             leader: 0,
+            checks: Vec::new(),
+            ref_known: None,
         }
     }
 
@@ -251,6 +258,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
         }
         self.blocks =
             (0..=n).map(|pc| (leader[pc] && self.s.states[pc].is_some()).then(|| self.b.create_block())).collect();
+        self.checks = budget::checkpoints(self.s.ops, &leader, &self.ends);
     }
 
     fn body(&mut self) -> Option<()> {
@@ -299,6 +307,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
     fn block(&mut self, start: usize) -> Option<()> {
         self.stack = self.s.states[start].clone()?;
         self.leader = start;
+        self.ref_known = None;
         if start == self.s.ops.len() {
             // Ran off the end: the interpreter reports it.
             self.exit_now(Exit::Budget, start);
@@ -311,8 +320,10 @@ impl<'a, 'f> Emitter<'a, 'f> {
         self.count_hit(start);
         let n = (end - start) as i64;
         let bud = self.b.use_var(self.budget);
-        let short = self.b.ins().icmp_imm(IntCC::UnsignedLessThan, bud, n);
-        self.exit_if(short, Exit::Budget, start);
+        if let Some(bound) = self.checks.get(start).copied().flatten() {
+            let short = self.b.ins().icmp_imm(IntCC::UnsignedLessThan, bud, bound as i64);
+            self.exit_if(short, Exit::Budget, start);
+        }
         let left = self.b.ins().iadd_imm(bud, -n);
         self.b.def_var(self.budget, left);
         for pc in start..end {
@@ -405,6 +416,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
     }
 }
 
+mod budget;
 mod cover;
 mod exits;
 mod ops;

@@ -101,51 +101,80 @@ impl Emitter<'_, '_> {
     pub(super) fn reference(&mut self, pc: usize, op: Op) -> Option<()> {
         let sym = op.symbol()?;
         let slot = self.s.plan.slot(sym)?;
-        let r = match op {
-            Op::Ref { .. } => self.b.ins().iconst(types::I32, i64::from(slot)),
+        let (r, hi) = match op {
+            Op::Ref { .. } => (self.b.ins().iconst(types::I32, i64::from(slot)), slot),
             _ => {
                 let room = *self.s.plan.sym_room.get(usize::from(sym))?;
                 let n = self.pop(Ty::I)?;
                 let bad = self.b.ins().icmp_imm(IntCC::UnsignedGreaterThan, n, i64::from(room));
                 self.check(pc, bad);
-                self.b.ins().iadd_imm(n, i64::from(slot))
+                (self.b.ins().iadd_imm(n, i64::from(slot)), slot.checked_add(room)?)
             }
         };
         self.b.def_var(self.ref_slot, r);
+        self.ref_known = Some((slot, hi));
         Some(())
     }
 
     /// Loads and stores through the reference: the slot is checked against
     /// the plan and the slot's kind against the instruction (anything
-    /// unexpected is left to the interpreter, which reports it).
+    /// unexpected is left to the interpreter, which reports it). Where the
+    /// reference was set in the same basic block, its slots are known at
+    /// translation: the range check is already done, and a kind check that
+    /// every one of them passes is left out (a shift register's offsets
+    /// then cost one compare each).
     pub(super) fn through_ref(&mut self, pc: usize, op: Op) -> Option<()> {
         let slot = self.b.use_var(self.ref_slot);
         let n = self.s.plan.cells.len() as i64;
-        let out = self.b.ins().icmp_imm(IntCC::UnsignedGreaterThanOrEqual, slot, n);
+        let known = self.ref_known.and_then(|(lo, hi)| self.s.plan.kinds.get(lo as usize..=hi as usize));
         let value = match op {
             Op::StoreRefI { .. } => Some(self.pop(Ty::I)?),
             Op::StoreRefR { .. } => Some(self.pop(Ty::F)?),
             _ => None,
         };
-        self.check(pc, out);
+        if known.is_none() {
+            let out = self.b.ins().icmp_imm(IntCC::UnsignedGreaterThanOrEqual, slot, n);
+            self.check(pc, out);
+        }
         let wide = self.b.ins().uextend(self.s.ptr, slot);
-        let kaddr = self.b.ins().iadd(self.kinds?, wide);
-        let kind = self.b.ins().uload8(types::I32, MemFlags::trusted(), kaddr, 0);
-        let off = self.b.ins().ishl_imm(wide, 2);
-        let addr = self.b.ins().iadd(self.mem?, off);
         let (mask, want) = match op {
-            Op::LoadRefI { .. } => (i64::from(REAL), 0),
-            Op::StoreRefI { .. } => (i64::from(REAL | READONLY), 0),
-            Op::LoadRefR { .. } => (3, i64::from(REAL)),
-            _ => (i64::from(3 | READONLY), i64::from(REAL)),
+            Op::LoadRefI { .. } => (REAL, 0),
+            Op::StoreRefI { .. } => (REAL | READONLY, 0),
+            Op::LoadRefR { .. } => (3, REAL),
+            _ => (3 | READONLY, REAL),
         };
-        let masked = self.b.ins().band_imm(kind, mask);
-        let mut bad = self.b.ins().icmp_imm(IntCC::NotEqual, masked, want);
+        let all_pass = known.is_some_and(|ks| ks.iter().all(|&k| k & mask == want));
+        // BOOL slots among INT ones: whether each is one, where it differs.
+        let bools = known.filter(|_| all_pass).map(|ks| {
+            let b = ks.iter().filter(|&&k| k & 3 == BOOL).count();
+            (b == ks.len(), b == 0)
+        });
+        let mixed = matches!(op, Op::StoreRefI { .. }) && !bools.is_some_and(|(a, z)| a || z);
+        let kind = if all_pass && !mixed {
+            None
+        } else {
+            let kaddr = self.b.ins().iadd(self.kinds?, wide);
+            Some(self.b.ins().uload8(types::I32, MemFlags::trusted(), kaddr, 0))
+        };
+        let mut bad = match kind.filter(|_| !all_pass) {
+            Some(kind) => {
+                let masked = self.b.ins().band_imm(kind, i64::from(mask));
+                Some(self.b.ins().icmp_imm(IntCC::NotEqual, masked, i64::from(want)))
+            }
+            None => None,
+        };
         if let (Op::StoreRefR { .. }, Some(v)) = (op, value) {
             let nf = self.non_finite(v);
-            bad = self.b.ins().bor(bad, nf);
+            bad = Some(match bad {
+                Some(b) => self.b.ins().bor(b, nf),
+                None => nf,
+            });
         }
-        self.check(pc, bad);
+        if let Some(bad) = bad {
+            self.check(pc, bad);
+        }
+        let off = self.b.ins().ishl_imm(wide, 2);
+        let addr = self.b.ins().iadd(self.mem?, off);
         match (op, value) {
             (Op::LoadRefI { .. }, _) => {
                 let v = self.b.ins().load(types::I32, MemFlags::trusted(), addr, 0);
@@ -155,11 +184,19 @@ impl Emitter<'_, '_> {
                 let v = self.b.ins().load(types::F32, MemFlags::trusted(), addr, 0);
                 self.push(Ty::F, v);
             }
-            (Op::StoreRefI { .. }, Some(v)) => {
-                let is_bool = self.b.ins().band_imm(kind, i64::from(BOOL));
-                let nz = self.b.ins().icmp_imm(IntCC::NotEqual, v, 0);
-                let nz = self.bool32(nz);
-                let v = self.b.ins().select(is_bool, nz, v);
+            (Op::StoreRefI { .. }, Some(mut v)) => {
+                let all_bool = bools.is_some_and(|(a, _)| a);
+                if all_bool || kind.is_some() {
+                    let nz = self.b.ins().icmp_imm(IntCC::NotEqual, v, 0);
+                    let nz = self.bool32(nz);
+                    v = match kind {
+                        Some(kind) if !all_bool => {
+                            let is_bool = self.b.ins().band_imm(kind, i64::from(BOOL));
+                            self.b.ins().select(is_bool, nz, v)
+                        }
+                        _ => nz,
+                    };
+                }
                 self.b.ins().store(MemFlags::trusted(), v, addr, 0);
                 self.note_slot(pc, Some(slot), 0)?;
             }
