@@ -162,6 +162,54 @@ pub fn call(index: usize, args: &[Value], env: &mut dyn Env) -> Result<Value, Fn
 
 /// Where CONCAT is in [`TABLE`].
 const CONCAT: usize = 29;
+/// Where LEN, LEFT, RIGHT and MID are in [`TABLE`].
+const LEN: usize = 25;
+const LEFT: usize = 26;
+const RIGHT: usize = 27;
+const MID: usize = 28;
+
+/// The string functions a caller can run on the buffer of their first
+/// argument, as it lies on the caller's own stack, with no argument list
+/// and no new buffer (a loop of LEFT, RIGHT, MID, CONCAT and LEN then
+/// copies only the bytes it keeps). Each gives exactly what [`call`]
+/// gives; the argument kinds are the signature's (a string, then INTs, or
+/// two strings for CONCAT).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InPlace {
+    /// LEN(s): the length; `s` is no longer needed.
+    Len,
+    /// LEFT(s, l), RIGHT(s, l): `s` becomes the result.
+    Left,
+    Right,
+    /// MID(s, l, p): `s` becomes the result.
+    Mid,
+    /// CONCAT(a, b): `b` is appended to `a`.
+    Concat,
+}
+
+impl InPlace {
+    /// Function number `index` run in place, if it can be.
+    pub fn of(index: usize) -> Option<InPlace> {
+        Some(match index {
+            LEN => InPlace::Len,
+            LEFT => InPlace::Left,
+            RIGHT => InPlace::Right,
+            MID => InPlace::Mid,
+            CONCAT => InPlace::Concat,
+            _ => return None,
+        })
+    }
+
+    /// Runs a LEFT, RIGHT or MID on `s` with its INT arguments in order.
+    pub fn cut(self, s: &mut Vec<u8>, ints: [i32; 2]) {
+        match self {
+            InPlace::Left => strings::left_in_place(s, ints[0]),
+            InPlace::Right => strings::right_in_place(s, ints[0]),
+            InPlace::Mid => strings::mid_in_place(s, ints[0], ints[1]),
+            InPlace::Len | InPlace::Concat => {}
+        }
+    }
+}
 
 /// Where FORMAT is in [`TABLE`].
 const FORMAT: usize = 4;
@@ -231,6 +279,34 @@ mod tests {
         let mut spare = Vec::new();
         assert_eq!(call_owned(CONCAT, &mut [b("ab"), b("cd")], &mut env, &mut spare), Ok(b("abcd")));
         assert_eq!(call_owned(FORMAT, &mut [b("05I"), Value::Int(42)], &mut env, &mut spare), Ok(b("00042")));
+    }
+
+    #[test]
+    fn in_place_gives_what_call_gives() {
+        let mut env = NoEnv;
+        for (i, name) in [(LEN, "LEN"), (LEFT, "LEFT"), (RIGHT, "RIGHT"), (MID, "MID"), (CONCAT, "CONCAT")] {
+            assert_eq!(TABLE[i].0, name);
+            assert!(InPlace::of(i).is_some(), "{name}");
+        }
+        assert_eq!(InPlace::of(FORMAT), None);
+        let texts: [&[u8]; 4] = [b"", b"a", b"abcdef", b"0123456789"];
+        let ns = [i32::MIN, -1, 0, 1, 2, 3, 6, 7, 10, 11, i32::MAX];
+        for s in texts {
+            for l in ns {
+                for (i, how) in [(LEFT, InPlace::Left), (RIGHT, InPlace::Right)] {
+                    let want = call(i, &[Value::Bytes(s.to_vec()), Value::Int(l)], &mut env);
+                    let mut got = s.to_vec();
+                    how.cut(&mut got, [l, 0]);
+                    assert_eq!(Ok(Value::Bytes(got)), want, "{}({s:?}, {l})", TABLE[i].0);
+                }
+                for p in ns {
+                    let want = call(MID, &[Value::Bytes(s.to_vec()), Value::Int(l), Value::Int(p)], &mut env);
+                    let mut got = s.to_vec();
+                    InPlace::Mid.cut(&mut got, [l, p]);
+                    assert_eq!(Ok(Value::Bytes(got)), want, "MID({s:?}, {l}, {p})");
+                }
+            }
+        }
     }
 
     #[test]

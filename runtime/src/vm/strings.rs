@@ -4,6 +4,9 @@
 //! a comparison or call, a cell's old value after a store) are kept as
 //! spares and refilled by the next string pushed, so a loop that builds a
 //! string (`S := CONCAT(S, FORMAT(...))`) settles to no allocation per pass.
+//! LEN, LEFT, RIGHT, MID and CONCAT work on the buffer of their first
+//! argument where it lies on the stack (`linc_stdlib::call::InPlace`), so
+//! they copy only the bytes they keep and build no argument list.
 //! Reuse changes nothing that a program can see: every value pushed is still
 //! counted against the string budget as if it were new.
 
@@ -15,6 +18,7 @@ use crate::store::{Cell, Store};
 use crate::vm::MAX_STRING;
 use crate::wire::Bytes;
 use linc_format::Code;
+use linc_stdlib::call::InPlace;
 use linc_stdlib::value::decode_dollar;
 use linc_stdlib::{FnError, Value};
 
@@ -154,6 +158,64 @@ impl Vm {
         self.push_s(decoded)
     }
 
+    /// Whether `Call func` runs on the string stack's own buffers
+    /// ([`InPlace`]): a string function of the signature's argument kinds
+    /// (the INT ones not given as REAL), with its string arguments on the
+    /// stack.
+    fn in_place(&self, func: u8, argc: u8, ret: u8, types: u32) -> Option<InPlace> {
+        let how = InPlace::of(usize::from(func))?;
+        let kinds: &[Kind] = match how {
+            InPlace::Len => &[Kind::Bytes],
+            InPlace::Left | InPlace::Right => &[Kind::Bytes, Kind::Int],
+            InPlace::Mid => &[Kind::Bytes, Kind::Int, Kind::Int],
+            InPlace::Concat => &[Kind::Bytes, Kind::Bytes],
+        };
+        let want_ret = if how == InPlace::Len { Kind::Int } else { Kind::Bytes };
+        let strings = kinds.iter().filter(|k| **k == Kind::Bytes).count();
+        let fits = usize::from(argc) == kinds.len()
+            && kinds.iter().enumerate().all(|(i, k)| Kind::arg(types, i) == *k)
+            && Kind::from_bits(u32::from(ret)) == want_ret
+            && self.strs.len() >= strings;
+        fits.then_some(how)
+    }
+
+    /// A string function in place: the values and the budget counts are
+    /// the general path's (its result is counted as a new string).
+    fn call_in_place(&mut self, how: InPlace, pop_num: &mut impl FnMut(&mut Vm) -> u32) -> Result<Option<u32>, Fault> {
+        let mut ints = [0i32; 2];
+        let n = match how {
+            InPlace::Left | InPlace::Right => 1,
+            InPlace::Mid => 2,
+            _ => 0,
+        };
+        for i in (0..n).rev() {
+            ints[i] = pop_num(self) as i32;
+        }
+        let len = match how {
+            InPlace::Len => {
+                let s = self.pop_s();
+                let n = linc_stdlib::functions::strings::len(&s);
+                self.recycle(s);
+                return Ok(Some(n as u32));
+            }
+            InPlace::Concat => {
+                let b = self.pop_s();
+                let a = self.strs.last_mut().ok_or_else(corrupt)?;
+                a.extend_from_slice(&b);
+                let len = a.len();
+                self.recycle(b);
+                len
+            }
+            _ => {
+                let s = self.strs.last_mut().ok_or_else(corrupt)?;
+                how.cut(s, ints);
+                s.len()
+            }
+        };
+        self.count(len)?;
+        Ok(None)
+    }
+
     /// `Call`: pops the arguments (numeric ones through `pop_num`, so that
     /// compiled code can hand over its own), calls library function `func`
     /// and pushes a string result or returns a numeric one as bits. A
@@ -166,6 +228,9 @@ impl Vm {
         types: u32,
         mut pop_num: impl FnMut(&mut Vm) -> u32,
     ) -> Result<Option<u32>, Fault> {
+        if let Some(how) = self.in_place(func, argc, ret, types) {
+            return self.call_in_place(how, &mut pop_num);
+        }
         let n = usize::from(argc);
         let mut args = std::mem::take(&mut self.args);
         args.clear();

@@ -43,6 +43,35 @@ pub fn mid(s: &[u8], l: i32, p: i32) -> Vec<u8> {
     count(l).and_then(|l| span(s.len(), p, l)).and_then(|r| s.get(r)).map_or_else(Vec::new, <[u8]>::to_vec)
 }
 
+/// LEFT in place: `s` becomes `left(s, l)` in its own buffer.
+pub fn left_in_place(s: &mut Vec<u8>, l: i32) {
+    match count(l).filter(|&l| l <= s.len()) {
+        Some(l) => s.truncate(l),
+        None => s.clear(),
+    }
+}
+
+/// RIGHT in place: `s` becomes `right(s, l)` in its own buffer.
+pub fn right_in_place(s: &mut Vec<u8>, l: i32) {
+    match count(l).and_then(|l| s.len().checked_sub(l)) {
+        Some(start) => {
+            s.drain(..start);
+        }
+        None => s.clear(),
+    }
+}
+
+/// MID in place: `s` becomes `mid(s, l, p)` in its own buffer.
+pub fn mid_in_place(s: &mut Vec<u8>, l: i32, p: i32) {
+    match count(l).and_then(|l| span(s.len(), p, l)) {
+        Some(r) => {
+            s.truncate(r.end);
+            s.drain(..r.start);
+        }
+        None => s.clear(),
+    }
+}
+
 /// CONCAT: `a` followed by `b`.
 pub fn concat(a: &[u8], b: &[u8]) -> Vec<u8> {
     [a, b].concat()
