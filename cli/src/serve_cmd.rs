@@ -219,8 +219,9 @@ fn start(a: &ServeArgs, r: &Reporter) -> Result<Server, u8> {
 /// Stops the server, says where it stopped, and saves the state.
 fn stop(server: Server, state: Option<&std::path::Path>, r: &Reporter) -> u8 {
     let done = server.stop();
+    let (compiled, blocks) = done.console.strategy.compiled_blocks();
     crate::out::line(&format!(
-        "stopped at {}: {} scans, {} late",
+        "stopped at {}: {} scans, {} late, {compiled} of {blocks} code blocks compiled",
         done.console.strategy.now_text(),
         done.scans,
         done.late

@@ -25,7 +25,10 @@ fn console_lines_run_while_serving_and_the_run_stops_at_for() {
     assert!(out.contains("Plant.N0 = 0\n"), "{out}");
     assert!(out.contains("error[C0001]: unknown command `NOSUCH`"), "{out}");
     let last = out.lines().last().unwrap_or("");
-    assert!(last.starts_with("stopped at ") && last.ends_with(" late"), "{out}");
+    assert!(
+        last.starts_with("stopped at ") && last.contains(" late, ") && last.ends_with(" code blocks compiled"),
+        "{out}"
+    );
 }
 
 #[cfg(unix)]
