@@ -168,6 +168,12 @@ struct Emitter<'a, 'f> {
     counter_vars: cover::CounterVars,
     /// Stack types at the instruction being translated.
     stack: Vec<Ty>,
+    /// Whether each stack entry is a REAL known to be finite: read from a
+    /// REAL cell, which only ever holds finite values (every writer, the
+    /// interpreter, the console, the wire servers and a restored state,
+    /// refuses a non-finite one), or a finite constant. Storing it again
+    /// needs no check (a shift register's moves).
+    finite: Vec<bool>,
     block_end: usize,
     /// The shared exit blocks made so far ([`exits`]), and in the order
     /// made (the order they are emitted in).
@@ -218,6 +224,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
             counters: None,
             counter_vars: cover::CounterVars::default(),
             stack: Vec::new(),
+            finite: Vec::new(),
             block_end: 0,
             exits: Default::default(),
             exit_order: Vec::new(),
@@ -310,6 +317,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
     /// One basic block: the budget check, then its instructions.
     fn block(&mut self, start: usize) -> Option<()> {
         self.stack = self.s.states[start].clone()?;
+        self.finite = vec![false; self.stack.len()];
         self.leader = start;
         self.ref_known = None;
         if start == self.s.ops.len() {
@@ -358,12 +366,27 @@ impl<'a, 'f> Emitter<'a, 'f> {
         let var = self.var(self.stack.len(), ty);
         self.b.def_var(var, v);
         self.stack.push(ty);
+        self.finite.push(false);
+    }
+
+    /// [`Emitter::push`] of a REAL known to be finite.
+    fn push_finite(&mut self, v: Value) {
+        self.push(Ty::F, v);
+        if let Some(f) = self.finite.last_mut() {
+            *f = true;
+        }
+    }
+
+    /// Whether the top entry is a REAL known to be finite.
+    fn top_is_finite(&self) -> bool {
+        self.stack.last() == Some(&Ty::F) && self.finite.last() == Some(&true)
     }
 
     /// Pops the top entry as `want`, reinterpreting the bits if it was
     /// pushed as the other type (locals and retained slots are untyped).
     fn pop(&mut self, want: Ty) -> Option<Value> {
         let ty = self.stack.pop()?;
+        self.finite.pop();
         let v = self.b.use_var(self.var(self.stack.len(), ty));
         Some(match (ty, want) {
             (Ty::I, Ty::F) => self.b.ins().bitcast(types::F32, MemFlags::new(), v),
@@ -391,7 +414,11 @@ impl<'a, 'f> Emitter<'a, 'f> {
             }
             Op::PushR { v } => {
                 let c = self.b.ins().f32const(v);
-                self.push(Ty::F, c);
+                if v.is_finite() {
+                    self.push_finite(c);
+                } else {
+                    self.push(Ty::F, c);
+                }
             }
             Op::LoadLoc { .. } | Op::StoreLoc { .. } | Op::LoadRet { .. } | Op::StoreRet { .. } => self.local(op)?,
             Op::LoadI { .. } | Op::LoadR { .. } | Op::StoreI { .. } | Op::StoreR { .. } => self.direct(pc, op)?,

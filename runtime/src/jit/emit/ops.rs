@@ -75,7 +75,7 @@ impl Emitter<'_, '_> {
             }
             Op::LoadR { .. } => {
                 let v = self.slot_load(slot, Ty::F)?;
-                self.push(Ty::F, v);
+                self.push_finite(v);
             }
             Op::StoreI { .. } => {
                 let mut v = self.pop(Ty::I)?;
@@ -87,9 +87,12 @@ impl Emitter<'_, '_> {
                 self.note_slot(pc, None, slot)?;
             }
             Op::StoreR { .. } => {
+                let finite = self.top_is_finite();
                 let v = self.pop(Ty::F)?;
-                let bad = self.non_finite(v);
-                self.check(pc, bad);
+                if !finite {
+                    let bad = self.non_finite(v);
+                    self.check(pc, bad);
+                }
                 self.slot_store(slot, v)?;
                 self.note_slot(pc, None, slot)?;
             }
@@ -127,6 +130,7 @@ impl Emitter<'_, '_> {
         let slot = self.b.use_var(self.ref_slot);
         let n = self.s.plan.cells.len() as i64;
         let known = self.ref_known.and_then(|(lo, hi)| self.s.plan.kinds.get(lo as usize..=hi as usize));
+        let finite = self.top_is_finite();
         let value = match op {
             Op::StoreRefI { .. } => Some(self.pop(Ty::I)?),
             Op::StoreRefR { .. } => Some(self.pop(Ty::F)?),
@@ -163,7 +167,7 @@ impl Emitter<'_, '_> {
             }
             None => None,
         };
-        if let (Op::StoreRefR { .. }, Some(v)) = (op, value) {
+        if let (Op::StoreRefR { .. }, Some(v), false) = (op, value, finite) {
             let nf = self.non_finite(v);
             bad = Some(match bad {
                 Some(b) => self.b.ins().bor(b, nf),
@@ -181,8 +185,9 @@ impl Emitter<'_, '_> {
                 self.push(Ty::I, v);
             }
             (Op::LoadRefR { .. }, _) => {
+                // A REAL slot (the kind check above, or known): finite.
                 let v = self.b.ins().load(types::F32, MemFlags::trusted(), addr, 0);
-                self.push(Ty::F, v);
+                self.push_finite(v);
             }
             (Op::StoreRefI { .. }, Some(mut v)) => {
                 let all_bool = bools.is_some_and(|(a, _)| a);
