@@ -183,6 +183,9 @@ struct Emitter<'a, 'f> {
     leader: usize,
     /// The watchdog checkpoints and their bounds, by leader ([`budget`]).
     checks: Vec<Option<u64>>,
+    /// Before each instruction, whether the reference may still be read
+    /// ([`liveness`]): an exit where it cannot hands over none.
+    ref_live: Vec<bool>,
     /// The slots the reference can hold, when a `Ref` or `RefOff` earlier
     /// in the same basic block set it (its range already checked there).
     ref_known: Option<(u32, u32)>,
@@ -230,6 +233,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
             exit_order: Vec::new(),
             leader: 0,
             checks: Vec::new(),
+            ref_live: Vec::new(),
             ref_known: None,
         }
     }
@@ -270,6 +274,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
         self.blocks =
             (0..=n).map(|pc| (leader[pc] && self.s.states[pc].is_some()).then(|| self.b.create_block())).collect();
         self.checks = budget::checkpoints(self.s.ops, &leader, &self.ends);
+        self.ref_live = liveness::reference_live(self.s.ops);
     }
 
     fn body(&mut self) -> Option<()> {
@@ -450,6 +455,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
 mod budget;
 mod cover;
 mod exits;
+mod liveness;
 mod ops;
 mod services;
 

@@ -64,8 +64,13 @@ impl Emitter<'_, '_> {
             }
         }
         self.counter_values(&mut vals);
-        if bail_at.is_some() {
-            vals.push(self.b.use_var(self.ref_slot));
+        if let Some(pc) = bail_at {
+            let r = if self.ref_live.get(pc).copied().unwrap_or(true) {
+                self.b.use_var(self.ref_slot)
+            } else {
+                self.b.ins().iconst(types::I32, -1)
+            };
+            vals.push(r);
             vals.push(self.b.use_var(self.budget));
         }
         vals
