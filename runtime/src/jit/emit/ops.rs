@@ -330,20 +330,45 @@ impl Emitter<'_, '_> {
     /// `i32::MIN / -1` wraps instead of trapping.
     fn divide(&mut self, pc: usize, op: Op) -> Option<()> {
         let (a, b) = self.int2()?;
-        let zero = self.b.ins().icmp_imm(IntCC::Equal, b, 0);
-        self.check(pc, zero);
-        let m1 = self.b.ins().icmp_imm(IntCC::Equal, b, -1);
-        let one = self.b.ins().iconst(types::I32, 1);
-        let safe = self.b.ins().select(m1, one, b);
-        let v = if matches!(op, Op::DivI {}) {
-            let q = self.b.ins().sdiv(a, safe);
-            let neg = self.b.ins().ineg(a);
-            self.b.ins().select(m1, neg, q)
-        } else {
-            self.b.ins().srem(a, safe)
+        // A constant divisor (`N MOD 3`) needs neither check: Cranelift
+        // folds the comparisons but kept a branch on the constant result.
+        let v = match self.constant(b) {
+            // Compared as 32 bits: Cranelift may keep an I32 constant's
+            // immediate masked to its width.
+            Some(k) if k as i32 != 0 && k as i32 != -1 => {
+                if matches!(op, Op::DivI {}) {
+                    self.b.ins().sdiv(a, b)
+                } else {
+                    self.b.ins().srem(a, b)
+                }
+            }
+            _ => {
+                let zero = self.b.ins().icmp_imm(IntCC::Equal, b, 0);
+                self.check(pc, zero);
+                let m1 = self.b.ins().icmp_imm(IntCC::Equal, b, -1);
+                let one = self.b.ins().iconst(types::I32, 1);
+                let safe = self.b.ins().select(m1, one, b);
+                if matches!(op, Op::DivI {}) {
+                    let q = self.b.ins().sdiv(a, safe);
+                    let neg = self.b.ins().ineg(a);
+                    self.b.ins().select(m1, neg, q)
+                } else {
+                    self.b.ins().srem(a, safe)
+                }
+            }
         };
         self.push(Ty::I, v);
         Some(())
+    }
+
+    /// The value of `v` when it is an integer constant of the code.
+    fn constant(&self, v: Value) -> Option<i64> {
+        use cranelift_codegen::ir::{InstructionData, Opcode};
+        let inst = self.b.func.dfg.value_def(v).inst()?;
+        match self.b.func.dfg.insts[inst] {
+            InstructionData::UnaryImm { opcode: Opcode::Iconst, imm } => Some(imm.bits()),
+            _ => None,
+        }
     }
 
     fn unary(&mut self, pc: usize, op: Op) -> Option<()> {
