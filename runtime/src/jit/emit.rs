@@ -8,7 +8,7 @@
 //! writes the stack, locals, promoted cells, reference and budget into the
 //! [`Frame`] and returns 1, so the interpreter resumes at that instruction.
 
-use super::plan::{Plan, REAL};
+use super::plan::{Plan, BOOL, REAL};
 use super::{Entry, Frame};
 use crate::isa::Op;
 use crate::verify::Shape as LabelShape;
@@ -186,6 +186,9 @@ struct Emitter<'a, 'f> {
     /// Before each instruction, whether the reference may still be read
     /// ([`liveness`]): an exit where it cannot hands over none.
     ref_live: Vec<bool>,
+    /// For each `RefOff`, the range its index is known to lie in
+    /// ([`ranges`]).
+    offsets: Vec<Option<ranges::Iv>>,
     /// The slots the reference can hold, when a `Ref` or `RefOff` earlier
     /// in the same basic block set it (its range already checked there).
     ref_known: Option<(u32, u32)>,
@@ -234,6 +237,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
             leader: 0,
             checks: Vec::new(),
             ref_live: Vec::new(),
+            offsets: Vec::new(),
             ref_known: None,
         }
     }
@@ -275,6 +279,12 @@ impl<'a, 'f> Emitter<'a, 'f> {
             (0..=n).map(|pc| (leader[pc] && self.s.states[pc].is_some()).then(|| self.b.create_block())).collect();
         self.checks = budget::checkpoints(self.s.ops, &leader, &self.ends);
         self.ref_live = liveness::reference_live(self.s.ops);
+        let plan = self.s.plan;
+        let tracked: Vec<bool> =
+            self.slots.iter().zip(&plan.kinds).map(|(v, k)| v.is_some() && k & 3 != REAL).collect();
+        let bools: Vec<bool> = plan.kinds.iter().map(|k| k & 3 == BOOL).collect();
+        let slot_of = |sym: u16| plan.slot(sym).map(|s| s as usize);
+        self.offsets = ranges::offset_ranges(self.s.ops, (&tracked, &bools), slot_of, self.s.locals, &self.ends);
     }
 
     fn body(&mut self) -> Option<()> {
@@ -457,6 +467,7 @@ mod cover;
 mod exits;
 mod liveness;
 mod ops;
+mod ranges;
 mod services;
 
 use exits::{Exit, ExitKey};

@@ -109,8 +109,12 @@ impl Emitter<'_, '_> {
             _ => {
                 let room = *self.s.plan.sym_room.get(usize::from(sym))?;
                 let n = self.pop(Ty::I)?;
-                let bad = self.b.ins().icmp_imm(IntCC::UnsignedGreaterThan, n, i64::from(room));
-                self.check(pc, bad);
+                // A loop variable's known range makes the check redundant.
+                let known = self.offsets.get(pc).copied().flatten();
+                if !known.is_some_and(|iv| iv.lo >= 0 && iv.hi <= i64::from(room)) {
+                    let bad = self.b.ins().icmp_imm(IntCC::UnsignedGreaterThan, n, i64::from(room));
+                    self.check(pc, bad);
+                }
                 (self.b.ins().iadd_imm(n, i64::from(slot)), slot.checked_add(room)?)
             }
         };
