@@ -346,6 +346,31 @@ END_FOR;
     }
 }
 
+/// LEN, LEFT, RIGHT, MID and CONCAT run in place on both tiers (the
+/// compiling tier calls them directly with their INT arguments): every
+/// edge of their arguments gives the same strings, and a loop that builds
+/// a string past the run's string budget faults at the same instruction.
+#[test]
+fn string_functions_in_place_agree_on_both_tiers() {
+    let edges = "FOR Counters.N0 := -2 TO 20 DO
+    RAW_COM.Buffer1 := CONCAT(LEFT(Raw1.Rx_Value, Counters.N0), RIGHT(Raw1.Rx_Value, Counters.N0 - 3));
+    Raw1.Tx_Value := MID(RAW_COM.Buffer1, Counters.N0 MOD 5, Counters.N0 - 1);
+    Counters.N1 := Counters.N1 + LEN(RAW_COM.Buffer1) + LEN(Raw1.Tx_Value);
+END_FOR;
+";
+    let budget = "FOR Counters.N0 := 1 TO 100000 DO
+    RAW_COM.Buffer1 := CONCAT(RAW_COM.Buffer1, CONCAT(LEFT('abcdefgh', 6), 'xy'));
+END_FOR;
+";
+    for (what, src, faults) in [("the edges", edges, false), ("a string past the budget", budget, true)] {
+        let case = Case::new(src, 10_000_000, None).expect("compiles");
+        assert!(case.compiles(), "{what} is compiled");
+        case.assert_tiers_agree(what);
+        let ending = case.run(true, 1, false, false);
+        assert_eq!(ending.error.is_some(), faults, "{what}: {:?}", ending.error);
+    }
+}
+
 #[test]
 fn what_compiles_and_what_is_left_to_the_interpreter() {
     let numeric = Case::new("Recipe.A1 := Recipe.A0 * 2.0;\n", 1000, None).expect("compiles");

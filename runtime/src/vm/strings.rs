@@ -160,36 +160,32 @@ impl Vm {
 
     /// Whether `Call func` runs on the string stack's own buffers
     /// ([`InPlace`]): a string function of the signature's argument kinds
-    /// (the INT ones not given as REAL), with its string arguments on the
-    /// stack.
-    fn in_place(&self, func: u8, argc: u8, ret: u8, types: u32) -> Option<InPlace> {
+    /// (the INT ones not given as REAL), and how many INT arguments it
+    /// takes. Decided by the instruction alone, so the compiling tier
+    /// decides it when translating.
+    pub(crate) fn in_place_of(func: u8, argc: u8, ret: u8, types: u32) -> Option<(InPlace, usize)> {
+        // Argument kinds two bits each, the first lowest: INT 0, BYTES 3.
+        const S: u32 = 3;
         let how = InPlace::of(usize::from(func))?;
-        let kinds: &[Kind] = match how {
-            InPlace::Len => &[Kind::Bytes],
-            InPlace::Left | InPlace::Right => &[Kind::Bytes, Kind::Int],
-            InPlace::Mid => &[Kind::Bytes, Kind::Int, Kind::Int],
-            InPlace::Concat => &[Kind::Bytes, Kind::Bytes],
+        let (want, ints) = match how {
+            InPlace::Len => ((1, S, Kind::Int), 0),
+            InPlace::Left | InPlace::Right => ((2, S, Kind::Bytes), 1),
+            InPlace::Mid => ((3, S, Kind::Bytes), 2),
+            InPlace::Concat => ((2, S | S << 2, Kind::Bytes), 0),
         };
-        let want_ret = if how == InPlace::Len { Kind::Int } else { Kind::Bytes };
-        let strings = kinds.iter().filter(|k| **k == Kind::Bytes).count();
-        let fits = usize::from(argc) == kinds.len()
-            && kinds.iter().enumerate().all(|(i, k)| Kind::arg(types, i) == *k)
-            && Kind::from_bits(u32::from(ret)) == want_ret
-            && self.strs.len() >= strings;
-        fits.then_some(how)
+        let mask = (1u32 << (2 * want.0)) - 1;
+        let fits = argc == want.0 && types & mask == want.1 && Kind::from_bits(u32::from(ret)) == want.2;
+        fits.then_some((how, ints))
     }
 
-    /// A string function in place: the values and the budget counts are
-    /// the general path's (its result is counted as a new string).
-    fn call_in_place(&mut self, how: InPlace, pop_num: &mut impl FnMut(&mut Vm) -> u32) -> Result<Option<u32>, Fault> {
-        let mut ints = [0i32; 2];
-        let n = match how {
-            InPlace::Left | InPlace::Right => 1,
-            InPlace::Mid => 2,
-            _ => 0,
-        };
-        for i in (0..n).rev() {
-            ints[i] = pop_num(self) as i32;
+    /// A string function in place with its INT arguments in order: the
+    /// values and the budget counts are the general path's (its result is
+    /// counted as a new string; a missing string argument is the null
+    /// string, as the general path pops it).
+    pub(crate) fn call_in_place(&mut self, how: InPlace, ints: [i32; 2]) -> Result<Option<u32>, Fault> {
+        let strings = if how == InPlace::Concat { 2 } else { 1 };
+        while self.strs.len() < strings {
+            self.strs.insert(0, Vec::new());
         }
         let len = match how {
             InPlace::Len => {
@@ -228,8 +224,12 @@ impl Vm {
         types: u32,
         mut pop_num: impl FnMut(&mut Vm) -> u32,
     ) -> Result<Option<u32>, Fault> {
-        if let Some(how) = self.in_place(func, argc, ret, types) {
-            return self.call_in_place(how, &mut pop_num);
+        if let Some((how, n)) = Vm::in_place_of(func, argc, ret, types) {
+            let mut ints = [0i32; 2];
+            for i in (0..n).rev() {
+                ints[i] = pop_num(self) as i32;
+            }
+            return self.call_in_place(how, ints);
         }
         let n = usize::from(argc);
         let mut args = std::mem::take(&mut self.args);

@@ -8,6 +8,7 @@ use crate::isa::{Kind, Op};
 use crate::jit::host::{self, Service};
 use crate::jit::Frame;
 use cranelift_codegen::ir::{types, AbiParam, InstBuilder, MemFlags, Signature, Value};
+use linc_stdlib::call::InPlace;
 use std::mem::offset_of;
 
 impl Emitter<'_, '_> {
@@ -90,6 +91,9 @@ impl Emitter<'_, '_> {
     /// order, the string arguments are already on the VM's string stack.
     pub(super) fn call(&mut self, pc: usize, op: Op) -> Option<()> {
         let Op::Call { func, argc, ret, types: tys } = op else { return None };
+        if let Some((how, ints)) = crate::vm::Vm::in_place_of(func, argc, ret, tys) {
+            return self.call_in_place(pc, how, ints);
+        }
         let n = usize::from(argc);
         let numeric: Vec<Kind> = (0..n).map(|i| Kind::arg(tys, i)).filter(|k| *k != Kind::Bytes).collect();
         let stack = self.load_ptr(offset_of!(Frame, stack));
@@ -109,6 +113,23 @@ impl Emitter<'_, '_> {
                 let v = self.service_result(Ty::I);
                 self.push(Ty::I, v);
             }
+        }
+        Some(())
+    }
+
+    /// A string function run in place: its INT arguments go as the
+    /// service's words, with no stack buffer and no decoding at run time.
+    fn call_in_place(&mut self, pc: usize, how: InPlace, ints: usize) -> Option<()> {
+        let zero = self.b.ins().iconst(types::I32, 0);
+        let mut words = [zero; 2];
+        for i in (0..ints.min(2)).rev() {
+            words[i] = self.pop(Ty::I)?;
+        }
+        let code = self.b.ins().iconst(types::I32, i64::from(host::in_place_code(how)));
+        self.serve_values(pc, host::in_place, [code, words[0], words[1]])?;
+        if how == InPlace::Len {
+            let v = self.service_result(Ty::I);
+            self.push(Ty::I, v);
         }
         Some(())
     }
