@@ -1,6 +1,7 @@
 //! ST kernels on the VM beside the same kernel in plain Rust, in one run.
 //!
-//! Each kernel is an action from the guide's world run by `linc`'s VM
+//! Each kernel is one of issue 30's four (`tests/perf/kernels`, with fewer
+//! turns) run by `linc`'s VM
 //! (compiled once, linked once; the measurement is `Vm::run`), and the same
 //! computation written natively over the same data. After criterion's
 //! measurements the bench prints the VM/native ratio of each kernel, on the
@@ -18,12 +19,34 @@ use std::time::{Duration, Instant};
 
 struct Kernel {
     name: &'static str,
-    source: &'static str,
+    /// The action of `tests/perf/kernels` (as `linc run` times it, the
+    /// issue-30 kernels), with its loop count cut to `turns`.
+    file: &'static str,
+    turns: (&'static str, &'static str),
     native: fn() -> f64,
 }
 
+impl Kernel {
+    /// The action's statements: the lines between its header and trailer.
+    fn source(&self) -> String {
+        let body: Vec<&str> = self
+            .file
+            .lines()
+            .skip_while(|l| !l.starts_with("ACTION"))
+            .skip(1)
+            .take_while(|l| !l.starts_with("END_ACTION"))
+            .collect();
+        body.join("\n").replace(self.turns.0, self.turns.1) + "\n"
+    }
+}
+
+/// Turns of each kernel's loop here (the whole-process runs do 10
+/// million, or 100,000 rounds of strings).
 const N: i32 = 10_000;
 
+/// The native equivalents do what LIN's semantics make the ST do (as
+/// `tests/perf/native/*.rs` do): 32-bit wrapping INT arithmetic, every
+/// REAL stored checked to be finite, checked indexing.
 fn native_int_branch() -> f64 {
     let mut acc: i32 = 0;
     for i in 1..=black_box(N) {
@@ -36,55 +59,76 @@ fn native_int_branch() -> f64 {
     f64::from(acc)
 }
 
+fn finite(x: f32) -> f32 {
+    if !x.is_finite() {
+        std::process::abort();
+    }
+    x
+}
+
 fn native_poly() -> f64 {
-    let (a2, a3, a4, a5, a6) = black_box((1.5f32, -2.0f32, 0.5f32, 3.0f32, -1.0f32));
-    let mut x = black_box(0.0f32);
-    let mut y = 0.0f32;
+    let (mut x, mut y) = (black_box(0.0f32), 0.0f32);
     for _ in 0..black_box(N) {
-        y = (((a2 * x + a3) * x + a4) * x + a5) * x + a6;
-        x += 0.001;
+        y = finite((((1.5 * x - 2.0) * x + 0.5) * x + 3.0) * x - 1.0);
+        x = finite(x + 0.001);
     }
     f64::from(y)
 }
 
 fn native_shift() -> f64 {
-    let mut v = black_box([1.0f32, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0]);
-    for k in 0..black_box(N / 8) {
-        for i in 0..7 {
-            v[i] = v[i + 1];
+    let mut v = black_box([0.0f32; 8]);
+    let top = black_box(7usize);
+    for _ in 0..black_box(N) {
+        let mut i = top;
+        while i >= 1 {
+            v[i] = finite(v[i - 1]);
+            i -= 1;
         }
-        v[7] = k as f32;
+        v[0] = finite(v[7] * 0.5 + 1.0);
     }
     f64::from(v[0])
 }
 
 fn native_strings() -> f64 {
-    let mut s: Vec<u8> = Vec::new();
-    for i in 1..=black_box(100) {
-        s.extend_from_slice(format!("{i:05}").as_bytes());
+    fn concat(a: &[u8], b: &[u8]) -> Vec<u8> {
+        let mut out = Vec::with_capacity((a.len() + b.len()).min(65_535));
+        out.extend_from_slice(a);
+        out.extend_from_slice(&b[..b.len().min(65_535 - a.len().min(65_535))]);
+        out
     }
-    s.len() as f64
+    let mut u: Vec<u8> = black_box(b"[M01G0DI*01C5E5$R".to_vec());
+    let mut n: i32 = 0;
+    for _ in 0..black_box(N / 10) {
+        let t = concat(u.get(..4).unwrap_or(b""), b"ab");
+        u = concat(&t, t.len().checked_sub(2).map_or(&b""[..], |s| &t[s..]));
+        n = n.wrapping_add(u.len() as i32);
+    }
+    f64::from(n)
 }
 
 const KERNELS: &[Kernel] = &[
     Kernel {
         name: "integer loop with a data-dependent branch",
-        source: "Counters.N1 := 0;\nFOR Counters.N0 := 1 TO 10000 DO\n  IF Counters.N0 MOD 3 = 0 THEN Counters.N1 := Counters.N1 + Counters.N0;\n  ELSE Counters.N1 := Counters.N1 - 1; END_IF;\nEND_FOR;\n",
+        file: include_str!("../perf/kernels/int.stx"),
+        turns: ("10000000", "10000"),
         native: native_int_branch,
     },
     Kernel {
         name: "real polynomial (Horner, degree 4)",
-        source: "Recipe.A0 := 0;\nRecipe.A2 := 1.5; Recipe.A3 := -2.0; Recipe.A4 := 0.5; Recipe.A5 := 3.0; Recipe.A6 := -1.0;\nFOR Counters.N0 := 1 TO 10000 DO\n  Recipe.A1 := (((Recipe.A2 * Recipe.A0 + Recipe.A3) * Recipe.A0 + Recipe.A4) * Recipe.A0 + Recipe.A5) * Recipe.A0 + Recipe.A6;\n  Recipe.A0 := Recipe.A0 + 0.001;\nEND_FOR;\n",
+        file: include_str!("../perf/kernels/poly.stx"),
+        turns: ("10000000", "10000"),
         native: native_poly,
     },
     Kernel {
         name: "offset-array shift register (§12.12)",
-        source: "FOR Counters.N1 := 0 TO 1249 DO\n  FOR TC001 := 0 TO 6 DO\n    Block_5.Val1{TC001} := Block_5.Val1{TC001 + 1};\n  END_FOR;\n  Block_5.Val1{7} := Counters.N1;\nEND_FOR;\n",
+        file: include_str!("../perf/kernels/shift.stx"),
+        turns: ("10000000", "10000"),
         native: native_shift,
     },
     Kernel {
-        name: "string building with CONCAT/FORMAT",
-        source: "RAW_COM.Buffer1 := '';\nFOR Counters.N0 := 1 TO 100 DO\n  RAW_COM.Buffer1 := CONCAT(RAW_COM.Buffer1, FORMAT('05I', Counters.N0));\nEND_FOR;\n",
+        name: "string building with LEFT/RIGHT/CONCAT/LEN",
+        file: include_str!("../perf/kernels/strings.stx"),
+        turns: ("100000", "1000"),
         native: native_strings,
     },
 ];
@@ -102,7 +146,7 @@ fn ready(k: &Kernel, jit: bool) -> Ready {
 
 /// A kernel ready to run, counting coverage when `covered`.
 fn ready_as(k: &Kernel, jit: bool, covered: bool) -> Ready {
-    let verified = linc_runtime::load(&compile(k.source, guide_db())).expect("kernel loads");
+    let verified = linc_runtime::load(&compile(&k.source(), guide_db())).expect("kernel loads");
     let store = Store::new(guide_db().clone());
     let mut linked = verified.link(&store, &[Program { unit: 0, own: None }]).expect("kernel links");
     if covered {
