@@ -203,11 +203,19 @@ pub struct Lexer<'s> {
 
 impl<'s> Lexer<'s> {
     pub fn new(src: &'s str) -> Lexer<'s> {
+        Lexer::starting_at(src, 0)
+    }
+
+    /// A lexer that starts at byte `start` of `src` (a token's start), with
+    /// offsets still those of the whole text.
+    pub fn starting_at(src: &'s str, start: usize) -> Lexer<'s> {
         let mut raw = Raw::lexer(src);
         // A byte order mark is not part of the text (it stays in the file,
         // so offsets are those of the file).
-        if src.starts_with(crate::diag::files::BOM) {
+        if start == 0 && src.starts_with(crate::diag::files::BOM) {
             raw.bump(crate::diag::files::BOM.len_utf8());
+        } else if start > 0 {
+            raw.bump(start);
         }
         Lexer {
             src,
