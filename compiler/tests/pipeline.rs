@@ -145,6 +145,16 @@ fn an_error_before_a_header_in_the_middle_parses_the_same_in_parts() {
 }
 
 #[test]
+fn an_error_in_any_one_part_parses_the_same_in_parts() {
+    // Parts are parsed by either thread (the calling one takes one in
+    // four). A part is about 2.5% of the file: windows that far apart put
+    // the error in four parts in a row, twice.
+    for at in [0.2, 0.225, 0.25, 0.275, 0.5, 0.525, 0.55, 0.575] {
+        assert_same(&format!("error at {at}"), &with_fragment("Recipe.A0 := ;\n", at, at + 0.01));
+    }
+}
+
+#[test]
 fn an_error_in_the_last_parts_parses_the_same_in_parts() {
     assert_same("errors near the end", &with_fragment("Recipe.A0 := ;\n", 0.99, 1.0));
     let last = format!("{}Recipe.A0 := ;\n", workload::actions(PIPELINE_MIN * 10));

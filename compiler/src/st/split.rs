@@ -30,9 +30,14 @@ use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 /// each other busy and that what waits for the sink stays small.
 const PART: usize = 32 * 1024;
 
-/// Messages waiting from each parsing thread: a part of [`PART`] bytes is
-/// about one batch of actions, so a thread can parse a whole part ahead.
-const QUEUE: usize = 2;
+/// Messages waiting from the other thread: a part of [`PART`] bytes is
+/// about one batch of actions and its end, so the other thread can parse
+/// the parts up to the next one of the calling thread's while that thread
+/// parses its own.
+const QUEUE: usize = 8;
+
+/// The calling thread parses one part in this many ([`mine`]).
+const SHARE: usize = 4;
 
 /// Where the parts start: 0, then the first `ACTION` header at the start of
 /// a line at least [`PART`] bytes after the previous start. A header found
@@ -97,63 +102,91 @@ enum Outcome {
     Rest(usize, usize),
 }
 
-/// Parses the parts on two threads, handing their items to `sink` in order.
+/// Parses the parts on two threads, handing their items to `sink` in order:
+/// a second thread parses three parts of every [`SHARE`], the calling
+/// thread the fourth, besides running the sink on them all.
 fn parse_parts(src: &str, starts: &[usize], sink: &mut dyn FnMut(Item)) -> Outcome {
-    let (tx0, rx0) = sync_channel(QUEUE);
-    let (tx1, rx1) = sync_channel(QUEUE);
+    let (tx, rx) = sync_channel(QUEUE);
     std::thread::scope(|scope| {
-        let first = scope.spawn(move || parse_every_other(src, starts, 0, tx0));
-        let second = scope.spawn(move || parse_every_other(src, starts, 1, tx1));
-        let outcome = take_parts(starts, [rx0, rx1], sink);
-        // The receivers are gone: a thread still parsing stops at its next
-        // send. A panic on either is resumed here.
-        for thread in [first, second] {
-            thread.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-        }
+        let parser = scope.spawn(move || parse_theirs(src, starts, tx));
+        let outcome = take_parts(src, starts, rx, sink);
+        // The receiver is gone: the thread, if still parsing, stops at its
+        // next send. A panic on it is resumed here.
+        parser.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic));
         outcome
     })
 }
 
-/// Hands the parts' items to `sink` in order, part by part from each
-/// thread in turn, until the last part or an unclean one.
-fn take_parts(starts: &[usize], from: [Receiver<Msg>; 2], sink: &mut dyn FnMut(Item)) -> Outcome {
+/// Whether the calling thread parses part `i` itself. It parses one part in
+/// [`SHARE`] and checks them all; the other thread parses the rest. Parsing
+/// a part takes about twice as long as checking it, so each thread then has
+/// about as much to do.
+fn mine(i: usize) -> bool {
+    i.is_multiple_of(SHARE)
+}
+
+/// The part of the text from `starts[i]` up to the next start.
+fn part(starts: &[usize], i: usize) -> Part {
+    Part { start: starts[i], end: starts.get(i + 1).copied().unwrap_or(usize::MAX) }
+}
+
+/// Hands the parts' items to `sink` in order, parsing its own parts and
+/// taking the others from the other thread, until the last part or an
+/// unclean one.
+fn take_parts(src: &str, starts: &[usize], theirs: Receiver<Msg>, sink: &mut dyn FnMut(Item)) -> Outcome {
     for (i, &start) in starts.iter().enumerate() {
         let mut handed = 0;
-        loop {
-            // A closed channel means that thread panicked; joining it says so.
-            let Ok(msg) = from[i % 2].recv() else { return Outcome::Rest(start, handed) };
-            match msg {
-                Msg::Items(items) => {
-                    handed += items.len();
-                    items.into_iter().for_each(&mut *sink);
-                }
-                Msg::End(End::Clean(held)) => {
-                    held.into_iter().for_each(&mut *sink);
-                    break;
-                }
-                Msg::End(End::Unclean) => return Outcome::Rest(start, handed),
-                Msg::End(End::Last(parsed, errors)) => return Outcome::Done(parsed, errors),
-            }
+        let end = if mine(i) {
+            parse_part(src, part(starts, i), &mut |items| {
+                handed += items.len();
+                items.into_iter().for_each(&mut *sink);
+                true
+            })
+        } else {
+            take_theirs(&theirs, &mut handed, sink)
+        };
+        match end {
+            Some(End::Clean(held)) => held.into_iter().for_each(&mut *sink),
+            // A closed channel means the other thread panicked; joining it
+            // says so.
+            Some(End::Unclean) | None => return Outcome::Rest(start, handed),
+            Some(End::Last(parsed, errors)) => return Outcome::Done(parsed, errors),
         }
     }
     Outcome::Done(None, ParseErrors::default())
 }
 
-/// Parses parts `first`, `first + 2`, ... and sends each one's items and
-/// end. Stops when the receiver is gone (an unclean part, or a panic).
-fn parse_every_other(src: &str, starts: &[usize], first: usize, tx: SyncSender<Msg>) {
-    for i in (first..starts.len()).step_by(2) {
-        let part = Part { start: starts[i], end: starts.get(i + 1).copied().unwrap_or(usize::MAX) };
-        let Some(end) = parse_part(src, part, &tx) else { return };
+/// Hands `sink` the items of the other thread's next part, counting them in
+/// `handed`; its end, or `None` if the thread is gone.
+fn take_theirs(theirs: &Receiver<Msg>, handed: &mut usize, sink: &mut dyn FnMut(Item)) -> Option<End> {
+    loop {
+        match theirs.recv().ok()? {
+            Msg::Items(items) => {
+                *handed += items.len();
+                items.into_iter().for_each(&mut *sink);
+            }
+            Msg::End(end) => return Some(end),
+        }
+    }
+}
+
+/// Parses the parts the calling thread does not ([`mine`]) and sends each
+/// one's items and end. Stops when the receiver is gone (an unclean part,
+/// or a panic).
+fn parse_theirs(src: &str, starts: &[usize], tx: SyncSender<Msg>) {
+    for i in (0..starts.len()).filter(|&i| !mine(i)) {
+        let Some(end) = parse_part(src, part(starts, i), &mut |items| tx.send(Msg::Items(items)).is_ok()) else {
+            return;
+        };
         if tx.send(Msg::End(end)).is_err() {
             return;
         }
     }
 }
 
-/// Parses one part, sending the items reduced before its end in batches;
-/// `None` once the receiver is gone.
-fn parse_part(src: &str, part: Part, tx: &SyncSender<Msg>) -> Option<End> {
+/// Parses one part, handing the items reduced before its end to `emit` in
+/// batches; `None` once `emit` says no more are wanted.
+fn parse_part(src: &str, part: Part, emit: &mut dyn FnMut(Vec<Item>) -> bool) -> Option<End> {
     let cut: Cell<Option<Spanned>> = Cell::new(None);
     let (mut batch, mut held, mut open) = (Vec::with_capacity(BATCH), Vec::new(), true);
     let (parsed, errors) = parser::run_part(src, Tok::StartFile, part, &cut, &mut |item| {
@@ -163,10 +196,10 @@ fn parse_part(src: &str, part: Part, tx: &SyncSender<Msg>) -> Option<End> {
         }
         batch.push(item);
         if batch.len() == BATCH && open {
-            open = tx.send(Msg::Items(std::mem::replace(&mut batch, Vec::with_capacity(BATCH)))).is_ok();
+            open = emit(std::mem::replace(&mut batch, Vec::with_capacity(BATCH)));
         }
     });
-    if !open || (!batch.is_empty() && tx.send(Msg::Items(batch)).is_err()) {
+    if !open || (!batch.is_empty() && !emit(batch)) {
         return None;
     }
     if part.end == usize::MAX {
