@@ -105,6 +105,7 @@ impl Tok<'_> {
     }
 
     /// True for tokens after which an operator is expected.
+    #[inline]
     pub(crate) fn ends_operand(&self) -> bool {
         matches!(
             self,
@@ -566,6 +567,7 @@ pub fn time_seconds(body: &str) -> f64 {
 ///
 /// `A ANDB` lexes as the two names `A` and `ANDB`; the parser then fails at
 /// `ANDB`. This helper recognises that case so the error can say why.
+#[inline]
 pub fn glued_word_operator(prev: Option<&Tok>, tok: &Tok) -> Option<&'static str> {
     let Tok::Name(text) = tok else { return None };
     if !prev.map(Tok::ends_operand).unwrap_or(false) {
