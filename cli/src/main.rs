@@ -2,6 +2,7 @@
 //!
 //! Exit status: 0 clean, 1 errors found in the input, 2 usage or I/O problem.
 
+mod alloc;
 mod check_cmd;
 mod compile_cmd;
 mod console_cmd;
@@ -482,7 +483,7 @@ fn refused_arguments(e: clap::Error) -> ExitCode {
 
 /// See cli/Cargo.toml: frees from another thread without a lock.
 #[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+static ALLOCATOR: alloc::Allocator = alloc::Allocator;
 
 fn main() -> ExitCode {
     quiet_broken_pipe();

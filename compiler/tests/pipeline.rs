@@ -1,8 +1,13 @@
 //! Long texts are parsed on a second thread while the checker works on what
-//! was read before (`parser::parse_actions_pipelined`). The sink must see
+//! was read before (`parser::parse_actions_pipelined`), and a long file of
+//! actions in parts on two threads at once (ADR 0024). The sink must see
 //! exactly what the plain parse hands it, in the same order, with the same
 //! errors, whatever the text: clean, full of errors, past the error limit,
-//! or a file without headers (one item per statement).
+//! a file without headers (one item per statement), and whatever stands at
+//! the headers where the parts start: errors in the part before or the last
+//! part only, a comment or string left open across a header (the comment
+//! left open to the end: `st::split`'s tests), an action left open,
+//! statements before the first header.
 
 mod workload;
 
@@ -116,4 +121,85 @@ fn random_token_soup_parses_the_same_on_two_threads() {
         }
         assert_same(&format!("soup {seed}"), &src);
     }
+}
+
+/// A clean file of about 40 parts with `fragment` put before every `ACTION`
+/// header between `from` and `to` (fractions of its length), so that some
+/// header where a part starts has it.
+fn with_fragment(fragment: &str, from: f64, to: f64) -> String {
+    let src = workload::actions(PIPELINE_MIN * 10);
+    let (from, to) = ((src.len() as f64 * from) as usize, (src.len() as f64 * to) as usize);
+    let mut out = String::with_capacity(src.len() * 2);
+    for (i, action) in src.split_inclusive("END_ACTION\n\n").enumerate() {
+        if i > 0 && (from..to).contains(&out.len()) {
+            out.push_str(fragment);
+        }
+        out.push_str(action);
+    }
+    out
+}
+
+#[test]
+fn an_error_before_a_header_in_the_middle_parses_the_same_in_parts() {
+    assert_same("error mid-file", &with_fragment("Recipe.A0 := ;\n", 0.45, 0.55));
+}
+
+#[test]
+fn an_error_in_any_one_part_parses_the_same_in_parts() {
+    // Parts are parsed by either thread (the calling one takes one in
+    // four). A part is about 2.5% of the file: windows that far apart put
+    // the error in four parts in a row, twice.
+    for at in [0.2, 0.225, 0.25, 0.275, 0.5, 0.525, 0.55, 0.575] {
+        assert_same(&format!("error at {at}"), &with_fragment("Recipe.A0 := ;\n", at, at + 0.01));
+    }
+}
+
+#[test]
+fn an_error_in_the_last_parts_parses_the_same_in_parts() {
+    assert_same("errors near the end", &with_fragment("Recipe.A0 := ;\n", 0.99, 1.0));
+    let last = format!("{}Recipe.A0 := ;\n", workload::actions(PIPELINE_MIN * 10));
+    assert_same("error after the last action", &last);
+}
+
+#[test]
+fn a_comment_over_a_header_parses_the_same_in_parts() {
+    // The header's line ends the comment (`(* generated action *)`): the
+    // header is inside it, and the action's statements stand outside any.
+    assert_same("comment over a header", &with_fragment("(* over the next header\n", 0.45, 0.55));
+}
+
+#[test]
+fn a_string_left_open_before_a_header_parses_the_same_in_parts() {
+    assert_same("string left open", &with_fragment("Recipe.A0 := 'open\n", 0.45, 0.55));
+}
+
+#[test]
+fn an_action_left_open_before_a_header_parses_the_same_in_parts() {
+    let src = workload::actions(PIPELINE_MIN * 10);
+    let middle = src.len() / 2;
+    let end = middle + src[middle..].find("END_ACTION").unwrap();
+    // Every action of the middle tenth loses its END_ACTION.
+    let cut = src[end..end + src.len() / 10].replace("END_ACTION\n", "");
+    assert_same("action left open", &format!("{}{cut}{}", &src[..end], &src[end + src.len() / 10..]));
+}
+
+#[test]
+fn errors_past_the_limit_after_clean_parts_stop_at_the_same_place() {
+    assert_same("many errors mid-file", &with_fragment(&"xx := ;\n".repeat(300), 0.45, 0.55));
+}
+
+#[test]
+fn statements_before_the_first_header_parse_the_same_in_parts() {
+    let src = format!("Recipe.A0 := 1;\n{}", workload::actions(PIPELINE_MIN * 10));
+    let (_, _, errors) = parse_with(false, &src);
+    assert!(errors.contains("StatementOutsideAction"), "the statement must be E0016");
+    assert_same("statement before the headers", &src);
+}
+
+#[test]
+fn headers_that_are_not_headers_parse_the_same_in_parts() {
+    // A header in lower case, and a name that starts like a header, at the
+    // start of lines where a part could start.
+    let src = with_fragment("action Lower\nACTION_1 := 2;\nEND_ACTION\n\n", 0.2, 0.8);
+    assert_same("not headers", &src);
 }

@@ -60,7 +60,7 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> DepthGuard<'s, I> {
     /// go on at once; over a limit, the tokens that replace it are queued
     /// and `None` comes back.
     fn admit(&mut self, t: Spanned<'s>) -> Option<Spanned<'s>> {
-        let prefix = matches!(t.1, Tok::Not) || (t.1 == Tok::Minus && !self.after_operand);
+        let prefix = matches!(t.1, Tok::Not) || (matches!(t.1, Tok::Minus) && !self.after_operand);
         self.run = if prefix { self.run.saturating_add(1) } else { 0 };
         match t.1 {
             Tok::LParen | Tok::LBrace => {
@@ -84,7 +84,7 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> DepthGuard<'s, I> {
                 }
                 self.statements.push(end_of(&t.1));
             }
-            Tok::EndIf | Tok::EndFor | Tok::EndWhile | Tok::EndRepeat if self.statements.last() == Some(&t.1) => {
+            Tok::EndIf | Tok::EndFor | Tok::EndWhile | Tok::EndRepeat if self.closes_last(&t.1) => {
                 self.statements.pop();
             }
             _ if prefix && self.run > MAX_EXPR_DEPTH => {
@@ -95,6 +95,13 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> DepthGuard<'s, I> {
             _ => {}
         }
         Some(t)
+    }
+
+    /// Whether the END keyword `t` closes the statement opened last. The
+    /// keywords carry nothing, so their kinds are compared, not the tokens
+    /// (the tokens' equality is a call for every token that reaches it).
+    fn closes_last(&self, t: &Tok) -> bool {
+        self.statements.last().is_some_and(|open| std::mem::discriminant(open) == std::mem::discriminant(t))
     }
 
     /// Skips what is inside an over-deep bracket: up to its closing bracket
@@ -116,7 +123,7 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> DepthGuard<'s, I> {
         };
         self.queue.push_back((span.start, Tok::Skipped, span.end));
         match stop {
-            Some(t) if t.1 == Tok::Semi => {
+            Some(t) if matches!(t.1, Tok::Semi) => {
                 self.brackets = 0;
                 self.queue.push_back(t);
             }
@@ -191,7 +198,7 @@ impl<'s, I: Iterator<Item = Spanned<'s>>> Iterator for DepthGuard<'s, I> {
                 }
             }
         };
-        self.after_operand = t.1.ends_operand() || t.1 == Tok::Skipped;
+        self.after_operand = t.1.ends_operand() || matches!(t.1, Tok::Skipped);
         Some(t)
     }
 }

@@ -105,6 +105,7 @@ impl Tok<'_> {
     }
 
     /// True for tokens after which an operator is expected.
+    #[inline]
     pub(crate) fn ends_operand(&self) -> bool {
         matches!(
             self,
@@ -203,11 +204,19 @@ pub struct Lexer<'s> {
 
 impl<'s> Lexer<'s> {
     pub fn new(src: &'s str) -> Lexer<'s> {
+        Lexer::starting_at(src, 0)
+    }
+
+    /// A lexer that starts at byte `start` of `src` (a token's start), with
+    /// offsets still those of the whole text.
+    pub fn starting_at(src: &'s str, start: usize) -> Lexer<'s> {
         let mut raw = Raw::lexer(src);
         // A byte order mark is not part of the text (it stays in the file,
         // so offsets are those of the file).
-        if src.starts_with(crate::diag::files::BOM) {
+        if start == 0 && src.starts_with(crate::diag::files::BOM) {
             raw.bump(crate::diag::files::BOM.len_utf8());
+        } else if start > 0 {
+            raw.bump(start);
         }
         Lexer {
             src,
@@ -558,6 +567,7 @@ pub fn time_seconds(body: &str) -> f64 {
 ///
 /// `A ANDB` lexes as the two names `A` and `ANDB`; the parser then fails at
 /// `ANDB`. This helper recognises that case so the error can say why.
+#[inline]
 pub fn glued_word_operator(prev: Option<&Tok>, tok: &Tok) -> Option<&'static str> {
     let Tok::Name(text) = tok else { return None };
     if !prev.map(Tok::ends_operand).unwrap_or(false) {

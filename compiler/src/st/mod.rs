@@ -15,4 +15,5 @@ pub mod lower;
 pub mod parse_support;
 pub mod parser;
 pub mod pretty;
+pub(crate) mod split;
 pub mod token;

@@ -32,21 +32,39 @@ pub struct ParseErrors {
 /// any, they are its one action, named after the file. Returns false if the
 /// parser could not recover (what was read before that has been handed over).
 pub fn parse_actions(src: &str, sink: &mut dyn FnMut(Item)) -> (bool, ParseErrors) {
-    let (mut first_stmt, mut actions) = (None, 0usize);
-    let (parsed, mut errors) = run(src, Tok::StartFile, &mut |item| {
-        match &item {
-            Item::Stmt(s) => {
-                first_stmt.get_or_insert(s.span());
-            }
-            Item::Action(_) => actions += 1,
-        }
+    let mut file = FileItems::default();
+    let (parsed, errors) = run(src, Tok::StartFile, &mut |item| {
+        file.see(&item);
         sink(item)
     });
-    if let (Some(span), 1..) = (first_stmt, actions) {
-        errors.syntax.push(SyntaxError::StatementOutsideAction { span });
-        errors.syntax.sort_by_key(|e| syntax_span(e).start);
+    file.finish(matches!(parsed, Some(Parsed::File)), errors)
+}
+
+/// What a file's items say about it as a whole: whether statements stand
+/// before its first header (E0016 once it has headers).
+#[derive(Default)]
+pub(crate) struct FileItems {
+    first_stmt: Option<Span>,
+    actions: usize,
+}
+
+impl FileItems {
+    pub(crate) fn see(&mut self, item: &Item) {
+        match item {
+            Item::Stmt(s) => {
+                self.first_stmt.get_or_insert(s.span());
+            }
+            Item::Action(_) => self.actions += 1,
+        }
     }
-    (matches!(parsed, Some(Parsed::File)), errors)
+
+    pub(crate) fn finish(self, ok: bool, mut errors: ParseErrors) -> (bool, ParseErrors) {
+        if let (Some(span), 1..) = (self.first_stmt, self.actions) {
+            errors.syntax.push(SyntaxError::StatementOutsideAction { span });
+            errors.syntax.sort_by_key(|e| syntax_span(e).start);
+        }
+        (ok, errors)
+    }
 }
 
 /// Files at least this long are parsed on a second thread while the
@@ -58,21 +76,41 @@ pub const PIPELINE_MIN: usize = 128 * 1024;
 /// Items handed from the parsing thread to the sink at a time: a channel
 /// operation per statement of a file without headers would cost more than
 /// the statement.
-const BATCH: usize = 32;
+pub(crate) const BATCH: usize = 32;
 
 /// [`parse_actions`], with the parser on its own thread for long texts.
 /// The sink sees the same items in the same order and the result is the
 /// same; only the time differs. At most four batches wait at once, so
-/// memory stays bounded however far the parser runs ahead.
+/// memory stays bounded however far the parser runs ahead. A file whose
+/// actions can be split is parsed on two threads at once
+/// ([`crate::st::split`]).
 pub fn parse_actions_pipelined(src: &str, sink: &mut dyn FnMut(Item)) -> (bool, ParseErrors) {
     if src.len() < PIPELINE_MIN {
         return parse_actions(src, sink);
     }
+    crate::st::split::parse_actions_split(src, sink)
+}
+
+/// Parses `src` from `start` (the start of the file, or of an `ACTION`
+/// header where the text before parsed without a fault) to its end on a
+/// second thread, handing `sink` every item after the first `skip`: they
+/// were handed over already.
+pub(crate) fn parse_rest_pipelined(
+    src: &str,
+    start: usize,
+    mut skip: usize,
+    sink: &mut dyn FnMut(Item),
+) -> (Option<Parsed>, ParseErrors) {
     let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<Item>>(4);
     std::thread::scope(|scope| {
         let parser = scope.spawn(move || {
             let mut batch = Vec::with_capacity(BATCH);
-            let result = parse_actions(src, &mut |item| {
+            let part = Part { start, end: usize::MAX };
+            let result = run_part(src, Tok::StartFile, part, &Cell::new(None), &mut |item| {
+                if skip > 0 {
+                    skip -= 1;
+                    return;
+                }
                 batch.push(item);
                 if batch.len() == BATCH {
                     // A closed channel means the sink panicked; the panic
@@ -124,7 +162,29 @@ pub fn parse_expr(src: &str) -> (Option<Expr>, ParseErrors) {
 }
 
 fn run(src: &str, start: Tok<'static>, sink: &mut dyn FnMut(Item)) -> (Option<Parsed>, ParseErrors) {
-    let mut lexer = Lexer::new(src);
+    run_part(src, start, Part { start: 0, end: usize::MAX }, &Cell::new(None), sink)
+}
+
+/// The part of a text a parse reads: from `start` (a token's start), up to
+/// the first token at or after `end`, which is not read but left in `cut`.
+/// A parse of the whole text has no `end` (`usize::MAX`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Part {
+    pub start: usize,
+    pub end: usize,
+}
+
+/// Parses `part` of `src`: the parser meets the end of input at the part's
+/// end. The token found there, if any, is put in `cut` as soon as it is met
+/// (the sink can tell the items reduced before it from those after).
+pub(crate) fn run_part<'s>(
+    src: &'s str,
+    start: Tok<'static>,
+    part: Part,
+    cut: &Cell<Option<Spanned<'s>>>,
+    sink: &mut dyn FnMut(Item),
+) -> (Option<Parsed>, ParseErrors) {
+    let mut lexer = Lexer::starting_at(src, part.start);
     let mut recovered = Recovered::default();
     let mut syntax = Capped::default();
     let parser = grammar::StartParser::new();
@@ -135,6 +195,10 @@ fn run(src: &str, start: Tok<'static>, sink: &mut dyn FnMut(Item)) -> (Option<Pa
     // a thousand.
     let (count, stopped) = (recovered.count.clone(), Cell::new(None));
     let feed = guard.by_ref().map_while(|t| {
+        if t.0 >= part.end {
+            cut.set(Some(t));
+            return None;
+        }
         if count.get() < MAX_ERRORS {
             return Some(t);
         }
