@@ -36,6 +36,32 @@ pub(super) fn ends_block(op: &Op) -> bool {
     matches!(op, Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {} | Op::Return { .. })
 }
 
+/// Which instructions start a basic block (index `ops.len()` too: the
+/// end), and for each, the index just past the block starting there.
+pub(super) fn leaders_and_ends(ops: &[Op]) -> (Vec<bool>, Vec<usize>) {
+    let n = ops.len();
+    let mut leader = vec![false; n + 1];
+    leader[0] = true;
+    leader[n] = true;
+    for (pc, op) in ops.iter().enumerate() {
+        if let Some(l) = op.target().and_then(|to| leader.get_mut(to as usize)) {
+            *l = true;
+        }
+        if ends_block(op) {
+            leader[pc + 1] = true;
+        }
+    }
+    let mut ends = vec![n; n + 1];
+    let mut next = n;
+    for pc in (0..n).rev() {
+        ends[pc] = next;
+        if leader[pc] {
+            next = pc;
+        }
+    }
+    (leader, ends)
+}
+
 /// The stack types before each instruction (`None`: unreachable); index
 /// `ops.len()` is "ran off the end". Where paths meet (at labels) the types
 /// are the verifier's (`shapes`, sorted by instruction), and straight code
@@ -254,27 +280,8 @@ impl<'a, 'f> Emitter<'a, 'f> {
     /// Marks the leaders and creates their blocks.
     fn layout(&mut self) {
         let n = self.s.ops.len();
-        let mut leader = vec![false; n + 1];
-        leader[0] = true;
-        leader[n] = true;
-        for (pc, op) in self.s.ops.iter().enumerate() {
-            if let Some(to) = op.target() {
-                if let Some(l) = leader.get_mut(to as usize) {
-                    *l = true;
-                }
-            }
-            if ends_block(op) {
-                leader[pc + 1] = true;
-            }
-        }
-        self.ends = vec![n; n + 1];
-        let mut next = n;
-        for pc in (0..n).rev() {
-            self.ends[pc] = next;
-            if leader[pc] {
-                next = pc;
-            }
-        }
+        let (leader, ends) = leaders_and_ends(self.s.ops);
+        self.ends = ends;
         self.blocks =
             (0..=n).map(|pc| (leader[pc] && self.s.states[pc].is_some()).then(|| self.b.create_block())).collect();
         self.checks = budget::checkpoints(self.s.ops, &leader, &self.ends);

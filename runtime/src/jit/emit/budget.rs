@@ -57,35 +57,11 @@ pub(super) fn checkpoints(ops: &[Op], leaders: &[bool], ends: &[usize]) -> Vec<O
 mod tests {
     use super::*;
 
-    fn layout(ops: &[Op]) -> (Vec<bool>, Vec<usize>) {
-        let n = ops.len();
-        let mut leader = vec![false; n + 1];
-        leader[0] = true;
-        leader[n] = true;
-        for (pc, op) in ops.iter().enumerate() {
-            if let Some(to) = op.target() {
-                leader[to as usize] = true;
-            }
-            if ends_block(op) {
-                leader[pc + 1] = true;
-            }
-        }
-        let mut ends = vec![n; n + 1];
-        let mut next = n;
-        for pc in (0..n).rev() {
-            ends[pc] = next;
-            if leader[pc] {
-                next = pc;
-            }
-        }
-        (leader, ends)
-    }
-
     #[test]
     fn a_loop_header_bounds_the_longest_way_round() {
         // 0: PushI; 1: JumpIfFalse 4 | 2: PushI; 3: Jump 0 | 4: Ret
         let ops = [Op::PushI { v: 1 }, Op::JumpIfFalse { to: 4 }, Op::PushI { v: 2 }, Op::Jump { to: 0 }, Op::Ret {}];
-        let (leaders, ends) = layout(&ops);
+        let (leaders, ends) = super::super::leaders_and_ends(&ops);
         let c = checkpoints(&ops, &leaders, &ends);
         // From 0: two instructions, then either the body (two more, back
         // to the checkpoint) or the return (one): at most four.
@@ -98,7 +74,7 @@ mod tests {
     fn a_backward_target_inside_straight_code_is_a_checkpoint() {
         // 0: PushI | 1: PushI; 2: JumpIfTrue 1 | 3: Ret
         let ops = [Op::PushI { v: 1 }, Op::PushI { v: 2 }, Op::JumpIfTrue { to: 1 }, Op::Ret {}];
-        let (leaders, ends) = layout(&ops);
+        let (leaders, ends) = super::super::leaders_and_ends(&ops);
         let c = checkpoints(&ops, &leaders, &ends);
         assert_eq!(c[0], Some(1));
         assert_eq!(c[1], Some(3));

@@ -372,28 +372,9 @@ fn bool_of(iv: Iv) -> Iv {
 mod tests {
     use super::*;
 
-    /// Block leaders and ends as the emitter lays them out.
+    /// Block ends as the emitter lays them out.
     fn ends(ops: &[Op]) -> Vec<usize> {
-        let n = ops.len();
-        let mut leader = vec![false; n + 1];
-        leader[0] = true;
-        for (pc, op) in ops.iter().enumerate() {
-            if let Some(to) = op.target() {
-                leader[to as usize] = true;
-            }
-            if super::super::ends_block(op) {
-                leader[pc + 1] = true;
-            }
-        }
-        let mut ends = vec![n; n + 1];
-        let mut next = n;
-        for pc in (0..n).rev() {
-            ends[pc] = next;
-            if leader[pc] {
-                next = pc;
-            }
-        }
-        ends
+        super::super::leaders_and_ends(ops).1
     }
 
     /// The shift register as `linc compile` writes it: slot 0 is N1, slot 1
