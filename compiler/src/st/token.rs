@@ -10,7 +10,6 @@ use logos::Logos;
 /// A token as logos sees it. Keywords ignore case (§12).
 #[derive(Logos, Clone, Copy, Debug, PartialEq)]
 #[logos(skip r"[ \t\r\n\x0C]+")]
-#[logos(skip r"\(\*([^*]|\*+[^*)])*\*+\)")]
 pub enum Raw {
     #[token("IF", ignore(case))]
     If,
@@ -142,10 +141,26 @@ pub enum Raw {
     #[regex(r"'([^'$\n]|\$[^\n])*\$?", priority = 0)]
     #[regex(r#""([^"$\n]|\$[^\n])*\$?"#, priority = 0)]
     UnclosedStr,
-    #[token("(*")]
+    /// `(*` starts a comment, skipped to its `*)` by [`comment`]; without
+    /// one it is this token, an unclosed comment.
+    #[token("(*", comment)]
     UnclosedComment,
     /// A string in typographic quotes, as text copied from a manual has.
     #[regex("\u{201C}[^\u{201D}\n]*\u{201D}")]
     #[regex("\u{2018}[^\u{2019}\n]*\u{2019}")]
     CurlyStr,
+}
+
+/// Skips a comment `(* … *)` by finding its end. A regular expression did
+/// this before (`\(\*([^*]|\*+[^*)])*\*+\)`, which also ends at the first
+/// `*)`), but logos's matcher for it recursed once per star in a debug
+/// build: a long comment full of `*` overflowed the stack.
+fn comment(lex: &mut logos::Lexer<'_, Raw>) -> logos::FilterResult<(), ()> {
+    match lex.remainder().find("*)") {
+        Some(at) => {
+            lex.bump(at + 2);
+            logos::FilterResult::Skip
+        }
+        None => logos::FilterResult::Emit(()),
+    }
 }
