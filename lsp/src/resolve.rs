@@ -22,15 +22,13 @@ pub struct Ctx<'a> {
     pub pieces: Vec<Piece>,
     /// The file's own declarations, read once per request however often asked.
     names: std::cell::OnceCell<LocalNames>,
-    /// Every name of the file as the checker resolves it, likewise.
-    resolved: std::cell::OnceCell<Names>,
 }
 
 impl<'a> Ctx<'a> {
     pub fn new(server: &'a Server, doc: &'a Doc) -> Ctx<'a> {
         let file = server.ws.db_for(&doc.path);
         let pieces = if doc.lang == Lang::Fst || doc.lang == Lang::Json { Vec::new() } else { pieces(&doc.text) };
-        Ctx { doc, file, pieces, names: std::cell::OnceCell::new(), resolved: std::cell::OnceCell::new() }
+        Ctx { doc, file, pieces, names: std::cell::OnceCell::new() }
     }
 
     pub fn db(&self) -> Option<&'a Database> {
@@ -49,10 +47,11 @@ impl<'a> Ctx<'a> {
         self.context().db
     }
 
-    /// Every name of the file as `linc check` resolves it.
-    pub fn resolved(&self) -> &Names {
-        self.resolved
-            .get_or_init(|| names::of_source(&self.doc.text, &self.doc.lang.file_name(&self.doc.path), self.context()))
+    /// Every name of the file as `linc check` resolves it, kept with the
+    /// document until its text or a database changes.
+    pub fn resolved(&self) -> &'a Names {
+        let doc = self.doc;
+        doc.names.get_or_init(|| names::of_source(&doc.text, &doc.lang.file_name(&doc.path), self.context()))
     }
 
     pub fn text(&self, p: (usize, usize)) -> &'a str {

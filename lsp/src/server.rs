@@ -65,6 +65,11 @@ pub struct Doc {
     pub version: i32,
     pub lang: Lang,
     pub index: LineIndex,
+    /// Every name of the text as the checker resolves it, computed by the
+    /// first request that needs it and kept until the text or a database
+    /// changes: resolving checks the whole file (14 ms for 5,000 lines),
+    /// which every hover and completion did again before.
+    pub(crate) names: std::cell::OnceCell<linc_compiler::names::Names>,
 }
 
 impl Doc {
@@ -72,7 +77,7 @@ impl Doc {
         let path = uri.to_file_path().unwrap_or_else(|_| PathBuf::from(uri.path()));
         let lang = Lang::of(&path, language_id);
         let index = LineIndex::new(&text);
-        Doc { uri, path, text, version, lang, index }
+        Doc { uri, path, text, version, lang, index, names: std::cell::OnceCell::new() }
     }
 
     /// Applies one change; ranges outside the text are clamped.
@@ -86,6 +91,7 @@ impl Doc {
             }
         }
         self.index = LineIndex::new(&self.text);
+        self.names.take();
     }
 }
 
@@ -236,7 +242,8 @@ impl Server {
 
     /// A database changed: every open document is checked again at `at`.
     fn recheck_all(&mut self, at: Instant) {
-        for uri in self.docs.keys() {
+        for (uri, doc) in &mut self.docs {
+            doc.names.take();
             self.pending.insert(uri.clone(), at);
         }
     }

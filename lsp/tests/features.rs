@@ -323,3 +323,23 @@ fn hover_and_completion_work_where_the_parser_gave_up() {
     assert!(fields.to_string().contains("\"TrimSP\""), "{fields}");
     c.shutdown();
 }
+
+/// What a name resolves to is kept with the document (resolving checks the
+/// whole file) until its text or its database changes: each change is seen
+/// by the next hover.
+#[test]
+fn hover_follows_changes_to_the_text_and_to_the_database() {
+    let mut c = guide("lsp-hover-cache");
+    c.open("c.st", "TIC_100.PV := 1.0;\n");
+    let shown = |c: &mut Client| c.clone_at("hover", "c.st", 0, 9)["contents"]["value"].as_str().map(str::to_string);
+    assert!(shown(&mut c).is_some_and(|v| v.starts_with("**TIC_100.PV** : `REAL`")), "{:?}", shown(&mut c));
+    // The same place now holds another field.
+    c.change("c.st", 2, "TIC_100.SL := 1.0;\n");
+    assert!(shown(&mut c).is_some_and(|v| v.starts_with("**TIC_100.SL**")), "{:?}", shown(&mut c));
+    // A database edited in the editor: TIC_100 no longer exists.
+    let db = example("guide/plant.db.json").replace("\"TIC_100\"", "\"TIC_200\"");
+    c.open("plant.db.json", &db);
+    let after = shown(&mut c);
+    assert!(!after.as_deref().is_some_and(|v| v.starts_with("**TIC_100.SL**")), "{after:?}");
+    c.shutdown();
+}
