@@ -5,6 +5,8 @@
 //! does not count); the bound (a ratio under 8) is generous for a debug
 //! build, and a quadratic step gives a ratio near 16.
 
+mod workload;
+
 use linc_compiler::diag::MAX_ERRORS;
 use linc_compiler::Context;
 use linc_runtime::Database;
@@ -100,29 +102,18 @@ fn ctx(db: &Database) -> Context<'_> {
     Context::of(Some(db))
 }
 
-/// A sequence of `n` steps in a ring, each with an action and a timed
-/// transition to the next.
-fn ring(n: usize) -> String {
-    let mut out = String::new();
-    for i in 0..n {
-        let kw = if i == 0 { "INITIAL_STEP" } else { "STEP" };
-        out.push_str(&format!("{kw} S{i}: Count(N); END_STEP\n"));
-    }
-    for i in 0..n {
-        out.push_str(&format!("TRANSITION FROM S{i} TO S{} := S{i}.T >= 1.0; END_TRANSITION\n", (i + 1) % n));
-    }
-    out.push_str("ACTION Count\n    R1.Batches := R1.Batches + 1;\nEND_ACTION\n");
-    out
-}
-
 #[test]
 fn sequences_compile_in_linear_time() {
     let _one = serial();
     let db = Database::from_json(include_str!("../../examples/sequences/plant.json")).expect("sequence example db");
-    let r = ratio(800, ring, |src| {
-        let (d, object) = linc_compiler::sfc::compile_sequence(src, "ring", "ring.sfc", ctx(&db));
-        assert!(object.is_some(), "{:?}", d.first());
-    });
+    let r = ratio(
+        800,
+        |n| workload::ring(n, "1.0"),
+        |src| {
+            let (d, object) = linc_compiler::sfc::compile_sequence(src, "ring", "ring.sfc", ctx(&db));
+            assert!(object.is_some(), "{:?}", d.first());
+        },
+    );
     assert!(r < 7.0, "4x the steps took {r:.1}x the time");
 }
 
@@ -131,7 +122,7 @@ fn sequences_compile_in_linear_time() {
 fn map_and_sequence(n: usize) -> (String, String) {
     let entries: Vec<String> = (0..n).map(|i| format!("  \"G{i}\": \"R1.Level\"")).collect();
     let map = format!("{{\n{}\n}}\n", entries.join(",\n"));
-    let mut seq = ring(n);
+    let mut seq = workload::ring(n, "1.0");
     seq.push_str(&format!("ACTION Last\n    R1.Temp := G{};\nEND_ACTION\n", n - 1));
     (map, seq.replace("Count(N);", "Count(N); Last(N);"))
 }

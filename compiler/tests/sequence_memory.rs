@@ -5,6 +5,8 @@
 //! table of the checks. A counting allocator measures the peak of live heap
 //! bytes while `check_sequence` reads and checks generated rings.
 
+mod workload;
+
 use linc_compiler::sfc;
 use linc_compiler::Context;
 use linc_runtime::Database;
@@ -16,25 +18,10 @@ static ALLOCATOR: Counting = Counting;
 /// The most heap checking may need beyond the text, in multiples of it.
 const FACTOR: usize = 10;
 
-/// `n` steps in a ring, each running an action, each left by a timed
-/// transition to the next (about 100 bytes a step).
-fn ring(n: usize) -> String {
-    let mut out = String::new();
-    for i in 0..n {
-        let kw = if i == 0 { "INITIAL_STEP" } else { "STEP" };
-        out.push_str(&format!("{kw} S{i}: Count(N); END_STEP\n"));
-    }
-    for i in 0..n {
-        out.push_str(&format!("TRANSITION FROM S{i} TO S{} := S{i}.T >= 0.0; END_TRANSITION\n", (i + 1) % n));
-    }
-    out.push_str("ACTION Count\n    R1.Batches := R1.Batches + 1;\nEND_ACTION\n");
-    out
-}
-
 /// The peak of checking a ring of `n` steps, its size, and its codes.
 fn check_ring(n: usize) -> (usize, usize, Vec<&'static str>) {
     let db = Database::from_json(include_str!("../../examples/sequences/plant.json")).expect("sequence example db");
-    let src = ring(n);
+    let src = workload::ring(n, "0.0");
     let mut codes = Vec::new();
     let peak = peak_of(|| {
         let report = sfc::check_sequence(&src, Context::of(Some(&db)));

@@ -1,7 +1,8 @@
 //! A realistic generated workload: action files of many actions over the
 //! guide database, with IF/ELSIF/ELSE, FOR loops with offsets, assignments to
 //! database fields, function calls and comments. Shared by the benchmark
-//! (`benches/check.rs`) and the linearity test (`tests/linear.rs`).
+//! (`benches/check.rs`) and the linearity test (`tests/linear.rs`); and a
+//! sequence of many steps, shared by the sequence tests of memory and time.
 
 /// About `bytes` bytes of actions, each about 1 KB (a 5 MB file has about
 /// 5,000 actions).
@@ -35,5 +36,22 @@ pub fn actions(bytes: usize) -> String {
         ));
         i += 1;
     }
+    out
+}
+
+/// A sequence of `n` steps in a ring (about 100 bytes a step), each
+/// running an action and left by a timed transition to the next when its
+/// time is at least `after` seconds (a REAL literal, as `1.0`).
+#[allow(dead_code)]
+pub fn ring(n: usize, after: &str) -> String {
+    let mut out = String::new();
+    for i in 0..n {
+        let kw = if i == 0 { "INITIAL_STEP" } else { "STEP" };
+        out.push_str(&format!("{kw} S{i}: Count(N); END_STEP\n"));
+    }
+    for i in 0..n {
+        out.push_str(&format!("TRANSITION FROM S{i} TO S{} := S{i}.T >= {after}; END_TRANSITION\n", (i + 1) % n));
+    }
+    out.push_str("ACTION Count\n    R1.Batches := R1.Batches + 1;\nEND_ACTION\n");
     out
 }

@@ -199,3 +199,25 @@ impl Gen {
         s
     }
 }
+
+/// One loop around `n` statements of the kinds that make translation slow
+/// and make exits: REAL stores (checked for non-finite values), INT
+/// division and MOD, and IFs (basic blocks) — for the tests of the
+/// compiling tier's limits and of translating in the background.
+pub fn slow_to_translate(n: usize) -> String {
+    let fields = ["PV", "SL", "TrimSP", "OP", "HR", "LR", "XP", "TI", "TD"];
+    let pids = ["TIC_100", "HEAT_PID", "PIC_004", "PIC_005", "pid1"];
+    let real = |i: usize| format!("{}.{}", pids[i % pids.len()], fields[i / pids.len() % fields.len()]);
+    let mut s = String::from("FOR Counters.N0 := 1 TO 3 DO\n");
+    for i in 0..n {
+        s.push_str(&match i % 3 {
+            0 => format!("  {} := {} * 0.5 - {} * 0.25 + {}.25;\n", real(i), real(i + 7), real(i + 11), i % 97),
+            1 => format!("  Counters.N1 := Counters.N1 + Counters.N0 * {} / {} MOD 7;\n", i % 89, i % 13 + 1),
+            _ => {
+                format!("  IF {} > {}.5 THEN {} := {} + 1.0; END_IF;\n", real(i + 3), i % 89, real(i + 5), real(i + 5))
+            }
+        });
+    }
+    s.push_str("END_FOR;\n");
+    s
+}

@@ -6,34 +6,15 @@
 //! waited for a translation that could not start.
 
 use linc_conformance::exec::compile;
+use linc_conformance::gen::slow_to_translate;
 use linc_conformance::guide_db;
 use linc_runtime::jit::{self, MAX_BLOCK_OPS};
 use linc_runtime::store::Store;
 use linc_runtime::vm::{Activation, Clock, Tier, Vm, DEFAULT_WATCHDOG};
 use linc_runtime::{Linked, Program};
 
-/// One loop around `n` statements of the kinds that make translation slow
-/// (REAL stores, INT division, IFs: many exits), as tests/jit_limits.rs.
-fn action(n: usize) -> String {
-    let fields = ["PV", "SL", "TrimSP", "OP", "HR", "LR", "XP", "TI", "TD"];
-    let pids = ["TIC_100", "HEAT_PID", "PIC_004", "PIC_005", "pid1"];
-    let real = |i: usize| format!("{}.{}", pids[i % pids.len()], fields[i / pids.len() % fields.len()]);
-    let mut s = String::from("FOR Counters.N0 := 1 TO 3 DO\n");
-    for i in 0..n {
-        s.push_str(&match i % 3 {
-            0 => format!("  {} := {} * 0.5 - {} * 0.25 + {}.25;\n", real(i), real(i + 7), real(i + 11), i % 97),
-            1 => format!("  Counters.N1 := Counters.N1 + Counters.N0 * {} / {} MOD 7;\n", i % 89, i % 13 + 1),
-            _ => {
-                format!("  IF {} > {}.5 THEN {} := {} + 1.0; END_IF;\n", real(i + 3), i % 89, real(i + 5), real(i + 5))
-            }
-        });
-    }
-    s.push_str("END_FOR;\n");
-    s
-}
-
 fn linked() -> Linked {
-    let verified = linc_runtime::load(&compile(&action(205), guide_db())).expect("loads");
+    let verified = linc_runtime::load(&compile(&slow_to_translate(205), guide_db())).expect("loads");
     let store = Store::new(guide_db().clone());
     verified.link(&store, &[Program { unit: 0, own: None }]).expect("links")
 }

@@ -7,6 +7,7 @@
 //! before the limit.
 
 use linc_conformance::exec::compile;
+use linc_conformance::gen::slow_to_translate;
 use linc_conformance::guide_db;
 use linc_runtime::jit::{self, MAX_BLOCK_OPS};
 use linc_runtime::store::Store;
@@ -33,35 +34,13 @@ thread_local! {
     static PEAK: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
 }
 
-/// One loop around `n` statements of the kinds that make exits: REAL
-/// stores (checked for non-finite values), INT division and MOD, and IFs
-/// (basic blocks, each with a budget check).
-fn action(n: usize) -> String {
-    let fields = ["PV", "SL", "TrimSP", "OP", "HR", "LR", "XP", "TI", "TD"];
-    let pids = ["TIC_100", "HEAT_PID", "PIC_004", "PIC_005", "pid1"];
-    let real = |i: usize| format!("{}.{}", pids[i % pids.len()], fields[i / pids.len() % fields.len()]);
-    let mut s = String::from("FOR Counters.N0 := 1 TO 3 DO\n");
-    for i in 0..n {
-        let line = match i % 3 {
-            0 => format!("  {} := {} * 0.5 - {} * 0.25 + {}.25;\n", real(i), real(i + 7), real(i + 11), i % 97),
-            1 => format!("  Counters.N1 := Counters.N1 + Counters.N0 * {} / {} MOD 7;\n", i % 89, i % 13 + 1),
-            _ => {
-                format!("  IF {} > {}.5 THEN {} := {} + 1.0; END_IF;\n", real(i + 3), i % 89, real(i + 5), real(i + 5))
-            }
-        };
-        s.push_str(&line);
-    }
-    s.push_str("END_FOR;\n");
-    s
-}
-
 struct Case {
     linked: Linked,
     ops: usize,
 }
 
 fn case(n: usize) -> Case {
-    let verified = linc_runtime::load(&compile(&action(n), guide_db())).expect("loads");
+    let verified = linc_runtime::load(&compile(&slow_to_translate(n), guide_db())).expect("loads");
     let store = Store::new(guide_db().clone());
     let linked = verified.link(&store, &[Program { unit: 0, own: None }]).expect("links");
     let ops = linked.ops(0, 0).map_or(0, <[_]>::len);
