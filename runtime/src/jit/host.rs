@@ -125,25 +125,13 @@ pub(crate) extern "C" fn call(frame: *mut Frame, packed: u32, types: u32, nnum: 
 }
 
 /// `Call` of a string function run in place ([`Vm::in_place_of`]):
-/// `how` numbers it as [`in_place_code`] does, `a` and `b` are its INT
-/// arguments; LEN's result is left in the frame.
-pub(crate) extern "C" fn in_place(frame: *mut Frame, how: u32, a: u32, b: u32) -> u32 {
-    const ALL: [InPlace; 5] = [InPlace::Len, InPlace::Left, InPlace::Right, InPlace::Mid, InPlace::Concat];
+/// `func` is its library function number, `a` and `b` its INT arguments;
+/// LEN's result is left in the frame.
+pub(crate) extern "C" fn in_place(frame: *mut Frame, func: u32, a: u32, b: u32) -> u32 {
     serve(frame, |h| {
-        let how = *ALL.get(how as usize).ok_or_else(|| Fault::new(Code::R0099, "no such string function"))?;
+        let how = InPlace::of(func as usize).ok_or_else(|| Fault::new(Code::R0099, "no such string function"))?;
         Ok(h.vm.call_in_place(how, [a as i32, b as i32])?.unwrap_or(0))
     })
-}
-
-/// The number [`in_place`] takes for a string function.
-pub(crate) fn in_place_code(how: InPlace) -> u32 {
-    match how {
-        InPlace::Len => 0,
-        InPlace::Left => 1,
-        InPlace::Right => 2,
-        InPlace::Mid => 3,
-        InPlace::Concat => 4,
-    }
 }
 
 /// After a write in traced code: the cells go back to the store and the

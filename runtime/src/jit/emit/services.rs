@@ -92,7 +92,7 @@ impl Emitter<'_, '_> {
     pub(super) fn call(&mut self, pc: usize, op: Op) -> Option<()> {
         let Op::Call { func, argc, ret, types: tys } = op else { return None };
         if let Some((how, ints)) = crate::vm::Vm::in_place_of(func, argc, ret, tys) {
-            return self.call_in_place(pc, how, ints);
+            return self.call_in_place(pc, (func, how), ints);
         }
         let n = usize::from(argc);
         let numeric: Vec<Kind> = (0..n).map(|i| Kind::arg(tys, i)).filter(|k| *k != Kind::Bytes).collect();
@@ -119,14 +119,14 @@ impl Emitter<'_, '_> {
 
     /// A string function run in place: its INT arguments go as the
     /// service's words, with no stack buffer and no decoding at run time.
-    fn call_in_place(&mut self, pc: usize, how: InPlace, ints: usize) -> Option<()> {
+    fn call_in_place(&mut self, pc: usize, (func, how): (u8, InPlace), ints: usize) -> Option<()> {
         let zero = self.b.ins().iconst(types::I32, 0);
         let mut words = [zero; 2];
         for i in (0..ints.min(2)).rev() {
             words[i] = self.pop(Ty::I)?;
         }
-        let code = self.b.ins().iconst(types::I32, i64::from(host::in_place_code(how)));
-        self.serve_values(pc, host::in_place, [code, words[0], words[1]])?;
+        let func = self.b.ins().iconst(types::I32, i64::from(func));
+        self.serve_values(pc, host::in_place, [func, words[0], words[1]])?;
         if how == InPlace::Len {
             let v = self.service_result(Ty::I);
             self.push(Ty::I, v);
