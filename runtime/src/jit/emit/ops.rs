@@ -8,6 +8,17 @@ use cranelift_codegen::ir::condcodes::{FloatCC, IntCC};
 use cranelift_codegen::ir::{types, AbiParam, InstBuilder, MemFlags, Signature, Value};
 use std::mem::offset_of;
 
+/// How an INT stored through the reference becomes a BOOL's 0 or 1.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum ToBool {
+    /// No slot it can reach is a BOOL.
+    Never,
+    /// Every slot it can reach is.
+    Always,
+    /// Where the slot's kind (this value: nonzero for a BOOL) says so.
+    WhereBool(Value),
+}
+
 impl Emitter<'_, '_> {
     /// Locals and retained slots: raw 32-bit words, out-of-range reads 0
     /// and out-of-range writes dropped, as in the interpreter.
@@ -145,32 +156,7 @@ impl Emitter<'_, '_> {
             self.check(pc, out);
         }
         let wide = self.b.ins().uextend(self.s.ptr, slot);
-        let (mask, want) = match op {
-            Op::LoadRefI { .. } => (REAL, 0),
-            Op::StoreRefI { .. } => (REAL | READONLY, 0),
-            Op::LoadRefR { .. } => (3, REAL),
-            _ => (3 | READONLY, REAL),
-        };
-        let all_pass = known.is_some_and(|ks| ks.iter().all(|&k| k & mask == want));
-        // BOOL slots among INT ones: whether each is one, where it differs.
-        let bools = known.filter(|_| all_pass).map(|ks| {
-            let b = ks.iter().filter(|&&k| k & 3 == BOOL).count();
-            (b == ks.len(), b == 0)
-        });
-        let mixed = matches!(op, Op::StoreRefI { .. }) && !bools.is_some_and(|(a, z)| a || z);
-        let kind = if all_pass && !mixed {
-            None
-        } else {
-            let kaddr = self.b.ins().iadd(self.kinds?, wide);
-            Some(self.b.ins().uload8(types::I32, MemFlags::trusted(), kaddr, 0))
-        };
-        let mut bad = match kind.filter(|_| !all_pass) {
-            Some(kind) => {
-                let masked = self.b.ins().band_imm(kind, i64::from(mask));
-                Some(self.b.ins().icmp_imm(IntCC::NotEqual, masked, i64::from(want)))
-            }
-            None => None,
-        };
+        let (mut bad, norm) = self.ref_kind(op, known, wide)?;
         if let (Op::StoreRefR { .. }, Some(v), false) = (op, value, finite) {
             let nf = self.non_finite(v);
             bad = Some(match bad {
@@ -194,15 +180,11 @@ impl Emitter<'_, '_> {
                 self.push_finite(v);
             }
             (Op::StoreRefI { .. }, Some(mut v)) => {
-                let all_bool = bools.is_some_and(|(a, _)| a);
-                if all_bool || kind.is_some() {
+                if norm != ToBool::Never {
                     let nz = self.b.ins().icmp_imm(IntCC::NotEqual, v, 0);
                     let nz = self.bool32(nz);
-                    v = match kind {
-                        Some(kind) if !all_bool => {
-                            let is_bool = self.b.ins().band_imm(kind, i64::from(BOOL));
-                            self.b.ins().select(is_bool, nz, v)
-                        }
+                    v = match norm {
+                        ToBool::WhereBool(is_bool) => self.b.ins().select(is_bool, nz, v),
                         _ => nz,
                     };
                 }
@@ -216,6 +198,37 @@ impl Emitter<'_, '_> {
             _ => return None,
         }
         Some(())
+    }
+
+    /// The kind check of a load or store through the reference at slot
+    /// `wide` (`None` where every slot the reference can hold, `known`,
+    /// passes it), and how a stored INT becomes a BOOL.
+    fn ref_kind(&mut self, op: Op, known: Option<&[u8]>, wide: Value) -> Option<(Option<Value>, ToBool)> {
+        let (mask, want) = match op {
+            Op::LoadRefI { .. } => (REAL, 0),
+            Op::StoreRefI { .. } => (REAL | READONLY, 0),
+            Op::LoadRefR { .. } => (3, REAL),
+            _ => (3 | READONLY, REAL),
+        };
+        let store_int = matches!(op, Op::StoreRefI { .. });
+        let passing = known.filter(|ks| ks.iter().all(|&k| k & mask == want));
+        let bools = passing.map(|ks| ks.iter().filter(|&&k| k & 3 == BOOL).count());
+        match (passing, bools) {
+            (Some(_), Some(b)) if !store_int || b == 0 => return Some((None, ToBool::Never)),
+            (Some(ks), Some(b)) if b == ks.len() => return Some((None, ToBool::Always)),
+            _ => {}
+        }
+        let kaddr = self.b.ins().iadd(self.kinds?, wide);
+        let kind = self.b.ins().uload8(types::I32, MemFlags::trusted(), kaddr, 0);
+        let bad = passing.is_none().then(|| {
+            let masked = self.b.ins().band_imm(kind, i64::from(mask));
+            self.b.ins().icmp_imm(IntCC::NotEqual, masked, i64::from(want))
+        });
+        let norm = match store_int {
+            true => ToBool::WhereBool(self.b.ins().band_imm(kind, i64::from(BOOL))),
+            false => ToBool::Never,
+        };
+        Some((bad, norm))
     }
 
     pub(super) fn flow(&mut self, pc: usize, op: Op) -> Option<()> {
