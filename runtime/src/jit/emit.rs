@@ -36,16 +36,27 @@ pub(super) fn ends_block(op: &Op) -> bool {
     matches!(op, Op::Jump { .. } | Op::JumpIfFalse { .. } | Op::JumpIfTrue { .. } | Op::Ret {} | Op::Return { .. })
 }
 
-/// Which instructions start a basic block (index `ops.len()` too: the
-/// end), and for each, the index just past the block starting there.
-pub(super) fn leaders_and_ends(ops: &[Op]) -> (Vec<bool>, Vec<usize>) {
+/// The basic blocks of a code block, as every pass of the emitter sees them.
+pub(super) struct Blocks {
+    /// Whether each instruction starts a basic block (index `ops.len()`
+    /// too: the end).
+    pub leader: Vec<bool>,
+    /// For each leader, the index just past its basic block.
+    pub ends: Vec<usize>,
+    /// Whether each instruction is the target of a jump back: a loop head.
+    pub head: Vec<bool>,
+}
+
+pub(super) fn blocks_of(ops: &[Op]) -> Blocks {
     let n = ops.len();
     let mut leader = vec![false; n + 1];
+    let mut head = vec![false; n + 1];
     leader[0] = true;
     leader[n] = true;
     for (pc, op) in ops.iter().enumerate() {
-        if let Some(l) = op.target().and_then(|to| leader.get_mut(to as usize)) {
-            *l = true;
+        if let Some(to) = op.target().map(|t| t as usize).filter(|&t| t <= n) {
+            leader[to] = true;
+            head[to] |= to <= pc;
         }
         if ends_block(op) {
             leader[pc + 1] = true;
@@ -59,7 +70,7 @@ pub(super) fn leaders_and_ends(ops: &[Op]) -> (Vec<bool>, Vec<usize>) {
             next = pc;
         }
     }
-    (leader, ends)
+    Blocks { leader, ends, head }
 }
 
 /// The stack types before each instruction (`None`: unreachable); index
@@ -280,18 +291,19 @@ impl<'a, 'f> Emitter<'a, 'f> {
     /// Marks the leaders and creates their blocks.
     fn layout(&mut self) {
         let n = self.s.ops.len();
-        let (leader, ends) = leaders_and_ends(self.s.ops);
-        self.ends = ends;
+        let blocks = blocks_of(self.s.ops);
+        let leader = &blocks.leader;
+        self.ends = blocks.ends.clone();
         self.blocks =
             (0..=n).map(|pc| (leader[pc] && self.s.states[pc].is_some()).then(|| self.b.create_block())).collect();
-        self.checks = budget::checkpoints(self.s.ops, &leader, &self.ends);
+        self.checks = budget::checkpoints(self.s.ops, &blocks);
         self.ref_live = liveness::reference_live(self.s.ops);
         let plan = self.s.plan;
         let tracked: Vec<bool> =
             self.slots.iter().zip(&plan.kinds).map(|(v, k)| v.is_some() && k & 3 != REAL).collect();
         let bools: Vec<bool> = plan.kinds.iter().map(|k| k & 3 == BOOL).collect();
         let slot_of = |sym: u16| plan.slot(sym).map(|s| s as usize);
-        self.offsets = ranges::offset_ranges(self.s.ops, (&tracked, &bools), slot_of, self.s.locals, &self.ends);
+        self.offsets = ranges::offset_ranges(self.s.ops, (&tracked, &bools), slot_of, self.s.locals, &blocks);
     }
 
     fn body(&mut self) -> Option<()> {

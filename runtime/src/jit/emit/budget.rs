@@ -13,22 +13,16 @@
 //! path, the code leaves there and the interpreter runs on to the exact
 //! instruction where the watchdog fires.
 
-use super::ends_block;
+use super::{ends_block, Blocks};
 use crate::isa::Op;
 
-/// For each block leader `pc` (`leaders[pc]`, `ends[pc]` just past its
-/// block): `Some(bound)` when the block is a checkpoint, `None` otherwise.
-pub(super) fn checkpoints(ops: &[Op], leaders: &[bool], ends: &[usize]) -> Vec<Option<u64>> {
+/// For each block leader: `Some(bound)` when the block is a checkpoint,
+/// `None` otherwise.
+pub(super) fn checkpoints(ops: &[Op], blocks: &Blocks) -> Vec<Option<u64>> {
     let n = ops.len();
-    let mut is_check = vec![false; n + 1];
+    let (leaders, ends) = (&blocks.leader, &blocks.ends);
+    let mut is_check = blocks.head.clone();
     is_check[0] = true;
-    for (pc, op) in ops.iter().enumerate() {
-        if let Some(to) = op.target().map(|t| t as usize) {
-            if to <= pc && to < n {
-                is_check[to] = true;
-            }
-        }
-    }
     // cost[pc]: the most instructions from the start of the block at pc to
     // the next checkpoint (or the end), over every forward path.
     let mut cost = vec![0u64; n + 1];
@@ -61,8 +55,7 @@ mod tests {
     fn a_loop_header_bounds_the_longest_way_round() {
         // 0: PushI; 1: JumpIfFalse 4 | 2: PushI; 3: Jump 0 | 4: Ret
         let ops = [Op::PushI { v: 1 }, Op::JumpIfFalse { to: 4 }, Op::PushI { v: 2 }, Op::Jump { to: 0 }, Op::Ret {}];
-        let (leaders, ends) = super::super::leaders_and_ends(&ops);
-        let c = checkpoints(&ops, &leaders, &ends);
+        let c = checkpoints(&ops, &super::super::blocks_of(&ops));
         // From 0: two instructions, then either the body (two more, back
         // to the checkpoint) or the return (one): at most four.
         assert_eq!(c[0], Some(4));
@@ -74,8 +67,7 @@ mod tests {
     fn a_backward_target_inside_straight_code_is_a_checkpoint() {
         // 0: PushI | 1: PushI; 2: JumpIfTrue 1 | 3: Ret
         let ops = [Op::PushI { v: 1 }, Op::PushI { v: 2 }, Op::JumpIfTrue { to: 1 }, Op::Ret {}];
-        let (leaders, ends) = super::super::leaders_and_ends(&ops);
-        let c = checkpoints(&ops, &leaders, &ends);
+        let c = checkpoints(&ops, &super::super::blocks_of(&ops));
         assert_eq!(c[0], Some(1));
         assert_eq!(c[1], Some(3));
         assert_eq!(c[3], None);

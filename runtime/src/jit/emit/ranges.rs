@@ -14,6 +14,7 @@
 //! over-approximation, so a check is only ever left out where it cannot
 //! fail.
 
+use super::Blocks;
 use crate::isa::Op;
 
 /// Passes through a loop head before its ranges are widened (each pass
@@ -236,19 +237,18 @@ impl State {
 /// For each instruction, the range of the index a `RefOff` there pops on
 /// every path (`None` elsewhere, or where the code is unreachable).
 /// `tracked[slot]` says which slots are INT cells kept in registers,
-/// `bools[slot]` which of them are BOOL; `ends[leader]` is just past the
-/// basic block starting there.
+/// `bools[slot]` which of them are BOOL.
 pub(super) fn offset_ranges(
     ops: &[Op],
     (tracked, bools): (&[bool], &[bool]),
     slot_of: impl Fn(u16) -> Option<usize>,
     locals: usize,
-    ends: &[usize],
+    blocks: &Blocks,
 ) -> Vec<Option<Iv>> {
     // Instructions interpreted, at most: a block of many loops and many
     // constants could otherwise take long to settle; past this nothing is
     // known (every check stays), so translation stays linear.
-    settle(ops, (tracked, bools), slot_of, locals, ends, 32 * ops.len() + 256)
+    settle(ops, (tracked, bools), slot_of, locals, blocks, 32 * ops.len() + 256)
 }
 
 /// [`offset_ranges`] within `budget` instructions interpreted.
@@ -257,14 +257,14 @@ fn settle(
     (tracked, bools): (&[bool], &[bool]),
     slot_of: impl Fn(u16) -> Option<usize>,
     locals: usize,
-    ends: &[usize],
+    blocks: &Blocks,
     mut budget: usize,
 ) -> Vec<Option<Iv>> {
     let n = ops.len();
     let entry = State { slots: vec![ANY; tracked.len()], locals: vec![Iv::at(0); locals], stack: Vec::new() };
     let mut at: Vec<Option<State>> = vec![None; n + 1];
     let mut passes = vec![0u32; n + 1];
-    let (steps, head) = (steps_of(ops), loop_heads(ops));
+    let (steps, head, ends) = (steps_of(ops), &blocks.head, &blocks.ends);
     let mut found: Vec<Option<Iv>> = vec![None; n];
     at[0] = Some(entry);
     let mut work = vec![0usize];
@@ -346,17 +346,6 @@ fn steps_of(ops: &[Op]) -> Vec<i64> {
     steps
 }
 
-/// Whether each instruction is the target of a jump back.
-fn loop_heads(ops: &[Op]) -> Vec<bool> {
-    let mut head = vec![false; ops.len() + 1];
-    for (pc, op) in ops.iter().enumerate() {
-        if let Some(to) = op.target().map(|t| t as usize).filter(|&t| t <= pc) {
-            head[to] = true;
-        }
-    }
-    head
-}
-
 /// What a BOOL cell holds after storing a value of range `iv`.
 fn bool_of(iv: Iv) -> Iv {
     if iv.lo == 0 && iv.hi == 0 {
@@ -372,9 +361,8 @@ fn bool_of(iv: Iv) -> Iv {
 mod tests {
     use super::*;
 
-    /// Block ends as the emitter lays them out.
-    fn ends(ops: &[Op]) -> Vec<usize> {
-        super::super::leaders_and_ends(ops).1
+    fn blocks(ops: &[Op]) -> Blocks {
+        super::super::blocks_of(ops)
     }
 
     /// The shift register as `linc compile` writes it: slot 0 is N1, slot 1
@@ -427,7 +415,7 @@ mod tests {
 
     fn ranges_of(ops: &[Op]) -> Vec<Option<Iv>> {
         let slot_of = |sym: u16| Some(usize::from(sym));
-        offset_ranges(ops, (&[true, true, false, false], &[false; 4]), slot_of, 2, &ends(ops))
+        offset_ranges(ops, (&[true, true, false, false], &[false; 4]), slot_of, 2, &blocks(ops))
     }
 
     #[test]
@@ -442,8 +430,7 @@ mod tests {
     fn past_its_budget_the_analysis_knows_nothing() {
         let ops = shift();
         let slot_of = |sym: u16| Some(usize::from(sym));
-        let ends = ends(&ops);
-        let r = settle(&ops, (&[true, true, false, false], &[false; 4]), slot_of, 2, &ends, 40);
+        let r = settle(&ops, (&[true, true, false, false], &[false; 4]), slot_of, 2, &blocks(&ops), 40);
         assert!(r.iter().all(Option::is_none), "{r:?}");
     }
 
@@ -452,7 +439,7 @@ mod tests {
         // N0 (slot 1) is not a register cell: any INT.
         let ops = shift();
         let slot_of = |sym: u16| Some(usize::from(sym));
-        let r = offset_ranges(&ops, (&[true, false, false, false], &[false; 4]), slot_of, 2, &ends(&ops));
+        let r = offset_ranges(&ops, (&[true, false, false, false], &[false; 4]), slot_of, 2, &blocks(&ops));
         assert_eq!(r[22], Some(ANY));
         // A store to N0 between the test and the offset: unknown again.
         let mut ops = shift();
