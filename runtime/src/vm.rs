@@ -9,6 +9,9 @@
 
 mod cells;
 mod fst_ops;
+#[cfg(feature = "jit")]
+pub(crate) mod str_run;
+mod str_stack;
 mod strings;
 
 use crate::cover::{BlockCounters, Counter};
@@ -24,6 +27,7 @@ use linc_format::Code;
 use linc_stdlib::value::round_to_i32;
 use linc_stdlib::{Env, FnError, Value};
 use std::mem::take;
+use str_stack::StrStack;
 
 /// `?` for the dispatch loop: a fault leaves the loop, so the program
 /// counter is written back.
@@ -216,9 +220,10 @@ impl Env for Clock {
 #[derive(Debug)]
 pub struct Vm {
     num: Vec<u32>,
-    strs: Vec<Vec<u8>>,
-    /// String buffers kept from earlier values for later ones, so that a
-    /// loop building a string does not allocate at every pass.
+    strs: StrStack,
+    /// Buffers kept from earlier string arguments and results of library
+    /// calls for later ones, so that a loop building a string does not
+    /// allocate at every pass.
     spare: Vec<Vec<u8>>,
     locals: Vec<u32>,
     args: Vec<Value>,
@@ -250,7 +255,7 @@ impl Vm {
     pub fn new(watchdog: u64, clock: Clock) -> Vm {
         Vm {
             num: Vec::new(),
-            strs: Vec::new(),
+            strs: StrStack::default(),
             spare: Vec::new(),
             locals: Vec::new(),
             args: Vec::new(),

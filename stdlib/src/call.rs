@@ -200,13 +200,16 @@ impl InPlace {
         })
     }
 
-    /// Runs a LEFT, RIGHT or MID on `s` with its INT arguments in order.
-    pub fn cut(self, s: &mut Vec<u8>, ints: [i32; 2]) {
+    /// The bytes of a string of `len` bytes that LEFT, RIGHT or MID keeps
+    /// with its INT arguments in order (all of them for LEN and CONCAT,
+    /// which keep their first argument whole).
+    #[inline]
+    pub fn keep(self, len: usize, ints: [i32; 2]) -> std::ops::Range<usize> {
         match self {
-            InPlace::Left => strings::left_in_place(s, ints[0]),
-            InPlace::Right => strings::right_in_place(s, ints[0]),
-            InPlace::Mid => strings::mid_in_place(s, ints[0], ints[1]),
-            InPlace::Len | InPlace::Concat => {}
+            InPlace::Left => strings::left_range(len, ints[0]),
+            InPlace::Right => strings::right_range(len, ints[0]),
+            InPlace::Mid => strings::mid_range(len, ints[0], ints[1]),
+            InPlace::Len | InPlace::Concat => 0..len,
         }
     }
 }
@@ -295,14 +298,12 @@ mod tests {
             for l in ns {
                 for (i, how) in [(LEFT, InPlace::Left), (RIGHT, InPlace::Right)] {
                     let want = call(i, &[Value::Bytes(s.to_vec()), Value::Int(l)], &mut env);
-                    let mut got = s.to_vec();
-                    how.cut(&mut got, [l, 0]);
+                    let got = s[how.keep(s.len(), [l, 0])].to_vec();
                     assert_eq!(Ok(Value::Bytes(got)), want, "{}({s:?}, {l})", TABLE[i].0);
                 }
                 for p in ns {
                     let want = call(MID, &[Value::Bytes(s.to_vec()), Value::Int(l), Value::Int(p)], &mut env);
-                    let mut got = s.to_vec();
-                    InPlace::Mid.cut(&mut got, [l, p]);
+                    let got = s[InPlace::Mid.keep(s.len(), [l, p])].to_vec();
                     assert_eq!(Ok(Value::Bytes(got)), want, "MID({s:?}, {l}, {p})");
                 }
             }

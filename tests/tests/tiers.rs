@@ -55,6 +55,8 @@ struct Case {
     linked: Linked,
     watchdog: u64,
     force: Option<u32>,
+    /// Bytes of strings a run may make, when not the default.
+    strings: Option<usize>,
 }
 
 impl Case {
@@ -62,7 +64,7 @@ impl Case {
         let verified = linc_runtime::load(&compile(src)?).ok()?;
         let store = Store::new(guide_db().clone());
         let linked = verified.link(&store, &[Program { unit: 0, own: None }]).ok()?;
-        Some(Case { linked, watchdog, force })
+        Some(Case { linked, watchdog, force, strings: None })
     }
 
     /// Whether the compiling tier translates the program at all.
@@ -90,6 +92,9 @@ impl Case {
         let mut vm = Vm::new(self.watchdog, Clock::new(1, 0));
         vm.jit = jit;
         vm.jit_after = 0;
+        if let Some(budget) = self.strings {
+            vm.string_budget = budget;
+        }
         let mut act = Activation::new(&linked, 0, 0);
         let mut error = None;
         let (mut trace, mut notes) = (Vec::new(), 0);
@@ -369,6 +374,57 @@ END_FOR;
         let ending = case.run(true, 1, false, false);
         assert_eq!(ending.error.is_some(), faults, "{what}: {:?}", ending.error);
     }
+}
+
+/// Runs of string instructions, which the compiling tier hands over as
+/// fused steps in one call (a field read only to be cut or measured copies
+/// only what is kept, a value stored and read straight back stays on the
+/// stack, the constants of LEFT, RIGHT and MID are folded in): under every
+/// string budget from none to more than the run makes, with no field forced
+/// or with a string field forced, both tiers stop at the same statement
+/// with the same fault and the same store. The statements store to an
+/// enumerated field (the name read back is the field's own spelling, and a
+/// name it does not have faults), cut a value that is no field, append,
+/// compare and measure.
+#[test]
+fn string_runs_agree_under_every_string_budget() {
+    let src = "RAW_COM.Buffer1 := CONCAT(LEFT(Raw1.Rx_Value, 4), 'ab');
+Raw1.Rx_Value := CONCAT(RAW_COM.Buffer1, RIGHT(RAW_COM.Buffer1, 2));
+Counters.N2 := Counters.N2 + LEN(Raw1.Rx_Value);
+Raw1.Tx_Value := MID(CONCAT(Raw1.Rx_Value, 'xyz'), 3, 2);
+TIC_100.Mode := 'manual';
+RAW_COM.Buffer1 := TIC_100.Mode;
+IF RAW_COM.Buffer1 = 'MANUAL' THEN
+    Counters.N1 := LEN(LEFT(RAW_COM.Buffer1, 3)) + LEN(RAW_COM.Buffer1);
+END_IF;
+RAW_COM.Buffer1 := CONCAT(RAW_COM.Buffer1, Raw1.Tx_Value);
+Raw1.Tx_Value := RAW_COM.Buffer1;
+Counters.N0 := LEN(Raw1.Tx_Value);
+TIC_100.Mode := CONCAT(LEFT(Raw1.Tx_Value, 2), 'X');
+";
+    let store = Store::new(guide_db().clone());
+    let raw = guide_db().block("Raw1").expect("Raw1");
+    let forced = [None, store.cell_of(raw, "Rx_Value"), store.cell_of(raw, "Tx_Value")];
+    let mut endings = std::collections::BTreeSet::new();
+    for force in forced {
+        for budget in (0..=160).chain([100_000]) {
+            let mut case = Case::new(src, 100_000, force).expect("compiles");
+            case.strings = Some(budget);
+            assert!(case.compiles(), "the string runs are compiled");
+            let a = case.run(false, 2, false, false);
+            let b = case.run(true, 2, false, false);
+            assert_eq!(a, b, "tiers differ under a string budget of {budget} (forced: {force:?})");
+            endings.insert(a.error.map(|e| (e.line, e.message)));
+        }
+        let case = Case::new(src, 100_000, force).expect("compiles");
+        case.assert_tiers_agree("the string runs");
+    }
+    // The budget runs out at every statement that makes a string, and
+    // with enough of it the last statement stores a name the enumerated
+    // field does not have.
+    let lines: std::collections::BTreeSet<u32> = endings.iter().flatten().map(|e| e.0).collect();
+    assert!(lines.is_superset(&[1, 2, 3, 4, 5, 6, 8, 10, 11, 12, 13].into()), "{endings:?}");
+    assert!(endings.iter().flatten().any(|(_, m)| m.contains("is not a value of")), "{endings:?}");
 }
 
 #[test]

@@ -123,14 +123,23 @@ fn new_module() -> Option<JITModule> {
     Some(JITModule::new(JITBuilder::with_isa(isa, default_libcall_names())))
 }
 
-/// Compiles `ops`; returns the entry point, the module owning its code and
-/// the deepest stack a bail-out can write.
+/// What translating a block made: the entry point, the module owning its
+/// code, the deepest stack a bail-out can write and the runs of string
+/// instructions the code hands over by index ([`str_runs`]).
+pub(super) struct Emitted {
+    pub entry: Entry,
+    pub module: JITModule,
+    pub max_depth: usize,
+    pub str_runs: Vec<Box<[crate::vm::str_run::Step]>>,
+}
+
+/// Compiles `ops`.
 pub(super) fn emit(
     (ops, shapes): (&[Op], &[(u32, LabelShape)]),
     plan: &Plan,
     (locals, retained): (usize, usize),
     (traced, points): (bool, Option<&[bool]>),
-) -> Option<(Entry, JITModule, usize)> {
+) -> Option<Emitted> {
     let states = stack_types(ops, shapes)?;
     let max_depth = states.iter().flatten().map(Vec::len).max().unwrap_or(0);
     let mut module = new_module()?;
@@ -140,14 +149,15 @@ pub(super) fn emit(
     ctx.func.signature.params.push(AbiParam::new(ptr));
     ctx.func.signature.returns.push(AbiParam::new(types::I32));
     let mut fbc = FunctionBuilderContext::new();
-    {
+    let str_runs = {
         let b = FunctionBuilder::new(&mut ctx.func, &mut fbc);
         let shape = Shape { ops, plan, traced, points, states: &states, locals, retained, max_depth, ptr, call_conv };
         let mut e = Emitter::new(b, shape);
         e.body()?;
         e.b.seal_all_blocks();
         e.b.finalize();
-    }
+        e.str_runs
+    };
     let id = module.declare_function("block", Linkage::Local, &ctx.func.signature).ok()?;
     module.define_function(id, &mut ctx).ok()?;
     module.clear_context(&mut ctx);
@@ -156,7 +166,7 @@ pub(super) fn emit(
     // SAFETY: the function was declared with exactly `Entry`'s signature
     // in the platform's default calling convention.
     let entry = unsafe { std::mem::transmute::<*const u8, Entry>(code) };
-    Some((entry, module, max_depth))
+    Some(Emitted { entry, module, max_depth, str_runs })
 }
 
 /// The REAL-to-INT conversion, called from compiled code so that it is
@@ -229,6 +239,9 @@ struct Emitter<'a, 'f> {
     /// The slots the reference can hold, when a `Ref` or `RefOff` earlier
     /// in the same basic block set it (its range already checked there).
     ref_known: Option<(u32, u32)>,
+    /// The runs of string instructions translated, which the code names by
+    /// index ([`str_runs`]).
+    str_runs: Vec<Box<[crate::vm::str_run::Step]>>,
 }
 
 fn frame_off(off: usize) -> i32 {
@@ -276,6 +289,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
             ref_live: Vec::new(),
             offsets: Vec::new(),
             ref_known: None,
+            str_runs: Vec::new(),
         }
     }
 
@@ -372,11 +386,18 @@ impl<'a, 'f> Emitter<'a, 'f> {
         }
         let left = self.b.ins().iadd_imm(bud, -n);
         self.b.def_var(self.budget, left);
-        for pc in start..end {
+        let mut pc = start;
+        while pc < end {
             if pc != start {
                 self.count_hit(pc);
             }
-            self.op(pc)?;
+            pc = match self.string_run(pc) {
+                Some(next) => next,
+                None => {
+                    self.op(pc)?;
+                    pc + 1
+                }
+            };
             if self.b.func.dfg.num_insts() > super::MAX_BLOCK_IR {
                 return None;
             }
@@ -488,5 +509,6 @@ mod liveness;
 mod ops;
 mod ranges;
 mod services;
+mod str_runs;
 
 use exits::{Exit, ExitKey};

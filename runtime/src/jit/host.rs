@@ -83,15 +83,20 @@ pub(crate) extern "C" fn decode(frame: *mut Frame, _: u32, _: u32, _: u32) -> u3
 
 /// The string comparisons, numbered as [`compare_code`] numbers them.
 pub(crate) extern "C" fn compare(frame: *mut Frame, code: u32, _: u32, _: u32) -> u32 {
-    let op = match code {
+    let op = compare_op(code);
+    serve(frame, |h| Ok(h.vm.compare_s(op) as u32))
+}
+
+/// The string comparison [`compare_code`] numbers `code`.
+fn compare_op(code: u32) -> Op {
+    match code {
         0 => Op::EqS {},
         1 => Op::NeS {},
         2 => Op::LtS {},
         3 => Op::GtS {},
         4 => Op::LeS {},
         _ => Op::GeS {},
-    };
-    serve(frame, |h| Ok(h.vm.compare_s(op) as u32))
+    }
 }
 
 /// The number [`compare`] takes for a string comparison.
@@ -132,6 +137,31 @@ pub(crate) extern "C" fn in_place(frame: *mut Frame, func: u32, a: u32, b: u32) 
         let how = InPlace::of(func as usize).ok_or_else(|| Fault::new(Code::R0099, "no such string function"))?;
         Ok(h.vm.call_in_place(how, [a as i32, b as i32])?.unwrap_or(0))
     })
+}
+
+/// A run of string instructions ([`crate::vm::str_run`]): the `run`th of
+/// the running code. Status 0, or 1 + the offset in the run of the
+/// instruction that faulted.
+pub(crate) extern "C" fn str_run(frame: *mut Frame, run: u32, _: u32, _: u32) -> u32 {
+    // SAFETY: as in `serve`; `code` is the running `Compiled`.
+    let frame = unsafe { &mut *frame };
+    let (vm, store, code) = unsafe { (&mut *frame.vm, &mut *frame.store, &*frame.code) };
+    let consts = unsafe { std::slice::from_raw_parts(frame.consts, frame.nconsts) };
+    let Some(steps) = code.str_runs.get(run as usize) else {
+        vm.jit_fault = Some(Fault::new(Code::R0099, "no such string run"));
+        return 1;
+    };
+    match catch_unwind(AssertUnwindSafe(|| vm.run_strs(store, consts, steps))) {
+        Ok(Ok(v)) => {
+            frame.ret = v;
+            0
+        }
+        Ok(Err(at)) => at.saturating_add(1),
+        Err(_) => {
+            vm.jit_fault = Some(Fault::new(Code::R0099, "internal error in a runtime service"));
+            1
+        }
+    }
 }
 
 /// After a write in traced code: the cells go back to the store and the

@@ -53,6 +53,9 @@ pub struct Compiled {
     retained: usize,
     /// Whether the code counts into the block's coverage counters.
     covered: bool,
+    /// The runs of string instructions the code hands to
+    /// [`host::str_run`](super::host::str_run) by index.
+    pub(crate) str_runs: Vec<Box<[crate::vm::str_run::Step]>>,
 }
 
 // SAFETY: the module is only touched when the `Compiled` is dropped, and
@@ -125,10 +128,10 @@ impl Prepared {
     /// interpreter does.
     pub(super) fn compile(self) -> Option<Compiled> {
         let Prepared { ops, shapes, plan, locals, retained, traced, points } = self;
-        let (entry, module, max_depth) =
-            emit::emit((&ops, &shapes), &plan, (locals, retained), (traced, points.as_deref()))?;
-        let covered = points.is_some();
-        Some(Compiled { entry, module: Some(module), plan, max_depth, locals, retained, covered })
+        let e = emit::emit((&ops, &shapes), &plan, (locals, retained), (traced, points.as_deref()))?;
+        let (module, covered) = (Some(e.module), points.is_some());
+        let (entry, max_depth, str_runs) = (e.entry, e.max_depth, e.str_runs);
+        Some(Compiled { entry, module, plan, max_depth, locals, retained, covered, str_runs })
     }
 }
 

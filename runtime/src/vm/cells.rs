@@ -84,19 +84,32 @@ pub(super) fn store_bit(store: &mut Store, c: u32, bit: u8, v: i32) -> Result<()
     }
 }
 
-/// Stores `s` into string cell `c`, giving back the buffer no longer
-/// needed (the cell's old value, or `s` itself when the cell is forced or
-/// enumerated) for the next string value to reuse.
-pub(super) fn store_str(store: &mut Store, c: u32, s: Vec<u8>) -> Result<Vec<u8>, Fault> {
+/// Stores `s` into string cell `c`, copying it into the cell's own buffer
+/// (which keeps its capacity from store to store).
+#[inline(always)]
+pub(super) fn store_str(store: &mut Store, c: u32, s: &[u8]) -> Result<(), Fault> {
     if store.refuse_forced(c) {
-        return Ok(s);
+        return Ok(());
     }
+    match store.cells.get_mut(c as usize) {
+        Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => {
+            t.clear();
+            super::str_stack::append(t, s);
+            Ok(())
+        }
+        _ => store_enum(store, c, s),
+    }
+}
+
+/// [`store_str`] to an enumerated field: the value whose name `s` is
+/// (ignoring case).
+fn store_enum(store: &mut Store, c: u32, s: &[u8]) -> Result<(), Fault> {
     if let Some(Cell::Enum { .. }) = store.cells.get(c as usize) {
         let names = store.enum_names(c);
-        let Some(idx) = names.iter().position(|n| n.as_bytes().eq_ignore_ascii_case(&s)) else {
+        let Some(idx) = names.iter().position(|n| n.as_bytes().eq_ignore_ascii_case(s)) else {
             let msg = format!(
                 "'{}' is not a value of {} ({})",
-                String::from_utf8_lossy(&s),
+                String::from_utf8_lossy(s),
                 store.describe(c),
                 names.join(", ")
             );
@@ -105,12 +118,9 @@ pub(super) fn store_str(store: &mut Store, c: u32, s: Vec<u8>) -> Result<Vec<u8>
         if let Some(Cell::Enum { idx: i }) = store.cells.get_mut(c as usize) {
             *i = idx as u16;
         }
-        return Ok(s);
+        return Ok(());
     }
-    match store.cells.get_mut(c as usize) {
-        Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => Ok(std::mem::replace(t, s)),
-        _ => Err(corrupt()),
-    }
+    Err(corrupt())
 }
 
 /// Adds the action name and source position to a fault: the statement

@@ -1,14 +1,14 @@
 //! The VM's string stack and library calls.
 //!
-//! String values are byte buffers. Buffers a run is done with (operands of
-//! a comparison or call, a cell's old value after a store) are kept as
-//! spares and refilled by the next string pushed, so a loop that builds a
-//! string (`S := CONCAT(S, FORMAT(...))`) settles to no allocation per pass.
-//! LEN, LEFT, RIGHT, MID and CONCAT work on the buffer of their first
-//! argument where it lies on the stack (`linc_stdlib::call::InPlace`), so
-//! they copy only the bytes they keep and build no argument list.
-//! Reuse changes nothing that a program can see: every value pushed is still
-//! counted against the string budget as if it were new.
+//! String values lie end to end in one buffer ([`StrStack`]). LEN, LEFT,
+//! RIGHT, MID and CONCAT work there (`linc_stdlib::call::InPlace`), so
+//! they copy only the bytes they keep and build no argument list; a store
+//! copies the value into the cell's own buffer. The other library functions
+//! take their string arguments in buffers kept as spares from call to call,
+//! so a loop that builds a string (`S := CONCAT(S, FORMAT(...))`) settles
+//! to no allocation per pass. Reuse changes nothing that a program can see:
+//! every value pushed is still counted against the string budget as if it
+//! were new.
 
 use super::cells::{corrupt, store_str};
 use super::Vm;
@@ -27,53 +27,66 @@ use linc_stdlib::{FnError, Value};
 const SPARES: usize = 16;
 
 impl Vm {
-    /// Pushes a string value produced by this run, within the budgets.
+    /// Pushes a string value produced by this run, within the budgets,
+    /// keeping its buffer as a spare.
     pub(super) fn push_s(&mut self, s: Vec<u8>) -> Result<(), Fault> {
-        self.count(s.len())?;
-        self.strs.push(s);
-        Ok(())
+        let pushed = self.push_copy(&s);
+        self.recycle(s);
+        pushed
     }
 
     /// Counts a string value of `len` bytes made by this run against the
     /// limits.
-    fn count(&mut self, len: usize) -> Result<(), Fault> {
-        if len > MAX_STRING {
-            return Err(Fault::new(Code::R0007, format!("a string of {len} bytes; the limit is {MAX_STRING}")));
+    #[inline]
+    pub(super) fn count(&mut self, len: usize) -> Result<(), Fault> {
+        if self.fits(len) {
+            return Ok(());
         }
+        Err(self.over(len))
+    }
+
+    /// Counts `len` bytes; whether they are within the limits ([`Vm::over`]
+    /// says why not).
+    #[inline(always)]
+    pub(super) fn fits(&mut self, len: usize) -> bool {
         self.string_used += len;
-        if self.string_used > self.string_budget {
-            let what = format!("more than {} bytes of strings made in one run", self.string_budget);
-            return Err(Fault::new(Code::R0007, what));
+        len <= MAX_STRING && self.string_used <= self.string_budget
+    }
+
+    /// The fault of a string over a limit ([`Vm::count`]).
+    #[cold]
+    #[inline(never)]
+    pub(super) fn over(&self, len: usize) -> Fault {
+        if len > MAX_STRING {
+            return Fault::new(Code::R0007, format!("a string of {len} bytes; the limit is {MAX_STRING}"));
         }
-        Ok(())
+        Fault::new(Code::R0007, format!("more than {} bytes of strings made in one run", self.string_budget))
     }
 
     /// `AppendS`: `X := CONCAT(X, s)` for string cell `c` and the top
     /// string `s`, appending in place. The budgets count what the long form
     /// (`LoadS`, `Call CONCAT`, `StoreS`) makes: a copy of X and the result.
     pub(crate) fn append_s(&mut self, store: &mut Store, c: u32) -> Result<(), Fault> {
-        let tail = self.pop_s();
         let len = match store.cells.get(c as usize) {
             Some(Cell::Bseq(t) | Cell::Wstr(t)) => t.len(),
             _ => return Err(corrupt()),
         };
-        self.count(len)?;
-        self.count(len + tail.len())?;
-        if !store.refuse_forced(c) {
+        let tail = self.strs.top().len();
+        let counted = self.count(len).and_then(|()| self.count(len + tail));
+        if counted.is_ok() && !store.refuse_forced(c) {
             if let Some(Cell::Bseq(t) | Cell::Wstr(t)) = store.cells.get_mut(c as usize) {
-                t.extend_from_slice(&tail);
+                t.extend_from_slice(self.strs.top());
             }
         }
-        self.recycle(tail);
-        Ok(())
+        self.strs.drop_top();
+        counted
     }
 
-    /// Pushes a copy of `s` (a constant or a field's value) in a spare buffer.
+    /// Pushes a copy of `s` (a constant, a field's value or a result).
     fn push_copy(&mut self, s: &[u8]) -> Result<(), Fault> {
-        let mut buf = self.spare_for(s.len());
-        buf.clear();
-        buf.extend_from_slice(s);
-        self.push_s(buf)
+        self.count(s.len())?;
+        self.strs.push(s);
+        Ok(())
     }
 
     /// `PushS`: string constant `k` of the object.
@@ -94,32 +107,34 @@ impl Vm {
 
     /// `StoreS`: the top string into cell `c`.
     pub(crate) fn store_s(&mut self, store: &mut Store, c: u32) -> Result<(), Fault> {
-        let s = self.pop_s();
-        let old = store_str(store, c, s)?;
-        self.recycle(old);
-        Ok(())
+        let stored = store_str(store, c, self.strs.top());
+        self.strs.drop_top();
+        stored
     }
 
     /// `EqS` … `GeS`: compares the two top strings (`=` ignores case, as
     /// EQUAL does between STRING items).
     pub(crate) fn compare_s(&mut self, op: Op) -> i32 {
-        let b = self.pop_s();
-        let a = self.pop_s();
+        let (a, b) = self.strs.top_two();
         let v = match op {
-            Op::EqS {} => a.eq_ignore_ascii_case(&b),
+            Op::EqS {} => a.eq_ignore_ascii_case(b),
             Op::NeS {} => a != b,
             Op::LtS {} => a < b,
             Op::GtS {} => a > b,
             Op::LeS {} => a <= b,
             _ => a >= b,
         };
-        self.recycle(a);
-        self.recycle(b);
+        self.strs.drop_top();
+        self.strs.drop_top();
         i32::from(v)
     }
 
+    /// The top string, removed, in a buffer of its own (a spare if there
+    /// is one).
     pub(super) fn pop_s(&mut self) -> Vec<u8> {
-        self.strs.pop().unwrap_or_default()
+        let mut buf = self.spare_for(self.strs.top().len());
+        self.strs.pop_into(&mut buf);
+        buf
     }
 
     /// A spare buffer that holds `len` bytes without growing if there is
@@ -138,23 +153,20 @@ impl Vm {
         }
     }
 
-    /// Empties the string stack at the start of a run, keeping its buffers.
+    /// Empties the string stack at the start of a run.
     pub(super) fn clear_strs(&mut self) {
-        while let Some(buf) = self.strs.pop() {
-            self.recycle(buf);
-        }
+        self.strs.clear();
     }
 
     /// `Decode`: the `$`-sequences of the top string decoded. Without a `$`
     /// the text is already decoded: it stays as it is and, being no new
     /// string, is not counted again against the string budget.
     pub(crate) fn decode(&mut self) -> Result<(), Fault> {
-        if self.strs.last().is_some_and(|s| !s.contains(&b'$')) {
+        if self.strs.len() > 0 && !self.strs.top().contains(&b'$') {
             return Ok(());
         }
-        let s = self.pop_s();
-        let decoded = decode_dollar(&s);
-        self.recycle(s);
+        let decoded = decode_dollar(self.strs.top());
+        self.strs.drop_top();
         self.push_s(decoded)
     }
 
@@ -183,29 +195,19 @@ impl Vm {
     /// counted as a new string; a missing string argument is the null
     /// string, as the general path pops it).
     pub(crate) fn call_in_place(&mut self, how: InPlace, ints: [i32; 2]) -> Result<Option<u32>, Fault> {
-        let strings = if how == InPlace::Concat { 2 } else { 1 };
-        while self.strs.len() < strings {
-            self.strs.insert(0, Vec::new());
-        }
         let len = match how {
             InPlace::Len => {
-                let s = self.pop_s();
-                let n = linc_stdlib::functions::strings::len(&s);
-                self.recycle(s);
+                let n = linc_stdlib::functions::strings::len(self.strs.top());
+                self.strs.drop_top();
                 return Ok(Some(n as u32));
             }
             InPlace::Concat => {
-                let b = self.pop_s();
-                let a = self.strs.last_mut().ok_or_else(corrupt)?;
-                a.extend_from_slice(&b);
-                let len = a.len();
-                self.recycle(b);
-                len
+                self.strs.at_least(2);
+                self.strs.join()
             }
             _ => {
-                let s = self.strs.last_mut().ok_or_else(corrupt)?;
-                how.cut(s, ints);
-                s.len()
+                self.strs.at_least(1);
+                self.strs.cut(how, ints)
             }
         };
         self.count(len)?;

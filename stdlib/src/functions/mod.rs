@@ -74,6 +74,7 @@ pub(crate) fn clip_len(l: i32) -> Option<usize> {
 
 /// The byte range `[p-1, p-1+n)` of a sequence of `len` bytes for a 1-based
 /// position `p`, or `None` unless `p >= 1` and the range lies inside.
+#[inline]
 pub(crate) fn span(len: usize, p: i32, n: usize) -> Option<std::ops::Range<usize>> {
     let start = usize::try_from(p).ok()?.checked_sub(1)?;
     let end = start.checked_add(n)?;

@@ -9,8 +9,10 @@
 
 use super::{clip_len, span, MAX_LEN};
 use std::cmp::Ordering;
+use std::ops::Range;
 
 /// A length argument as a byte count, or `None` if it is zero or negative.
+#[inline]
 fn count(l: i32) -> Option<usize> {
     usize::try_from(l).ok().filter(|&l| l > 0)
 }
@@ -43,33 +45,24 @@ pub fn mid(s: &[u8], l: i32, p: i32) -> Vec<u8> {
     count(l).and_then(|l| span(s.len(), p, l)).and_then(|r| s.get(r)).map_or_else(Vec::new, <[u8]>::to_vec)
 }
 
-/// LEFT in place: `s` becomes `left(s, l)` in its own buffer.
-pub fn left_in_place(s: &mut Vec<u8>, l: i32) {
-    match count(l).filter(|&l| l <= s.len()) {
-        Some(l) => s.truncate(l),
-        None => s.clear(),
-    }
+/// The bytes of a string of `len` bytes that LEFT(s, L) keeps, as a range
+/// (empty for the null sequence): what the VM's string stack keeps in
+/// place instead of building a new value.
+#[inline]
+pub fn left_range(len: usize, l: i32) -> Range<usize> {
+    count(l).filter(|&l| l <= len).map_or(0..0, |l| 0..l)
 }
 
-/// RIGHT in place: `s` becomes `right(s, l)` in its own buffer.
-pub fn right_in_place(s: &mut Vec<u8>, l: i32) {
-    match count(l).and_then(|l| s.len().checked_sub(l)) {
-        Some(start) => {
-            s.drain(..start);
-        }
-        None => s.clear(),
-    }
+/// The bytes RIGHT(s, L) keeps of a string of `len` bytes.
+#[inline]
+pub fn right_range(len: usize, l: i32) -> Range<usize> {
+    count(l).and_then(|l| len.checked_sub(l)).map_or(0..0, |start| start..len)
 }
 
-/// MID in place: `s` becomes `mid(s, l, p)` in its own buffer.
-pub fn mid_in_place(s: &mut Vec<u8>, l: i32, p: i32) {
-    match count(l).and_then(|l| span(s.len(), p, l)) {
-        Some(r) => {
-            s.truncate(r.end);
-            s.drain(..r.start);
-        }
-        None => s.clear(),
-    }
+/// The bytes MID(s, L, P) keeps of a string of `len` bytes.
+#[inline]
+pub fn mid_range(len: usize, l: i32, p: i32) -> Range<usize> {
+    count(l).and_then(|l| span(len, p, l)).unwrap_or(0..0)
 }
 
 /// CONCAT: `a` followed by `b`.

@@ -79,9 +79,16 @@ impl Emitter<'_, '_> {
     /// The exit block for leaving through `exit` before `pc`, and the
     /// arguments of a branch to it from here.
     fn exit_target(&mut self, exit: Exit, pc: usize) -> (Block, Vec<BlockArg>) {
+        let pc_value = self.b.ins().iconst(types::I32, pc as i64);
+        self.exit_target_at(exit, pc, pc_value)
+    }
+
+    /// [`Emitter::exit_target`] with the pc reported computed at run time
+    /// (`pc_value`; a fault inside a run of string instructions).
+    fn exit_target_at(&mut self, exit: Exit, pc: usize, pc_value: Value) -> (Block, Vec<BlockArg>) {
         let bail_at = (exit != Exit::Fault).then_some(pc);
         let shape = bail_at.and_then(|pc| self.s.states.get(pc).cloned().flatten()).unwrap_or_default();
-        let mut vals = vec![self.b.ins().iconst(types::I32, pc as i64)];
+        let mut vals = vec![pc_value];
         vals.extend(self.exit_values(bail_at));
         let key = (self.leader, exit, shape);
         let block = match self.exits.get(&key) {
@@ -105,6 +112,15 @@ impl Emitter<'_, '_> {
     /// a new block.
     pub(super) fn exit_if(&mut self, cond: Value, exit: Exit, pc: usize) {
         let (out, args) = self.exit_target(exit, pc);
+        let cont = self.b.create_block();
+        self.b.ins().brif(cond, out, &args, cont, &[]);
+        self.b.switch_to_block(cont);
+    }
+
+    /// Leaves through the fault exit, reporting the fault at instruction
+    /// `pc_value`, when `cond` holds.
+    pub(super) fn fault_if_at(&mut self, cond: Value, pc_value: Value) {
+        let (out, args) = self.exit_target_at(Exit::Fault, 0, pc_value);
         let cont = self.b.create_block();
         self.b.ins().brif(cond, out, &args, cont, &[]);
         self.b.switch_to_block(cont);

@@ -21,6 +21,13 @@ impl Emitter<'_, '_> {
 
     /// [`Emitter::serve`] with words computed at run time.
     fn serve_values(&mut self, pc: usize, f: Service, words: [Value; 3]) -> Option<()> {
+        let status = self.call_service(f, words)?;
+        self.exit_if(status, Exit::Fault, pc);
+        Some(())
+    }
+
+    /// Calls service `f`; its status.
+    pub(super) fn call_service(&mut self, f: Service, words: [Value; 3]) -> Option<Value> {
         let mut sig = Signature::new(self.s.call_conv);
         sig.params.push(AbiParam::new(self.s.ptr));
         sig.params.extend([AbiParam::new(types::I32); 3]);
@@ -30,9 +37,7 @@ impl Emitter<'_, '_> {
         let mut args = vec![self.frame()];
         args.extend(words);
         let call = self.b.ins().call_indirect(sig, callee, &args);
-        let status = *self.b.inst_results(call).first()?;
-        self.exit_if(status, Exit::Fault, pc);
-        Some(())
+        self.b.inst_results(call).first().copied()
     }
 
     /// In traced code, reports the write to slot `dynamic` (a value) or
@@ -58,7 +63,7 @@ impl Emitter<'_, '_> {
     }
 
     /// The numeric result a service left in the frame.
-    fn service_result(&mut self, ty: Ty) -> Value {
+    pub(super) fn service_result(&mut self, ty: Ty) -> Value {
         let f = self.frame();
         let t = if ty == Ty::F { types::F32 } else { types::I32 };
         self.b.ins().load(t, MemFlags::trusted(), f, frame_off(offset_of!(Frame, ret)))
