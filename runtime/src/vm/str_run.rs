@@ -20,18 +20,47 @@ use crate::wire::Bytes;
 use linc_stdlib::call::InPlace;
 use linc_stdlib::functions::strings::len as int_len;
 
-/// What a step does; `cell`s are store cells, `k` a constant's index.
+/// A value a step reads; `cell`s are store cells, `k` a constant's index.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum StrOp {
+pub(crate) enum Piece {
     /// `LoadS`.
-    Load { cell: u32 },
+    Field { cell: u32 },
     /// `LoadS`, then `PushI` of the INT arguments and a `Call` of LEFT,
     /// RIGHT or MID: only the bytes kept are copied.
-    LoadCut { cell: u32, how: InPlace, ints: [i32; 2] },
-    /// `LoadS`, `Call LEN`: nothing is copied; the run's INT result.
-    LoadLen { cell: u32 },
+    Cut { cell: u32, how: InPlace, ints: [i32; 2] },
     /// `PushS`.
     Const { k: u32 },
+}
+
+impl Piece {
+    /// How many instructions the piece is.
+    pub(crate) fn len(self) -> u32 {
+        match self {
+            Piece::Cut { how, .. } => 2 + cut_args(how),
+            _ => 1,
+        }
+    }
+}
+
+/// How many INT arguments a LEFT, RIGHT or MID takes.
+fn cut_args(how: InPlace) -> u32 {
+    if how == InPlace::Mid {
+        2
+    } else {
+        1
+    }
+}
+
+/// What a step does.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum StrOp {
+    /// A piece pushed.
+    Push(Piece),
+    /// A piece pushed and joined to the value below it (`Call CONCAT`):
+    /// appended where that value ends.
+    JoinWith(Piece),
+    /// `LoadS`, `Call LEN`: nothing is copied; the run's INT result.
+    LoadLen { cell: u32 },
     /// `PushI` of the INT arguments and a `Call` of LEFT, RIGHT or MID.
     Cut { how: InPlace, ints: [i32; 2] },
     /// `Call CONCAT`.
@@ -51,11 +80,30 @@ pub(crate) enum StrOp {
 }
 
 /// A step and where its first instruction is, counted from the run's
-/// first.
+/// first; and the store that follows a step making a value (`StoreS`, or
+/// `StoreS` and `LoadS` of the same field, at `then_at`), which runs with
+/// it: the end of every string assignment, taken without a dispatch of its
+/// own.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Step {
     pub op: StrOp,
     pub at: u32,
+    pub then: Then,
+    pub then_at: u32,
+}
+
+/// What follows a step ([`Step::then`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Then {
+    Nothing,
+    Store { cell: u32 },
+    StoreLoad { cell: u32 },
+}
+
+impl Step {
+    pub(crate) fn new(op: StrOp, at: u32) -> Step {
+        Step { op, at, then: Then::Nothing, then_at: 0 }
+    }
 }
 
 impl StrOp {
@@ -64,11 +112,10 @@ impl StrOp {
     /// that instruction is reported there.
     pub(crate) fn later(self) -> u32 {
         match self {
-            StrOp::LoadCut { how: InPlace::Mid, .. } => 3,
-            StrOp::LoadCut { .. } => 2,
+            StrOp::Push(p) => p.len() - 1,
+            StrOp::JoinWith(p) => p.len(),
             StrOp::LoadLen { .. } | StrOp::StoreLoad { .. } => 1,
-            StrOp::Cut { how: InPlace::Mid, .. } => 2,
-            StrOp::Cut { .. } => 1,
+            StrOp::Cut { how, .. } => cut_args(how),
             _ => 0,
         }
     }
@@ -101,6 +148,12 @@ impl Vm {
             if let Err(off) = self.step(store, consts, s.op, &mut result) {
                 return Err(s.at + off);
             }
+            let then = match s.then {
+                Then::Nothing => continue,
+                Then::Store { cell } => self.step(store, consts, StrOp::Store { cell }, &mut result),
+                Then::StoreLoad { cell } => self.step(store, consts, StrOp::StoreLoad { cell }, &mut result),
+            };
+            then.map_err(|off| s.then_at + off)?;
         }
         Ok(result)
     }
@@ -112,38 +165,19 @@ impl Vm {
     #[inline(always)]
     fn step(&mut self, store: &mut Store, consts: &[Bytes], op: StrOp, result: &mut u32) -> Result<(), u32> {
         match op {
-            StrOp::Load { cell } => {
-                let text = cell_text(store, cell).ok_or_else(|| self.fail(0, corrupt()))?;
-                if !self.fits(text.len()) {
-                    return Err(self.fail_count(0, text.len()));
-                }
-                self.strs.push(text);
-            }
-            StrOp::LoadCut { cell, how, ints } => {
-                let text = cell_text(store, cell).ok_or_else(|| self.fail(0, corrupt()))?;
-                if !self.fits(text.len()) {
-                    return Err(self.fail_count(0, text.len()));
-                }
-                let keep = how.keep(text.len(), ints);
-                let len = keep.len();
-                self.strs.push(&text[keep]);
-                if !self.fits(len) {
-                    return Err(self.fail_count(op.later(), len));
-                }
-            }
+            // One arm per kind of piece, so that each is straight code.
+            StrOp::Push(p @ Piece::Field { .. }) => self.push_piece(store, consts, p)?,
+            StrOp::Push(p @ Piece::Cut { .. }) => self.push_piece(store, consts, p)?,
+            StrOp::Push(p @ Piece::Const { .. }) => self.push_piece(store, consts, p)?,
+            StrOp::JoinWith(p @ Piece::Field { .. }) => self.join_piece(store, consts, p)?,
+            StrOp::JoinWith(p @ Piece::Cut { .. }) => self.join_piece(store, consts, p)?,
+            StrOp::JoinWith(p @ Piece::Const { .. }) => self.join_piece(store, consts, p)?,
             StrOp::LoadLen { cell } => {
                 let text = cell_text(store, cell).ok_or_else(|| self.fail(0, corrupt()))?;
                 if !self.fits(text.len()) {
                     return Err(self.fail_count(0, text.len()));
                 }
                 *result = int_len(text) as u32;
-            }
-            StrOp::Const { k } => {
-                let text = consts.get(k as usize).map_or(&[][..], |b| &b.0[..]);
-                if !self.fits(text.len()) {
-                    return Err(self.fail_count(0, text.len()));
-                }
-                self.strs.push(text);
             }
             StrOp::Cut { how, ints } => {
                 self.strs.at_least(1);
@@ -185,6 +219,46 @@ impl Vm {
             StrOp::Compare { op } => *result = self.compare_s(op) as u32,
         }
         Ok(())
+    }
+
+    #[inline(always)]
+    fn push_piece(&mut self, store: &Store, consts: &[Bytes], p: Piece) -> Result<(), u32> {
+        let text = self.piece(store, consts, p)?;
+        self.strs.push(text);
+        Ok(())
+    }
+
+    /// A piece appended to the value below it, as `Call CONCAT` after it.
+    #[inline(always)]
+    fn join_piece(&mut self, store: &Store, consts: &[Bytes], p: Piece) -> Result<(), u32> {
+        let text = self.piece(store, consts, p)?;
+        self.strs.extend_top(text);
+        let len = self.strs.top().len();
+        if !self.fits(len) {
+            return Err(self.fail_count(p.len(), len));
+        }
+        Ok(())
+    }
+
+    /// The bytes of a piece, counted as the instructions that push it count
+    /// them.
+    #[inline(always)]
+    fn piece<'a>(&mut self, store: &'a Store, consts: &'a [Bytes], p: Piece) -> Result<&'a [u8], u32> {
+        let text = match p {
+            Piece::Field { cell } | Piece::Cut { cell, .. } => {
+                cell_text(store, cell).ok_or_else(|| self.fail(0, corrupt()))?
+            }
+            Piece::Const { k } => consts.get(k as usize).map_or(&[][..], |b| &b.0[..]),
+        };
+        if !self.fits(text.len()) {
+            return Err(self.fail_count(0, text.len()));
+        }
+        let Piece::Cut { how, ints, .. } = p else { return Ok(text) };
+        let kept = text.get(how.keep(text.len(), ints)).unwrap_or_default();
+        if !self.fits(kept.len()) {
+            return Err(self.fail_count(p.len() - 1, kept.len()));
+        }
+        Ok(kept)
     }
 
     /// Leaves `fault` for the compiled code to report at offset `at`.

@@ -39,6 +39,16 @@ impl StrStack {
         append(&mut self.bytes, s);
     }
 
+    /// Appends `s` to the top value (on an empty stack, makes it one).
+    #[cfg(feature = "jit")]
+    #[inline]
+    pub fn extend_top(&mut self, s: &[u8]) {
+        if self.starts.is_empty() {
+            self.starts.push(0);
+        }
+        append(&mut self.bytes, s);
+    }
+
     /// The top value (the null string on an empty stack).
     #[inline]
     pub fn top(&self) -> &[u8] {

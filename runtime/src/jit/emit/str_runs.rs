@@ -15,18 +15,20 @@
 use super::{Emitter, Ty};
 use crate::isa::Op;
 use crate::jit::host;
-use crate::vm::str_run::{Step, StrOp};
+use crate::vm::str_run::{Piece, Step, StrOp, Then};
 use crate::vm::Vm;
 use cranelift_codegen::ir::{types, InstBuilder};
 use linc_stdlib::call::InPlace;
 
-/// A run found at an instruction: its steps, the instruction after it and
-/// whether it leaves an INT result.
+/// A run found at an instruction: its steps, the instruction after it,
+/// whether it leaves an INT result and the numeric instructions inside it
+/// that are translated after its call ([`transparent`]).
 #[derive(Debug, PartialEq)]
 pub(crate) struct Run {
     pub steps: Vec<Step>,
     pub end: usize,
     pub int_result: bool,
+    pub moved: Vec<usize>,
 }
 
 /// The in-place string function `Call`ed at `pc`, and how many INT
@@ -68,20 +70,26 @@ pub(crate) fn run_at(
     open: impl Fn(usize) -> bool + Copy,
 ) -> Option<Run> {
     let mut steps = Vec::new();
+    let (mut moved, mut pending) = (Vec::new(), Vec::new());
     let mut pc = start;
     let mut calls = 0;
     let mut int_result = false;
     while pc < end && (pc == start || open(pc)) && !int_result {
+        if pc > start && transparent(&ops[pc]) && cut_at(ops, pc, open).is_none() {
+            pending.push(pc);
+            pc += 1;
+            continue;
+        }
         let (op, next, saved) = match *ops.get(pc)? {
             Op::LoadS { sym } => {
                 let cell = cell_of(sym)?;
                 match cut_at(ops, pc + 1, open).filter(|c| c.2 <= end) {
                     Some((InPlace::Len, _, next)) => (StrOp::LoadLen { cell }, next, 2),
-                    Some((how, ints, next)) => (StrOp::LoadCut { cell, how, ints }, next, 2),
-                    None => (StrOp::Load { cell }, pc + 1, 1),
+                    Some((how, ints, next)) => (StrOp::Push(Piece::Cut { cell, how, ints }), next, 2),
+                    None => (StrOp::Push(Piece::Field { cell }), pc + 1, 1),
                 }
             }
-            Op::PushS { k } => (StrOp::Const { k }, pc + 1, 1),
+            Op::PushS { k } => (StrOp::Push(Piece::Const { k }), pc + 1, 1),
             Op::StoreS { sym } => match ops.get(pc + 1) {
                 Some(Op::LoadS { sym: again }) if *again == sym && pc + 1 < end && open(pc + 1) => {
                     (StrOp::StoreLoad { cell: cell_of(sym)? }, pc + 2, 2)
@@ -95,17 +103,52 @@ pub(crate) fn run_at(
             Op::PushI { .. } | Op::Call { .. } => match cut_at(ops, pc, open).filter(|c| c.2 <= end) {
                 Some((InPlace::Len, _, next)) => (StrOp::Len, next, 1),
                 Some((how, ints, next)) => (StrOp::Cut { how, ints }, next, 1),
-                None if in_place_at(ops, pc).is_some_and(|(h, _)| h == InPlace::Concat) => (StrOp::Join, pc + 1, 1),
+                None if in_place_at(ops, pc).is_some_and(|(h, _)| h == InPlace::Concat) => {
+                    // A piece pushed just before is appended instead.
+                    if let Some(Step { op: StrOp::Push(p), .. }) = steps.last().copied() {
+                        steps.pop();
+                        (StrOp::JoinWith(p), pc + 1, 1)
+                    } else {
+                        (StrOp::Join, pc + 1, 1)
+                    }
+                }
                 None => break,
             },
             _ => break,
         };
         int_result = matches!(op, StrOp::LoadLen { .. } | StrOp::Len | StrOp::Compare { .. });
-        steps.push(Step { op, at: (pc - start) as u32 });
+        let at = match op {
+            StrOp::JoinWith(p) => pc - start - p.len() as usize,
+            _ => pc - start,
+        };
+        let last = steps.last_mut().filter(|s| s.then == Then::Nothing && makes_value(s.op));
+        match (op, last) {
+            (StrOp::Store { cell }, Some(last)) => (last.then, last.then_at) = (Then::Store { cell }, at as u32),
+            (StrOp::StoreLoad { cell }, Some(last)) => {
+                (last.then, last.then_at) = (Then::StoreLoad { cell }, at as u32)
+            }
+            _ => steps.push(Step::new(op, at as u32)),
+        }
+        moved.append(&mut pending);
         calls += saved;
         pc = next;
     }
-    (calls >= 2).then_some(Run { steps, end: pc, int_result })
+    let end = pending.first().copied().unwrap_or(pc);
+    (calls >= 2).then_some(Run { steps, end, int_result, moved })
+}
+
+/// Whether a step leaves a value on the stack that a store after it can
+/// take (see [`Step::then`]).
+fn makes_value(op: StrOp) -> bool {
+    matches!(op, StrOp::Push(_) | StrOp::JoinWith(_) | StrOp::Join | StrOp::Cut { .. })
+}
+
+/// Whether an instruction only pushes a number that no string instruction
+/// changes, and can neither fault nor bail out: a run goes on over it, and
+/// the code for it comes after the run's call. `N := N + LEN(S)` after a
+/// string statement is then one call, not two.
+fn transparent(op: &Op) -> bool {
+    matches!(op, Op::PushI { .. } | Op::PushR { .. } | Op::LoadI { .. } | Op::LoadR { .. } | Op::LoadLoc { .. })
 }
 
 impl Emitter<'_, '_> {
@@ -127,6 +170,9 @@ impl Emitter<'_, '_> {
         // Status k > 0: a fault at the run's (k-1)th instruction.
         let fault_pc = self.b.ins().iadd_imm(status, pc as i64 - 1);
         self.fault_if_at(status, fault_pc);
+        for &at in &run.moved {
+            self.op(at)?;
+        }
         if run.int_result {
             let v = self.service_result(Ty::I);
             self.push(Ty::I, v);
@@ -160,8 +206,8 @@ mod tests {
 
     #[test]
     fn a_statement_is_one_run() {
-        // T := CONCAT(LEFT(U, 4), 'ab'); then N := LEN(T): T stays on the
-        // stack for LEN.
+        // T := CONCAT(LEFT(U, 4), 'ab'); N := N + LEN(T): T stays on the
+        // stack for LEN, and N is read after the run's call.
         let ops = [
             Op::LoadS { sym: 1 },
             Op::PushI { v: 4 },
@@ -169,23 +215,30 @@ mod tests {
             Op::PushS { k: 0 },
             call("CONCAT"),
             Op::StoreS { sym: 2 },
+            Op::LoadI { sym: 3 },
             Op::LoadS { sym: 2 },
             call("LEN"),
+            Op::AddI {},
             Op::StoreI { sym: 3 },
         ];
         let r = run(&ops).unwrap();
-        let ops_of: Vec<(StrOp, u32)> = r.steps.iter().map(|s| (s.op, s.at)).collect();
+        let ops_of: Vec<(StrOp, u32, Then, u32)> = r.steps.iter().map(|s| (s.op, s.at, s.then, s.then_at)).collect();
         assert_eq!(
             ops_of,
             [
-                (StrOp::LoadCut { cell: 101, how: InPlace::Left, ints: [4, 0] }, 0),
-                (StrOp::Const { k: 0 }, 3),
-                (StrOp::Join, 4),
-                (StrOp::StoreLoad { cell: 102 }, 5),
-                (StrOp::Len, 7),
+                (StrOp::Push(Piece::Cut { cell: 101, how: InPlace::Left, ints: [4, 0] }), 0, Then::Nothing, 0),
+                (StrOp::JoinWith(Piece::Const { k: 0 }), 3, Then::Store { cell: 102 }, 5),
+                (StrOp::LoadLen { cell: 102 }, 7, Then::Nothing, 0),
             ]
         );
-        assert_eq!((r.end, r.int_result), (8, true));
+        assert_eq!((r.end, r.int_result, r.moved), (9, true, vec![6]));
+        // Without the LoadI between, the value stored is read back where it
+        // lies on the stack.
+        let mut ops = ops.to_vec();
+        ops.remove(6);
+        let r = run(&ops).unwrap();
+        assert_eq!(r.steps[1].then, Then::StoreLoad { cell: 102 });
+        assert_eq!((r.steps[2].op, r.steps[2].at, r.end), (StrOp::Len, 7, 8));
     }
 
     #[test]
@@ -205,13 +258,22 @@ mod tests {
         let r = run_at(&ops, 0, 3, |s| Some(u32::from(s)), |_| true).unwrap();
         assert_eq!(
             (r.steps.iter().map(|s| s.op).collect::<Vec<_>>(), r.end),
-            (vec![StrOp::Const { k: 0 }, StrOp::Load { cell: 1 }], 2)
+            (vec![StrOp::Push(Piece::Const { k: 0 }), StrOp::Push(Piece::Field { cell: 1 })], 2)
         );
         // MID takes two constants; a third PushI is not an argument.
         let ops = [Op::LoadS { sym: 1 }, Op::PushI { v: 2 }, Op::PushI { v: 3 }, call("MID"), Op::StoreS { sym: 1 }];
         let r = run(&ops).unwrap();
-        assert_eq!(r.steps[0].op, StrOp::LoadCut { cell: 101, how: InPlace::Mid, ints: [2, 3] });
+        assert_eq!(r.steps[0].op, StrOp::Push(Piece::Cut { cell: 101, how: InPlace::Mid, ints: [2, 3] }));
+        // (It is pushed after the run: the stacks of numbers and strings are
+        // apart.)
         let ops = [Op::LoadS { sym: 1 }, Op::PushI { v: 1 }, Op::PushI { v: 2 }, Op::PushI { v: 3 }, call("MID")];
-        assert_eq!(run(&ops), None);
+        let r = run(&ops).unwrap();
+        assert_eq!(
+            (r.steps[1].op, r.steps[1].at, r.moved),
+            (StrOp::Cut { how: InPlace::Mid, ints: [2, 3] }, 2, vec![1])
+        );
+        // Numbers pushed after the last string step are not part of it.
+        let ops = [Op::LoadS { sym: 1 }, Op::StoreS { sym: 2 }, Op::PushI { v: 1 }, Op::PushI { v: 2 }];
+        assert_eq!(run(&ops).map(|r| (r.end, r.moved)), Some((2, vec![])));
     }
 }
