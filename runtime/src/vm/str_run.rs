@@ -16,6 +16,7 @@ use super::Vm;
 use crate::errors::Fault;
 use crate::isa::Op;
 use crate::store::{Cell, Store};
+use crate::vm::MAX_STRING;
 use crate::wire::Bytes;
 use linc_stdlib::call::InPlace;
 use linc_stdlib::functions::strings::len as int_len;
@@ -138,20 +139,45 @@ fn plain(store: &Store, c: u32) -> bool {
     matches!(store.cells.get(c as usize), Some(Cell::Text(_) | Cell::Bseq(_) | Cell::Wstr(_))) && !store.is_forced(c)
 }
 
+/// The string budget while a run's steps run: kept in registers, not in
+/// the VM, whose every field the compiler reloads after each byte a step
+/// writes (a write through a byte pointer may alias anything).
+struct Budget {
+    used: usize,
+    limit: usize,
+}
+
+impl Budget {
+    /// [`Vm::fits`], on the run's copy.
+    #[inline(always)]
+    fn fits(&mut self, len: usize) -> bool {
+        self.used += len;
+        len <= MAX_STRING && self.used <= self.limit
+    }
+}
+
 impl Vm {
     /// Runs the steps; the INT result of the last (LEN or a comparison),
     /// else 0. On a fault, the offset of its instruction in the run, the
     /// fault being left in `jit_fault`, where compiled code leaves faults.
     pub(crate) fn run_strs(&mut self, store: &mut Store, consts: &[Bytes], steps: &[Step]) -> Result<u32, u32> {
+        let mut b = Budget { used: self.string_used, limit: self.string_budget };
+        let ran = self.steps(store, consts, steps, &mut b);
+        self.string_used = b.used;
+        ran
+    }
+
+    #[inline(always)]
+    fn steps(&mut self, store: &mut Store, consts: &[Bytes], steps: &[Step], b: &mut Budget) -> Result<u32, u32> {
         let mut result = 0;
         for s in steps {
-            if let Err(off) = self.step(store, consts, s.op, &mut result) {
+            if let Err(off) = self.step(store, consts, s.op, (&mut result, b)) {
                 return Err(s.at + off);
             }
             let then = match s.then {
                 Then::Nothing => continue,
-                Then::Store { cell } => self.step(store, consts, StrOp::Store { cell }, &mut result),
-                Then::StoreLoad { cell } => self.step(store, consts, StrOp::StoreLoad { cell }, &mut result),
+                Then::Store { cell } => self.step(store, consts, StrOp::Store { cell }, (&mut result, b)),
+                Then::StoreLoad { cell } => self.step(store, consts, StrOp::StoreLoad { cell }, (&mut result, b)),
             };
             then.map_err(|off| s.then_at + off)?;
         }
@@ -163,18 +189,24 @@ impl Vm {
     /// code leaves faults), the offset in the step of the instruction that
     /// faulted.
     #[inline(always)]
-    fn step(&mut self, store: &mut Store, consts: &[Bytes], op: StrOp, result: &mut u32) -> Result<(), u32> {
+    fn step(
+        &mut self,
+        store: &mut Store,
+        consts: &[Bytes],
+        op: StrOp,
+        (result, b): (&mut u32, &mut Budget),
+    ) -> Result<(), u32> {
         match op {
             // One arm per kind of piece, so that each is straight code.
-            StrOp::Push(p @ Piece::Field { .. }) => self.push_piece(store, consts, p)?,
-            StrOp::Push(p @ Piece::Cut { .. }) => self.push_piece(store, consts, p)?,
-            StrOp::Push(p @ Piece::Const { .. }) => self.push_piece(store, consts, p)?,
-            StrOp::JoinWith(p @ Piece::Field { .. }) => self.join_piece(store, consts, p)?,
-            StrOp::JoinWith(p @ Piece::Cut { .. }) => self.join_piece(store, consts, p)?,
-            StrOp::JoinWith(p @ Piece::Const { .. }) => self.join_piece(store, consts, p)?,
+            StrOp::Push(p @ Piece::Field { .. }) => self.push_piece(store, consts, p, b)?,
+            StrOp::Push(p @ Piece::Cut { .. }) => self.push_piece(store, consts, p, b)?,
+            StrOp::Push(p @ Piece::Const { .. }) => self.push_piece(store, consts, p, b)?,
+            StrOp::JoinWith(p @ Piece::Field { .. }) => self.join_piece(store, consts, p, b)?,
+            StrOp::JoinWith(p @ Piece::Cut { .. }) => self.join_piece(store, consts, p, b)?,
+            StrOp::JoinWith(p @ Piece::Const { .. }) => self.join_piece(store, consts, p, b)?,
             StrOp::LoadLen { cell } => {
                 let text = cell_text(store, cell).ok_or_else(|| self.fail(0, corrupt()))?;
-                if !self.fits(text.len()) {
+                if !b.fits(text.len()) {
                     return Err(self.fail_count(0, text.len()));
                 }
                 *result = int_len(text) as u32;
@@ -182,14 +214,14 @@ impl Vm {
             StrOp::Cut { how, ints } => {
                 self.strs.at_least(1);
                 let len = self.strs.cut(how, ints);
-                if !self.fits(len) {
+                if !b.fits(len) {
                     return Err(self.fail_count(op.later(), len));
                 }
             }
             StrOp::Join => {
                 self.strs.at_least(2);
                 let len = self.strs.join();
-                if !self.fits(len) {
+                if !b.fits(len) {
                     return Err(self.fail_count(0, len));
                 }
             }
@@ -207,34 +239,42 @@ impl Vm {
                 store_str(store, cell, self.strs.top()).map_err(|f| self.fail(0, f))?;
                 if plain {
                     let len = self.strs.top().len();
-                    if !self.fits(len) {
+                    if !b.fits(len) {
                         return Err(self.fail_count(op.later(), len));
                     }
                 } else {
                     self.strs.drop_top();
-                    self.load_s(store, cell).map_err(|f| self.fail(op.later(), f))?;
+                    self.string_used = b.used;
+                    let loaded = self.load_s(store, cell);
+                    b.used = self.string_used;
+                    loaded.map_err(|f| self.fail(op.later(), f))?;
                 }
             }
-            StrOp::Append { cell } => self.append_s(store, cell).map_err(|f| self.fail(0, f))?,
+            StrOp::Append { cell } => {
+                self.string_used = b.used;
+                let appended = self.append_s(store, cell);
+                b.used = self.string_used;
+                appended.map_err(|f| self.fail(0, f))?;
+            }
             StrOp::Compare { op } => *result = self.compare_s(op) as u32,
         }
         Ok(())
     }
 
     #[inline(always)]
-    fn push_piece(&mut self, store: &Store, consts: &[Bytes], p: Piece) -> Result<(), u32> {
-        let text = self.piece(store, consts, p)?;
+    fn push_piece(&mut self, store: &Store, consts: &[Bytes], p: Piece, b: &mut Budget) -> Result<(), u32> {
+        let text = self.piece(store, consts, p, b)?;
         self.strs.push(text);
         Ok(())
     }
 
     /// A piece appended to the value below it, as `Call CONCAT` after it.
     #[inline(always)]
-    fn join_piece(&mut self, store: &Store, consts: &[Bytes], p: Piece) -> Result<(), u32> {
-        let text = self.piece(store, consts, p)?;
+    fn join_piece(&mut self, store: &Store, consts: &[Bytes], p: Piece, b: &mut Budget) -> Result<(), u32> {
+        let text = self.piece(store, consts, p, b)?;
         self.strs.extend_top(text);
         let len = self.strs.top().len();
-        if !self.fits(len) {
+        if !b.fits(len) {
             return Err(self.fail_count(p.len(), len));
         }
         Ok(())
@@ -243,19 +283,19 @@ impl Vm {
     /// The bytes of a piece, counted as the instructions that push it count
     /// them.
     #[inline(always)]
-    fn piece<'a>(&mut self, store: &'a Store, consts: &'a [Bytes], p: Piece) -> Result<&'a [u8], u32> {
+    fn piece<'a>(&mut self, store: &'a Store, consts: &'a [Bytes], p: Piece, b: &mut Budget) -> Result<&'a [u8], u32> {
         let text = match p {
             Piece::Field { cell } | Piece::Cut { cell, .. } => {
                 cell_text(store, cell).ok_or_else(|| self.fail(0, corrupt()))?
             }
             Piece::Const { k } => consts.get(k as usize).map_or(&[][..], |b| &b.0[..]),
         };
-        if !self.fits(text.len()) {
+        if !b.fits(text.len()) {
             return Err(self.fail_count(0, text.len()));
         }
         let Piece::Cut { how, ints, .. } = p else { return Ok(text) };
         let kept = text.get(how.keep(text.len(), ints)).unwrap_or_default();
-        if !self.fits(kept.len()) {
+        if !b.fits(kept.len()) {
             return Err(self.fail_count(p.len() - 1, kept.len()));
         }
         Ok(kept)
