@@ -351,6 +351,28 @@ END_FOR;
     }
 }
 
+/// A constant first in a REAL sum or product, which the compiling tier
+/// puts second (x64 then reads it from memory): the values, and the fault
+/// where a product overflows to infinity and then meets a zero (a NaN),
+/// are the interpreter's under every watchdog.
+#[test]
+fn constants_first_in_real_sums_and_products_agree_on_both_tiers() {
+    let src = "FOR Counters.N0 := 1 TO 12 DO
+    Recipe.A1 := 1.5 * Recipe.A0 + 2.0 * Recipe.A1 - 0.25;
+    Recipe.A2 := 0.5 + 3.0 * (1.0E30 * Recipe.A0);
+    Recipe.A0 := 0.0 * (1.0E30 * (1.0E30 * Recipe.A2)) + 1.0E3 * Recipe.A0 + 1.0;
+END_FOR;
+";
+    for watchdog in (1..=120).chain([100_000]) {
+        let case = Case::new(src, watchdog, None).expect("compiles");
+        assert!(case.compiles());
+        assert_eq!(case.run(false, 2, false, false), case.run(true, 2, false, false), "watchdog {watchdog}");
+    }
+    let ending = Case::new(src, 100_000, None).expect("compiles").run(true, 1, false, false);
+    let error = format!("{:?}", ending.error);
+    assert!(ending.error.is_some(), "the product overflows: {error}");
+}
+
 /// LEN, LEFT, RIGHT, MID and CONCAT run in place on both tiers (the
 /// compiling tier calls them directly with their INT arguments): every
 /// edge of their arguments gives the same strings, and a loop that builds

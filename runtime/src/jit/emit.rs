@@ -239,6 +239,11 @@ struct Emitter<'a, 'f> {
     /// The slots the reference can hold, when a `Ref` or `RefOff` earlier
     /// in the same basic block set it (its range already checked there).
     ref_known: Option<(u32, u32)>,
+    /// The "no reference" constant, made once at entry: exits where the
+    /// reference is dead all pass this one value, which Cranelift then
+    /// folds into the shared exit block instead of materialising a -1 on
+    /// the main path before every check.
+    no_ref: Option<Value>,
     /// The runs of string instructions translated, which the code names by
     /// index ([`str_runs`]).
     str_runs: Vec<Box<[crate::vm::str_run::Step]>>,
@@ -289,6 +294,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
             ref_live: Vec::new(),
             offsets: Vec::new(),
             ref_known: None,
+            no_ref: None,
             str_runs: Vec::new(),
         }
     }
@@ -338,6 +344,7 @@ impl<'a, 'f> Emitter<'a, 'f> {
         self.b.def_var(self.budget, budget);
         let none = self.b.ins().iconst(types::I32, -1);
         self.b.def_var(self.ref_slot, none);
+        self.no_ref = Some(none);
         let zero = self.b.ins().iconst(types::I32, 0);
         for &l in &self.locals {
             self.b.def_var(l, zero);

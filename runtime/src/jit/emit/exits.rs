@@ -68,7 +68,10 @@ impl Emitter<'_, '_> {
             let r = if self.ref_live.get(pc).copied().unwrap_or(true) {
                 self.b.use_var(self.ref_slot)
             } else {
-                self.b.ins().iconst(types::I32, -1)
+                match self.no_ref {
+                    Some(v) => v,
+                    None => self.b.ins().iconst(types::I32, -1),
+                }
             };
             vals.push(r);
             vals.push(self.b.use_var(self.budget));
