@@ -3,8 +3,9 @@
 # workload run by this checkout's release `linc` and by a previous
 # release's (built once from BASE in a worktree under target/perf), beside
 # a native Rust equivalent built with `rustc -O` where one exists. Each
-# command runs ROUNDS times; the best wall time and its peak memory are
-# kept (a busy machine only ever makes a run slower).
+# command runs ROUNDS times, the builds taking turns; the best wall time
+# and its peak memory are kept (a busy machine only ever makes a run
+# slower).
 #
 #   tests/perf/compare.sh BASE-COMMIT [ROUNDS]      # prints a Markdown table
 set -euo pipefail
@@ -32,18 +33,38 @@ done
 (cd compiler && cargo bench -q --bench check -- --test "check actions" >/dev/null)
 actions=target/check-actions-5M.st
 
-# best CMD...: the best wall time (s, to the microsecond: time(1)'s own is
-# to the hundredth) and that run's peak memory (KB).
-best() {
-  local bt="" bm=0 t m s
+# one CMD...: one run's wall time (s, to the microsecond: time(1)'s own
+# is to the hundredth) and peak memory (KB).
+one() {
+  local s t
+  s=$EPOCHREALTIME
+  /usr/bin/time -f "%M" -o "$out/time" "$@" >/dev/null 2>&1 || { echo "failed: $*" >&2; exit 1; }
+  t=$(awk "BEGIN{ printf \"%.4f\", $EPOCHREALTIME - $s }")
+  echo "$t $(tail -1 "$out/time")"
+}
+
+# race WHO...: the best wall time of each of the builds WHO (base, head or
+# native, the command being "${cmd[@]}" after the build's binary, or
+# native-$k alone), and that run's peak memory, as "t m" pairs in order.
+# The builds take turns, one run each per round: this machine's speed
+# drifts by a third over minutes, and seven runs of one build followed by
+# seven of the next measured the drift as much as the builds.
+race() {
+  local -a bt bm
+  local i t m
   for _ in $(seq "$rounds"); do
-    s=$EPOCHREALTIME
-    /usr/bin/time -f "%M" -o "$out/time" "$@" >/dev/null 2>&1 || { echo "failed: $*" >&2; exit 1; }
-    t=$(awk "BEGIN{ printf \"%.4f\", $EPOCHREALTIME - $s }")
-    m=$(tail -1 "$out/time")
-    if [ -z "$bt" ] || awk "BEGIN{exit !($t < $bt)}"; then bt=$t; bm=$m; fi
+    i=0
+    for who in "$@"; do
+      case $who in
+        native) read -r t m < <(one "$out/native-$k") ;;
+        *) read -r t m < <(one "$out/linc-$who" "${cmd[@]}") ;;
+      esac
+      if [ -z "${bt[$i]:-}" ] || awk "BEGIN{exit !($t < ${bt[$i]})}"; then bt[$i]=$t; bm[$i]=$m; fi
+      i=$((i + 1))
+    done
   done
-  echo "$bt $bm"
+  for i in "${!bt[@]}"; do printf '%s %s ' "${bt[$i]}" "${bm[$i]}"; done
+  echo
 }
 
 ratio() { awk "BEGIN{ if ($2 > 0) printf \"%.2f×\", $1 / $2; else print \"-\" }"; }
@@ -54,9 +75,7 @@ echo "|---|---|---|---|---|---|"
 for k in int poly shift strings; do
   cycles=1; [ "$k" = strings ] && cycles=50
   cmd=(run "tests/perf/kernels/$k.stx" --db "$db" --cycles "$cycles" --watchdog 4000000000 --tier compiled)
-  read -r b _ < <(best "$out/linc-$base" "${cmd[@]}")
-  read -r h _ < <(best "$out/linc-head" "${cmd[@]}")
-  read -r n _ < <(best "$out/native-$k")
+  read -r b _ h _ n _ < <(race "$base" head native)
   echo "| kernel \`$k\` | \`linc ${cmd[*]}\` | $b s | $h s | $n s | $(ratio "$h" "$n") |"
 done
 mbps() { awk "BEGIN{ printf \"%.1f MB/s\", $1 / 1e6 / $2 }"; }
@@ -66,13 +85,11 @@ mem() { awk "BEGIN{ printf \"%.1f×\", $2 * 1024 / $1 }"; }
 for file in target/check-actions-1.25M.st "$actions"; do
   size=$(stat -c %s "$file")
   cmd=(check "$file" --db "$db")
-  read -r b bm < <(best "$out/linc-$base" "${cmd[@]}")
-  read -r h hm < <(best "$out/linc-head" "${cmd[@]}")
+  read -r b bm h hm < <(race "$base" head)
   echo "| \`linc check\` of $((size / 1000)) kB of actions | \`linc ${cmd[*]}\` | $b s, $(mbps "$size" "$b"), peak $(mem "$size" "$bm") the source | $h s, $(mbps "$size" "$h"), peak $(mem "$size" "$hm") the source | | |"
 done
 for plant in strategy sequences ladder fst roc; do
   cmd=(run "examples/$plant/plant.json" --for 24h)
-  read -r b _ < <(best "$out/linc-$base" "${cmd[@]}")
-  read -r h _ < <(best "$out/linc-head" "${cmd[@]}")
+  read -r b _ h _ < <(race "$base" head)
   echo "| a day of \`examples/$plant\` (plant time) | \`linc ${cmd[*]}\` | $b s | $h s | | |"
 done
