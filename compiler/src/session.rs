@@ -453,7 +453,8 @@ fn check_actions(
     if let Some(stream) = sink.stream.as_deref_mut() {
         stream.begin_statements();
     }
-    let (ok, errors) = parser::parse_actions_pipelined(source.text(), &mut |item| match item {
+    // What is not kept goes back to be freed where it was parsed.
+    let (ok, errors) = parser::parse_actions_giving(source.text(), &mut |item| match item {
         Item::Stmt(s) => {
             let h = checker.statement(&s);
             if let Some(stream) = sink.stream.as_deref_mut() {
@@ -464,7 +465,9 @@ fn check_actions(
             }
             if tree {
                 body_tree.push(s);
+                return None;
             }
+            Some(Item::Stmt(s))
         }
         Item::Action(a) => {
             headers += 1;
@@ -478,7 +481,9 @@ fn check_actions(
             }
             if tree {
                 trees.push(a);
+                return None;
             }
+            Some(Item::Action(a))
         }
     });
     // Without headers, the statements read are the file's one action. (With

@@ -85,10 +85,19 @@ pub(crate) const BATCH: usize = 32;
 /// actions can be split is parsed on two threads at once
 /// ([`crate::st::split`]).
 pub fn parse_actions_pipelined(src: &str, sink: &mut dyn FnMut(Item)) -> (bool, ParseErrors) {
+    parse_actions_giving(src, &mut |item| {
+        sink(item);
+        None
+    })
+}
+
+/// [`parse_actions_pipelined`] with a sink that gives back the items it
+/// does not keep, to be freed on the thread that parsed them.
+pub fn parse_actions_giving(src: &str, sink: &mut crate::st::split::Giving) -> (bool, ParseErrors) {
     if src.len() < PIPELINE_MIN {
-        return parse_actions(src, sink);
+        return parse_actions(src, &mut |item| drop(sink(item)));
     }
-    crate::st::split::parse_actions_split(src, sink)
+    crate::st::split::parse_actions_split_giving(src, sink)
 }
 
 /// Parses `src` from `start` (the start of the file, or of an `ACTION`
