@@ -84,6 +84,18 @@ pub(super) fn store_bit(store: &mut Store, c: u32, bit: u8, v: i32) -> Result<()
     }
 }
 
+/// The value of string cell `c` as `LoadS` reads it: an enumerated field
+/// reads as its value's name (`None`: not a string cell, which the
+/// verifier rules out).
+#[inline(always)]
+pub(super) fn cell_text(store: &Store, c: u32) -> Option<&[u8]> {
+    match store.cells.get(c as usize)? {
+        Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t) => Some(&t[..]),
+        Cell::Enum { idx } => Some(store.enum_names(c).get(usize::from(*idx)).map_or(&[][..], |n| n.as_bytes())),
+        _ => None,
+    }
+}
+
 /// Stores `s` into string cell `c`, copying it into the cell's own buffer
 /// (which keeps its capacity from store to store).
 #[inline(always)]

@@ -11,12 +11,11 @@
 //! the string budget, the same faults, reported at the instruction that
 //! faults (`Step::at`).
 
-use super::cells::{corrupt, store_str};
+use super::cells::{cell_text, corrupt, store_str};
 use super::Vm;
 use crate::errors::Fault;
 use crate::isa::Op;
 use crate::store::{Cell, Store};
-use crate::vm::MAX_STRING;
 use crate::wire::Bytes;
 use linc_stdlib::call::InPlace;
 use linc_stdlib::functions::strings::len as int_len;
@@ -122,17 +121,6 @@ impl StrOp {
     }
 }
 
-/// The value of string cell `c` as `LoadS` reads it (`None`: not a string
-/// cell, which the verifier rules out).
-#[inline(always)]
-fn cell_text(store: &Store, c: u32) -> Option<&[u8]> {
-    match store.cells.get(c as usize)? {
-        Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t) => Some(&t[..]),
-        Cell::Enum { idx } => Some(store.enum_names(c).get(usize::from(*idx)).map_or(&[][..], |n| n.as_bytes())),
-        _ => None,
-    }
-}
-
 /// Whether cell `c` takes a stored string as it is: a string field (not
 /// enumerated) that is not forced.
 fn plain(store: &Store, c: u32) -> bool {
@@ -151,8 +139,7 @@ impl Budget {
     /// [`Vm::fits`], on the run's copy.
     #[inline(always)]
     fn fits(&mut self, len: usize) -> bool {
-        self.used += len;
-        len <= MAX_STRING && self.used <= self.limit
+        super::strings::fits(&mut self.used, self.limit, len)
     }
 }
 
@@ -197,13 +184,11 @@ impl Vm {
         (result, b): (&mut u32, &mut Budget),
     ) -> Result<(), u32> {
         match op {
-            // One arm per kind of piece, so that each is straight code.
-            StrOp::Push(p @ Piece::Field { .. }) => self.push_piece(store, consts, p, b)?,
-            StrOp::Push(p @ Piece::Cut { .. }) => self.push_piece(store, consts, p, b)?,
-            StrOp::Push(p @ Piece::Const { .. }) => self.push_piece(store, consts, p, b)?,
-            StrOp::JoinWith(p @ Piece::Field { .. }) => self.join_piece(store, consts, p, b)?,
-            StrOp::JoinWith(p @ Piece::Cut { .. }) => self.join_piece(store, consts, p, b)?,
-            StrOp::JoinWith(p @ Piece::Const { .. }) => self.join_piece(store, consts, p, b)?,
+            StrOp::Push(p) => {
+                let text = self.piece(store, consts, p, b)?;
+                self.strs.push(text);
+            }
+            StrOp::JoinWith(p) => self.join_piece(store, consts, p, b)?,
             StrOp::LoadLen { cell } => {
                 let text = cell_text(store, cell).ok_or_else(|| self.fail(0, corrupt()))?;
                 if !b.fits(text.len()) {
@@ -258,13 +243,6 @@ impl Vm {
             }
             StrOp::Compare { op } => *result = self.compare_s(op) as u32,
         }
-        Ok(())
-    }
-
-    #[inline(always)]
-    fn push_piece(&mut self, store: &Store, consts: &[Bytes], p: Piece, b: &mut Budget) -> Result<(), u32> {
-        let text = self.piece(store, consts, p, b)?;
-        self.strs.push(text);
         Ok(())
     }
 

@@ -10,7 +10,7 @@
 //! every value pushed is still counted against the string budget as if it
 //! were new.
 
-use super::cells::{corrupt, store_str};
+use super::cells::{cell_text, corrupt, store_str};
 use super::Vm;
 use crate::errors::Fault;
 use crate::isa::{Kind, Op};
@@ -25,6 +25,15 @@ use linc_stdlib::{FnError, Value};
 /// Spare buffers kept at most; with strings of at most [`MAX_STRING`]
 /// bytes that bounds what the spares hold to about 1 MiB.
 const SPARES: usize = 16;
+
+/// Counts a string value of `len` bytes into `used`; whether it is within
+/// the limits: at most [`MAX_STRING`] bytes, and at most `limit` bytes made
+/// in the run so far.
+#[inline(always)]
+pub(super) fn fits(used: &mut usize, limit: usize, len: usize) -> bool {
+    *used += len;
+    len <= MAX_STRING && *used <= limit
+}
 
 impl Vm {
     /// Pushes a string value produced by this run, within the budgets,
@@ -49,8 +58,7 @@ impl Vm {
     /// says why not).
     #[inline(always)]
     pub(super) fn fits(&mut self, len: usize) -> bool {
-        self.string_used += len;
-        len <= MAX_STRING && self.string_used <= self.string_budget
+        fits(&mut self.string_used, self.string_budget, len)
     }
 
     /// The fault of a string over a limit ([`Vm::count`]).
@@ -97,12 +105,7 @@ impl Vm {
     /// `LoadS`: the value of string cell `c` (an enumerated field reads as
     /// its value's name).
     pub(crate) fn load_s(&mut self, store: &Store, c: u32) -> Result<(), Fault> {
-        let s = match store.cells.get(c as usize) {
-            Some(Cell::Text(t) | Cell::Bseq(t) | Cell::Wstr(t)) => &t[..],
-            Some(Cell::Enum { idx }) => store.enum_names(c).get(usize::from(*idx)).map_or(&[][..], |n| n.as_bytes()),
-            _ => return Err(corrupt()),
-        };
-        self.push_copy(s)
+        self.push_copy(cell_text(store, c).ok_or_else(corrupt)?)
     }
 
     /// `StoreS`: the top string into cell `c`.
