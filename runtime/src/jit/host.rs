@@ -30,6 +30,19 @@ struct Host<'a> {
 
 /// Runs `f` on the frame's host; a fault or a panic becomes status 1.
 fn serve(frame: *mut Frame, f: impl FnOnce(&mut Host<'_>) -> Result<u32, Fault>) -> u32 {
+    serve_at(frame, |h| {
+        f(h).map_err(|fault| {
+            h.vm.jit_fault = Some(fault);
+            0
+        })
+    })
+}
+
+/// Runs `f` on the frame's host: status 0 with its result in the frame,
+/// or 1 + the offset from the calling instruction of the one that faulted,
+/// `f` having left the fault in `Vm::jit_fault`; a panic is R0099 at
+/// offset 0.
+fn serve_at(frame: *mut Frame, f: impl FnOnce(&mut Host<'_>) -> Result<u32, u32>) -> u32 {
     // SAFETY: compiled code passes the frame `Compiled::run` built, whose
     // pointers are to the running VM, store and constants; nothing else
     // uses them while the compiled code runs.
@@ -42,15 +55,14 @@ fn serve(frame: *mut Frame, f: impl FnOnce(&mut Host<'_>) -> Result<u32, Fault>)
             stack: frame.stack,
         }
     };
-    let result = catch_unwind(AssertUnwindSafe(|| f(&mut host)))
-        .unwrap_or_else(|_| Err(Fault::new(Code::R0099, "internal error in a runtime service")));
-    match result {
-        Ok(v) => {
+    match catch_unwind(AssertUnwindSafe(|| f(&mut host))) {
+        Ok(Ok(v)) => {
             frame.ret = v;
             0
         }
-        Err(fault) => {
-            host.vm.jit_fault = Some(fault);
+        Ok(Err(at)) => at.saturating_add(1),
+        Err(_) => {
+            host.vm.jit_fault = Some(Fault::new(Code::R0099, "internal error in a runtime service"));
             1
         }
     }
@@ -144,24 +156,14 @@ pub(crate) extern "C" fn in_place(frame: *mut Frame, func: u32, a: u32, b: u32) 
 /// instruction that faulted.
 pub(crate) extern "C" fn str_run(frame: *mut Frame, run: u32, _: u32, _: u32) -> u32 {
     // SAFETY: as in `serve`; `code` is the running `Compiled`.
-    let frame = unsafe { &mut *frame };
-    let (vm, store, code) = unsafe { (&mut *frame.vm, &mut *frame.store, &*frame.code) };
-    let consts = unsafe { std::slice::from_raw_parts(frame.consts, frame.nconsts) };
-    let Some(steps) = code.str_runs.get(run as usize) else {
-        vm.jit_fault = Some(Fault::new(Code::R0099, "no such string run"));
-        return 1;
-    };
-    match catch_unwind(AssertUnwindSafe(|| vm.run_strs(store, consts, steps))) {
-        Ok(Ok(v)) => {
-            frame.ret = v;
-            0
+    let code = unsafe { &*(*frame).code };
+    serve_at(frame, |h| match code.str_runs.get(run as usize) {
+        Some(steps) => h.vm.run_strs(h.store, h.consts, steps),
+        None => {
+            h.vm.jit_fault = Some(Fault::new(Code::R0099, "no such string run"));
+            Err(0)
         }
-        Ok(Err(at)) => at.saturating_add(1),
-        Err(_) => {
-            vm.jit_fault = Some(Fault::new(Code::R0099, "internal error in a runtime service"));
-            1
-        }
-    }
+    })
 }
 
 /// After a write in traced code: the cells go back to the store and the
