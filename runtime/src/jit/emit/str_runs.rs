@@ -104,8 +104,11 @@ pub(crate) fn run_at(
                 Some((InPlace::Len, _, next)) => (StrOp::Len, next, 1),
                 Some((how, ints, next)) => (StrOp::Cut { how, ints }, next, 1),
                 None if in_place_at(ops, pc).is_some_and(|(h, _)| h == InPlace::Concat) => {
-                    // A piece pushed just before is appended instead.
-                    if let Some(Step { op: StrOp::Push(p), .. }) = steps.last().copied() {
+                    // A piece pushed just before is appended instead (its
+                    // instructions right before the CONCAT, which the
+                    // step's offsets count on).
+                    let before = |s: &Step| matches!(s.op, StrOp::Push(p) if (s.at + p.len()) as usize == pc - start);
+                    if let Some(Step { op: StrOp::Push(p), .. }) = steps.last().copied().filter(before) {
                         steps.pop();
                         (StrOp::JoinWith(p), pc + 1, 1)
                     } else {
@@ -272,6 +275,13 @@ mod tests {
             (r.steps[1].op, r.steps[1].at, r.moved),
             (StrOp::Cut { how: InPlace::Mid, ints: [2, 3] }, 2, vec![1])
         );
+        // A number pushed between a piece and its CONCAT (a hand-made
+        // object) keeps them apart: the piece's offsets stay its own.
+        let ops =
+            [Op::LoadS { sym: 1 }, Op::LoadS { sym: 2 }, Op::LoadI { sym: 5 }, call("CONCAT"), Op::StoreS { sym: 3 }];
+        let r = run(&ops).unwrap();
+        let ops_of: Vec<(StrOp, u32)> = r.steps.iter().map(|s| (s.op, s.at)).collect();
+        assert_eq!(ops_of[1..], [(StrOp::Push(Piece::Field { cell: 102 }), 1), (StrOp::Join, 3)]);
         // Numbers pushed after the last string step are not part of it.
         let ops = [Op::LoadS { sym: 1 }, Op::StoreS { sym: 2 }, Op::PushI { v: 1 }, Op::PushI { v: 2 }];
         assert_eq!(run(&ops).map(|r| (r.end, r.moved)), Some((2, vec![])));
