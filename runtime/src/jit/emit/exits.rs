@@ -114,16 +114,20 @@ impl Emitter<'_, '_> {
     /// Leaves through `exit` before `pc` when `cond` holds, else goes on in
     /// a new block.
     pub(super) fn exit_if(&mut self, cond: Value, exit: Exit, pc: usize) {
-        let (out, args) = self.exit_target(exit, pc);
-        let cont = self.b.create_block();
-        self.b.ins().brif(cond, out, &args, cont, &[]);
-        self.b.switch_to_block(cont);
+        let target = self.exit_target(exit, pc);
+        self.branch_out(cond, target);
     }
 
     /// Leaves through the fault exit, reporting the fault at instruction
     /// `pc_value`, when `cond` holds.
     pub(super) fn fault_if_at(&mut self, cond: Value, pc_value: Value) {
-        let (out, args) = self.exit_target_at(Exit::Fault, 0, pc_value);
+        let target = self.exit_target_at(Exit::Fault, 0, pc_value);
+        self.branch_out(cond, target);
+    }
+
+    /// Branches to the exit `(out, args)` when `cond` holds, else goes on
+    /// in a new block.
+    fn branch_out(&mut self, cond: Value, (out, args): (Block, Vec<BlockArg>)) {
         let cont = self.b.create_block();
         self.b.ins().brif(cond, out, &args, cont, &[]);
         self.b.switch_to_block(cont);
